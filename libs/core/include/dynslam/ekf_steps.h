@@ -1,0 +1,80 @@
+#pragma once
+/** @file ekf_steps.h
+ * The dynamic EKF's steps (paper Alg. 3-7) as dense functions on a Gaussian (mean x,
+ * covariance P), independent of MRPT. CDynamicKFSLAM2D calls them on MRPT's m_xkk / m_pkk
+ * (row-major, hence RowMatrixXd); the optimization framework and the tests call them on
+ * their own matrices.
+ *
+ * Steps that add variables (augmentations) return the new mean entries and covariance blocks
+ * (struct Augmentation) and leave the resize to the owner of the storage; steps that change
+ * existing entries (updates, propagation) work in place. The ego pose is always x[0..2]. */
+#include <dynslam/models/measurement.h>
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace dynslam::ekf
+{
+using RowMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/** New state entries and their covariance with the existing state, to be appended. */
+struct Augmentation
+{
+	Eigen::VectorXd mean;  ///< m new entries
+	Eigen::MatrixXd cross;  ///< m x n: cov(new, existing), existing in state order
+	Eigen::MatrixXd cov;  ///< m x m
+};
+
+/** Alg. 3: augment new point features from measurements z_k (in the model's measurement
+ * space) taken at the ego pose x[0..2]:
+ *   mean_k = l(x, z_k), cross = L_x P[0:3, :], cov = L_x P_xx L_x^T + L_z R L_z^T (blockwise).
+ * @param P_ego_rows the first 3 rows of P (3 x n). */
+Augmentation featureAugmentation(
+	models::MeasurementModel model, const Eigen::Vector3d& ego,
+	const Eigen::Ref<const RowMatrixXd>& P_ego_rows, const std::vector<Eigen::Vector2d>& z,
+	const Eigen::Matrix2d& R);
+
+/** Alg. 4: augment the pose xi_t of one object from its features at time 0 and time t:
+ *   mean = gamma(f0, ft), cross = Gamma1 P[f0, :] + Gamma2 P[ft, :],
+ *   cov = Gamma P[f,f] Gamma^T + Gamma2 diag(Sigma_xi) Gamma2^T, Gamma = [Gamma1 Gamma2].
+ * @param f0_idx state index of the x-coordinate of each time-0 feature (n entries).
+ * @param ft_idx state index of the x-coordinate of each seen time-t feature (m entries).
+ * @param seen seen[i] = which time-0 feature ft_idx[i] is (see models::objectPoseInverse).
+ * For n == 1 the pose is translation-only (2 entries); otherwise it has 3 (dx, dy, dtheta).
+ * @throws std::domain_error where gamma is undetermined (see objectPoseInverse). */
+Augmentation objectPoseAugmentation(
+	const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const RowMatrixXd>& P,
+	const std::vector<int>& f0_idx, const std::vector<int>& ft_idx, const std::vector<int>& seen,
+	const Eigen::Matrix2d& Sigma_xi);
+
+/** EKF update by a measurement that depends only on the entries idx of the state (Alg. 5 and
+ * Alg. 6 are both of this form):
+ *   S = H P[idx,idx] H^T + R, K = P[:,idx] H^T S^-1, x += K nu, P -= K S K^T.
+ * H is m x |idx| (the Jacobian's non-zero columns), nu the innovation (m), R m x m.
+ * Cost O(n^2 m + n m^2) instead of the dense O(n^3). P stays exactly symmetric.
+ * @return the NIS nu^T S^-1 nu.
+ * @throws std::runtime_error if S is not positive definite. */
+double sparseUpdate(
+	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const std::vector<int>& idx,
+	const Eigen::MatrixXd& H, const Eigen::VectorXd& nu, const Eigen::MatrixXd& R);
+
+/** Alg. 6 for one object: smoothing pseudo-measurement 0 = s(xi_{t-2}, xi_{t-1}, xi_t) + n_s,
+ * n_s ~ N(0, Sigma_s), applied by sparseUpdate. Each *_idx is the index of the pose's first
+ * entry; the pose occupies d consecutive entries (d = 2 or 3, Sigma_s is d x d).
+ * @return the NIS. */
+double smoothingUpdate(
+	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, int xi_tm2_idx, int xi_tm1_idx,
+	int xi_t_idx, const Eigen::MatrixXd& Sigma_s);
+
+/** Alg. 7: propagate the ego pose x[0..2] by the odometry increment u (x <- x (+) u) with
+ * noise Sigma_u on the increment: P_xx <- F P_xx F^T + G Sigma_u G^T, P_xe <- F P_xe. */
+void propagate(
+	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const Eigen::Vector3d& u,
+	const Eigen::Matrix3d& Sigma_u);
+
+/** The indices 0..n-1 that are not in `remove` (any order, duplicates allowed), ascending. */
+std::vector<int> keptIndices(int n, const std::vector<int>& remove);
+
+/** Marginal covariance P[idx, idx]. */
+Eigen::MatrixXd marginal(const Eigen::Ref<const RowMatrixXd>& P, const std::vector<int>& idx);
+}  // namespace dynslam::ekf

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Configures and builds dynslam in build/ (Release, all cores). Usage: scripts/build.sh [extra cmake args]
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+BUILD="${DYNSLAM_BUILD_DIR:-$ROOT/build}"
+cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+cmake --build "$BUILD" -j"$(nproc)"
