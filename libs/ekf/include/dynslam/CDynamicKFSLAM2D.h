@@ -1,0 +1,266 @@
+#pragma once
+/** @file CDynamicKFSLAM2D.h
+ * Dynamic EKF-SLAM (Chiu, arXiv 2207.05043, Alg. 2-7) as a subclass of MRPT's
+ * CKalmanFilterCapable<3,2,2,3>.
+ *
+ * State layout (design decision, doc/state-layout.md): the ego pose (x, y, theta), then a
+ * sequence of 2-dof slots described by a slot table:
+ *   static landmark | object feature at time 0 | object feature at time t |
+ *   object pose part A [dx, dy] | object pose part B [dtheta, pad].
+ * The pad is an independent unit-variance dummy with zero cross-covariance; no model touches
+ * it and no output shows it. A one-feature object has a translation-only pose (part A only).
+ *
+ * One step (processActionObservation):
+ *  1. MRPT's runOneKalmanIteration(): prediction with the odometry (Alg. 7), update with the
+ *     tracked static landmarks (Alg. 5), augmentation of new static landmarks (Alg. 3).
+ *  2. Object-feature augmentation (Alg. 3): time-0 features of new objects, time-t features
+ *     of known objects.
+ *  3. Object-pose augmentation (Alg. 4) with Sigma_xi, for every object seen this step.
+ *  4. Drops: time-t features (optional, default on), object poses older than the last K,
+ *     static landmarks out of range for too long (optional, default off). Dropped poses and
+ *     landmarks are recorded with their last mean and marginal covariance.
+ *  5. Smoothing update (Alg. 6, optional) for objects with poses at t-2, t-1, t.
+ * Every measurement is used once: a new feature's measurement initializes it, only features
+ * tracked before this step update the state.
+ *
+ * Input: a CActionCollection with a CActionRobotMovement2D, and a CSensoryFrame whose first
+ * CObservationBearingRange holds static landmarks and object features, told apart by ID
+ * (dynslam/landmark_ids.h). Bad input throws std::runtime_error (nothing is changed) or is
+ * skipped and counted, as documented per case in getLastStepReport(). */
+#include <dynslam/models/measurement.h>
+
+#include <mrpt/bayes/CKalmanFilterCapable.h>
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace dynslam
+{
+/** What one 2-dof slot of the state (after the ego pose) holds. */
+enum class SlotKind : uint8_t
+{
+	StaticLandmark,
+	ObjectFeature0,  ///< feature of a moving object at its first sighting (time 0)
+	ObjectFeatureT,  ///< feature of a moving object at the current time t
+	ObjectPoseA,  ///< [dx, dy] of an object pose xi_t
+	ObjectPoseB  ///< [dtheta, pad] of an object pose xi_t
+};
+const char* toString(SlotKind k);
+
+/** One entry of the slot table. */
+struct TSlot
+{
+	SlotKind kind;
+	int32_t id = -1;  ///< landmark ID (static / object features), -1 for poses
+	int32_t object = -1;  ///< object index (object slots)
+	int32_t feature = -1;  ///< feature index within the object (object features)
+	int step = -1;  ///< time step of xi (poses) or of the measurement (time-t features)
+};
+
+struct TStaticLandmarkEstimate
+{
+	int32_t id;
+	Eigen::Vector2d mean;
+	Eigen::Matrix2d cov;
+	bool in_state = true;  ///< false: dropped (out of range), last estimate recorded
+};
+
+struct TObjectFeatureEstimate
+{
+	int32_t object, feature, id;
+	bool at_time0;  ///< true: f_0 (first sighting); false: f_t
+	int step;  ///< step of the estimate (first sighting step for f_0)
+	Eigen::Vector2d mean;
+	Eigen::Matrix2d cov;
+};
+
+struct TObjectPoseEstimate
+{
+	int step;
+	Eigen::VectorXd mean;  ///< (dx, dy, dtheta), or (dx, dy) for one-feature objects
+	Eigen::MatrixXd cov;  ///< marginal covariance
+	bool in_state;  ///< false: dropped, recorded with its marginal covariance at drop time
+};
+
+/** Everything known of one moving object. */
+struct TObjectTrack
+{
+	int32_t object;
+	int first_step;  ///< the object's time 0
+	int num_features;  ///< features seen at the first sighting (the object's feature set)
+	std::vector<TObjectPoseEstimate> poses;  ///< ascending step: dropped ones, then in-state ones
+};
+
+/** Counts of what one step did, and what it skipped and why. */
+struct TStepReport
+{
+	int step = -1;
+	size_t static_updates = 0, static_new = 0;
+	size_t object_features_new = 0, object_features_t = 0, object_poses_added = 0;
+	size_t smoothing_updates = 0;
+	size_t skipped_unknown_object_feature = 0;  ///< feature of a known object not seen at its time 0
+	size_t skipped_pose_degenerate = 0;  ///< gamma undetermined (one feature seen, coinciding)
+	size_t dropped_static = 0, dropped_poses = 0, dropped_time_t = 0;
+	double nis_static = 0;  ///< NIS of the static update (0 if none)
+	size_t nis_static_dof = 0;
+};
+
+class CDynamicKFSLAM2D : public mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>
+{
+public:
+	using Base = mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>;
+
+	/** Options, section [DynamicKFSLAM] (KF_options in [DynamicKFSLAM_KalmanFilter]). */
+	struct TOptions : public mrpt::config::CLoadableOptions
+	{
+		void loadFromConfigFile(
+			const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+		void dumpToTextStream(std::ostream& out) const override;
+		/** Throws std::invalid_argument naming the offending option. */
+		void validate() const;
+
+		/** measurement_model (required): cartesian (paper, Sigma_v on the sensor-frame
+		 * point) or range_bearing (MRPT's; Sigma_v = diag(std_range^2, std_bearing^2)). */
+		models::MeasurementModel measurement_model = models::MeasurementModel::Cartesian;
+		/** Sigma_v (required): measurement noise covariance in the model's space [m^2] or
+		 * [m^2, rad^2]. */
+		Eigen::Matrix2d Sigma_v = Eigen::Matrix2d::Identity() * 1e-4;
+		/** motion_noise = action (the CActionRobotMovement2D covariance, rotated by the
+		 * heading, as CRangeBearingKFSLAM2D does) or config (Sigma_w on the increment). */
+		bool motion_noise_from_action = true;
+		Eigen::Matrix3d Sigma_w = Eigen::Matrix3d::Identity() * 1e-4;  ///< [m^2, m^2, rad^2]
+		Eigen::Vector3d initial_pose = Eigen::Vector3d::Zero();  ///< x_0 mean
+		Eigen::Matrix3d Sigma_0 = Eigen::Matrix3d::Zero();  ///< x_0 covariance (PSD)
+		/** Sigma_xi: per-feature residual covariance of the object pose map (paper 0.1 I). */
+		Eigen::Matrix2d Sigma_xi = Eigen::Matrix2d::Identity() * 0.1;
+		bool smoothing = false;  ///< Alg. 6 on/off (paper: off on the highway)
+		Eigen::Matrix3d Sigma_s = Eigen::Matrix3d::Identity() * 1e-2;  ///< smoothing covariance
+		bool drop_time_t_features = true;  ///< drop f_t after pose augmentation
+		int keep_last_poses = 1;  ///< K >= 1 object poses kept per object (3 with smoothing)
+		/** Drop static landmarks unseen for this many steps (0 = never). Off by default:
+		 * loop closure needs them. */
+		int drop_static_after_unseen_steps = 0;
+	};
+
+	TOptions options;
+
+	CDynamicKFSLAM2D();
+	~CDynamicKFSLAM2D() override = default;
+	// Not copyable (KF_options holds a reference to the logger's level, see mrpt-notes).
+	CDynamicKFSLAM2D(const CDynamicKFSLAM2D&) = delete;
+	CDynamicKFSLAM2D& operator=(const CDynamicKFSLAM2D&) = delete;
+
+	/** Clears the map and sets the ego pose to options.initial_pose / Sigma_0. */
+	void reset();
+
+	/** Loads `options` from [section] and `KF_options` from [section_KalmanFilter], validates
+	 * and resets. Required keys throw when missing. */
+	void loadOptions(
+		const mrpt::config::CConfigFileBase& ini, const std::string& section = "DynamicKFSLAM");
+
+	/** One filter step (see the file comment). Throws std::runtime_error on bad input (wrong
+	 * action type, NaN/Inf, duplicate or invalid IDs), leaving the filter unchanged. */
+	void processActionObservation(
+		const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF);
+
+	// --- results --------------------------------------------------------------
+	mrpt::poses::CPosePDFGaussian getEgoPose() const;
+	/** Static landmarks in the state, then (if includeDropped) the dropped ones. */
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(bool includeDropped = true) const;
+	/** Object features in the state (time 0 and, if kept, time t). */
+	std::vector<TObjectFeatureEstimate> getObjectFeatures() const;
+	/** Every object's pose history: dropped poses (recorded) and poses in the state. */
+	std::map<int32_t, TObjectTrack> getObjectTracks() const;
+	const std::vector<TSlot>& getSlots() const { return m_slots; }
+	/** Mean and covariance without pad entries; labels[i] names entry i. */
+	void getStateWithoutPads(
+		Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>* labels = nullptr) const;
+	/** State vector index of the pad entries (for checks). */
+	std::vector<size_t> padIndices() const;
+	const TStepReport& getLastStepReport() const { return m_report; }
+	int stepCount() const { return m_step + 1; }
+	/** Full mean / covariance including pads (MRPT's storage). */
+	const KFVector& fullMean() const { return m_xkk; }
+	const KFMatrix& fullCov() const { return m_pkk; }
+
+protected:
+	// --- CKalmanFilterCapable hooks ------------------------------------------------
+	void OnGetAction(KFArray_ACT& out_u) const override;
+	void OnTransitionModel(
+		const KFArray_ACT& in_u, KFArray_VEH& inout_x, bool& out_skipPrediction) const override;
+	void OnTransitionJacobian(KFMatrix_VxV& out_F) const override;
+	void OnTransitionNoise(KFMatrix_VxV& out_Q) const override;
+	void OnGetObservationNoise(KFMatrix_OxO& out_R) const override;
+	void OnGetObservationsAndDataAssociation(
+		vector_KFArray_OBS& out_z, std::vector<int>& out_data_association,
+		const vector_KFArray_OBS& in_all_predictions, const KFMatrix& in_S,
+		const std::vector<size_t>& in_lm_indices_in_S, const KFMatrix_OxO& in_R) override;
+	void OnObservationModel(
+		const std::vector<size_t>& idx_landmarks_to_predict,
+		vector_KFArray_OBS& out_predictions) const override;
+	void OnObservationJacobians(
+		size_t idx_landmark_to_predict, KFMatrix_OxV& Hx, KFMatrix_OxF& Hy) const override;
+	void OnSubstractObservationVectors(KFArray_OBS& A, const KFArray_OBS& B) const override;
+	void OnPreComputingPredictions(
+		const vector_KFArray_OBS& in_all_prediction_means,
+		std::vector<size_t>& out_LM_indices_to_predict) const override;
+	using Base::OnInverseObservationModel;
+	void OnInverseObservationModel(
+		const KFArray_OBS& in_z, KFArray_FEAT& out_yn, KFMatrix_FxV& out_dyn_dxv,
+		KFMatrix_FxO& out_dyn_dhn) const override;
+	void OnNewLandmarkAddedToMap(size_t in_obsIdx, size_t in_idxNewFeat) override;
+	void OnNormalizeStateVector() override;
+
+private:
+	/** One parsed measurement of this step, in the model's measurement space. */
+	struct TMeas
+	{
+		int32_t id;
+		Eigen::Vector2d z;
+	};
+	/** Per-object bookkeeping. */
+	struct TObjectInfo
+	{
+		int first_step = -1;
+		std::vector<int32_t> feature_ids;  ///< features seen at time 0, in slot order
+		std::vector<TObjectPoseEstimate> dropped_poses;
+	};
+
+	void validateAndParse(
+		const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF);
+	void augmentObjectFeatures();  // Alg. 3 for objects
+	void augmentObjectPoses();  // Alg. 4
+	void applyDropPolicies();
+	void applySmoothing();  // Alg. 6
+	/** Appends an augmentation (mean, cross, cov), padding as described by `kinds`. */
+	void appendSlots(
+		const Eigen::VectorXd& mean, const Eigen::MatrixXd& cross, const Eigen::MatrixXd& cov,
+		const std::vector<TSlot>& slots, bool lastEntryIsPad);
+	/** Removes the given slots (indices into m_slots), keeping x, P and tables in step. */
+	void removeSlots(const std::vector<size_t>& slotIdx);
+	size_t slotStateIndex(size_t slot) const { return 3 + 2 * slot; }
+
+	// inputs of the current step
+	mrpt::poses::CPose2D m_odoIncrement;
+	Eigen::Matrix3d m_odoCov = Eigen::Matrix3d::Zero();
+	std::vector<TMeas> m_static, m_objectMeas;
+	double m_maxRange = 0;
+
+	// slot table and indices
+	std::vector<TSlot> m_slots;
+	std::map<int32_t, size_t> m_staticSlot;  ///< landmark ID -> slot
+	std::map<int32_t, int> m_staticLastSeen;  ///< landmark ID -> last step seen
+	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
+	std::map<int32_t, TObjectInfo> m_objects;
+	std::vector<int32_t> m_pendingNewStaticIds;  ///< obs index -> ID, for OnNewLandmarkAddedToMap
+	int m_step = -1;
+	TStepReport m_report;
+};
+}  // namespace dynslam
