@@ -27,6 +27,7 @@
  * CObservationBearingRange holds static landmarks and object features, told apart by ID
  * (dynslam/landmark_ids.h). Bad input throws std::runtime_error (nothing is changed) or is
  * skipped and counted, as documented per case in getLastStepReport(). */
+#include <dynslam/ISlamBackend.h>
 #include <dynslam/models/measurement.h>
 
 #include <mrpt/bayes/CKalmanFilterCapable.h>
@@ -64,55 +65,8 @@ struct TSlot
 	int step = -1;  ///< time step of xi (poses) or of the measurement (time-t features)
 };
 
-struct TStaticLandmarkEstimate
-{
-	int32_t id;
-	Eigen::Vector2d mean;
-	Eigen::Matrix2d cov;
-	bool in_state = true;  ///< false: dropped (out of range), last estimate recorded
-};
-
-struct TObjectFeatureEstimate
-{
-	int32_t object, feature, id;
-	bool at_time0;  ///< true: f_0 (first sighting); false: f_t
-	int step;  ///< step of the estimate (first sighting step for f_0)
-	Eigen::Vector2d mean;
-	Eigen::Matrix2d cov;
-};
-
-struct TObjectPoseEstimate
-{
-	int step;
-	Eigen::VectorXd mean;  ///< (dx, dy, dtheta), or (dx, dy) for one-feature objects
-	Eigen::MatrixXd cov;  ///< marginal covariance
-	bool in_state;  ///< false: dropped, recorded with its marginal covariance at drop time
-};
-
-/** Everything known of one moving object. */
-struct TObjectTrack
-{
-	int32_t object;
-	int first_step;  ///< the object's time 0
-	int num_features;  ///< features seen at the first sighting (the object's feature set)
-	std::vector<TObjectPoseEstimate> poses;  ///< ascending step: dropped ones, then in-state ones
-};
-
-/** Counts of what one step did, and what it skipped and why. */
-struct TStepReport
-{
-	int step = -1;
-	size_t static_updates = 0, static_new = 0;
-	size_t object_features_new = 0, object_features_t = 0, object_poses_added = 0;
-	size_t smoothing_updates = 0;
-	size_t skipped_unknown_object_feature = 0;  ///< feature of a known object not seen at its time 0
-	size_t skipped_pose_degenerate = 0;  ///< gamma undetermined (one feature seen, coinciding)
-	size_t dropped_static = 0, dropped_poses = 0, dropped_time_t = 0;
-	double nis_static = 0;  ///< NIS of the static update (0 if none)
-	size_t nis_static_dof = 0;
-};
-
-class CDynamicKFSLAM2D : public mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>
+class CDynamicKFSLAM2D : public mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>,
+						 public ISlamBackend
 {
 public:
 	using Base = mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>;
@@ -168,23 +122,25 @@ public:
 	/** One filter step (see the file comment). Throws std::runtime_error on bad input (wrong
 	 * action type, NaN/Inf, duplicate or invalid IDs), leaving the filter unchanged. */
 	void processActionObservation(
-		const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF);
+		const mrpt::obs::CActionCollection::Ptr& action,
+		const mrpt::obs::CSensoryFrame::Ptr& SF) override;
+	std::string name() const override { return "dynamic_ekf"; }
 
 	// --- results --------------------------------------------------------------
-	mrpt::poses::CPosePDFGaussian getEgoPose() const;
+	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
 	/** Static landmarks in the state, then (if includeDropped) the dropped ones. */
-	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(bool includeDropped = true) const;
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(bool includeDropped = true) const override;
 	/** Object features in the state (time 0 and, if kept, time t). */
-	std::vector<TObjectFeatureEstimate> getObjectFeatures() const;
+	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
 	/** Every object's pose history: dropped poses (recorded) and poses in the state. */
-	std::map<int32_t, TObjectTrack> getObjectTracks() const;
+	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
 	const std::vector<TSlot>& getSlots() const { return m_slots; }
 	/** Mean and covariance without pad entries; labels[i] names entry i. */
 	void getStateWithoutPads(
 		Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>* labels = nullptr) const;
 	/** State vector index of the pad entries (for checks). */
 	std::vector<size_t> padIndices() const;
-	const TStepReport& getLastStepReport() const { return m_report; }
+	const TStepReport& getLastStepReport() const override { return m_report; }
 	int stepCount() const { return m_step + 1; }
 	/** Full mean / covariance including pads (MRPT's storage). */
 	const KFVector& fullMean() const { return m_xkk; }

@@ -1,0 +1,85 @@
+#pragma once
+/** @file ISlamBackend.h
+ * What every SLAM back-end of the project offers to the apps: the dynamic EKF
+ * (CDynamicKFSLAM2D), the optimization framework's configurations (Alg. 1, VDO-SLAM-like,
+ * DynaSLAM II-like, CubeSLAM-like, ClusterSLAM-like) and the static baseline wrapper.
+ * All are driven by MRPT's (action, sensory frame) pairs, one per step. */
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace dynslam
+{
+struct TStaticLandmarkEstimate
+{
+	int32_t id;
+	Eigen::Vector2d mean;
+	Eigen::Matrix2d cov;
+	bool in_state = true;  ///< false: dropped (out of range), last estimate recorded
+};
+
+struct TObjectFeatureEstimate
+{
+	int32_t object, feature, id;
+	bool at_time0;  ///< true: f_0 (first sighting); false: f_t
+	int step;  ///< step of the estimate (first sighting step for f_0)
+	Eigen::Vector2d mean;
+	Eigen::Matrix2d cov;
+};
+
+struct TObjectPoseEstimate
+{
+	int step;
+	Eigen::VectorXd mean;  ///< (dx, dy, dtheta), or (dx, dy) for one-feature objects
+	Eigen::MatrixXd cov;  ///< marginal covariance
+	bool in_state;  ///< false: dropped, recorded with its marginal covariance at drop time
+};
+
+/** Everything known of one moving object. */
+struct TObjectTrack
+{
+	int32_t object;
+	int first_step;  ///< the object's time 0
+	int num_features;  ///< features seen at the first sighting (the object's feature set)
+	std::vector<TObjectPoseEstimate> poses;  ///< ascending step: dropped ones, then in-state ones
+};
+
+/** Counts of what one step did, and what it skipped and why. */
+struct TStepReport
+{
+	int step = -1;
+	size_t static_updates = 0, static_new = 0;
+	size_t object_features_new = 0, object_features_t = 0, object_poses_added = 0;
+	size_t smoothing_updates = 0;
+	size_t skipped_unknown_object_feature = 0;  ///< feature of a known object not seen at its time 0
+	size_t skipped_pose_degenerate = 0;  ///< gamma undetermined (one feature seen, coinciding)
+	size_t dropped_static = 0, dropped_poses = 0, dropped_time_t = 0;
+	double nis_static = 0;  ///< NIS of the static update (0 if none)
+	size_t nis_static_dof = 0;
+};
+
+/** Common interface of the back-ends. */
+class ISlamBackend
+{
+public:
+	virtual ~ISlamBackend() = default;
+	/** Short name used in tables and file names, e.g. "dynamic_ekf". */
+	virtual std::string name() const = 0;
+	/** One step: odometry action into this step, then the observations of this step. */
+	virtual void processActionObservation(
+		const mrpt::obs::CActionCollection::Ptr& action,
+		const mrpt::obs::CSensoryFrame::Ptr& SF) = 0;
+	virtual mrpt::poses::CPosePDFGaussian getEgoPose() const = 0;
+	virtual std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
+		bool includeDropped = true) const = 0;
+	virtual std::vector<TObjectFeatureEstimate> getObjectFeatures() const = 0;
+	virtual std::map<int32_t, TObjectTrack> getObjectTracks() const = 0;
+	virtual const TStepReport& getLastStepReport() const = 0;
+};
+}  // namespace dynslam
