@@ -101,6 +101,10 @@ public:
 		/** Drop static landmarks unseen for this many steps (0 = never). Off by default:
 		 * loop closure needs them. */
 		int drop_static_after_unseen_steps = 0;
+		/** Reproduce CRangeBearingKFSLAM2D, which skips the prediction (mean and covariance)
+		 * while the map is empty. Off by default: it ignores the motion before the first
+		 * landmark. Only for comparisons with MRPT's filter. */
+		bool skip_prediction_on_empty_map = false;
 	};
 
 	TOptions options;
@@ -215,7 +219,6 @@ private:
 	std::map<int32_t, int> m_staticLastSeen;  ///< landmark ID -> last step seen
 	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
 	std::map<int32_t, TObjectInfo> m_objects;
-	std::vector<int32_t> m_pendingNewStaticIds;  ///< obs index -> ID, for OnNewLandmarkAddedToMap
 	int m_step = -1;
 	TStepReport m_report;
 };

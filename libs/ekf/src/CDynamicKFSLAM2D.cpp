@@ -1,0 +1,363 @@
+/** CDynamicKFSLAM2D: input parsing, the MRPT Kalman-filter hooks (prediction, static update,
+ * static augmentation) and the step driver. Object steps: CDynamicKFSLAM2D_objects.cpp. */
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/landmark_ids.h>
+#include <dynslam/models/se2.h>
+
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+namespace dynslam
+{
+const char* toString(SlotKind k)
+{
+	switch (k)
+	{
+		case SlotKind::StaticLandmark:
+			return "static_landmark";
+		case SlotKind::ObjectFeature0:
+			return "object_feature_t0";
+		case SlotKind::ObjectFeatureT:
+			return "object_feature_t";
+		case SlotKind::ObjectPoseA:
+			return "object_pose_a";
+		case SlotKind::ObjectPoseB:
+			return "object_pose_b";
+	}
+	return "?";
+}
+
+CDynamicKFSLAM2D::CDynamicKFSLAM2D()
+{
+	setLoggerName("CDynamicKFSLAM2D");
+	reset();
+}
+
+void CDynamicKFSLAM2D::reset()
+{
+	m_xkk.resize(3);
+	for (int i = 0; i < 3; ++i) m_xkk[i] = options.initial_pose[i];
+	m_pkk.setSize(3, 3);
+	for (int i = 0; i < 3; ++i)
+		for (int j = 0; j < 3; ++j) m_pkk(i, j) = options.Sigma_0(i, j);
+	m_slots.clear();
+	m_staticSlot.clear();
+	m_staticLastSeen.clear();
+	m_droppedStatic.clear();
+	m_objects.clear();
+	m_static.clear();
+	m_objectMeas.clear();
+	m_step = -1;
+	m_report = TStepReport();
+}
+
+void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini, const std::string& section)
+{
+	options.loadFromConfigFile(ini, section);
+	KF_options.loadFromConfigFile(ini, section + "_KalmanFilter");
+	if (KF_options.method != mrpt::bayes::kfEKFNaive &&
+		KF_options.method != mrpt::bayes::kfEKFAlaDavison)
+		throw std::invalid_argument(
+			"[" + section +
+			"_KalmanFilter] method: only kfEKFNaive and kfEKFAlaDavison are supported (MRPT's "
+			"kfIKF is not implemented and kfIKFFull does not re-linearise)");
+	reset();
+}
+
+// ------------------------------------------------------------------------------------------
+// Input
+// ------------------------------------------------------------------------------------------
+void CDynamicKFSLAM2D::validateAndParse(
+	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
+{
+	using namespace std::string_literals;
+	if (!action) throw std::runtime_error("CDynamicKFSLAM2D: null action collection");
+	const auto mov = action->getBestMovementEstimation();
+	if (!mov)
+		throw std::runtime_error(
+			"CDynamicKFSLAM2D: the action collection holds no CActionRobotMovement2D (" +
+			std::to_string(action->size()) + " action(s) of another type)");
+	mrpt::poses::CPosePDFGaussian inc(*mov->poseChange);
+	const Eigen::Vector3d u(inc.mean.x(), inc.mean.y(), inc.mean.phi());
+	const Eigen::Matrix3d U = inc.cov.asEigen();
+	if (!u.allFinite() || !U.allFinite())
+		throw std::runtime_error("CDynamicKFSLAM2D: odometry increment or covariance not finite");
+	if (options.motion_noise_from_action)
+	{
+		const Eigen::Matrix3d Us = 0.5 * (U + U.transpose());
+		if ((U - Us).cwiseAbs().maxCoeff() > 1e-9 * std::max(1.0, U.cwiseAbs().maxCoeff()) ||
+			Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Us).eigenvalues().minCoeff() <
+				-1e-12 * std::max(1.0, U.norm()))
+			throw std::runtime_error(
+				"CDynamicKFSLAM2D: odometry covariance is not symmetric positive semi-definite");
+	}
+
+	std::vector<TMeas> stat, objs;
+	double maxRange = 0;
+	if (!SF) throw std::runtime_error("CDynamicKFSLAM2D: null sensory frame");
+	const auto obs = SF->getObservationByClass<mrpt::obs::CObservationBearingRange>();
+	if (obs)
+	{
+		const auto& sp = obs->sensorLocationOnRobot;
+		if (std::abs(sp.x()) + std::abs(sp.y()) + std::abs(sp.z()) + std::abs(sp.yaw()) +
+				std::abs(sp.pitch()) + std::abs(sp.roll()) >
+			0)
+			throw std::runtime_error(
+				"CDynamicKFSLAM2D: sensorLocationOnRobot must be the identity (the models place "
+				"the sensor at the robot's origin)");
+		maxRange = obs->maxSensorDistance;
+		std::set<int32_t> seen;
+		for (size_t i = 0; i < obs->sensedData.size(); ++i)
+		{
+			const auto& m = obs->sensedData[i];
+			const std::string where = "measurement " + std::to_string(i) + " (landmark ID " +
+									  std::to_string(m.landmarkID) + ")";
+			if (!std::isfinite(m.range) || !std::isfinite(m.yaw) || !std::isfinite(m.pitch))
+				throw std::runtime_error("CDynamicKFSLAM2D: NaN or Inf in " + where);
+			if (m.pitch != 0)
+				throw std::runtime_error("CDynamicKFSLAM2D: non-zero pitch in " + where + " (2-D SLAM)");
+			if (!(m.range >= 0)) throw std::runtime_error("CDynamicKFSLAM2D: negative range in " + where);
+			if (options.measurement_model == models::MeasurementModel::RangeBearing && m.range == 0)
+				throw std::runtime_error(
+					"CDynamicKFSLAM2D: zero range in " + where + " (bearing undefined)");
+			const auto kind = ids::classify(m.landmarkID);
+			if (kind == ids::IdKind::Invalid)
+				throw std::runtime_error(
+					"CDynamicKFSLAM2D: " + where +
+					" is in no known ID range (static 0..99999, object features >= 100000; "
+					"see dynslam/landmark_ids.h)");
+			if (!seen.insert(m.landmarkID).second)
+				throw std::runtime_error("CDynamicKFSLAM2D: duplicate " + where);
+			const TMeas tm{
+				m.landmarkID, models::fromRangeBearing(options.measurement_model, m.range, m.yaw)};
+			(kind == ids::IdKind::Static ? stat : objs).push_back(tm);
+		}
+	}
+	// Everything validated: commit the inputs.
+	m_odoIncrement = mrpt::poses::CPose2D(u[0], u[1], u[2]);
+	m_odoCov = U;
+	m_static.swap(stat);
+	m_objectMeas.swap(objs);
+	m_maxRange = maxRange;
+}
+
+void CDynamicKFSLAM2D::processActionObservation(
+	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
+{
+	validateAndParse(action, SF);
+	++m_step;
+	m_report = TStepReport();
+	m_report.step = m_step;
+
+	// 1. MRPT: prediction (Alg. 7), static update (Alg. 5), static augmentation (Alg. 3)
+	runOneKalmanIteration();
+	for (const auto& m : m_static) m_staticLastSeen[m.id] = m_step;
+
+	// 2-5. Object steps and drops
+	augmentObjectFeatures();  // Alg. 3 (objects)
+	augmentObjectPoses();  // Alg. 4
+	applySmoothing();  // Alg. 6 (optional)
+	applyDropPolicies();
+}
+
+// ------------------------------------------------------------------------------------------
+// MRPT hooks
+// ------------------------------------------------------------------------------------------
+void CDynamicKFSLAM2D::OnGetAction(KFArray_ACT& u) const
+{
+	u[0] = m_odoIncrement.x();
+	u[1] = m_odoIncrement.y();
+	u[2] = m_odoIncrement.phi();
+}
+
+void CDynamicKFSLAM2D::OnTransitionModel(
+	const KFArray_ACT& u, KFArray_VEH& xv, bool& out_skipPrediction) const
+{
+	if (options.skip_prediction_on_empty_map && m_xkk.size() == 3)
+	{
+		out_skipPrediction = true;
+		return;
+	}
+	const Eigen::Vector3d out = models::composePose(
+		Eigen::Vector3d(xv[0], xv[1], xv[2]), Eigen::Vector3d(u[0], u[1], u[2]));
+	for (int i = 0; i < 3; ++i) xv[i] = out[i];
+}
+
+void CDynamicKFSLAM2D::OnTransitionJacobian(KFMatrix_VxV& F) const
+{
+	Eigen::Matrix3d J_out_x;
+	models::composePose(
+		Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
+		Eigen::Vector3d(m_odoIncrement.x(), m_odoIncrement.y(), m_odoIncrement.phi()), &J_out_x);
+	F = J_out_x;
+}
+
+void CDynamicKFSLAM2D::OnTransitionNoise(KFMatrix_VxV& Q) const
+{
+	// Noise on the robot-frame increment, mapped by J_out_u = blkdiag(R(theta), 1): this is
+	// CPosePDFGaussian::rotateCov(theta), as in CRangeBearingKFSLAM2D.
+	Eigen::Matrix3d J_out_u;
+	models::composePose(
+		Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]), Eigen::Vector3d::Zero(), nullptr, &J_out_u);
+	const Eigen::Matrix3d& S = options.motion_noise_from_action ? m_odoCov : options.Sigma_w;
+	Q = J_out_u * S * J_out_u.transpose();
+}
+
+void CDynamicKFSLAM2D::OnGetObservationNoise(KFMatrix_OxO& R) const { R = options.Sigma_v; }
+
+void CDynamicKFSLAM2D::OnPreComputingPredictions(
+	const vector_KFArray_OBS&, std::vector<size_t>& out_idx) const
+{
+	// IDs are known: predict exactly the tracked static landmarks seen in this step.
+	out_idx.clear();
+	for (const auto& m : m_static)
+	{
+		const auto it = m_staticSlot.find(m.id);
+		if (it != m_staticSlot.end()) out_idx.push_back(it->second);
+	}
+}
+
+namespace
+{
+/** h() that never throws (MRPT predicts every slot, including non-observed ones). */
+Eigen::Vector2d safeObserve(
+	models::MeasurementModel model, const Eigen::Vector3d& x, const Eigen::Vector2d& f)
+{
+	if (model == models::MeasurementModel::RangeBearing && (f - x.head<2>()).squaredNorm() == 0)
+		return Eigen::Vector2d::Zero();
+	return models::observe(model, x, f);
+}
+}  // namespace
+
+void CDynamicKFSLAM2D::OnObservationModel(
+	const std::vector<size_t>& idx, vector_KFArray_OBS& out) const
+{
+	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
+	out.resize(idx.size());
+	for (size_t i = 0; i < idx.size(); ++i)
+	{
+		const size_t s = idx[i];
+		if (s < m_slots.size() && m_slots[s].kind == SlotKind::StaticLandmark)
+		{
+			const size_t k = slotStateIndex(s);
+			const Eigen::Vector2d z =
+				safeObserve(options.measurement_model, ego, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
+			out[i][0] = z[0];
+			out[i][1] = z[1];
+		}
+		else
+		{
+			out[i][0] = 0;
+			out[i][1] = 0;
+		}
+	}
+}
+
+void CDynamicKFSLAM2D::OnObservationJacobians(size_t s, KFMatrix_OxV& Hx, KFMatrix_OxF& Hy) const
+{
+	Hx.setZero();
+	Hy.setZero();
+	if (s >= m_slots.size() || m_slots[s].kind != SlotKind::StaticLandmark) return;
+	const size_t k = slotStateIndex(s);
+	models::Matrix23d J_z_x;
+	Eigen::Matrix2d J_z_f;
+	models::observe(
+		options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
+		Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]), &J_z_x, &J_z_f);
+	Hx = J_z_x;
+	Hy = J_z_f;
+}
+
+void CDynamicKFSLAM2D::OnSubstractObservationVectors(KFArray_OBS& A, const KFArray_OBS& B) const
+{
+	const Eigen::Vector2d d = models::innovation(
+		options.measurement_model, Eigen::Vector2d(A[0], A[1]), Eigen::Vector2d(B[0], B[1]));
+	A[0] = d[0];
+	A[1] = d[1];
+}
+
+void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
+	vector_KFArray_OBS& Z, std::vector<int>& da, const vector_KFArray_OBS& all_predictions,
+	const KFMatrix& S, const std::vector<size_t>& lm_indices_in_S, const KFMatrix_OxO&)
+{
+	const size_t N = m_static.size();
+	Z.resize(N);
+	da.assign(N, -1);
+	size_t numNew = 0;
+	// Innovation of the tracked ones, in the order of lm_indices_in_S, for the NIS.
+	Eigen::VectorXd nu(2 * lm_indices_in_S.size());
+	for (size_t i = 0; i < N; ++i)
+	{
+		Z[i][0] = m_static[i].z[0];
+		Z[i][1] = m_static[i].z[1];
+		const auto it = m_staticSlot.find(m_static[i].id);
+		if (it == m_staticSlot.end())
+		{
+			++numNew;
+			continue;
+		}
+		da[i] = int(it->second);
+		for (size_t q = 0; q < lm_indices_in_S.size(); ++q)
+			if (lm_indices_in_S[q] == it->second)
+				nu.segment<2>(2 * q) = models::innovation(
+					options.measurement_model, m_static[i].z,
+					Eigen::Vector2d(all_predictions[it->second][0], all_predictions[it->second][1]));
+	}
+	m_report.static_updates = lm_indices_in_S.size();
+	m_report.static_new = numNew;
+	m_report.nis_static = 0;
+	m_report.nis_static_dof = nu.size();
+	if (nu.size() > 0)
+	{
+		const Eigen::LDLT<Eigen::MatrixXd> ldlt(S.asEigen());
+		m_report.nis_static = nu.dot(ldlt.solve(nu));
+	}
+}
+
+void CDynamicKFSLAM2D::OnInverseObservationModel(
+	const KFArray_OBS& in_z, KFArray_FEAT& yn, KFMatrix_FxV& dyn_dxv, KFMatrix_FxO& dyn_dhn) const
+{
+	models::Matrix23d J_f_x;
+	Eigen::Matrix2d J_f_z;
+	const Eigen::Vector2d f = models::inverseObserve(
+		options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
+		Eigen::Vector2d(in_z[0], in_z[1]), &J_f_x, &J_f_z);
+	yn[0] = f[0];
+	yn[1] = f[1];
+	dyn_dxv = J_f_x;
+	dyn_dhn = J_f_z;
+}
+
+void CDynamicKFSLAM2D::OnNewLandmarkAddedToMap(size_t in_obsIdx, size_t in_idxNewFeat)
+{
+	// New landmarks are added in observation order, i.e. in the order of the da == -1 entries.
+	const size_t k = m_slots.size();
+	if (in_idxNewFeat != k)
+		throw std::logic_error("CDynamicKFSLAM2D: slot table out of step with MRPT's state");
+	if (in_obsIdx >= m_static.size())
+		throw std::logic_error("CDynamicKFSLAM2D: new landmark from an unknown observation");
+	const int32_t id = m_static[in_obsIdx].id;
+	TSlot s;
+	s.kind = SlotKind::StaticLandmark;
+	s.id = id;
+	s.step = m_step;
+	m_slots.push_back(s);
+	m_staticSlot[id] = k;
+}
+
+void CDynamicKFSLAM2D::OnNormalizeStateVector()
+{
+	m_xkk[2] = models::wrapToPi(m_xkk[2]);
+	for (size_t s = 0; s < m_slots.size(); ++s)
+		if (m_slots[s].kind == SlotKind::ObjectPoseB)
+		{
+			const size_t k = slotStateIndex(s);
+			m_xkk[k] = models::wrapToPi(m_xkk[k]);
+		}
+}
+}  // namespace dynslam

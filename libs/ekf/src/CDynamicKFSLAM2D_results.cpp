@@ -1,0 +1,219 @@
+/** CDynamicKFSLAM2D: options (TOptions) and result getters. */
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/config_utils.h>
+#include <dynslam/ekf_steps.h>
+
+#include <algorithm>
+#include <ostream>
+#include <stdexcept>
+
+namespace dynslam
+{
+// ------------------------------------------------------------------------------------------
+// Options
+// ------------------------------------------------------------------------------------------
+void CDynamicKFSLAM2D::TOptions::loadFromConfigFile(
+	const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	using namespace dynslam::config;
+	rejectUnknownKeys(
+		c, s,
+		{"measurement_model", "Sigma_v", "motion_noise", "Sigma_w", "initial_pose", "Sigma_0",
+		 "Sigma_xi", "smoothing", "Sigma_s", "drop_time_t_features", "keep_last_poses",
+		 "drop_static_after_unseen_steps", "skip_prediction_on_empty_map"});
+	measurement_model = readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
+							? models::MeasurementModel::Cartesian
+							: models::MeasurementModel::RangeBearing;
+	Sigma_v = readCovariance(c, s, "Sigma_v", Sigma_v, 2, true);
+	motion_noise_from_action = readChoice(c, s, "motion_noise", {"action", "config"}, 0) == 0;
+	Sigma_w = readCovariance(c, s, "Sigma_w", Sigma_w, 3, !motion_noise_from_action);
+	initial_pose = readVector(c, s, "initial_pose", initial_pose, 3);
+	Sigma_0 = readCovariance(c, s, "Sigma_0", Sigma_0, 3, false, true);
+	Sigma_xi = readCovariance(c, s, "Sigma_xi", Sigma_xi, 2);
+	smoothing = readBool(c, s, "smoothing", smoothing);
+	Sigma_s = readCovariance(c, s, "Sigma_s", Sigma_s, 3, smoothing);
+	drop_time_t_features = readBool(c, s, "drop_time_t_features", drop_time_t_features);
+	keep_last_poses = int(readInt(c, s, "keep_last_poses", keep_last_poses));
+	drop_static_after_unseen_steps =
+		int(readInt(c, s, "drop_static_after_unseen_steps", drop_static_after_unseen_steps));
+	skip_prediction_on_empty_map =
+		readBool(c, s, "skip_prediction_on_empty_map", skip_prediction_on_empty_map);
+	try
+	{
+		validate();
+	}
+	catch (const std::invalid_argument& e)
+	{
+		throw std::invalid_argument("[" + s + "] " + e.what());
+	}
+}
+
+void CDynamicKFSLAM2D::TOptions::validate() const
+{
+	if (keep_last_poses < 1)
+		throw std::invalid_argument(
+			"keep_last_poses = " + std::to_string(keep_last_poses) + ": must be >= 1");
+	if (smoothing && keep_last_poses < 3)
+		throw std::invalid_argument(
+			"keep_last_poses = " + std::to_string(keep_last_poses) +
+			": smoothing needs the last 3 object poses (keep_last_poses >= 3)");
+	if (drop_static_after_unseen_steps < 0)
+		throw std::invalid_argument(
+			"drop_static_after_unseen_steps = " + std::to_string(drop_static_after_unseen_steps) +
+			": must be >= 0");
+	if (!initial_pose.allFinite()) throw std::invalid_argument("initial_pose: not finite");
+}
+
+void CDynamicKFSLAM2D::TOptions::dumpToTextStream(std::ostream& out) const
+{
+	using config::formatMatrix;
+	out << "\n----------- [CDynamicKFSLAM2D::TOptions] ------------\n\n";
+	out << "measurement_model              = " << models::toString(measurement_model) << "\n";
+	out << "Sigma_v                        = " << formatMatrix(Sigma_v) << "\n";
+	out << "motion_noise                   = " << (motion_noise_from_action ? "action" : "config")
+		<< "\n";
+	out << "Sigma_w                        = " << formatMatrix(Sigma_w) << "\n";
+	out << "initial_pose                   = " << formatMatrix(initial_pose.transpose()) << "\n";
+	out << "Sigma_0                        = " << formatMatrix(Sigma_0) << "\n";
+	out << "Sigma_xi                       = " << formatMatrix(Sigma_xi) << "\n";
+	out << "smoothing                      = " << (smoothing ? "true" : "false") << "\n";
+	out << "Sigma_s                        = " << formatMatrix(Sigma_s) << "\n";
+	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
+	out << "keep_last_poses                = " << keep_last_poses << "\n";
+	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";
+	out << "skip_prediction_on_empty_map   = " << (skip_prediction_on_empty_map ? "true" : "false")
+		<< "\n";
+}
+
+// ------------------------------------------------------------------------------------------
+// Results
+// ------------------------------------------------------------------------------------------
+mrpt::poses::CPosePDFGaussian CDynamicKFSLAM2D::getEgoPose() const
+{
+	mrpt::poses::CPosePDFGaussian p;
+	p.mean = mrpt::poses::CPose2D(m_xkk[0], m_xkk[1], m_xkk[2]);
+	for (int i = 0; i < 3; ++i)
+		for (int j = 0; j < 3; ++j) p.cov(i, j) = m_pkk(i, j);
+	return p;
+}
+
+std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks(bool includeDropped) const
+{
+	std::vector<TStaticLandmarkEstimate> out;
+	for (size_t s = 0; s < m_slots.size(); ++s)
+	{
+		if (m_slots[s].kind != SlotKind::StaticLandmark) continue;
+		const size_t k = slotStateIndex(s);
+		TStaticLandmarkEstimate e;
+		e.id = m_slots[s].id;
+		e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
+		e.cov << m_pkk(k, k), m_pkk(k, k + 1), m_pkk(k + 1, k), m_pkk(k + 1, k + 1);
+		e.in_state = true;
+		out.push_back(e);
+	}
+	if (includeDropped) out.insert(out.end(), m_droppedStatic.begin(), m_droppedStatic.end());
+	return out;
+}
+
+std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
+{
+	std::vector<TObjectFeatureEstimate> out;
+	for (size_t s = 0; s < m_slots.size(); ++s)
+	{
+		const TSlot& t = m_slots[s];
+		if (t.kind != SlotKind::ObjectFeature0 && t.kind != SlotKind::ObjectFeatureT) continue;
+		const size_t k = slotStateIndex(s);
+		TObjectFeatureEstimate e;
+		e.object = t.object;
+		e.feature = t.feature;
+		e.id = t.id;
+		e.at_time0 = t.kind == SlotKind::ObjectFeature0;
+		e.step = t.step;
+		e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
+		e.cov << m_pkk(k, k), m_pkk(k, k + 1), m_pkk(k + 1, k), m_pkk(k + 1, k + 1);
+		out.push_back(e);
+	}
+	return out;
+}
+
+std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
+{
+	std::map<int32_t, TObjectTrack> out;
+	for (const auto& [obj, info] : m_objects)
+	{
+		TObjectTrack& tr = out[obj];
+		tr.object = obj;
+		tr.first_step = info.first_step;
+		tr.num_features = int(info.feature_ids.size());
+		tr.poses = info.dropped_poses;
+	}
+	for (size_t s = 0; s < m_slots.size(); ++s)
+	{
+		const TSlot& t = m_slots[s];
+		if (t.kind != SlotKind::ObjectPoseA) continue;
+		const bool rigid = s + 1 < m_slots.size() && m_slots[s + 1].kind == SlotKind::ObjectPoseB;
+		const int k = int(slotStateIndex(s));
+		std::vector<int> idx{k, k + 1};
+		if (rigid) idx.push_back(k + 2);
+		TObjectPoseEstimate e;
+		e.step = t.step;
+		e.mean = m_xkk.asEigen()(idx);
+		e.cov = ekf::marginal(m_pkk.asEigen(), idx);
+		e.in_state = true;
+		out[t.object].poses.push_back(e);
+	}
+	for (auto& [obj, tr] : out)
+		std::stable_sort(tr.poses.begin(), tr.poses.end(), [](const auto& a, const auto& b) {
+			return a.step < b.step;
+		});
+	return out;
+}
+
+std::vector<size_t> CDynamicKFSLAM2D::padIndices() const
+{
+	std::vector<size_t> out;
+	for (size_t s = 0; s < m_slots.size(); ++s)
+		if (m_slots[s].kind == SlotKind::ObjectPoseB) out.push_back(slotStateIndex(s) + 1);
+	return out;
+}
+
+void CDynamicKFSLAM2D::getStateWithoutPads(
+	Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>* labels) const
+{
+	const auto pads = padIndices();
+	const std::vector<int> keep =
+		ekf::keptIndices(int(m_xkk.size()), std::vector<int>(pads.begin(), pads.end()));
+	x = m_xkk.asEigen()(keep);
+	P = m_pkk.asEigen()(keep, keep);
+	if (!labels) return;
+	labels->assign({"ego.x", "ego.y", "ego.theta"});
+	for (const TSlot& t : m_slots)
+	{
+		const std::string o = "obj" + std::to_string(t.object);
+		switch (t.kind)
+		{
+			case SlotKind::StaticLandmark:
+				labels->push_back("lm" + std::to_string(t.id) + ".x");
+				labels->push_back("lm" + std::to_string(t.id) + ".y");
+				break;
+			case SlotKind::ObjectFeature0:
+			case SlotKind::ObjectFeatureT:
+			{
+				const std::string f = o + ".f" + std::to_string(t.feature) +
+									  (t.kind == SlotKind::ObjectFeature0 ? ".t0" : ".t") +
+									  (t.kind == SlotKind::ObjectFeatureT ? std::to_string(t.step) : "");
+				labels->push_back(f + ".x");
+				labels->push_back(f + ".y");
+				break;
+			}
+			case SlotKind::ObjectPoseA:
+				labels->push_back(o + ".xi" + std::to_string(t.step) + ".dx");
+				labels->push_back(o + ".xi" + std::to_string(t.step) + ".dy");
+				break;
+			case SlotKind::ObjectPoseB:
+				labels->push_back(o + ".xi" + std::to_string(t.step) + ".dtheta");
+				break;
+		}
+	}
+}
+}  // namespace dynslam
