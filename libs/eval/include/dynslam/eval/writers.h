@@ -1,0 +1,69 @@
+#pragma once
+/** @file writers.h
+ * Text outputs of a run: TUM trajectory (for evo), per-step / per-landmark / per-object CSV with
+ * ground-truth and 3-sigma columns, the metrics CSV (one row per filter) and a terminal table,
+ * NEES/NIS series and summaries. All CSV files have one header row; NaN / unavailable cells are
+ * empty. Angles in radians. */
+#include <dynslam/eval/consistency.h>
+#include <dynslam/eval/estimates.h>
+#include <dynslam/eval/metrics.h>
+
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace dynslam::eval
+{
+/** Opens `path` for writing (throws std::runtime_error naming the path if it cannot) and calls
+ * write(stream). */
+void writeFile(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+/** TUM trajectory, one line per ego estimate sorted by step: "t x y z qx qy qz qw" with z = 0,
+ * q = (0, 0, sin(theta/2), cos(theta/2)). t = the estimate's t if finite, else gt->t[step];
+ * throws std::invalid_argument if neither is available. */
+void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego, const TGroundTruth* gt = nullptr);
+
+/** Per-step ego CSV: step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta,
+ * err_x,err_y,err_theta,nees,nis,nis_dof (gt/err/nees columns empty without ground truth;
+ * nees empty where the covariance is singular). Sorted by step. */
+void writeEgoCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt = nullptr);
+
+/** Landmarks CSV: id,x,y,sigma3_x,sigma3_y,gt_x,gt_y,err_x,err_y,nees (sorted by ID). */
+void writeLandmarksCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt = nullptr);
+
+/** Object features (time 0) CSV: object,feature,x,y,sigma3_x,sigma3_y,gt_x,gt_y,err_x,err_y. */
+void writeObjectFeaturesCsv(
+	std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt = nullptr);
+
+/** Object poses CSV: object,step,t,dx,dy,dtheta,sigma3_dx,sigma3_dy,sigma3_dtheta,gt_dx,gt_dy,
+ * gt_dtheta,err_dx,err_dy,err_dtheta,nees,dof (theta columns empty for 2-dof poses). */
+void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt = nullptr);
+
+/** One filter's row of the metrics CSV / table. */
+struct TMetricsRow
+{
+	std::string filter;  ///< e.g. static_all, static_landmarks_only, dynamic
+	TRunMetrics metrics;
+	std::optional<TConsistencySummary> consistency;  ///< adds the NEES/NIS columns if set
+};
+
+/** Metrics CSV: a header row, then one row per filter. Columns:
+ * filter,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,static_rmse_y,ate,ms_per_step,
+ * ego_steps,landmarks_scored,landmarks_missing,landmarks_unmatched,
+ * for each agent k = 1..K (K = most objects in any row): agentk_object,agentk_feat_rmse_x,
+ * agentk_feat_rmse_y,agentk_pose_rmse_x,agentk_pose_rmse_y,agentk_pose_rmse_theta,
+ * then ego_anees,ego_nees_inside,map_anees,map_dof,nis_anees,nis_inside (fractions in [0,1];
+ * empty without consistency). */
+void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows);
+
+/** The same numbers as an aligned plain-text table for the terminal. */
+void writeMetricsTable(std::ostream& os, const std::vector<TMetricsRow>& rows);
+
+/** One NEES/NIS series: key,runs,total_dof,mean,lower,upper,inside. */
+void writeConsistencyCsv(std::ostream& os, const TConsistencyStats& stats);
+
+/** Text summary, one line per block: samples, ANEES with bounds, % of rows inside. */
+void writeConsistencySummary(std::ostream& os, const TConsistencySummary& s);
+}  // namespace dynslam::eval
