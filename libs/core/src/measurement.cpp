@@ -85,7 +85,7 @@ Eigen::Vector2d cartesianToRangeBearing(const Eigen::Vector2d& c, Eigen::Matrix2
 	if (!(r2 > 0)) throw std::domain_error("cartesianToRangeBearing: point at the sensor origin");
 	const double r = std::sqrt(r2);
 	if (J_rb_c) *J_rb_c << c[0] / r, c[1] / r, -c[1] / r2, c[0] / r2;
-	return {r, std::atan2(c[1], c[0])};
+	return {r, wrapToPi(std::atan2(c[1], c[0]))};  // atan2 may return -pi
 }
 
 Eigen::Vector2d observe(

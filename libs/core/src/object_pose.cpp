@@ -1,6 +1,7 @@
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -80,12 +81,19 @@ Eigen::Vector3d objectPoseInverse(
 		C += p(0, i) * q(1, i) - p(1, i) * q(0, i);
 	}
 	const double pp = p.squaredNorm(), qq = q.squaredNorm(), D = S * S + C * C;
+	// Coinciding features leave only rounding noise in the centred points (the centroid of
+	// identical values is not always exactly that value), and noise at both times passes the
+	// D test below with an arbitrary rotation. So an RMS spread below 1e-12 of the coordinates'
+	// magnitude counts as zero (the noise is ~m * eps * magnitude).
+	const double spreadTol = 1e-12 * std::max(a.cwiseAbs().maxCoeff(), ft.cwiseAbs().maxCoeff());
+	const double minSpread2 = double(m) * spreadTol * spreadTol;
 	// By Cauchy-Schwarz D <= pp*qq; D ~ pp*qq for a rigid motion. Coinciding points give 0.
-	if (!(pp > 0) || !(qq > 0) || !(D > 1e-20 * pp * qq) || !std::isfinite(D))
+	if (!(pp > minSpread2) || !(qq > minSpread2) || !(D > 1e-20 * pp * qq) || !std::isfinite(D))
 		throw std::domain_error(
 			"objectPoseInverse: seen features coincide, rotation undetermined");
 
-	const double th = std::atan2(C, S);
+	// atan2 returns -pi for (C, S) = (-0, S < 0): wrap into (-pi, pi] like every other angle
+	const double th = wrapToPi(std::atan2(C, S));
 	const Eigen::Matrix2d R = rot2(th), dR = rot2Derivative(th);
 	const Eigen::Vector2d lever = abar - c0;
 	Eigen::Vector3d xi;
