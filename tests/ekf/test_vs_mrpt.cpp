@@ -1,0 +1,83 @@
+/** With no moving objects the dynamic filter reproduces MRPT's CRangeBearingKFSLAM2D on the
+ * same action/observation sequence: ego pose, landmarks and the full covariance. */
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <mrpt/slam/CRangeBearingKFSLAM2D.h>
+
+#include "tiny_scenario.h"
+
+using namespace dynslam;
+
+namespace
+{
+void runBoth(mrpt::bayes::TKFMethod method, unsigned seed, double* worstX, double* worstP)
+{
+	dynslam_test::TinyScenarioOptions o;
+	o.steps = 40;
+	o.landmarks = 15;
+	o.seed = seed;
+	const auto sc = dynslam_test::makeTinyScenario(o);
+
+	mrpt::slam::CRangeBearingKFSLAM2D rb;
+	rb.options.std_sensor_range = float(std::sqrt(o.Sigma_rb(0, 0)));
+	rb.options.std_sensor_yaw = float(std::sqrt(o.Sigma_rb(1, 1)));
+	rb.KF_options.method = method;
+	rb.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+
+	CDynamicKFSLAM2D dyn;
+	dyn.options.measurement_model = models::MeasurementModel::RangeBearing;
+	// MRPT's R: squares of float stds, computed in float.
+	const float sr = rb.options.std_sensor_range, sy = rb.options.std_sensor_yaw;
+	const float sr2 = sr * sr, sy2 = sy * sy;
+	dyn.options.Sigma_v = Eigen::Vector2d(double(sr2), double(sy2)).asDiagonal();
+	dyn.options.Sigma_0.setZero();
+	dyn.options.skip_prediction_on_empty_map = true;
+	dyn.KF_options.method = method;
+	dyn.reset();
+
+	*worstX = *worstP = 0;
+	for (size_t k = 0; k < sc.actions.size(); ++k)
+	{
+		auto a = sc.actions[k];
+		auto f = sc.frames[k];
+		rb.processActionObservation(a, f);
+		dyn.processActionObservation(a, f);
+
+		mrpt::poses::CPosePDFGaussian pose;
+		std::vector<mrpt::math::TPoint2D> lms;
+		std::map<unsigned int, mrpt::maps::CLandmark::TLandmarkID> ids;
+		mrpt::math::CVectorDouble x;
+		mrpt::math::CMatrixDouble P;
+		rb.getCurrentState(pose, lms, ids, x, P);
+		ASSERT_EQ(size_t(x.size()), size_t(dyn.fullMean().size())) << "step " << k;
+		const Eigen::VectorXd dx = x.asEigen() - dyn.fullMean().asEigen();
+		const Eigen::MatrixXd dP = P.asEigen() - dyn.fullCov().asEigen();
+		*worstX = std::max(*worstX, dx.cwiseAbs().maxCoeff() / std::max(1.0, x.asEigen().cwiseAbs().maxCoeff()));
+		*worstP = std::max(*worstP, dP.cwiseAbs().maxCoeff() / std::max(1e-300, P.asEigen().cwiseAbs().maxCoeff()));
+		// Same landmark IDs in the same slots.
+		for (const auto& [slot, id] : ids) EXPECT_EQ(dyn.getSlots().at(slot).id, id);
+	}
+}
+}  // namespace
+
+TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_Naive)
+{
+	for (unsigned seed : {1u, 2u, 3u})
+	{
+		double ex, ep;
+		runBoth(mrpt::bayes::kfEKFNaive, seed, &ex, &ep);
+		std::cout << "seed " << seed << ": worst relative |dx| " << ex << ", |dP| " << ep << "\n";
+		EXPECT_LT(ex, 1e-9) << "seed " << seed;
+		EXPECT_LT(ep, 1e-9) << "seed " << seed;
+	}
+}
+
+TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_Davison)
+{
+	double ex, ep;
+	runBoth(mrpt::bayes::kfEKFAlaDavison, 4, &ex, &ep);
+	EXPECT_LT(ex, 1e-9);
+	EXPECT_LT(ep, 1e-9);
+}
