@@ -172,7 +172,7 @@ TEST(DynamicBadInput, CollinearFeaturesAreFineIn2D)
 		f.processActionObservation(dynslam_test::makeAction(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()), Fixture::frame(ms));
 		EXPECT_EQ(f.getLastStepReport().skipped_pose_degenerate, 0u);
 	}
-	const auto& poses = f.getObjectTracks().at(2).poses;
+	const auto poses = f.getObjectTracks().at(2).poses;
 	ASSERT_EQ(poses.size(), 2u);  // steps 1 and 2; the step-1 pose was dropped (K = 1) and recorded
 	EXPECT_FALSE(poses[0].in_state);
 	EXPECT_TRUE(poses[1].in_state);
