@@ -1,0 +1,516 @@
+#include <dynslam/config_utils.h>
+#include <dynslam/landmark_ids.h>
+#include <dynslam/sim/TScenarioOptions.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+namespace dynslam::sim
+{
+namespace cfg = dynslam::config;
+using mrpt::config::CConfigFileBase;
+
+namespace
+{
+std::string lower(std::string s)
+{
+	std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+	return s;
+}
+
+std::string fmt(double v)
+{
+	char b[40];
+	std::snprintf(b, sizeof(b), "%.17g", v);
+	return b;
+}
+
+std::string fmtMatrix(const Eigen::MatrixXd& m)
+{
+	std::string s = "[";
+	for (Eigen::Index i = 0; i < m.rows(); ++i)
+	{
+		for (Eigen::Index j = 0; j < m.cols(); ++j) s += (j ? " " : "") + fmt(m(i, j));
+		if (i + 1 < m.rows()) s += "; ";
+	}
+	return s + "]";
+}
+
+std::string fmtRamps(const std::vector<TRamp>& r)
+{
+	std::string s = "[";
+	for (size_t i = 0; i < r.size(); ++i)
+		s += (i ? "; " : "") + fmt(r[i].t_start) + " " + fmt(r[i].duration) + " " + fmt(r[i].target);
+	return s + "]";
+}
+
+/** A list of (t_start, duration, target) triples, e.g. `[10 4 2; 30 4 1]`; empty if missing. */
+std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec, const std::string& key)
+{
+	const std::string v = cfg::readString(c, sec, key, "");
+	std::string s = v;
+	for (char& ch : s)
+		if (ch == '[' || ch == ']' || ch == ',' || ch == ';') ch = ' ';
+	std::istringstream is(s);
+	std::vector<double> nums;
+	std::string tok;
+	while (is >> tok)
+	{
+		char* e = nullptr;
+		const double d = std::strtod(tok.c_str(), &e);
+		if (e == tok.c_str() || *e != '\0' || !std::isfinite(d))
+			cfg::fail(sec, key, v, "'" + tok + "' is not a finite number");
+		nums.push_back(d);
+	}
+	if (nums.size() % 3 != 0)
+		cfg::fail(sec, key, v, "expected triples (t_start duration target), got " +
+								   std::to_string(nums.size()) + " numbers");
+	std::vector<TRamp> r;
+	for (size_t i = 0; i < nums.size(); i += 3) r.push_back({nums[i], nums[i + 1], nums[i + 2]});
+	try
+	{
+		CSmoothProfile check(0, r);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		cfg::fail(sec, key, v, e.what());
+	}
+	return r;
+}
+
+long readCount(const CConfigFileBase& c, const std::string& sec, const std::string& key, long def,
+	bool required, long maxValue)
+{
+	const long n = cfg::readInt(c, sec, key, def, required);
+	if (n < 0) cfg::fail(sec, key, std::to_string(n), "negative count");
+	if (n > maxValue) cfg::fail(sec, key, std::to_string(n), "larger than " + std::to_string(maxValue));
+	return n;
+}
+
+uint32_t readSeed(const CConfigFileBase& c, const std::string& sec, const std::string& key)
+{
+	const long s = cfg::readInt(c, sec, key, 0, true);
+	if (s < 0 || s > long(UINT32_MAX))
+		cfg::fail(sec, key, std::to_string(s), "seed must be in [0, 4294967295]");
+	return uint32_t(s);
+}
+
+int readLane(const CConfigFileBase& c, const std::string& sec, const std::string& key, int numLanes)
+{
+	const long l = cfg::readInt(c, sec, key, 0, true);
+	if (l < 0 || l >= numLanes)
+		cfg::fail(sec, key, std::to_string(l),
+			"lane outside the road (lanes 0.." + std::to_string(numLanes - 1) + ")");
+	return int(l);
+}
+
+void checkLanes(const std::vector<TRamp>& r, const std::string& sec, const std::string& key,
+	int numLanes)
+{
+	for (const TRamp& x : r)
+		if (x.target != std::floor(x.target) || x.target < 0 || x.target > numLanes - 1)
+			cfg::fail(sec, key, fmtRamps(r),
+				"lane change to lane " + fmt(x.target) + " outside the road (lanes 0.." +
+					std::to_string(numLanes - 1) + ")");
+}
+
+/** A derived key written by dumpToTextStream may be present: it must agree. */
+void checkDerived(const CConfigFileBase& c, const std::string& sec, const std::string& key,
+	const Eigen::MatrixXd& expected)
+{
+	if (!cfg::has(c, sec, key)) return;
+	const std::string v = cfg::readString(c, sec, key, "");
+	std::string s = v;
+	for (char& ch : s)
+		if (ch == '[' || ch == ']' || ch == ',' || ch == ';') ch = ' ';
+	std::istringstream is(s);
+	std::vector<double> nums;
+	double d;
+	while (is >> d) nums.push_back(d);
+	const bool diag = expected.rows() > 1 && Eigen::Index(nums.size()) == expected.rows();
+	bool ok = Eigen::Index(nums.size()) == expected.size() || diag;
+	for (Eigen::Index i = 0; ok && i < expected.rows(); ++i)
+		for (Eigen::Index j = 0; ok && j < expected.cols(); ++j)
+		{
+			const double got = diag ? (i == j ? nums[i] : 0.0) : nums[i * expected.cols() + j];
+			ok = std::abs(got - expected(i, j)) <= 1e-9 * std::max(1e-300, std::abs(expected(i, j))) ||
+				 got == expected(i, j);
+		}
+	if (!ok)
+		cfg::fail(sec, key, v,
+			"conflicts with the value derived from the noise level (" + fmtMatrix(expected) +
+				"); use level = custom to set it");
+}
+
+THighwayAgent readAgent(const CConfigFileBase& c, const std::string& sec, const THighwayOptions& h,
+	bool isEgo)
+{
+	THighwayAgent a;
+	a.section = sec;
+	if (isEgo)
+	{
+		cfg::rejectUnknownKeys(c, sec, {"speed", "speed_changes", "lane_changes", "length", "width"});
+		a.kind = THighwayAgent::Kind::Car;
+		a.x0 = 0;
+		a.lane0 = h.ego_lane;
+	}
+	else
+	{
+		cfg::rejectUnknownKeys(c, sec,
+			{"type", "x0", "lane0", "y0", "speed", "speed_changes", "lane_changes", "lateral_moves",
+				"length", "width", "num_features"});
+		a.kind = cfg::readChoice(c, sec, "type", {"car", "pedestrian"}, 0, true) == 0
+					 ? THighwayAgent::Kind::Car
+					 : THighwayAgent::Kind::Pedestrian;
+		a.x0 = cfg::readDouble(c, sec, "x0", 0, true);
+	}
+	a.speed = cfg::readDouble(c, sec, "speed", 0, true);
+	a.speed_changes = readRamps(c, sec, "speed_changes");
+	const bool car = a.kind == THighwayAgent::Kind::Car;
+	if (car)
+	{
+		if (!isEgo) a.lane0 = readLane(c, sec, "lane0", h.num_lanes);
+		a.lane_changes = readRamps(c, sec, "lane_changes");
+		checkLanes(a.lane_changes, sec, "lane_changes", h.num_lanes);
+		for (const char* k : {"y0", "lateral_moves"})
+			if (cfg::has(c, sec, k))
+				cfg::fail(sec, k, cfg::readString(c, sec, k, ""), "only for type = pedestrian");
+		a.length = cfg::readPositive(c, sec, "length", 4.5);
+		a.width = cfg::readPositive(c, sec, "width", 1.8);
+		if (a.width > h.lane_width) cfg::fail(sec, "width", fmt(a.width), "wider than a lane");
+		a.num_features = int(cfg::readInt(c, sec, "num_features", 4));
+		if (a.num_features != 4)
+			cfg::fail(sec, "num_features", std::to_string(a.num_features), "a car has 4 corner features");
+		if (a.speed < 0) cfg::fail(sec, "speed", fmt(a.speed), "a car cannot drive backwards");
+		for (const TRamp& r : a.speed_changes)
+			if (r.target < 0)
+				cfg::fail(sec, "speed_changes", fmtRamps(a.speed_changes), "negative speed");
+	}
+	else
+	{
+		a.y0 = cfg::readDouble(c, sec, "y0", 0, true);
+		a.lateral_moves = readRamps(c, sec, "lateral_moves");
+		for (const char* k : {"lane0", "lane_changes"})
+			if (cfg::has(c, sec, k))
+				cfg::fail(sec, k, cfg::readString(c, sec, k, ""), "only for type = car");
+		a.width = cfg::readPositive(c, sec, "width", 0.5);
+		a.length = 0;
+		a.num_features = int(cfg::readInt(c, sec, "num_features", 2));
+		if (a.num_features != 1 && a.num_features != 2)
+			cfg::fail(sec, "num_features", std::to_string(a.num_features),
+				"a pedestrian has 1 or 2 features");
+	}
+	if (isEgo && !(a.speed > 0)) cfg::fail(sec, "speed", fmt(a.speed), "the ego must move (> 0)");
+	return a;
+}
+
+void dumpAgent(std::ostream& o, const THighwayAgent& a, bool isEgo)
+{
+	o << "\n[" << a.section << "]\n";
+	const bool car = a.kind == THighwayAgent::Kind::Car;
+	if (!isEgo)
+	{
+		o << "type = " << (car ? "car" : "pedestrian") << "\n";
+		o << "x0 = " << fmt(a.x0) << "\n";
+		if (car)
+			o << "lane0 = " << a.lane0 << "\n";
+		else
+			o << "y0 = " << fmt(a.y0) << "\n";
+	}
+	o << "speed = " << fmt(a.speed) << "\n";
+	o << "speed_changes = " << fmtRamps(a.speed_changes) << "\n";
+	if (car)
+		o << "lane_changes = " << fmtRamps(a.lane_changes) << "\n";
+	else
+		o << "lateral_moves = " << fmtRamps(a.lateral_moves) << "\n";
+	if (car) o << "length = " << fmt(a.length) << "\n";
+	o << "width = " << fmt(a.width) << "\n";
+	if (!isEgo) o << "num_features = " << a.num_features << "\n";
+}
+}  // namespace
+
+TNoiseLevel noiseLevel(const std::string& name)
+{
+	const std::string l = lower(name);
+	TNoiseLevel n;
+	if (l == "none") return n;
+	if (l.size() == 4 && l[0] == 'w' && l[2] == 'v' && l[1] >= '1' && l[1] <= '3' && l[3] >= '1' &&
+		l[3] <= '3')
+	{
+		const double w = std::pow(10.0, -6 + (l[1] - '1')), v = std::pow(10.0, -6 + (l[3] - '1'));
+		n.Sigma_w.diagonal() << w, w, w * 1e-2;
+		n.Sigma_v = v * Eigen::Matrix2d::Identity();
+		return n;
+	}
+	throw std::invalid_argument(
+		"unknown noise level '" + name + "' (expected w1v1..w3v3, none or custom)");
+}
+
+void TScenarioOptions::setNoiseLevel(const std::string& level)
+{
+	const TNoiseLevel n = noiseLevel(level);
+	noise_level = lower(level);
+	Sigma_w = n.Sigma_w;
+	Sigma_v = n.Sigma_v;
+	Sigma_0 = Sigma_w;
+	updateEquivalentStds();
+}
+
+void TScenarioOptions::updateEquivalentStds()
+{
+	if (noise_model != models::MeasurementModel::Cartesian) return;
+	// Cartesian noise of std s on z gives, to first order, range std s and yaw std s / r.
+	const double s = std::sqrt(0.5 * Sigma_v.trace());
+	std_range = s;
+	std_yaw = s / typical_range;
+}
+
+void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::string&)
+{
+	*this = TScenarioOptions();
+	const std::string S = "Scenario", SE = "Sensor", N = "Noise";
+	cfg::rejectUnknownKeys(
+		c, S, {"type", "name", "dt", "steps", "world_seed", "noise_seed", "start_time"});
+	type = cfg::readChoice(c, S, "type", {"highway", "generated"}, 0, true) == 0
+			   ? ScenarioType::Highway
+			   : ScenarioType::Generated;
+	name = cfg::readString(c, S, "name", type == ScenarioType::Highway ? "highway" : "generated");
+	if (name.empty() || name.find_first_of("/\\ ") != std::string::npos)
+		cfg::fail(S, "name", name, "must be a non-empty file base name without spaces or slashes");
+	dt = cfg::readPositive(c, S, "dt", 0.5, true);
+	steps = int(readCount(c, S, "steps", 120, true, 100'000'000));
+	if (steps < 1) cfg::fail(S, "steps", std::to_string(steps), "need at least 1 step");
+	world_seed = readSeed(c, S, "world_seed");
+	noise_seed = readSeed(c, S, "noise_seed");
+	start_time = cfg::readNonNegative(c, S, "start_time", 1.6e9);
+
+	cfg::rejectUnknownKeys(c, SE, {"range", "label", "noise_model", "typical_range"});
+	sensor_range = cfg::readPositive(c, SE, "range", 55, true);
+	sensor_label = cfg::readString(c, SE, "label", "RB");
+	noise_model = cfg::readChoice(c, SE, "noise_model", {"cartesian", "range_bearing"}, 0) == 0
+					  ? models::MeasurementModel::Cartesian
+					  : models::MeasurementModel::RangeBearing;
+	typical_range = cfg::readPositive(c, SE, "typical_range", sensor_range / 2);
+
+	cfg::rejectUnknownKeys(
+		c, N, {"level", "sigma_w", "sigma_v", "sigma_0", "std_range", "std_yaw", "std_yaw_deg"});
+	const std::string lvl = cfg::requireString(c, N, "level");
+	if (lower(lvl) == "custom")
+	{
+		noise_level = "custom";
+		Sigma_w = cfg::readCovariance(c, N, "sigma_w", Eigen::Matrix3d::Zero(), 3, true, true);
+		Sigma_v = cfg::readCovariance(c, N, "sigma_v", Eigen::Matrix2d::Zero(), 2, true, true);
+		Sigma_0 = cfg::readCovariance(c, N, "sigma_0", Sigma_w, 3, false, true);
+		updateEquivalentStds();
+	}
+	else
+	{
+		try
+		{
+			setNoiseLevel(lvl);
+		}
+		catch (const std::invalid_argument& e)
+		{
+			cfg::fail(N, "level", lvl, e.what());
+		}
+		checkDerived(c, N, "sigma_w", Sigma_w);
+		checkDerived(c, N, "sigma_v", Sigma_v);
+		checkDerived(c, N, "sigma_0", Sigma_0);
+	}
+	if (noise_model == models::MeasurementModel::RangeBearing)
+	{
+		std_range = cfg::readNonNegative(c, N, "std_range", 0, true);
+		std_yaw = cfg::readNonNegative(c, N, "std_yaw", 0, true);
+	}
+	else
+	{
+		checkDerived(c, N, "std_range", Eigen::Matrix<double, 1, 1>(std_range));
+		checkDerived(c, N, "std_yaw", Eigen::Matrix<double, 1, 1>(std_yaw));
+	}
+	checkDerived(c, N, "std_yaw_deg", Eigen::Matrix<double, 1, 1>(std_yaw * 180 / M_PI));
+
+	if (type == ScenarioType::Highway)
+	{
+		const std::string H = "Highway";
+		cfg::rejectUnknownKeys(c, H,
+			{"length", "num_lanes", "lane_width", "ego_lane", "num_landmarks", "landmark_offset_min",
+				"landmark_offset_max", "num_agents"});
+		THighwayOptions& h = highway;
+		h.length = cfg::readPositive(c, H, "length", 1000, true);
+		h.num_lanes = int(readCount(c, H, "num_lanes", 3, true, 100));
+		if (h.num_lanes < 1) cfg::fail(H, "num_lanes", "0", "need at least one lane");
+		h.lane_width = cfg::readPositive(c, H, "lane_width", 3.5, true);
+		h.ego_lane = readLane(c, H, "ego_lane", h.num_lanes);
+		h.num_landmarks = int(readCount(c, H, "num_landmarks", 40, true, ids::kStaticMax + 1));
+		h.landmark_offset_min = cfg::readNonNegative(c, H, "landmark_offset_min", 3, true);
+		h.landmark_offset_max = cfg::readPositive(c, H, "landmark_offset_max", 30, true);
+		if (h.landmark_offset_max < h.landmark_offset_min)
+			cfg::fail(H, "landmark_offset_max", fmt(h.landmark_offset_max),
+				"smaller than landmark_offset_min");
+		const long na = readCount(c, H, "num_agents", 3, true, 1000);
+		h.ego = readAgent(c, "Ego", h, true);
+		h.ego.section = "Ego";
+		for (long i = 1; i <= na; ++i)
+			h.agents.push_back(readAgent(c, "Agent" + std::to_string(i), h, false));
+	}
+	else
+	{
+		const std::string G = "Generated";
+		cfg::rejectUnknownKeys(c, G,
+			{"track_radius", "ego_speed", "num_landmarks", "landmark_offset_min",
+				"landmark_offset_max", "num_lanes", "lane_width", "num_cars", "num_pedestrians",
+				"num_rotating", "features_per_car", "features_per_pedestrian",
+				"features_per_rotating", "car_length", "car_width", "pedestrian_width",
+				"rotating_radius", "car_speed_factor_min", "car_speed_factor_max",
+				"pedestrian_speed", "yaw_rate_max", "object_spread"});
+		TGeneratedOptions& g = generated;
+		g.track_radius = cfg::readNonNegative(c, G, "track_radius", 0, true);
+		g.ego_speed = cfg::readPositive(c, G, "ego_speed", 10, true);
+		g.num_landmarks = int(readCount(c, G, "num_landmarks", 200, true, ids::kStaticMax + 1));
+		g.landmark_offset_min = cfg::readNonNegative(c, G, "landmark_offset_min", 3);
+		g.landmark_offset_max = cfg::readPositive(c, G, "landmark_offset_max", 30);
+		if (g.landmark_offset_max < g.landmark_offset_min)
+			cfg::fail(G, "landmark_offset_max", fmt(g.landmark_offset_max),
+				"smaller than landmark_offset_min");
+		g.num_lanes = int(readCount(c, G, "num_lanes", 3, false, 100));
+		if (g.num_lanes < 1) cfg::fail(G, "num_lanes", "0", "need at least one lane");
+		g.lane_width = cfg::readPositive(c, G, "lane_width", 3.5);
+		const long maxObj = ids::kMaxObject + 1;
+		g.num_cars = int(readCount(c, G, "num_cars", 2, true, maxObj));
+		g.num_pedestrians = int(readCount(c, G, "num_pedestrians", 1, true, maxObj));
+		g.num_rotating = int(readCount(c, G, "num_rotating", 1, true, maxObj));
+		if (long(g.num_cars) + g.num_pedestrians + g.num_rotating > maxObj)
+			cfg::fail(G, "num_cars", std::to_string(g.num_cars), "too many objects in total");
+		const long maxF = ids::kFeaturesPerObject;
+		g.features_per_car = int(readCount(c, G, "features_per_car", 4, false, maxF));
+		g.features_per_pedestrian = int(readCount(c, G, "features_per_pedestrian", 2, false, maxF));
+		g.features_per_rotating = int(readCount(c, G, "features_per_rotating", 3, false, maxF));
+		for (const auto& [k, v] : {std::pair<const char*, int>{"features_per_car", g.features_per_car},
+				 {"features_per_pedestrian", g.features_per_pedestrian},
+				 {"features_per_rotating", g.features_per_rotating}})
+			if (v < 1) cfg::fail(G, k, std::to_string(v), "an object needs at least one feature");
+		g.car_length = cfg::readPositive(c, G, "car_length", 4.5);
+		g.car_width = cfg::readPositive(c, G, "car_width", 1.8);
+		g.pedestrian_width = cfg::readPositive(c, G, "pedestrian_width", 0.5);
+		g.rotating_radius = cfg::readPositive(c, G, "rotating_radius", 1.0);
+		g.car_speed_factor_min = cfg::readNonNegative(c, G, "car_speed_factor_min", 0.8);
+		g.car_speed_factor_max = cfg::readNonNegative(c, G, "car_speed_factor_max", 1.2);
+		if (g.car_speed_factor_max < g.car_speed_factor_min)
+			cfg::fail(G, "car_speed_factor_max", fmt(g.car_speed_factor_max),
+				"smaller than car_speed_factor_min");
+		g.pedestrian_speed = cfg::readPositive(c, G, "pedestrian_speed", 1.4);
+		g.yaw_rate_max = cfg::readPositive(c, G, "yaw_rate_max", 0.5);
+		g.object_spread = cfg::readPositive(c, G, "object_spread", 60);
+		if (g.track_radius > 0)
+		{
+			const double reach = std::max(g.landmark_offset_max, (g.num_lanes + 1.0) * g.lane_width +
+																	 g.rotating_radius + 2.0);
+			if (reach >= g.track_radius)
+				cfg::fail(G, "track_radius", fmt(g.track_radius),
+					"must exceed the lateral extent of the world (" + fmt(reach) + " m)");
+		}
+	}
+	validate();
+}
+
+void TScenarioOptions::validate() const
+{
+	if (!(dt > 0)) throw std::invalid_argument("[Scenario] dt must be > 0");
+	if (steps < 1) throw std::invalid_argument("[Scenario] steps must be >= 1");
+	if (!(sensor_range > 0)) throw std::invalid_argument("[Sensor] range must be > 0");
+	if (!Sigma_w.allFinite() || !Sigma_v.allFinite() || !Sigma_0.allFinite())
+		throw std::invalid_argument("[Noise] covariances must be finite");
+}
+
+void TScenarioOptions::dumpToTextStream(std::ostream& o) const
+{
+	o << "# Effective scenario configuration written by dynslam-simulate (loadable as is).\n";
+	o << "[Scenario]\n";
+	o << "type = " << (type == ScenarioType::Highway ? "highway" : "generated") << "\n";
+	o << "name = " << name << "\n";
+	o << "dt = " << fmt(dt) << "\n";
+	o << "steps = " << steps << "\n";
+	o << "world_seed = " << world_seed << "\n";
+	o << "noise_seed = " << noise_seed << "\n";
+	o << "start_time = " << fmt(start_time) << "\n";
+	o << "\n[Sensor]\n";
+	o << "range = " << fmt(sensor_range) << "\n";
+	o << "label = " << sensor_label << "\n";
+	o << "noise_model = " << models::toString(noise_model) << "\n";
+	o << "typical_range = " << fmt(typical_range) << "\n";
+	o << "\n[Noise]\n";
+	o << "level = " << noise_level << "\n";
+	o << "sigma_w = " << fmtMatrix(Sigma_w) << "\n";
+	o << "sigma_v = " << fmtMatrix(Sigma_v) << "\n";
+	o << "sigma_0 = " << fmtMatrix(Sigma_0) << "\n";
+	o << "std_range = " << fmt(std_range) << "\n";
+	o << "std_yaw = " << fmt(std_yaw) << "\n";
+	o << "std_yaw_deg = " << fmt(std_yaw * 180 / M_PI) << "\n";
+	if (type == ScenarioType::Highway)
+	{
+		const THighwayOptions& h = highway;
+		o << "\n[Highway]\n";
+		o << "length = " << fmt(h.length) << "\n";
+		o << "num_lanes = " << h.num_lanes << "\n";
+		o << "lane_width = " << fmt(h.lane_width) << "\n";
+		o << "ego_lane = " << h.ego_lane << "\n";
+		o << "num_landmarks = " << h.num_landmarks << "\n";
+		o << "landmark_offset_min = " << fmt(h.landmark_offset_min) << "\n";
+		o << "landmark_offset_max = " << fmt(h.landmark_offset_max) << "\n";
+		o << "num_agents = " << h.agents.size() << "\n";
+		dumpAgent(o, h.ego, true);
+		for (const auto& a : h.agents) dumpAgent(o, a, false);
+	}
+	else
+	{
+		const TGeneratedOptions& g = generated;
+		o << "\n[Generated]\n";
+		o << "track_radius = " << fmt(g.track_radius) << "\n";
+		o << "ego_speed = " << fmt(g.ego_speed) << "\n";
+		o << "num_landmarks = " << g.num_landmarks << "\n";
+		o << "landmark_offset_min = " << fmt(g.landmark_offset_min) << "\n";
+		o << "landmark_offset_max = " << fmt(g.landmark_offset_max) << "\n";
+		o << "num_lanes = " << g.num_lanes << "\n";
+		o << "lane_width = " << fmt(g.lane_width) << "\n";
+		o << "num_cars = " << g.num_cars << "\n";
+		o << "num_pedestrians = " << g.num_pedestrians << "\n";
+		o << "num_rotating = " << g.num_rotating << "\n";
+		o << "features_per_car = " << g.features_per_car << "\n";
+		o << "features_per_pedestrian = " << g.features_per_pedestrian << "\n";
+		o << "features_per_rotating = " << g.features_per_rotating << "\n";
+		o << "car_length = " << fmt(g.car_length) << "\n";
+		o << "car_width = " << fmt(g.car_width) << "\n";
+		o << "pedestrian_width = " << fmt(g.pedestrian_width) << "\n";
+		o << "rotating_radius = " << fmt(g.rotating_radius) << "\n";
+		o << "car_speed_factor_min = " << fmt(g.car_speed_factor_min) << "\n";
+		o << "car_speed_factor_max = " << fmt(g.car_speed_factor_max) << "\n";
+		o << "pedestrian_speed = " << fmt(g.pedestrian_speed) << "\n";
+		o << "yaw_rate_max = " << fmt(g.yaw_rate_max) << "\n";
+		o << "object_spread = " << fmt(g.object_spread) << "\n";
+	}
+}
+
+TScenarioOptions loadScenario(const std::string& iniPath)
+{
+	if (!std::filesystem::exists(iniPath))
+		throw std::runtime_error("scenario INI file not found: " + iniPath);
+	mrpt::config::CConfigFile f(iniPath);
+	TScenarioOptions o;
+	o.loadFromConfigFile(f);
+	return o;
+}
+
+TScenarioOptions loadScenarioFromText(const std::string& iniText)
+{
+	mrpt::config::CConfigFileMemory f(iniText);
+	TScenarioOptions o;
+	o.loadFromConfigFile(f);
+	return o;
+}
+}  // namespace dynslam::sim

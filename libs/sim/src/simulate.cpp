@@ -1,0 +1,244 @@
+/** @file simulate.cpp
+ * Noisy odometry and range-bearing observations from the ground truth (see doc/simulator.md:
+ * sensor model, noise conversion, draw order). */
+#include <dynslam/landmark_ids.h>
+#include <dynslam/models/measurement.h>
+#include <dynslam/models/se2.h>
+#include <dynslam/sim/scenario.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationComment.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
+#include <mrpt/random/RandomGenerators.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace dynslam::sim
+{
+namespace
+{
+/** A square root L (L L^T = S) of a covariance: exact sqrt of the diagonal when S is diagonal
+ * (the noise grid), Cholesky otherwise (throws if S is not positive definite). */
+template <int N>
+Eigen::Matrix<double, N, N> covSqrt(const Eigen::Matrix<double, N, N>& S, const char* what)
+{
+	const Eigen::Matrix<double, N, N> D = S.diagonal().asDiagonal();
+	if (S == D)
+	{
+		if ((S.diagonal().array() < 0).any())
+			throw std::invalid_argument(std::string(what) + ": negative variance");
+		return S.diagonal().cwiseSqrt().asDiagonal();
+	}
+	Eigen::LLT<Eigen::Matrix<double, N, N>> llt(S);
+	if (llt.info() != Eigen::Success)
+		throw std::invalid_argument(std::string(what) + ": covariance is not positive definite");
+	return llt.matrixL();
+}
+
+uint32_t seed32(uint64_t s)
+{
+	if (s > UINT32_MAX)
+		throw std::invalid_argument("noise_seed " + std::to_string(s) + " > 4294967295");
+	return uint32_t(s);
+}
+
+/** Simulates one step at a time; the draws happen in a fixed order: 3 for the odometry
+ * (k >= 1), then 2 per measurement in the order of the observation. */
+class CStepSimulator
+{
+public:
+	CStepSimulator(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t seed)
+		: m_gt(gt),
+		  m_o(o),
+		  m_rng(seed32(seed)),
+		  m_Lw(covSqrt<3>(o.Sigma_w, "[Noise] sigma_w")),
+		  m_Lv(covSqrt<2>(o.Sigma_v, "[Noise] sigma_v")),
+		  m_cell(o.sensor_range)
+	{
+		gt.checkConsistent();
+		if (gt.numSteps() != o.numSteps())
+			throw std::invalid_argument("simulateMeasurements: ground truth and options disagree on steps");
+		for (const auto& [id, p] : gt.landmarks) m_grid[cellKey(cellOf(p[0]), cellOf(p[1]))].push_back(id);
+	}
+
+	void step(size_t k, mrpt::obs::CActionCollection::Ptr& actOut, mrpt::obs::CSensoryFrame::Ptr& sfOut)
+	{
+		using namespace mrpt::obs;
+		const auto stamp = stepTimestamp(m_o, k);
+		const Eigen::Vector3d& x = m_gt.ego[k];
+
+		// --- ACT_k: noisy increment into pose k (zero with zero covariance for k = 0)
+		Eigen::Vector3d u = Eigen::Vector3d::Zero();
+		Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+		if (k > 0)
+		{
+			u = models::poseDifference(x, m_gt.ego[k - 1]) + m_Lw * draw3();
+			u[2] = models::wrapToPi(u[2]);
+			cov = m_o.Sigma_w;
+		}
+		CActionRobotMovement2D act;
+		act.timestamp = stamp;
+		act.estimationMethod = CActionRobotMovement2D::emOdometry;
+		act.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
+		act.poseChange = mrpt::poses::CPosePDFGaussian::Create(
+			mrpt::poses::CPose2D(u[0], u[1], u[2]), mrpt::math::CMatrixDouble33(cov));
+		actOut = CActionCollection::Create();
+		actOut->insert(act);
+
+		// --- SF_k: one bearing-range observation
+		auto obs = CObservationBearingRange::Create();
+		obs->sensorLabel = m_o.sensor_label;
+		obs->timestamp = stamp;
+		obs->minSensorDistance = 0;
+		obs->maxSensorDistance = float(m_o.sensor_range);
+		obs->fieldOfView_yaw = float(2 * M_PI);
+		obs->validCovariances = false;
+		obs->sensor_std_range = float(m_o.std_range);
+		obs->sensor_std_yaw = float(m_o.std_yaw);
+		obs->sensor_std_pitch = 0;
+		// Static landmarks within the true range, by increasing ID.
+		m_ids.clear();
+		const long cx = cellOf(x[0]), cy = cellOf(x[1]);
+		for (long i = cx - 1; i <= cx + 1; ++i)
+			for (long j = cy - 1; j <= cy + 1; ++j)
+			{
+				const auto it = m_grid.find(cellKey(i, j));
+				if (it == m_grid.end()) continue;
+				for (int32_t id : it->second)
+					if ((m_gt.landmarks.at(id) - x.head<2>()).norm() <= m_o.sensor_range)
+						m_ids.push_back(id);
+			}
+		std::sort(m_ids.begin(), m_ids.end());
+		for (int32_t id : m_ids) addMeasurement(*obs, x, m_gt.landmarks.at(id), id);
+		// Objects whose centroid is within range: all their features.
+		for (const TObjectGroundTruth& og : m_gt.objects)
+			if (og.visible[k])
+				for (int j = 0; j < og.num_features; ++j)
+					addMeasurement(*obs, x, og.features[k].col(j), ids::objectFeatureId(og.object, j));
+		sfOut = CSensoryFrame::Create();
+		sfOut->insert(obs);
+	}
+
+private:
+	Eigen::Vector3d draw3()
+	{
+		Eigen::Vector3d n;
+		for (int i = 0; i < 3; ++i) n[i] = m_rng.drawGaussian1D_normalized();
+		return n;
+	}
+	Eigen::Vector2d draw2()
+	{
+		const double a = m_rng.drawGaussian1D_normalized();
+		const double b = m_rng.drawGaussian1D_normalized();
+		return {a, b};
+	}
+
+	void addMeasurement(mrpt::obs::CObservationBearingRange& obs, const Eigen::Vector3d& x,
+		const Eigen::Vector2d& f, int32_t id)
+	{
+		double range, yaw;
+		if (m_o.noise_model == models::MeasurementModel::Cartesian)
+		{
+			const Eigen::Vector2d z = models::cartesianObserve(x, f) + m_Lv * draw2();
+			range = z.norm();
+			if (!(range > 0)) return;  // a point exactly at the sensor has no bearing
+			yaw = std::atan2(z[1], z[0]);
+		}
+		else
+		{
+			const Eigen::Vector2d d = f - x.head<2>();
+			const Eigen::Vector2d n = draw2();
+			range = d.norm() + m_o.std_range * n[0];
+			yaw = std::atan2(d[1], d[0]) - x[2] + m_o.std_yaw * n[1];
+			if (range < 0) range = -range, yaw += M_PI;  // the same point
+			yaw = models::wrapToPi(yaw);
+		}
+		mrpt::obs::CObservationBearingRange::TMeasurement m;
+		m.range = float(range);
+		m.yaw = float(yaw);
+		m.pitch = 0;
+		m.landmarkID = id;
+		m.covariance.setZero();
+		obs.sensedData.push_back(m);
+	}
+
+	long cellOf(double v) const { return long(std::floor(v / m_cell)); }
+	static uint64_t cellKey(long i, long j) { return (uint64_t(uint32_t(int32_t(i))) << 32) | uint32_t(int32_t(j)); }
+
+	const TGroundTruth& m_gt;
+	const TScenarioOptions& m_o;
+	mrpt::random::CRandomGenerator m_rng;
+	Eigen::Matrix3d m_Lw;
+	Eigen::Matrix2d m_Lv;
+	double m_cell;
+	std::unordered_map<uint64_t, std::vector<int32_t>> m_grid;
+	std::vector<int32_t> m_ids;
+};
+
+mrpt::obs::CObservationComment commentObject(const std::string& text, mrpt::Clock::time_point stamp)
+{
+	mrpt::obs::CObservationComment c;
+	c.text = text;
+	c.timestamp = stamp;
+	c.sensorLabel = "COMMENT";
+	return c;
+}
+}  // namespace
+
+mrpt::Clock::time_point stepTimestamp(const TScenarioOptions& o, size_t k)
+{
+	return mrpt::Clock::fromDouble(o.start_time + o.stepTime(k));
+}
+
+TSimulatedRun simulateMeasurements(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed)
+{
+	CStepSimulator sim(gt, o, noise_seed);
+	TSimulatedRun run;
+	const size_t n = gt.numSteps();
+	run.actions.resize(n);
+	run.frames.resize(n);
+	for (size_t k = 0; k < n; ++k) sim.step(k, run.actions[k], run.frames[k]);
+	return run;
+}
+
+void writeRawlog(const TSimulatedRun& run, const std::string& path, const std::string& comment)
+{
+	if (run.actions.size() != run.frames.size())
+		throw std::invalid_argument("writeRawlog: actions and frames differ in number");
+	mrpt::io::CFileGZOutputStream f;
+	if (!f.open(path)) throw std::runtime_error("writeRawlog: cannot write " + path);
+	auto ar = mrpt::serialization::archiveFrom(f);
+	if (!comment.empty())
+	{
+		const auto stamp = run.frames.empty() || run.frames[0]->size() == 0
+							   ? mrpt::Clock::fromDouble(0)
+							   : (*run.frames[0]->begin())->timestamp;
+		ar << commentObject(comment, stamp);
+	}
+	for (size_t k = 0; k < run.actions.size(); ++k) ar << *run.actions[k] << *run.frames[k];
+	f.close();
+}
+
+void simulateToRawlog(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed,
+	const std::string& path, const std::string& comment)
+{
+	CStepSimulator sim(gt, o, noise_seed);
+	mrpt::io::CFileGZOutputStream f;
+	if (!f.open(path)) throw std::runtime_error("simulateToRawlog: cannot write " + path);
+	auto ar = mrpt::serialization::archiveFrom(f);
+	if (!comment.empty()) ar << commentObject(comment, stepTimestamp(o, 0));
+	mrpt::obs::CActionCollection::Ptr act;
+	mrpt::obs::CSensoryFrame::Ptr sf;
+	for (size_t k = 0; k < gt.numSteps(); ++k)
+	{
+		sim.step(k, act, sf);
+		ar << *act << *sf;
+	}
+	f.close();
+}
+}  // namespace dynslam::sim
