@@ -138,4 +138,12 @@ TEST(Writers, MetricsCsvHasRequiredColumnsAndOneRowPerFilter)
 	std::ostringstream sum;
 	writeConsistencySummary(sum, *rows[1].consistency);
 	EXPECT_NE(sum.str().find("ego"), std::string::npos);
+	std::ostringstream csv;
+	writeConsistencySummaryCsv(csv, {{"w1v1", *rows[1].consistency}});
+	const auto c = lines(csv.str());
+	// Header, ego, landmarks, map, object 1 pose (the only object with a pose), nis.
+	ASSERT_EQ(c.size(), 6u);
+	EXPECT_EQ(c[1].rfind("w1v1,ego,1,2,", 0), 0u) << c[1];
+	EXPECT_EQ(c[4].rfind("w1v1,object1_pose,1,1,", 0), 0u) << c[4];
+	EXPECT_EQ(c[5].rfind("w1v1,nis,1,1,", 0), 0u) << c[5];
 }

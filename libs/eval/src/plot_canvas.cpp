@@ -169,16 +169,22 @@ std::vector<double> niceTicks(double lo, double hi, int target)
 {
 	std::vector<double> t;
 	if (!(hi > lo) || target < 1) return t;
-	const double raw = (hi - lo) / target;
-	const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-	double step = mag;
-	for (double f : {1.0, 2.0, 5.0, 10.0})
-		if (f * mag >= raw)
-		{
-			step = f * mag;
-			break;
-		}
-	for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) t.push_back(v);
+	// Refine until at least 3 ticks fall inside (a 1-2-5 step can overshoot the target).
+	for (int attempt = 0; attempt < 4 && t.size() < 3; ++attempt, target *= 2)
+	{
+		t.clear();
+		const double raw = (hi - lo) / target;
+		const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+		double step = mag;
+		for (double f : {1.0, 2.0, 5.0, 10.0})
+			if (f * mag >= raw)
+			{
+				step = f * mag;
+				break;
+			}
+		for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step)
+			t.push_back(v);
+	}
 	return t;
 }
 

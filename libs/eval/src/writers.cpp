@@ -286,4 +286,24 @@ void writeConsistencySummary(std::ostream& os, const TConsistencySummary& s)
 	for (const auto& [o, st] : s.object_poses) line(st);
 	line(s.nis);
 }
+
+void writeConsistencySummaryCsv(
+	std::ostream& os, const std::vector<std::pair<std::string, TConsistencySummary>>& summaries)
+{
+	os << "label,block,runs,rows,anees,anees_lower,anees_upper,inside,fraction_inside,"
+		  "skipped_singular\n";
+	for (const auto& [label, s] : summaries)
+	{
+		auto row = [&, &label = label, &s = s](const TConsistencyStats& st) {
+			os << label << "," << st.name << "," << s.runs << "," << st.rows.size() << ","
+			   << num(st.anees) << "," << num(st.anees_lower) << "," << num(st.anees_upper) << ","
+			   << st.inside << "," << num(st.fraction_inside) << "," << st.skipped_singular << "\n";
+		};
+		row(s.ego);
+		row(s.landmarks);
+		row(s.map);
+		for (const auto& [o, st] : s.object_poses) row(st);
+		row(s.nis);
+	}
+}
 }  // namespace dynslam::eval

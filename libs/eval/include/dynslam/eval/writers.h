@@ -66,4 +66,10 @@ void writeConsistencyCsv(std::ostream& os, const TConsistencyStats& stats);
 
 /** Text summary, one line per block: samples, ANEES with bounds, % of rows inside. */
 void writeConsistencySummary(std::ostream& os, const TConsistencySummary& s);
+
+/** NEES/NIS summary CSV over several labelled summaries (e.g. one per noise level):
+ * label,block,runs,rows,anees,anees_lower,anees_upper,inside,fraction_inside,skipped_singular,
+ * one row per block (ego, landmarks, map, object<k>_pose..., nis). */
+void writeConsistencySummaryCsv(
+	std::ostream& os, const std::vector<std::pair<std::string, TConsistencySummary>>& summaries);
 }  // namespace dynslam::eval
