@@ -1,0 +1,117 @@
+#pragma once
+/** @file noise_estimation.h
+ * Noise parameters of the MRCLAM data estimated from its Vicon ground truth (issue 7, item 3).
+ * Pure C++/Eigen. Method (also in doc/real-data.md):
+ *
+ * Measurements: for every kept measurement (import.h rules) at its own time t, the ego pose
+ * p(t) and the subject's position q(t) (landmark: surveyed position; robot: Vicon, interpolated)
+ * give the predicted range |q - p| and bearing atan2(q - p) - theta. Residuals = measured -
+ * predicted (bearing wrapped). Statistics: mean, std, median, robust std = 1.4826 MAD, outlier
+ * fraction (|r - median| > k * robust std), and mean/std of the inliers; separately for
+ * landmarks and robots and in range bins.
+ *
+ * Odometry: for every step k >= 1 of the import, e = (ground-truth increment) - (integrated
+ * odometry increment), componentwise in the robot frame at t_{k-1}, angle wrapped. The model
+ * of odometry.h, var = c0 + c_d * distance + c_a * angle, is fitted by non-negative least
+ * squares of (e_x^2 + e_y^2) / 2 (resp. e_phi^2) on (1, distance, angle); samples with a
+ * normalized squared error above trim_chi2 are trimmed and the fit repeated (up to 30 rounds
+ * until it converges, the later ones weighted by 1/var^2: iteratively reweighted least squares,
+ * whose fixed point is the Gaussian maximum-likelihood fit of the inliers). The floors c0 >= (1e-4)^2
+ * (m^2, rad^2; the Vicon resolution) keep a step without motion at a positive variance.
+ *
+ * Odometry delay: the increments over the import's step intervals are recomputed for a grid
+ * of delays d (odometry.h); the d with the smallest RMS heading error against the ground
+ * truth is the estimate (scoreOdometryDelays; pooled over robots by summing squared errors).
+ * Gains: sum |dtheta_gt| / sum |dtheta_odo| and sum |dp_gt| / sum |dp_odo| over the steps
+ * (1 = no scale error; reported, not corrected). */
+#include <dynslam/mrclam/import.h>
+#include <dynslam/mrclam/mrclam_files.h>
+#include <dynslam/mrclam/odometry.h>
+
+#include <string>
+#include <vector>
+
+namespace dynslam::mrclam
+{
+struct TResidualStats
+{
+	size_t n = 0;
+	double mean = 0, std = 0, median = 0, robust_std = 0;
+	double outlier_fraction = 0;
+	double inlier_mean = 0, inlier_std = 0;
+};
+/** Statistics of residuals r; outliers: |r - median| > outlierFactor * robust_std. */
+TResidualStats residualStats(const std::vector<double>& r, double outlierFactor);
+
+/** Raw residual samples, appendable over several robots. */
+struct TNoiseSamples
+{
+	struct TMeas
+	{
+		int ego, subject;
+		double range_gt, e_range, e_bearing;
+	};
+	struct TOdo
+	{
+		int ego;
+		double distance, angle;
+		Eigen::Vector3d odo;  ///< integrated odometry increment
+		Eigen::Vector3d gt;  ///< ground-truth increment
+		Eigen::Vector3d e;  ///< gt - odo, angle wrapped
+	};
+	std::vector<TMeas> meas;
+	std::vector<TOdo> odo;
+	void append(const TNoiseSamples& o);
+};
+
+/** Residuals of one imported robot (`res` from importRobot on `data`). */
+TNoiseSamples collectNoiseSamples(const TDataset& data, const TImportResult& res);
+
+struct TNoiseEstimate
+{
+	double outlier_factor = 5;
+	TResidualStats range_all, bearing_all, range_landmarks, bearing_landmarks, range_robots,
+		bearing_robots;
+	struct TBin
+	{
+		double lo, hi;
+		TResidualStats range, bearing;
+	};
+	std::vector<TBin> bins;  ///< by ground-truth range
+	// odometry
+	size_t odo_steps = 0;
+	TOdometryNoiseModel odometry;  ///< fitted model
+	double odo_trimmed_fraction_xy = 0, odo_trimmed_fraction_phi = 0;
+	double odo_translation_gain = 0;  ///< sum |dp_gt| / sum |dp_odo|
+	double odo_rotation_gain = 0;  ///< sum |dtheta_gt| / sum |dtheta_odo|
+	double odo_mean_nees_xy = 0, odo_mean_nees_phi = 0;  ///< E[e^2/var] with the fit (all)
+	double odo_frac_xy_above_95 = 0, odo_frac_phi_above_95 = 0;  ///< chi2 95% exceedance
+	TResidualStats odo_ex, odo_ey, odo_ephi;
+	std::string toText() const;
+	/** The chosen values as INI lines for [MRCLAM_Import] / [MRCLAM_OdometryNoise]. */
+	std::string toIni() const;
+};
+
+/** Score of one odometry delay over the step intervals of an import. */
+struct TDelayScore
+{
+	double delay = 0;  ///< [s]
+	size_t n = 0;  ///< step intervals
+	double sse_phi = 0, sse_xy = 0;  ///< sums of squared heading [rad^2] / position [m^2] errors
+	double rmsPhi() const;
+	double rmsXY() const;
+};
+/** For each delay: the errors of the increments integrated with it (and the gains) vs the
+ * ground truth. */
+std::vector<TDelayScore> scoreOdometryDelays(
+	const TDataset& data, const TImportResult& res, const std::vector<double>& delays,
+	double scaleV = 1, double scaleW = 1);
+/** Adds b's sums to a (same delays, pooling robots). */
+void poolDelayScores(std::vector<TDelayScore>& a, const std::vector<TDelayScore>& b);
+/** The entry with the smallest sse_phi. */
+TDelayScore bestDelay(const std::vector<TDelayScore>& scores);
+std::string delayScoresText(const std::vector<TDelayScore>& scores);
+
+TNoiseEstimate estimateNoise(
+	const TNoiseSamples& s, double outlierFactor = 5, double trimChi2 = 25);
+}  // namespace dynslam::mrclam
