@@ -27,7 +27,8 @@ dynslam::TGroundTruth syntheticTruth()
 		gt.t.push_back(0.5 * k);
 		gt.ego.emplace_back(8.0 * k, std::sin(0.1 * k), M_PI - 0.5 + 0.01 * k);
 	}
-	for (int i = 0; i < kLandmarks; ++i) gt.landmarks[i] = Eigen::Vector2d(30.0 * i, i % 2 ? 20 : -20);
+	for (int i = 0; i < kLandmarks; ++i)
+		gt.landmarks[i] = Eigen::Vector2d(30.0 * i, i % 2 ? 20 : -20);
 	return gt;
 }
 
@@ -73,7 +74,7 @@ TRunEstimates syntheticRun(const dynslam::TGroundTruth& gt, unsigned seed, doubl
 	const Eigen::VectorXd em = draw(Pm, rng);
 	for (int i = 0; i < kLandmarks; ++i)
 		est.landmarks.push_back({i, gt.landmarks.at(i) + em.segment<2>(2 * i),
-								 reportedScale * Pm.block<2, 2>(2 * i, 2 * i)});
+		                         reportedScale * Pm.block<2, 2>(2 * i, 2 * i)});
 	est.landmarks_cov = reportedScale * Pm;
 	return est;
 }
@@ -197,7 +198,7 @@ TEST(Consistency, ObjectPoseNeesWrapsAngleAndHandlesTwoDof)
 	TRunEstimates est;
 	TObjectPoseEstimate p;
 	p.object = 0;
-	p.step = 2;  // truth (1, 0, 0)
+	p.step = 2;                                      // truth (1, 0, 0)
 	p.mean = Eigen::Vector3d(1, 0, 2 * M_PI + 0.1);  // angle error 0.1 after wrapping
 	p.cov = 0.01 * Eigen::Matrix3d::Identity();
 	est.object_poses.push_back(p);

@@ -57,12 +57,12 @@ TRunEstimates noisyRun(const dynslam::TGroundTruth& gt, unsigned seed, double si
 	}
 	for (const auto& [id, p] : gt.landmarks)
 		est.landmarks.push_back(
-			{id, p + Eigen::Vector2d(n(rng), n(rng)), sigma * sigma * Eigen::Matrix2d::Identity()});
+		    {id, p + Eigen::Vector2d(n(rng), n(rng)), sigma * sigma * Eigen::Matrix2d::Identity()});
 	for (const auto& o : gt.objects)
 	{
 		for (int j = 0; j < o.num_features; ++j)
 			est.object_features.push_back(
-				{o.object, j, o.features[0].col(j), 0.01 * Eigen::Matrix2d::Identity()});
+			    {o.object, j, o.features[0].col(j), 0.01 * Eigen::Matrix2d::Identity()});
 		for (size_t k = 0; k < o.pose.size(); k += 2)
 		{
 			TObjectPoseEstimate p;
@@ -114,13 +114,13 @@ TEST(Figures, MapFigurePngWithTwoFilters)
 	const auto gt = highway();
 	const auto a = noisyRun(gt, 1, 0.5), b = noisyRun(gt, 2, 1.5);
 	const std::vector<TFigureSeries> s = {{"dynamic", seriesColor(0), &a},
-										  {"static_all", seriesColor(1), &b}};
+	                                      {"static_all", seriesColor(1), &b}};
 	const auto img = saveAndReload(drawMapFigure(&gt, s), "map.png");
 	EXPECT_EQ(img.getWidth(), 1600u);
 	EXPECT_EQ(img.getHeight(), 700u);
 	const auto [drawn, red] = countPixels(img, seriesColor(0));
 	EXPECT_GT(drawn, 20000u);  // paths, ellipses, marks, axes, legend
-	EXPECT_GT(red, 1000u);  // the first filter's colour is there
+	EXPECT_GT(red, 1000u);     // the first filter's colour is there
 	EXPECT_LT(drawn, 1600u * 700u / 2);
 
 	TMapFigureOptions zoom;
@@ -138,8 +138,8 @@ TEST(Figures, ErrorAndConsistencyFigures)
 {
 	const auto gt = highway();
 	const auto a = noisyRun(gt, 3, 0.3);
-	const auto img = saveAndReload(
-		drawEgoErrorFigure(gt, {{"dynamic", seriesColor(0), &a}}), "ego_errors.png");
+	const auto img =
+	    saveAndReload(drawEgoErrorFigure(gt, {{"dynamic", seriesColor(0), &a}}), "ego_errors.png");
 	EXPECT_EQ(img.getWidth(), 1400u);
 	EXPECT_EQ(img.getHeight(), 900u);
 	const auto [drawn, red] = countPixels(img, seriesColor(0));

@@ -29,7 +29,7 @@ TEST(Metrics, EgoRmseAteAndAngleWrap)
 	est.ego.push_back(ego(1, {1, -0.2, 0.11}));
 	est.ego.push_back(ego(2, {2.3, 0.9, 0.2}));
 	est.ego.push_back(ego(3, {3, 1, -M_PI + 0.01}));  // true heading pi - 0.01: error +0.02
-	est.ego.push_back(ego(9, {0, 0, 0}));  // outside the ground truth
+	est.ego.push_back(ego(9, {0, 0, 0}));             // outside the ground truth
 	const TRunMetrics m = computeRunMetrics(gt, est);
 	EXPECT_EQ(m.ego.n_xy, 4u);
 	EXPECT_EQ(m.ego_skipped, 1u);
@@ -57,7 +57,7 @@ TEST(Metrics, StaticMapExcludesAndCountsMissingAndUnmatched)
 	est.landmarks.push_back({100000, {7, 2}, Eigen::Matrix2d::Identity()});  // a moving feature
 	const TRunMetrics m = computeRunMetrics(gt, est);
 	EXPECT_EQ(m.static_map.n_xy, 2u);
-	EXPECT_EQ(m.landmarks_missing, 1u);  // ID 5
+	EXPECT_EQ(m.landmarks_missing, 1u);    // ID 5
 	EXPECT_EQ(m.landmarks_unmatched, 1u);  // ID 100000
 	EXPECT_NEAR(m.static_map.x, std::sqrt(0.09 / 2), 1e-12);
 	EXPECT_NEAR(m.static_map.y, std::sqrt(0.16 / 2), 1e-12);
@@ -76,7 +76,8 @@ TEST(Metrics, ObjectFeaturesAtFirstSightingAndPoses)
 	est.object_features.push_back({1, 0, {0.0, -3.3}, Eigen::Matrix2d::Identity()});
 	est.object_features.push_back({1, 1, {0.0, -3.0}, Eigen::Matrix2d::Identity()});
 	est.object_features.push_back({7, 0, {0.0, 0.0}, Eigen::Matrix2d::Identity()});
-	auto pose = [](int obj, int step, Eigen::VectorXd mean) {
+	auto pose = [](int obj, int step, Eigen::VectorXd mean)
+	{
 		TObjectPoseEstimate p;
 		p.object = obj;
 		p.step = step;
@@ -86,7 +87,7 @@ TEST(Metrics, ObjectFeaturesAtFirstSightingAndPoses)
 	};
 	est.object_poses.push_back(pose(0, 1, Eigen::Vector3d(0.1, 0, 0.02)));
 	est.object_poses.push_back(pose(0, 2, Eigen::Vector3d(1.0, 0.3, -0.02)));
-	est.object_poses.push_back(pose(0, 0, Eigen::Vector3d(0, 0, 0)));  // before first sighting
+	est.object_poses.push_back(pose(0, 0, Eigen::Vector3d(0, 0, 0)));   // before first sighting
 	est.object_poses.push_back(pose(1, 2, Eigen::Vector2d(0.4, 1.0)));  // translation-only
 	const TRunMetrics m = computeRunMetrics(gt, est);
 	ASSERT_EQ(m.objects.size(), 2u);

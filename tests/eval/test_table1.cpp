@@ -60,10 +60,10 @@ TEST(Table1, AggregatesMeanOverRuns)
 	EXPECT_NEAR(L.cells[0][0].mean, 0.020, 1e-12);  // ego x: (0.01 + 0.03) / 2
 	EXPECT_NEAR(L.cells[0][0].std, std::sqrt(2.0) * 0.01, 1e-12);
 	EXPECT_NEAR(L.cells[1][1].mean, 0.080, 1e-12);  // static y
-	EXPECT_NEAR(L.cells[0][4].mean, 0.6, 1e-12);  // agent 3 features x
+	EXPECT_NEAR(L.cells[0][4].mean, 0.6, 1e-12);    // agent 3 features x
 	EXPECT_NEAR(L.cells[2][5].mean, 0.006, 1e-12);  // agent 1 poses theta
-	EXPECT_EQ(L.cells[2][7].runs, 0);  // agent 3 theta: NaN in every run
-	EXPECT_TRUE(std::isnan(L.cells[2][1].mean));  // static theta: N/A
+	EXPECT_EQ(L.cells[2][7].runs, 0);               // agent 3 theta: NaN in every run
+	EXPECT_TRUE(std::isnan(L.cells[2][1].mean));    // static theta: N/A
 }
 
 TEST(Table1, MarkdownPutsOursBesidePaper)
@@ -75,8 +75,8 @@ TEST(Table1, MarkdownPutsOursBesidePaper)
 	const std::string s = os.str();
 	EXPECT_NE(s.find("| Noise level | Data | Ego Poses | Static Features |"), std::string::npos);
 	EXPECT_NE(s.find("Σw,2, Σv,2 (w2v2), 1 runs | x (m) | 0.010 / 0.028 | 0.030 / 0.048 |"),
-			  std::string::npos)
-		<< s;
+	          std::string::npos)
+	    << s;
 	// The garbled static y cell is marked and explained.
 	EXPECT_NE(s.find("0.040 / 0.0074†"), std::string::npos) << s;
 	EXPECT_NE(s.find("† Paper cell"), std::string::npos);
@@ -97,9 +97,9 @@ TEST(Table1, CsvOneRowPerLevelAndQuantity)
 	while (std::getline(is, line)) lines.push_back(line);
 	ASSERT_EQ(lines.size(), 1u + 2 * 3);
 	EXPECT_EQ(lines[0].rfind("noise_level,quantity,runs,ego_poses_ours,ego_poses_ours_std,"
-							 "ego_poses_paper,static_features_ours",
-							 0),
-			  0u);
+	                         "ego_poses_paper,static_features_ours",
+	                         0),
+	          0u);
 	EXPECT_EQ(lines[1].rfind("w1v1,x_m,2,0.01,0,0.008,0.03,0,0.014,", 0), 0u) << lines[1];
 	EXPECT_EQ(lines[3].rfind("w1v1,theta_rad,2,0.0005,0,0,,,,", 0), 0u) << lines[3];
 	EXPECT_NE(lines[4].find(",agent2_features;agent3_features"), std::string::npos) << lines[4];

@@ -74,12 +74,12 @@ TEST(Writers, EgoCsvWithTruthSigmaAndNis)
 	const auto l = lines(os.str());
 	ASSERT_EQ(l.size(), 3u);
 	EXPECT_EQ(l[0],
-			  "step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta,err_x,err_y,"
-			  "err_theta,nees,nis,nis_dof");
+	          "step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta,err_x,err_y,"
+	          "err_theta,nees,nis,nis_dof");
 	EXPECT_EQ(l[1], "0,0,0,0,0,0.3,0.3,0.3,0,0,0,0,0,0,0,,0");
 	// Step 1: truth (1, 0, 0.1), estimate (1, 0.5, pi/2).
 	EXPECT_EQ(l[2].rfind("1,0.5,1,0.5,1.57079633,0.3,0.3,0.3,1,0,0.1,0,0.5,1.47079633,", 0), 0u)
-		<< l[2];
+	    << l[2];
 	EXPECT_NE(l[2].find(",3.5,4"), std::string::npos);
 	// Without ground truth the truth columns stay empty.
 	std::ostringstream os2;
@@ -115,22 +115,22 @@ TEST(Writers, MetricsCsvHasRequiredColumnsAndOneRowPerFilter)
 	std::vector<TMetricsRow> rows;
 	rows.push_back({"static_all", computeRunMetrics(gt, est), std::nullopt});
 	rows.push_back({"dynamic", computeRunMetrics(gt, est),
-					summarizeConsistency({computeRunConsistency(gt, est)})});
+	                summarizeConsistency({computeRunConsistency(gt, est)})});
 	std::ostringstream os;
 	writeMetricsCsv(os, rows);
 	const auto l = lines(os.str());
 	ASSERT_EQ(l.size(), 3u);
 	EXPECT_EQ(l[0].rfind("filter,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,static_rmse_y,"
-						 "ate,ms_per_step,",
-						 0),
-			  0u);
+	                     "ate,ms_per_step,",
+	                     0),
+	          0u);
 	EXPECT_NE(l[0].find("agent2_pose_rmse_theta"), std::string::npos);
 	const auto commas = std::count(l[0].begin(), l[0].end(), ',');
 	for (const auto& r : l) EXPECT_EQ(std::count(r.begin(), r.end(), ','), commas) << r;
 	// Ego errors: step 0 (0, 0, 0), step 1 (0, 0.5, pi/2 - 0.1); landmark 2 error (0.3, 0).
 	EXPECT_EQ(l[1].rfind("static_all,0,0.353553391,1.04001006,0.3,0,0.353553391,0.25,2,1,2,1,", 0),
-			  0u)
-		<< l[1];
+	          0u)
+	    << l[1];
 	EXPECT_NEAR((M_PI / 2 - 0.1) / std::sqrt(2.0), 1.04001006, 1e-8);
 	std::ostringstream table;
 	writeMetricsTable(table, rows);

@@ -49,7 +49,8 @@ double regularizedGammaP(double a, double x)
 void checkDof(double dof)
 {
 	if (!(dof > 0) || !std::isfinite(dof))
-		throw std::invalid_argument("chi2: degrees of freedom must be > 0, got " + std::to_string(dof));
+		throw std::invalid_argument("chi2: degrees of freedom must be > 0, got " +
+		                            std::to_string(dof));
 }
 }  // namespace
 
@@ -82,8 +83,8 @@ double chi2Quantile(double p, double dof)
 TChi2Interval chi2Interval(double dof, double confidence)
 {
 	if (!(confidence > 0 && confidence < 1))
-		throw std::invalid_argument(
-			"chi2Interval: confidence must be in (0, 1), got " + std::to_string(confidence));
+		throw std::invalid_argument("chi2Interval: confidence must be in (0, 1), got " +
+		                            std::to_string(confidence));
 	const double alpha = 1.0 - confidence;
 	return {chi2Quantile(0.5 * alpha, dof), chi2Quantile(1.0 - 0.5 * alpha, dof)};
 }
@@ -91,8 +92,8 @@ TChi2Interval chi2Interval(double dof, double confidence)
 TChi2Interval averageChi2Bounds(double total_dof, int runs, double confidence)
 {
 	if (runs < 1)
-		throw std::invalid_argument(
-			"averageChi2Bounds: runs must be >= 1, got " + std::to_string(runs));
+		throw std::invalid_argument("averageChi2Bounds: runs must be >= 1, got " +
+		                            std::to_string(runs));
 	const TChi2Interval s = chi2Interval(total_dof, confidence);
 	return {s.lower / runs, s.upper / runs};
 }

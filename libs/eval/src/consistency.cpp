@@ -106,8 +106,9 @@ TRunConsistency computeRunConsistency(const TGroundTruth& gt, const TRunEstimate
 	return rc;
 }
 
-TConsistencyStats aggregateConsistency(
-	const std::string& name, const std::vector<const TNeesSamples*>& runs, double confidence)
+TConsistencyStats aggregateConsistency(const std::string& name,
+                                       const std::vector<const TNeesSamples*>& runs,
+                                       double confidence)
 {
 	TConsistencyStats st;
 	st.name = name;
@@ -135,7 +136,8 @@ TConsistencyStats aggregateConsistency(
 	{
 		row.mean = sums[key] / row.runs;
 		auto it = cache.find(row.total_dof);
-		if (it == cache.end()) it = cache.emplace(row.total_dof, chi2Interval(row.total_dof, confidence)).first;
+		if (it == cache.end())
+			it = cache.emplace(row.total_dof, chi2Interval(row.total_dof, confidence)).first;
 		row.lower = it->second.lower / row.runs;
 		row.upper = it->second.upper / row.runs;
 		row.inside = row.mean >= row.lower && row.mean <= row.upper;
@@ -154,7 +156,8 @@ TConsistencyStats aggregateConsistency(
 	return st;
 }
 
-TConsistencySummary summarizeConsistency(const std::vector<TRunConsistency>& runs, double confidence)
+TConsistencySummary summarizeConsistency(const std::vector<TRunConsistency>& runs,
+                                         double confidence)
 {
 	TConsistencySummary s;
 	s.runs = static_cast<int>(runs.size());
@@ -183,7 +186,7 @@ TConsistencySummary summarizeConsistency(const std::vector<TRunConsistency>& run
 			if (it != r.object_poses.end()) v.push_back(&it->second);
 		}
 		s.object_poses[o] =
-			aggregateConsistency("object" + std::to_string(o) + "_pose", v, confidence);
+		    aggregateConsistency("object" + std::to_string(o) + "_pose", v, confidence);
 	}
 	return s;
 }

@@ -14,11 +14,11 @@ void checkEstimates(const TRunEstimates& est)
 		if (e.step < 0)
 			throw std::invalid_argument("estimates: ego step " + std::to_string(e.step) + " < 0");
 		if (!steps.insert(e.step).second)
-			throw std::invalid_argument(
-				"estimates: duplicate ego estimate at step " + std::to_string(e.step));
+			throw std::invalid_argument("estimates: duplicate ego estimate at step " +
+			                            std::to_string(e.step));
 		if (!e.mean.allFinite())
-			throw std::invalid_argument(
-				"estimates: non-finite ego mean at step " + std::to_string(e.step));
+			throw std::invalid_argument("estimates: non-finite ego mean at step " +
+			                            std::to_string(e.step));
 	}
 	std::set<int32_t> ids;
 	for (const auto& l : est.landmarks)
@@ -26,36 +26,36 @@ void checkEstimates(const TRunEstimates& est)
 		if (!ids.insert(l.id).second)
 			throw std::invalid_argument("estimates: duplicate landmark ID " + std::to_string(l.id));
 		if (!l.mean.allFinite())
-			throw std::invalid_argument(
-				"estimates: non-finite mean of landmark " + std::to_string(l.id));
+			throw std::invalid_argument("estimates: non-finite mean of landmark " +
+			                            std::to_string(l.id));
 	}
 	const auto L = static_cast<Eigen::Index>(2 * est.landmarks.size());
 	if (est.landmarks_cov.size() != 0 &&
-		(est.landmarks_cov.rows() != L || est.landmarks_cov.cols() != L))
+	    (est.landmarks_cov.rows() != L || est.landmarks_cov.cols() != L))
 		throw std::invalid_argument("estimates: landmarks_cov is " +
-									std::to_string(est.landmarks_cov.rows()) + "x" +
-									std::to_string(est.landmarks_cov.cols()) + ", expected " +
-									std::to_string(L) + "x" + std::to_string(L));
+		                            std::to_string(est.landmarks_cov.rows()) + "x" +
+		                            std::to_string(est.landmarks_cov.cols()) + ", expected " +
+		                            std::to_string(L) + "x" + std::to_string(L));
 	for (const auto& f : est.object_features)
 		if (!f.mean.allFinite())
 			throw std::invalid_argument("estimates: non-finite mean of object " +
-										std::to_string(f.object) + " feature " +
-										std::to_string(f.feature));
+			                            std::to_string(f.object) + " feature " +
+			                            std::to_string(f.feature));
 	for (const auto& p : est.object_poses)
 	{
-		const std::string name =
-			"estimates: pose of object " + std::to_string(p.object) + " at step " +
-			std::to_string(p.step);
+		const std::string name = "estimates: pose of object " + std::to_string(p.object) +
+		                         " at step " + std::to_string(p.step);
 		const auto n = p.mean.size();
 		if (n != 2 && n != 3)
-			throw std::invalid_argument(name + " has " + std::to_string(n) + " entries, not 2 or 3");
+			throw std::invalid_argument(name + " has " + std::to_string(n) +
+			                            " entries, not 2 or 3");
 		if (p.cov.rows() != n || p.cov.cols() != n)
 			throw std::invalid_argument(name + ": covariance size does not match the mean");
 		if (!p.mean.allFinite()) throw std::invalid_argument(name + ": non-finite mean");
 	}
 	if (est.nis.size() != est.nis_dof.size())
 		throw std::invalid_argument("estimates: nis and nis_dof differ in length (" +
-									std::to_string(est.nis.size()) + " vs " +
-									std::to_string(est.nis_dof.size()) + ")");
+		                            std::to_string(est.nis.size()) + " vs " +
+		                            std::to_string(est.nis_dof.size()) + ")");
 }
 }  // namespace dynslam::eval

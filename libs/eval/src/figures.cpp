@@ -13,10 +13,9 @@ using mrpt::img::TColor;
 
 TColor seriesColor(size_t i)
 {
-	static const TColor palette[] = {TColor(220, 30, 30),	TColor(30, 80, 220),
-									 TColor(20, 150, 40),	TColor(240, 140, 0),
-									 TColor(150, 40, 180),	TColor(0, 170, 170),
-									 TColor(140, 90, 40),	TColor(230, 60, 160)};
+	static const TColor palette[] = {TColor(220, 30, 30), TColor(30, 80, 220),  TColor(20, 150, 40),
+	                                 TColor(240, 140, 0), TColor(150, 40, 180), TColor(0, 170, 170),
+	                                 TColor(140, 90, 40), TColor(230, 60, 160)};
 	return palette[i % (sizeof(palette) / sizeof(palette[0]))];
 }
 
@@ -27,7 +26,7 @@ const TColor kBlack(0, 0, 0), kGrey(150, 150, 150), kWhite(255, 255, 255);
 TColor objectColor(size_t i)
 {
 	static const TColor palette[] = {TColor(60, 170, 60), TColor(70, 110, 230),
-									 TColor(170, 70, 200), TColor(200, 150, 30)};
+	                                 TColor(170, 70, 200), TColor(200, 150, 30)};
 	return palette[i % 4];
 }
 
@@ -46,7 +45,7 @@ std::vector<Eigen::Vector2d> truthCentroids(const TObjectGroundTruth& o)
 	std::vector<Eigen::Vector2d> c;
 	for (const auto& f : o.features)
 		c.push_back(f.cols() > 0 ? Eigen::Vector2d(f.rowwise().mean())
-								 : Eigen::Vector2d::Constant(kNaN));
+		                         : Eigen::Vector2d::Constant(kNaN));
 	return c;
 }
 
@@ -64,12 +63,12 @@ std::map<int32_t, std::vector<Eigen::Vector2d>> estimatedTracks(const TRunEstima
 	std::map<int32_t, std::vector<std::pair<int, Eigen::Vector2d>>> byStep;
 	for (const auto& p : est.object_poses)
 		if (n.count(p.object))
-			byStep[p.object].emplace_back(
-				p.step, sum[p.object] / n[p.object] + p.mean.head<2>());
+			byStep[p.object].emplace_back(p.step, sum[p.object] / n[p.object] + p.mean.head<2>());
 	std::map<int32_t, std::vector<Eigen::Vector2d>> tracks;
 	for (auto& [o, v] : byStep)
 	{
-		std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+		std::sort(v.begin(), v.end(),
+		          [](const auto& a, const auto& b) { return a.first < b.first; });
 		int last = -2;
 		for (const auto& [step, p] : v)
 		{
@@ -93,8 +92,8 @@ std::vector<Eigen::Vector2d> egoPath(const std::vector<TEgoEstimate>& ego)
 }
 }  // namespace
 
-mrpt::img::CImage drawMapFigure(
-	const TGroundTruth* gt, const std::vector<TFigureSeries>& series, const TMapFigureOptions& opt)
+mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigureSeries>& series,
+                                const TMapFigureOptions& opt)
 {
 	auto img = blankImage(opt.width, opt.height);
 	// World box: everything that will be drawn.
@@ -118,10 +117,10 @@ mrpt::img::CImage drawMapFigure(
 	const TBox world = opt.view ? *opt.view : box.withMargin(0.03);
 
 	const int left = 80, top = 40, right = 20, bottom = 55;
-	CPlotCanvas cv(
-		img, left, top, opt.width - left - right, opt.height - top - bottom, world,
-		opt.equal_aspect);
-	cv.axes("x [m]", "y [m]", opt.title + (opt.equal_aspect ? "" : "  (x and y scaled differently)"));
+	CPlotCanvas cv(img, left, top, opt.width - left - right, opt.height - top - bottom, world,
+	               opt.equal_aspect);
+	cv.axes("x [m]", "y [m]",
+	        opt.title + (opt.equal_aspect ? "" : "  (x and y scaled differently)"));
 
 	std::vector<TLegendEntry> legend;
 	if (gt)
@@ -135,11 +134,10 @@ mrpt::img::CImage drawMapFigure(
 				if (o.first_step >= 0 && static_cast<size_t>(o.first_step) < o.features.size())
 					for (int k = 0; k < o.features[o.first_step].cols(); ++k)
 						cv.mark(o.features[o.first_step](0, k), o.features[o.first_step](1, k),
-								objectColor(i), '+', 4);
-				legend.push_back(
-					{"agent " + std::to_string(i + 1) + " (object " + std::to_string(o.object) +
-						 ", truth)",
-					 lighter(objectColor(i), 0.35), 0});
+						        objectColor(i), '+', 4);
+				legend.push_back({"agent " + std::to_string(i + 1) + " (object " +
+				                      std::to_string(o.object) + ", truth)",
+				                  lighter(objectColor(i), 0.35), 0});
 			}
 		if (opt.show_landmarks)
 		{
@@ -173,15 +171,16 @@ mrpt::img::CImage drawMapFigure(
 	return img;
 }
 
-mrpt::img::CImage drawEgoErrorFigure(
-	const TGroundTruth& gt, const std::vector<TFigureSeries>& series, const TErrorFigureOptions& opt)
+mrpt::img::CImage drawEgoErrorFigure(const TGroundTruth& gt,
+                                     const std::vector<TFigureSeries>& series,
+                                     const TErrorFigureOptions& opt)
 {
 	auto img = blankImage(opt.width, opt.height);
 	std::vector<std::vector<TEgoErrorRow>> rows;
-	for (const auto& s : series) rows.push_back(s.est ? egoErrors(gt, s.est->ego) : std::vector<TEgoErrorRow>{});
-	auto xOf = [&](const TEgoErrorRow& r) {
-		return opt.time_axis && std::isfinite(r.t) ? r.t : static_cast<double>(r.step);
-	};
+	for (const auto& s : series)
+		rows.push_back(s.est ? egoErrors(gt, s.est->ego) : std::vector<TEgoErrorRow>{});
+	auto xOf = [&](const TEgoErrorRow& r)
+	{ return opt.time_axis && std::isfinite(r.t) ? r.t : static_cast<double>(r.step); };
 	TBox xr = TBox::empty();
 	for (const auto& v : rows)
 		for (const auto& r : v) xr.expand(xOf(r), 0);
@@ -197,8 +196,10 @@ mrpt::img::CImage drawEgoErrorFigure(
 		if (!(ymax > 0) || !std::isfinite(ymax)) ymax = 1;
 		TBox w{xr.xmin, xr.xmax, -1.1 * ymax, 1.1 * ymax};
 		if (!(w.xmax > w.xmin)) w = w.withMargin(0);
-		CPlotCanvas cv(img, left, top + i * (panelH + gap), opt.width - left - right, panelH, w, false);
-		cv.axes(i == 2 ? (opt.time_axis ? "t [s]" : "step") : "", names[i], i == 0 ? opt.title : "");
+		CPlotCanvas cv(img, left, top + i * (panelH + gap), opt.width - left - right, panelH, w,
+		               false);
+		cv.axes(i == 2 ? (opt.time_axis ? "t [s]" : "step") : "", names[i],
+		        i == 0 ? opt.title : "");
 		cv.line(w.xmin, 0, w.xmax, 0, kGrey);
 		std::vector<TLegendEntry> legend;
 		for (size_t s = 0; s < rows.size(); ++s)
@@ -228,8 +229,8 @@ mrpt::img::CImage drawEgoErrorFigure(
 	return img;
 }
 
-mrpt::img::CImage drawConsistencyFigure(
-	const TConsistencyStats& stats, const TConsistencyFigureOptions& opt)
+mrpt::img::CImage drawConsistencyFigure(const TConsistencyStats& stats,
+                                        const TConsistencyFigureOptions& opt)
 {
 	auto img = blankImage(opt.width, opt.height);
 	TBox box = TBox::empty();
@@ -249,8 +250,8 @@ mrpt::img::CImage drawConsistencyFigure(
 	CPlotCanvas cv(img, left, top, opt.width - left - right, opt.height - top - bottom, w, false);
 	char title[160];
 	std::snprintf(title, sizeof(title), "%s: ANEES %.3f in [%.3f, %.3f], %.1f%% inside",
-				  opt.title.empty() ? stats.name.c_str() : opt.title.c_str(), stats.anees,
-				  stats.anees_lower, stats.anees_upper, 100.0 * stats.fraction_inside);
+	              opt.title.empty() ? stats.name.c_str() : opt.title.c_str(), stats.anees,
+	              stats.anees_lower, stats.anees_upper, 100.0 * stats.fraction_inside);
 	cv.axes(opt.xlabel, "average NEES / NIS", title);
 	std::vector<Eigen::Vector2d> m, lo, up;
 	for (const auto& r : stats.rows)

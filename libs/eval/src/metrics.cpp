@@ -50,20 +50,19 @@ void checkGroundTruth(const TGroundTruth& gt)
 {
 	const size_t n = gt.numSteps();
 	if (!gt.t.empty() && gt.t.size() != n)
-		throw std::invalid_argument(
-			"ground truth: " + std::to_string(gt.t.size()) + " time stamps for " +
-			std::to_string(n) + " ego steps");
+		throw std::invalid_argument("ground truth: " + std::to_string(gt.t.size()) +
+		                            " time stamps for " + std::to_string(n) + " ego steps");
 	for (const auto& o : gt.objects)
 	{
 		const std::string name = "ground truth object " + std::to_string(o.object);
 		if (o.features.size() != n || o.pose.size() != n || o.visible.size() != n)
 			throw std::invalid_argument(name + ": per-step vectors do not have " +
-										std::to_string(n) + " entries");
+			                            std::to_string(n) + " entries");
 		for (const auto& f : o.features)
 			if (f.cols() != o.num_features)
 				throw std::invalid_argument(name + ": feature matrix with " +
-											std::to_string(f.cols()) + " columns, expected " +
-											std::to_string(o.num_features));
+				                            std::to_string(f.cols()) + " columns, expected " +
+				                            std::to_string(o.num_features));
 		if (o.first_step >= static_cast<int>(n))
 			throw std::invalid_argument(name + ": first_step beyond the last step");
 	}
@@ -173,15 +172,17 @@ std::vector<TEgoErrorRow> egoErrors(const TGroundTruth& gt, const std::vector<TE
 		if (e.step < 0 || e.step >= nSteps) continue;
 		TEgoErrorRow r;
 		r.step = e.step;
-		r.t = std::isfinite(e.t) ? e.t
-								 : (static_cast<size_t>(e.step) < gt.t.size() ? gt.t[e.step] : kNaN);
+		r.t = std::isfinite(e.t)
+		          ? e.t
+		          : (static_cast<size_t>(e.step) < gt.t.size() ? gt.t[e.step] : kNaN);
 		r.est = e.mean;
 		r.truth = gt.ego[e.step];
 		r.error = poseError(e.mean, r.truth);
 		r.sigma3 = 3.0 * e.cov.diagonal().cwiseMax(0.0).cwiseSqrt();
 		rows.push_back(r);
 	}
-	std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.step < b.step; });
+	std::sort(rows.begin(), rows.end(),
+	          [](const auto& a, const auto& b) { return a.step < b.step; });
 	return rows;
 }
 }  // namespace dynslam::eval

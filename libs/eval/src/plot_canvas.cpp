@@ -27,7 +27,8 @@ TBox TBox::empty()
 
 TBox TBox::withMargin(double fraction) const
 {
-	auto grow = [fraction](double& lo, double& hi) {
+	auto grow = [fraction](double& lo, double& hi)
+	{
 		if (!(hi >= lo))
 		{
 			lo = 0;
@@ -51,10 +52,9 @@ TBox TBox::withMargin(double fraction) const
 	return b;
 }
 
-CPlotCanvas::CPlotCanvas(
-	mrpt::img::CImage& img, int left, int top, int width, int height, const TBox& world,
-	bool equal_aspect)
-	: m_img(img), m_left(left), m_top(top), m_width(width), m_height(height), m_world(world)
+CPlotCanvas::CPlotCanvas(mrpt::img::CImage& img, int left, int top, int width, int height,
+                         const TBox& world, bool equal_aspect)
+    : m_img(img), m_left(left), m_top(top), m_width(width), m_height(height), m_world(world)
 {
 	if (!m_world.valid()) m_world = m_world.withMargin(0.0);
 	m_sx = m_width / (m_world.xmax - m_world.xmin);
@@ -76,7 +76,8 @@ double CPlotCanvas::py(double y) const { return m_top + m_height - (y - m_world.
 namespace
 {
 /// Liang-Barsky clipping of a pixel segment to [x0, x1] x [y0, y1]; false if outside.
-bool clip(double& ax, double& ay, double& bx, double& by, double x0, double y0, double x1, double y1)
+bool clip(double& ax, double& ay, double& bx, double& by, double x0, double y0, double x1,
+          double y1)
 {
 	double t0 = 0, t1 = 1;
 	const double dx = bx - ax, dy = by - ay;
@@ -120,12 +121,12 @@ std::string tickLabel(double v, double step)
 void CPlotCanvas::line(double x0, double y0, double x1, double y1, const TColor& c, int width)
 {
 	double ax = px(x0), ay = py(y0), bx = px(x1), by = py(y1);
-	if (!std::isfinite(ax) || !std::isfinite(ay) || !std::isfinite(bx) || !std::isfinite(by)) return;
+	if (!std::isfinite(ax) || !std::isfinite(ay) || !std::isfinite(bx) || !std::isfinite(by))
+		return;
 	if (!clip(ax, ay, bx, by, m_left, m_top, m_left + m_width - 1, m_top + m_height - 1)) return;
-	m_img.line(
-		static_cast<int>(std::lround(ax)), static_cast<int>(std::lround(ay)),
-		static_cast<int>(std::lround(bx)), static_cast<int>(std::lround(by)), c,
-		static_cast<unsigned>(width));
+	m_img.line(static_cast<int>(std::lround(ax)), static_cast<int>(std::lround(ay)),
+	           static_cast<int>(std::lround(bx)), static_cast<int>(std::lround(by)), c,
+	           static_cast<unsigned>(width));
 }
 
 void CPlotCanvas::polyline(const std::vector<Eigen::Vector2d>& pts, const TColor& c, int width)
@@ -146,15 +147,14 @@ void CPlotCanvas::mark(double x, double y, const TColor& c, char type, int size)
 		m_img.drawMark(iu, iv, c, type, size);
 }
 
-void CPlotCanvas::ellipse(
-	const Eigen::Vector2d& mean, const Eigen::Matrix2d& cov, double n_sigma, const TColor& c,
-	int width)
+void CPlotCanvas::ellipse(const Eigen::Vector2d& mean, const Eigen::Matrix2d& cov, double n_sigma,
+                          const TColor& c, int width)
 {
 	if (!cov.allFinite() || !mean.allFinite()) return;
 	const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(0.5 * (cov + cov.transpose()));
 	if (es.eigenvalues()[0] < 0) return;
 	const Eigen::Matrix2d A =
-		n_sigma * es.eigenvectors() * es.eigenvalues().cwiseSqrt().asDiagonal();
+	    n_sigma * es.eigenvectors() * es.eigenvalues().cwiseSqrt().asDiagonal();
 	constexpr int kPts = 36;
 	std::vector<Eigen::Vector2d> pts;
 	for (int i = 0; i <= kPts; ++i)
@@ -194,7 +194,8 @@ TColor lighter(const TColor& c, double amount)
 	return TColor(m(c.R), m(c.G), m(c.B));
 }
 
-void CPlotCanvas::axes(const std::string& xlabel, const std::string& ylabel, const std::string& title)
+void CPlotCanvas::axes(const std::string& xlabel, const std::string& ylabel,
+                       const std::string& title)
 {
 	const TColor black(0, 0, 0), grid(225, 225, 225);
 	const int r = m_left + m_width - 1, b = m_top + m_height - 1;
@@ -221,10 +222,12 @@ void CPlotCanvas::axes(const std::string& xlabel, const std::string& ylabel, con
 	}
 	m_img.rectangle(m_left, m_top, r, b, black);
 	m_img.selectTextFont("9x15");
-	m_img.textOut(m_left + m_width / 2 - 4 * static_cast<int>(xlabel.size()), b + 24, xlabel, black);
+	m_img.textOut(m_left + m_width / 2 - 4 * static_cast<int>(xlabel.size()), b + 24, xlabel,
+	              black);
 	m_img.textOut(m_left, m_top - 17, ylabel, black);
 	m_img.selectTextFont("9x15B");
-	m_img.textOut(m_left + m_width / 2 - 4 * static_cast<int>(title.size()), m_top - 19, title, black);
+	m_img.textOut(m_left + m_width / 2 - 4 * static_cast<int>(title.size()), m_top - 19, title,
+	              black);
 }
 
 void CPlotCanvas::legend(const std::vector<TLegendEntry>& entries)

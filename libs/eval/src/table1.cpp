@@ -1,17 +1,17 @@
 #include "dynslam/eval/table1.h"
 
-#include "table1_paper.h"
-
 #include <cmath>
 #include <cstdio>
+
+#include "table1_paper.h"
 
 namespace dynslam::eval
 {
 const std::array<std::string, kTable1Columns>& table1ColumnNames()
 {
 	static const std::array<std::string, kTable1Columns> names = {
-		"ego_poses",	   "static_features", "agent1_features", "agent2_features",
-		"agent3_features", "agent1_poses",	  "agent2_poses",	 "agent3_poses"};
+	    "ego_poses",       "static_features", "agent1_features", "agent2_features",
+	    "agent3_features", "agent1_poses",    "agent2_poses",    "agent3_poses"};
 	return names;
 }
 
@@ -24,7 +24,7 @@ const std::array<std::string, kTable1Quantities>& table1QuantityNames()
 const std::vector<std::string>& paperNoiseLevels()
 {
 	static const std::vector<std::string> levels = {"w1v1", "w1v2", "w1v3", "w2v1", "w2v2",
-													"w2v3", "w3v1", "w3v2", "w3v3"};
+	                                                "w2v3", "w3v1", "w3v2", "w3v3"};
 	return levels;
 }
 
@@ -32,7 +32,8 @@ TTable1Values table1Values(const TRunMetrics& m)
 {
 	TTable1Values v;
 	for (auto& q : v) q.fill(kNaN);
-	auto put = [&](int col, const TRmse& r, bool withTheta) {
+	auto put = [&](int col, const TRmse& r, bool withTheta)
+	{
 		v[0][col] = r.x;
 		v[1][col] = r.y;
 		if (withTheta) v[2][col] = r.theta;
@@ -96,7 +97,7 @@ bool paperTable1Garbled(const std::string& level, int quantity, int column)
 		return false;
 	for (const auto& g : detail::paperTable1GarbledCells())
 		if (level == g.level && table1QuantityNames()[quantity] == g.quantity &&
-			table1ColumnNames()[column] == g.column)
+		    table1ColumnNames()[column] == g.column)
 			return true;
 	return false;
 }
@@ -129,7 +130,7 @@ std::string levelTitle(const std::string& label)
 	// "wIvJ" -> "Σw,I, Σv,J (wIvJ)"
 	const auto v = label.find('v');
 	if (label.size() >= 4 && label[0] == 'w' && v != std::string::npos && v > 1 &&
-		v + 1 < label.size())
+	    v + 1 < label.size())
 		return "Σw," + label.substr(1, v - 1) + ", Σv," + label.substr(v + 1) + " (" + label + ")";
 	return label;
 }
@@ -147,13 +148,14 @@ void writeTable1Markdown(std::ostream& os, const TTable1& table)
 {
 	static const char* qTitle[kTable1Quantities] = {"x (m)", "y (m)", "θ (rad)"};
 	os << "| Noise level | Data | Ego Poses | Static Features | Agent 1 Features | Agent 2 Features"
-		  " | Agent 3 Features | Agent 1 Poses | Agent 2 Poses | Agent 3 Poses |\n";
+	      " | Agent 3 Features | Agent 1 Poses | Agent 2 Poses | Agent 3 Poses |\n";
 	os << "|---|---|---|---|---|---|---|---|---|---|\n";
 	bool anyGarbled = false;
 	for (const auto& L : table.levels)
 		for (int q = 0; q < kTable1Quantities; ++q)
 		{
-			os << "| " << (q == 0 ? levelTitle(L.label) + ", " + std::to_string(L.runs) + " runs" : "")
+			os << "| "
+			   << (q == 0 ? levelTitle(L.label) + ", " + std::to_string(L.runs) + " runs" : "")
 			   << " | " << qTitle[q] << " |";
 			for (int c = 0; c < kTable1Columns; ++c)
 			{
@@ -181,8 +183,8 @@ void writeTable1Markdown(std::ostream& os, const TTable1& table)
 			os << "\n";
 		}
 	os << "\nEach cell: ours / paper. Ours: mean over the runs of each run's RMSE "
-		  "(doc/metrics.md); paper: Table I of Chiu, arXiv 2207.05043 (25 runs per level). "
-		  "N/A: not defined (no heading for points) or not in the paper.\n";
+	      "(doc/metrics.md); paper: Table I of Chiu, arXiv 2207.05043 (25 runs per level). "
+	      "N/A: not defined (no heading for points) or not in the paper.\n";
 	if (anyGarbled)
 	{
 		os << "\n† Paper cell that looks like a text-extraction error, kept as printed:\n";
@@ -194,7 +196,8 @@ void writeTable1Markdown(std::ostream& os, const TTable1& table)
 void writeTable1Csv(std::ostream& os, const TTable1& table)
 {
 	os << "noise_level,quantity,runs";
-	for (const auto& c : table1ColumnNames()) os << "," << c << "_ours," << c << "_ours_std," << c << "_paper";
+	for (const auto& c : table1ColumnNames())
+		os << "," << c << "_ours," << c << "_ours_std," << c << "_paper";
 	os << ",paper_garbled\n";
 	for (const auto& L : table.levels)
 		for (int q = 0; q < kTable1Quantities; ++q)

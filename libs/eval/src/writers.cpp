@@ -63,9 +63,9 @@ void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego, const TGro
 	{
 		const double t = timeOf(*e, gt);
 		if (!std::isfinite(t))
-			throw std::invalid_argument(
-				"writeTum: no time stamp for step " + std::to_string(e->step) +
-				" (set TEgoEstimate::t or pass the ground truth)");
+			throw std::invalid_argument("writeTum: no time stamp for step " +
+			                            std::to_string(e->step) +
+			                            " (set TEgoEstimate::t or pass the ground truth)");
 		const double th = e->mean[2];
 		os << num(t) << " " << num(e->mean[0]) << " " << num(e->mean[1]) << " 0 0 0 "
 		   << num(std::sin(0.5 * th)) << " " << num(std::cos(0.5 * th)) << "\n";
@@ -75,7 +75,7 @@ void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego, const TGro
 void writeEgoCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt)
 {
 	os << "step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta,err_x,err_y,"
-		  "err_theta,nees,nis,nis_dof\n";
+	      "err_theta,nees,nis,nis_dof\n";
 	for (const TEgoEstimate* e : sortedEgo(est.ego))
 	{
 		os << e->step << "," << num(timeOf(*e, gt));
@@ -112,7 +112,8 @@ void writeLandmarksCsv(std::ostream& os, const TRunEstimates& est, const TGround
 	{
 		os << l->id << "," << num(l->mean[0]) << "," << num(l->mean[1]) << ","
 		   << num(sig3(l->cov(0, 0))) << "," << num(sig3(l->cov(1, 1)));
-		const auto it = gt ? gt->landmarks.find(l->id) : std::map<int32_t, Eigen::Vector2d>::const_iterator();
+		const auto it =
+		    gt ? gt->landmarks.find(l->id) : std::map<int32_t, Eigen::Vector2d>::const_iterator();
 		if (gt && it != gt->landmarks.end())
 		{
 			const Eigen::Vector2d d = l->mean - it->second;
@@ -149,19 +150,18 @@ void writeObjectFeaturesCsv(std::ostream& os, const TRunEstimates& est, const TG
 void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt)
 {
 	os << "object,step,t,dx,dy,dtheta,sigma3_dx,sigma3_dy,sigma3_dtheta,gt_dx,gt_dy,gt_dtheta,"
-		  "err_dx,err_dy,err_dtheta,nees,dof\n";
+	      "err_dx,err_dy,err_dtheta,nees,dof\n";
 	for (const auto& p : est.object_poses)
 	{
 		const auto n = p.mean.size();
-		const double t = gt && p.step >= 0 && static_cast<size_t>(p.step) < gt->t.size()
-							 ? gt->t[p.step]
-							 : kNaN;
+		const double t =
+		    gt && p.step >= 0 && static_cast<size_t>(p.step) < gt->t.size() ? gt->t[p.step] : kNaN;
 		os << p.object << "," << p.step << "," << num(t);
 		for (int i = 0; i < 3; ++i) os << "," << (i < n ? num(p.mean[i]) : "");
 		for (int i = 0; i < 3; ++i) os << "," << (i < n ? num(sig3(p.cov(i, i))) : "");
 		const auto* o = findObject(gt, p.object);
 		if (o && p.step >= 0 && p.step < static_cast<int>(o->pose.size()) &&
-			o->pose[p.step].allFinite())
+		    o->pose[p.step].allFinite())
 		{
 			const Eigen::Vector3d& g = o->pose[p.step];
 			Eigen::VectorXd d = p.mean - g.head(n);
@@ -191,7 +191,7 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 {
 	const size_t K = maxObjects(rows);
 	os << "filter,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,static_rmse_y,ate,ms_per_step,"
-		  "ego_steps,landmarks_scored,landmarks_missing,landmarks_unmatched";
+	      "ego_steps,landmarks_scored,landmarks_missing,landmarks_unmatched";
 	for (size_t k = 1; k <= K; ++k)
 	{
 		const std::string a = "agent" + std::to_string(k);
@@ -233,7 +233,8 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 
 void writeMetricsTable(std::ostream& os, const std::vector<TMetricsRow>& rows)
 {
-	auto f = [](double v, int prec) {
+	auto f = [](double v, int prec)
+	{
 		if (!std::isfinite(v)) return std::string("-");
 		char buf[40];
 		std::snprintf(buf, sizeof(buf), "%.*f", prec, v);
@@ -243,17 +244,16 @@ void writeMetricsTable(std::ostream& os, const std::vector<TMetricsRow>& rows)
 	for (const auto& r : rows) w = std::max(w, r.filter.size());
 	os << std::left << std::setw(static_cast<int>(w)) << "filter" << std::right << std::setw(11)
 	   << "ego x [m]" << std::setw(11) << "ego y [m]" << std::setw(12) << "ego th[rad]"
-	   << std::setw(11) << "map x [m]" << std::setw(11) << "map y [m]" << std::setw(10)
-	   << "ATE [m]" << std::setw(10) << "ms/step" << std::setw(10) << "ego ANEES" << std::setw(10)
-	   << "NIS in%" << "\n";
+	   << std::setw(11) << "map x [m]" << std::setw(11) << "map y [m]" << std::setw(10) << "ATE [m]"
+	   << std::setw(10) << "ms/step" << std::setw(10) << "ego ANEES" << std::setw(10) << "NIS in%"
+	   << "\n";
 	for (const auto& r : rows)
 	{
 		const auto& m = r.metrics;
-		os << std::left << std::setw(static_cast<int>(w)) << r.filter << std::right
-		   << std::setw(11) << f(m.ego.x, 4) << std::setw(11) << f(m.ego.y, 4) << std::setw(12)
-		   << f(m.ego.theta, 5) << std::setw(11) << f(m.static_map.x, 4) << std::setw(11)
-		   << f(m.static_map.y, 4) << std::setw(10) << f(m.ate, 4) << std::setw(10)
-		   << f(m.ms_per_step, 3) << std::setw(10)
+		os << std::left << std::setw(static_cast<int>(w)) << r.filter << std::right << std::setw(11)
+		   << f(m.ego.x, 4) << std::setw(11) << f(m.ego.y, 4) << std::setw(12) << f(m.ego.theta, 5)
+		   << std::setw(11) << f(m.static_map.x, 4) << std::setw(11) << f(m.static_map.y, 4)
+		   << std::setw(10) << f(m.ate, 4) << std::setw(10) << f(m.ms_per_step, 3) << std::setw(10)
 		   << (r.consistency ? f(r.consistency->ego.anees, 2) : "-") << std::setw(10)
 		   << (r.consistency ? f(100.0 * r.consistency->nis.fraction_inside, 1) : "-") << "\n";
 	}
@@ -269,15 +269,17 @@ void writeConsistencyCsv(std::ostream& os, const TConsistencyStats& stats)
 
 void writeConsistencySummary(std::ostream& os, const TConsistencySummary& s)
 {
-	os << "NEES/NIS over " << s.runs << " run(s), two-sided "
-	   << (s.ego.confidence * 100.0) << "% chi-square bounds"
+	os << "NEES/NIS over " << s.runs << " run(s), two-sided " << (s.ego.confidence * 100.0)
+	   << "% chi-square bounds"
 	   << (s.map_joint_cov ? "" : " (map NEES: block-diagonal landmark covariance)") << "\n";
-	auto line = [&](const TConsistencyStats& st) {
+	auto line = [&](const TConsistencyStats& st)
+	{
 		char buf[200];
-		std::snprintf(buf, sizeof(buf),
-					  "  %-16s rows %5zu  ANEES %9.3f in [%.3f, %.3f]  inside %5.1f%%  skipped %zu\n",
-					  st.name.c_str(), st.rows.size(), st.anees, st.anees_lower, st.anees_upper,
-					  100.0 * st.fraction_inside, st.skipped_singular);
+		std::snprintf(
+		    buf, sizeof(buf),
+		    "  %-16s rows %5zu  ANEES %9.3f in [%.3f, %.3f]  inside %5.1f%%  skipped %zu\n",
+		    st.name.c_str(), st.rows.size(), st.anees, st.anees_lower, st.anees_upper,
+		    100.0 * st.fraction_inside, st.skipped_singular);
 		os << buf;
 	};
 	line(s.ego);
@@ -288,13 +290,14 @@ void writeConsistencySummary(std::ostream& os, const TConsistencySummary& s)
 }
 
 void writeConsistencySummaryCsv(
-	std::ostream& os, const std::vector<std::pair<std::string, TConsistencySummary>>& summaries)
+    std::ostream& os, const std::vector<std::pair<std::string, TConsistencySummary>>& summaries)
 {
 	os << "label,block,runs,rows,anees,anees_lower,anees_upper,inside,fraction_inside,"
-		  "skipped_singular\n";
+	      "skipped_singular\n";
 	for (const auto& [label, s] : summaries)
 	{
-		auto row = [&, &label = label, &s = s](const TConsistencyStats& st) {
+		auto row = [&, &label = label, &s = s](const TConsistencyStats& st)
+		{
 			os << label << "," << st.name << "," << s.runs << "," << st.rows.size() << ","
 			   << num(st.anees) << "," << num(st.anees_lower) << "," << num(st.anees_upper) << ","
 			   << st.inside << "," << num(st.fraction_inside) << "," << st.skipped_singular << "\n";

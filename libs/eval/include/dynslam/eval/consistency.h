@@ -42,9 +42,9 @@ struct TNeesSamples
 /** All NEES/NIS samples of one run. */
 struct TRunConsistency
 {
-	TNeesSamples ego;  ///< key = step, 3 dof
-	TNeesSamples landmarks;  ///< key = landmark ID, 2 dof, final estimates of IDs in the truth
-	TNeesSamples map;  ///< one sample (key 0): all scored landmarks jointly, 2 L dof
+	TNeesSamples ego;            ///< key = step, 3 dof
+	TNeesSamples landmarks;      ///< key = landmark ID, 2 dof, final estimates of IDs in the truth
+	TNeesSamples map;            ///< one sample (key 0): all scored landmarks jointly, 2 L dof
 	bool map_joint_cov = false;  ///< true: landmarks_cov used; false: block-diagonal
 	std::map<int32_t, TNeesSamples> object_poses;  ///< object -> key = step, 3 or 2 dof
 	TNeesSamples nis;  ///< key = step, dof from the filter; steps with 0 dof left out
@@ -58,9 +58,9 @@ TRunConsistency computeRunConsistency(const TGroundTruth& gt, const TRunEstimate
 struct TConsistencyRow
 {
 	int key = 0;
-	int runs = 0;  ///< N_k: runs with a sample at this key
-	int total_dof = 0;  ///< n_k: sum of their dof (N_k n if all have n)
-	double mean = 0;  ///< average NEES/NIS over those runs
+	int runs = 0;                 ///< N_k: runs with a sample at this key
+	int total_dof = 0;            ///< n_k: sum of their dof (N_k n if all have n)
+	double mean = 0;              ///< average NEES/NIS over those runs
 	double lower = 0, upper = 0;  ///< chi2 quantiles of n_k at (1-c)/2, (1+c)/2, divided by N_k
 	bool inside = false;
 };
@@ -71,8 +71,8 @@ struct TConsistencyStats
 	std::string name;
 	double confidence = 0.95;
 	std::vector<TConsistencyRow> rows;  ///< sorted by key
-	size_t inside = 0;  ///< rows inside their bounds
-	double fraction_inside = kNaN;  ///< inside / rows.size()
+	size_t inside = 0;                  ///< rows inside their bounds
+	double fraction_inside = kNaN;      ///< inside / rows.size()
 	/** ANEES: sum of all values / sum of all dof (1 if consistent), and its two-sided bounds
 	 * chi2 quantiles of the total dof D divided by D. */
 	double anees = kNaN;
@@ -81,9 +81,9 @@ struct TConsistencyStats
 };
 
 /** Averages one block type over runs (pointers to each run's samples). */
-TConsistencyStats aggregateConsistency(
-	const std::string& name, const std::vector<const TNeesSamples*>& runs,
-	double confidence = 0.95);
+TConsistencyStats aggregateConsistency(const std::string& name,
+                                       const std::vector<const TNeesSamples*>& runs,
+                                       double confidence = 0.95);
 
 /** All blocks over N runs. */
 struct TConsistencySummary
@@ -95,6 +95,6 @@ struct TConsistencySummary
 };
 
 /** Summarizes N runs (all blocks). With one run it gives the single-run bounds. */
-TConsistencySummary summarizeConsistency(
-	const std::vector<TRunConsistency>& runs, double confidence = 0.95);
+TConsistencySummary summarizeConsistency(const std::vector<TRunConsistency>& runs,
+                                         double confidence = 0.95);
 }  // namespace dynslam::eval

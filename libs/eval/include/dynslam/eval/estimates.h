@@ -62,7 +62,7 @@ struct TObjectPoseEstimate
 /** Everything one run produced. */
 struct TRunEstimates
 {
-	std::vector<TEgoEstimate> ego;  ///< one per processed step, any order, unique steps
+	std::vector<TEgoEstimate> ego;             ///< one per processed step, any order, unique steps
 	std::vector<TLandmarkEstimate> landmarks;  ///< final static map (unique IDs)
 	/** Optional joint covariance of all landmarks, 2L x 2L, in the order of `landmarks`
 	 * (rows 2i, 2i+1 = landmarks[i]). Empty: unknown; the whole-map NEES then uses the

@@ -15,7 +15,6 @@
 #include <dynslam/eval/estimates.h>
 #include <dynslam/eval/plot_canvas.h>
 #include <dynslam/ground_truth.h>
-
 #include <mrpt/img/CImage.h>
 
 #include <optional>
@@ -39,16 +38,15 @@ struct TMapFigureOptions
 {
 	int width = 1600, height = 700;
 	bool equal_aspect = false;  ///< false: non-uniform scaling (fills the image)
-	std::optional<TBox> view;  ///< zoom window (world); default: all content + 3% margin
-	double sigma = 3;  ///< ellipses at n sigma
+	std::optional<TBox> view;   ///< zoom window (world); default: all content + 3% margin
+	double sigma = 3;           ///< ellipses at n sigma
 	bool show_landmarks = true, show_ellipses = true, show_objects = true;
 	std::string title = "Map";
 };
 
 /** Draws the map figure; gt may be null (estimates only). */
-mrpt::img::CImage drawMapFigure(
-	const TGroundTruth* gt, const std::vector<TFigureSeries>& series,
-	const TMapFigureOptions& opt = {});
+mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigureSeries>& series,
+                                const TMapFigureOptions& opt = {});
 
 struct TErrorFigureOptions
 {
@@ -60,9 +58,9 @@ struct TErrorFigureOptions
 
 /** Three stacked panels (x, y, theta error) for every series, with +-sigma bounds in a lighter
  * shade of the series colour. */
-mrpt::img::CImage drawEgoErrorFigure(
-	const TGroundTruth& gt, const std::vector<TFigureSeries>& series,
-	const TErrorFigureOptions& opt = {});
+mrpt::img::CImage drawEgoErrorFigure(const TGroundTruth& gt,
+                                     const std::vector<TFigureSeries>& series,
+                                     const TErrorFigureOptions& opt = {});
 
 struct TConsistencyFigureOptions
 {
@@ -73,8 +71,8 @@ struct TConsistencyFigureOptions
 
 /** The average NEES/NIS per key with the lower and upper chi-square bounds (grey). The
  * y range is clipped at 3x the largest upper bound; values above are drawn at the top edge. */
-mrpt::img::CImage drawConsistencyFigure(
-	const TConsistencyStats& stats, const TConsistencyFigureOptions& opt = {});
+mrpt::img::CImage drawConsistencyFigure(const TConsistencyStats& stats,
+                                        const TConsistencyFigureOptions& opt = {});
 
 /** Saves as PNG (or by extension); throws std::runtime_error naming the path on failure. */
 void savePng(const mrpt::img::CImage& img, const std::string& path);

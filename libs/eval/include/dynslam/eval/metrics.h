@@ -26,7 +26,7 @@ struct TObjectMetrics
 {
 	int32_t object = -1;
 	bool translation_only = false;
-	TRmse features;  ///< time-0 feature estimates vs truth at first_step (x, y)
+	TRmse features;               ///< time-0 feature estimates vs truth at first_step (x, y)
 	size_t features_missing = 0;  ///< ground-truth features with no estimate
 	TRmse poses;  ///< over the steps with a pose estimate (x, y, theta; theta from 3-dof only)
 	size_t poses_skipped = 0;  ///< pose estimates at steps outside the truth or before first_step
@@ -35,15 +35,15 @@ struct TObjectMetrics
 /** Table I metrics (and more) of one run. */
 struct TRunMetrics
 {
-	TRmse ego;  ///< over all estimated steps (x, y, theta)
-	double ate = kNaN;  ///< sqrt(mean(ex^2 + ey^2)) over the same steps; no alignment
-	size_t ego_skipped = 0;  ///< ego estimates at steps outside the ground truth
-	TRmse static_map;  ///< final landmark estimates vs truth (x, y)
-	size_t landmarks_missing = 0;  ///< ground-truth landmarks never estimated (excluded)
+	TRmse ego;                       ///< over all estimated steps (x, y, theta)
+	double ate = kNaN;               ///< sqrt(mean(ex^2 + ey^2)) over the same steps; no alignment
+	size_t ego_skipped = 0;          ///< ego estimates at steps outside the ground truth
+	TRmse static_map;                ///< final landmark estimates vs truth (x, y)
+	size_t landmarks_missing = 0;    ///< ground-truth landmarks never estimated (excluded)
 	size_t landmarks_unmatched = 0;  ///< estimated IDs not in the ground-truth static map
-	std::vector<TObjectMetrics> objects;  ///< one per ground-truth object, in gt order
+	std::vector<TObjectMetrics> objects;    ///< one per ground-truth object, in gt order
 	size_t object_estimates_unmatched = 0;  ///< feature/pose estimates of unknown objects
-	double ms_per_step = 0;  ///< copied from the estimates
+	double ms_per_step = 0;                 ///< copied from the estimates
 };
 
 /** Pose error est - truth with the angle wrapped to (-pi, pi]. */
@@ -62,7 +62,7 @@ struct TEgoErrorRow
 	int step = 0;
 	double t = kNaN;
 	Eigen::Vector3d est, truth, error;  ///< error = est - truth (angle wrapped)
-	Eigen::Vector3d sigma3;  ///< 3 sqrt(diag(cov))
+	Eigen::Vector3d sigma3;             ///< 3 sqrt(diag(cov))
 };
 
 /** Per-step ego errors with 3-sigma bounds, sorted by step; estimates at steps outside the

@@ -42,25 +42,25 @@ class CPlotCanvas
 {
 public:
 	/** Plot area of the image: pixels [left, left + width) x [top, top + height). */
-	CPlotCanvas(
-		mrpt::img::CImage& img, int left, int top, int width, int height, const TBox& world,
-		bool equal_aspect);
+	CPlotCanvas(mrpt::img::CImage& img, int left, int top, int width, int height, const TBox& world,
+	            bool equal_aspect);
 
 	double px(double x) const;  ///< world x -> pixel column
 	double py(double y) const;  ///< world y -> pixel row (y up)
 	const TBox& world() const { return m_world; }
 
 	/** A world-coordinate segment, clipped to the plot area. */
-	void line(double x0, double y0, double x1, double y1, const mrpt::img::TColor& c, int width = 1);
+	void line(double x0, double y0, double x1, double y1, const mrpt::img::TColor& c,
+	          int width = 1);
 	/** Consecutive points joined; non-finite points break the line. */
-	void polyline(const std::vector<Eigen::Vector2d>& pts, const mrpt::img::TColor& c, int width = 1);
+	void polyline(const std::vector<Eigen::Vector2d>& pts, const mrpt::img::TColor& c,
+	              int width = 1);
 	/** A mark ('x', '+', 's' square, '.' dot) at a world point, if inside the plot area. */
 	void mark(double x, double y, const mrpt::img::TColor& c, char type, int size = 4);
 	/** The n_sigma ellipse {p : (p-mean)^T cov^-1 (p-mean) = n_sigma^2} (skipped if cov is not
 	 * positive semi-definite or not finite). */
-	void ellipse(
-		const Eigen::Vector2d& mean, const Eigen::Matrix2d& cov, double n_sigma,
-		const mrpt::img::TColor& c, int width = 1);
+	void ellipse(const Eigen::Vector2d& mean, const Eigen::Matrix2d& cov, double n_sigma,
+	             const mrpt::img::TColor& c, int width = 1);
 	/** Frame, ticks with labels on both axes, axis labels and a title above the area. */
 	void axes(const std::string& xlabel, const std::string& ylabel, const std::string& title);
 	/** Legend box in the top-right corner of the plot area. */

@@ -46,7 +46,7 @@ struct TTable1Cell
 struct TTable1Level
 {
 	std::string label;  ///< e.g. "w2v3"
-	int runs = 0;  ///< runs aggregated
+	int runs = 0;       ///< runs aggregated
 	std::array<std::array<TTable1Cell, kTable1Columns>, kTable1Quantities> cells;
 };
 

@@ -23,7 +23,8 @@ void writeFile(const std::string& path, const std::function<void(std::ostream&)>
 /** TUM trajectory, one line per ego estimate sorted by step: "t x y z qx qy qz qw" with z = 0,
  * q = (0, 0, sin(theta/2), cos(theta/2)). t = the estimate's t if finite, else gt->t[step];
  * throws std::invalid_argument if neither is available. */
-void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego, const TGroundTruth* gt = nullptr);
+void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego,
+              const TGroundTruth* gt = nullptr);
 
 /** Per-step ego CSV: step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta,
  * err_x,err_y,err_theta,nees,nis,nis_dof (gt/err/nees columns empty without ground truth;
@@ -31,15 +32,17 @@ void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego, const TGro
 void writeEgoCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt = nullptr);
 
 /** Landmarks CSV: id,x,y,sigma3_x,sigma3_y,gt_x,gt_y,err_x,err_y,nees (sorted by ID). */
-void writeLandmarksCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt = nullptr);
+void writeLandmarksCsv(std::ostream& os, const TRunEstimates& est,
+                       const TGroundTruth* gt = nullptr);
 
 /** Object features (time 0) CSV: object,feature,x,y,sigma3_x,sigma3_y,gt_x,gt_y,err_x,err_y. */
-void writeObjectFeaturesCsv(
-	std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt = nullptr);
+void writeObjectFeaturesCsv(std::ostream& os, const TRunEstimates& est,
+                            const TGroundTruth* gt = nullptr);
 
 /** Object poses CSV: object,step,t,dx,dy,dtheta,sigma3_dx,sigma3_dy,sigma3_dtheta,gt_dx,gt_dy,
  * gt_dtheta,err_dx,err_dy,err_dtheta,nees,dof (theta columns empty for 2-dof poses). */
-void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt = nullptr);
+void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est,
+                         const TGroundTruth* gt = nullptr);
 
 /** One filter's row of the metrics CSV / table. */
 struct TMetricsRow
@@ -71,5 +74,5 @@ void writeConsistencySummary(std::ostream& os, const TConsistencySummary& s);
  * label,block,runs,rows,anees,anees_lower,anees_upper,inside,fraction_inside,skipped_singular,
  * one row per block (ego, landmarks, map, object<k>_pose..., nis). */
 void writeConsistencySummaryCsv(
-	std::ostream& os, const std::vector<std::pair<std::string, TConsistencySummary>>& summaries);
+    std::ostream& os, const std::vector<std::pair<std::string, TConsistencySummary>>& summaries);
 }  // namespace dynslam::eval
