@@ -33,14 +33,14 @@ TEST(ObjectPoseDegenerate, AllIdenticalFeatures)
 		const Eigen::Matrix2Xd same = p.replicate(1, n);
 		const Eigen::Matrix2Xd distinct = core_test::randomObject(n);
 		EXPECT_THROW(objectPoseInverse(same, distinct), std::domain_error)
-			<< "identical at time 0, p = " << p.transpose() << ", n = " << n;
+		    << "identical at time 0, p = " << p.transpose() << ", n = " << n;
 		EXPECT_THROW(objectPoseInverse(distinct, same), std::domain_error)
-			<< "identical at time t, p = " << p.transpose() << ", n = " << n;
+		    << "identical at time t, p = " << p.transpose() << ", n = " << n;
 		EXPECT_THROW(objectPoseInverse(same, same), std::domain_error);
 		// identical at both times, at different places (rounding noise must not fix a rotation)
 		const Eigen::Matrix2Xd same2 = core_test::randomVector(2, -100, 100).replicate(1, n);
 		EXPECT_THROW(objectPoseInverse(same, same2), std::domain_error)
-			<< "identical at both times, n = " << n;
+		    << "identical at both times, n = " << n;
 	}
 	// a subset whose seen features coincide at time 0, although the object's do not
 	Eigen::Matrix2Xd f0(2, 3), ft(2, 2);
@@ -72,7 +72,8 @@ TEST(ObjectPoseDegenerate, InvalidArguments)
 	const Eigen::Vector3d xi = objectPoseInverse(f0, ftp, {2, 0, 3, 1});
 	EXPECT_LT((xi - Eigen::Vector3d(1, 2, 0.3)).norm(), 1e-9);
 	// objectPoseMap needs at least one feature
-	EXPECT_THROW(objectPoseMap(Eigen::Vector3d(0, 0, 0), Eigen::Matrix2Xd(2, 0)), std::invalid_argument);
+	EXPECT_THROW(objectPoseMap(Eigen::Vector3d(0, 0, 0), Eigen::Matrix2Xd(2, 0)),
+	             std::invalid_argument);
 }
 
 TEST(MeasurementDegenerate, FeatureAtTheSensor)
@@ -91,13 +92,13 @@ TEST(MeasurementDegenerate, FeatureAtTheSensor)
 TEST(SmoothingDegenerate, BadDimensions)
 {
 	EXPECT_THROW(smoothingResidual(VectorXd::Zero(4), VectorXd::Zero(4), VectorXd::Zero(4)),
-				 std::invalid_argument);
+	             std::invalid_argument);
 	EXPECT_THROW(smoothingResidual(VectorXd::Zero(1), VectorXd::Zero(1), VectorXd::Zero(1)),
-				 std::invalid_argument);
+	             std::invalid_argument);
 	EXPECT_THROW(smoothingResidual(VectorXd::Zero(3), VectorXd::Zero(2), VectorXd::Zero(3)),
-				 std::invalid_argument);
+	             std::invalid_argument);
 	EXPECT_THROW(smoothingResidual(VectorXd::Zero(2), VectorXd::Zero(2), VectorXd::Zero(3)),
-				 std::invalid_argument);
+	             std::invalid_argument);
 }
 
 namespace ids = dynslam::ids;
@@ -126,11 +127,10 @@ TEST(LandmarkIds, ObjectFeatureIdRoundTrip)
 	EXPECT_EQ(ids::objectFeatureId(2, 999), 102'999);
 	dynslam_test::rng(304);
 	std::vector<std::pair<int32_t, int32_t>> cases = {
-		{0, 0}, {0, 999}, {ids::kMaxObject, 0}, {ids::kMaxObject, 999}};
+	    {0, 0}, {0, 999}, {ids::kMaxObject, 0}, {ids::kMaxObject, 999}};
 	for (int i = 0; i < 200; ++i)
-		cases.emplace_back(
-			int32_t(dynslam_test::rng()() % uint32_t(ids::kMaxObject + 1)),
-			int32_t(dynslam_test::rng()() % uint32_t(ids::kFeaturesPerObject)));
+		cases.emplace_back(int32_t(dynslam_test::rng()() % uint32_t(ids::kMaxObject + 1)),
+		                   int32_t(dynslam_test::rng()() % uint32_t(ids::kFeaturesPerObject)));
 	for (const auto& [obj, k] : cases)
 	{
 		const int32_t id = ids::objectFeatureId(obj, k);

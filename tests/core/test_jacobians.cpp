@@ -87,21 +87,21 @@ TEST(MeasurementJacobians, Cartesian)
 			Eigen::Matrix2d J_z_f;
 			const Eigen::Vector2d z = cartesianObserve(x, f, &J_z_x, &J_z_f);
 			EXPECT_TRUE(checkJacobian(
-				J_z_x, [&](const VectorXd& v) { return VectorXd(cartesianObserve(v, f)); }, x, {},
-				worst));
+			    J_z_x, [&](const VectorXd& v) { return VectorXd(cartesianObserve(v, f)); }, x, {},
+			    worst));
 			EXPECT_TRUE(checkJacobian(
-				J_z_f, [&](const VectorXd& v) { return VectorXd(cartesianObserve(x, v)); }, f, {},
-				worst));
+			    J_z_f, [&](const VectorXd& v) { return VectorXd(cartesianObserve(x, v)); }, f, {},
+			    worst));
 
 			Matrix23d J_f_x;
 			Eigen::Matrix2d J_f_z;
 			cartesianInverse(x, z, &J_f_x, &J_f_z);
 			EXPECT_TRUE(checkJacobian(
-				J_f_x, [&](const VectorXd& v) { return VectorXd(cartesianInverse(v, z)); }, x, {},
-				worst));
+			    J_f_x, [&](const VectorXd& v) { return VectorXd(cartesianInverse(v, z)); }, x, {},
+			    worst));
 			EXPECT_TRUE(checkJacobian(
-				J_f_z, [&](const VectorXd& v) { return VectorXd(cartesianInverse(x, v)); }, z, {},
-				worst));
+			    J_f_z, [&](const VectorXd& v) { return VectorXd(cartesianInverse(x, v)); }, z, {},
+			    worst));
 		}
 	}
 	core_test::reportWorst("cartesian observe/inverse", worst);
@@ -123,21 +123,21 @@ TEST(MeasurementJacobians, RangeBearing)
 			Eigen::Matrix2d J_z_f;
 			const Eigen::Vector2d z = rangeBearingObserve(x, f, &J_z_x, &J_z_f);
 			EXPECT_TRUE(checkJacobian(
-				J_z_x, [&](const VectorXd& v) { return VectorXd(rangeBearingObserve(v, f)); }, x,
-				{1}, worst));
+			    J_z_x, [&](const VectorXd& v) { return VectorXd(rangeBearingObserve(v, f)); }, x,
+			    {1}, worst));
 			EXPECT_TRUE(checkJacobian(
-				J_z_f, [&](const VectorXd& v) { return VectorXd(rangeBearingObserve(x, v)); }, f,
-				{1}, worst));
+			    J_z_f, [&](const VectorXd& v) { return VectorXd(rangeBearingObserve(x, v)); }, f,
+			    {1}, worst));
 
 			Matrix23d J_f_x;
 			Eigen::Matrix2d J_f_z;
 			rangeBearingInverse(x, z, &J_f_x, &J_f_z);
 			EXPECT_TRUE(checkJacobian(
-				J_f_x, [&](const VectorXd& v) { return VectorXd(rangeBearingInverse(v, z)); }, x,
-				{}, worst));
+			    J_f_x, [&](const VectorXd& v) { return VectorXd(rangeBearingInverse(v, z)); }, x,
+			    {}, worst));
 			EXPECT_TRUE(checkJacobian(
-				J_f_z, [&](const VectorXd& v) { return VectorXd(rangeBearingInverse(x, v)); }, z,
-				{}, worst));
+			    J_f_z, [&](const VectorXd& v) { return VectorXd(rangeBearingInverse(x, v)); }, z,
+			    {}, worst));
 		}
 	}
 	core_test::reportWorst("range-bearing observe/inverse", worst);
@@ -153,12 +153,12 @@ TEST(MeasurementJacobians, Conversions)
 		Eigen::Matrix2d J_c_rb, J_rb_c;
 		const Eigen::Vector2d c = rangeBearingToCartesian(rb, &J_c_rb);
 		EXPECT_TRUE(checkJacobian(
-			J_c_rb, [](const VectorXd& v) { return VectorXd(rangeBearingToCartesian(v)); }, rb, {},
-			worst));
+		    J_c_rb, [](const VectorXd& v) { return VectorXd(rangeBearingToCartesian(v)); }, rb, {},
+		    worst));
 		cartesianToRangeBearing(c, &J_rb_c);
 		EXPECT_TRUE(checkJacobian(
-			J_rb_c, [](const VectorXd& v) { return VectorXd(cartesianToRangeBearing(v)); }, c, {1},
-			worst));
+		    J_rb_c, [](const VectorXd& v) { return VectorXd(cartesianToRangeBearing(v)); }, c, {1},
+		    worst));
 	}
 	// on the negative x axis (bearing exactly pi) and just either side of it
 	for (double y : {0.0, 1e-9, -1e-9})
@@ -167,8 +167,8 @@ TEST(MeasurementJacobians, Conversions)
 		Eigen::Matrix2d J_rb_c;
 		cartesianToRangeBearing(c, &J_rb_c);
 		EXPECT_TRUE(checkJacobian(
-			J_rb_c, [](const VectorXd& v) { return VectorXd(cartesianToRangeBearing(v)); }, c, {1},
-			worst));
+		    J_rb_c, [](const VectorXd& v) { return VectorXd(cartesianToRangeBearing(v)); }, c, {1},
+		    worst));
 	}
 	core_test::reportWorst("rb <-> cartesian conversions", worst);
 }
@@ -187,15 +187,15 @@ TEST(ObjectPoseJacobians, PoseMap)
 			MatrixXd J_ft_xi, J_ft_f0;
 			objectPoseMap(xi, f0, &J_ft_xi, &J_ft_f0);
 			EXPECT_TRUE(checkJacobian(
-				J_ft_xi,
-				[&](const VectorXd& v) { return core_test::vec(objectPoseMap(v, f0)); }, xi, {},
-				worst))
-				<< "n = " << n;
+			    J_ft_xi, [&](const VectorXd& v) { return core_test::vec(objectPoseMap(v, f0)); },
+			    xi, {}, worst))
+			    << "n = " << n;
 			EXPECT_TRUE(checkJacobian(
-				J_ft_f0,
-				[&](const VectorXd& v) { return core_test::vec(objectPoseMap(xi, core_test::unvec(v))); },
-				core_test::vec(f0), {}, worst))
-				<< "n = " << n;
+			    J_ft_f0,
+			    [&](const VectorXd& v)
+			    { return core_test::vec(objectPoseMap(xi, core_test::unvec(v))); },
+			    core_test::vec(f0), {}, worst))
+			    << "n = " << n;
 		}
 	}
 	core_test::reportWorst("objectPoseMap", worst);
@@ -205,33 +205,32 @@ namespace
 {
 /** Gamma1 / Gamma2 of objectPoseInverse vs numeric, for f0 (2 x n) and ft = g(xi, f0[seen])
  * perturbed by noise (so the fit is not exact and the check covers non-rigid inputs too). */
-void checkGammas(
-	const Eigen::Matrix2Xd& f0, const Eigen::Vector3d& xi, const std::vector<int>& seen,
-	double noise, double& worst)
+void checkGammas(const Eigen::Matrix2Xd& f0, const Eigen::Vector3d& xi,
+                 const std::vector<int>& seen, double noise, double& worst)
 {
 	const Eigen::Matrix2Xd ftAll = objectPoseMap(xi, f0);
 	const int m = seen.empty() ? int(f0.cols()) : int(seen.size());
 	Eigen::Matrix2Xd ft(2, m);
 	for (int i = 0; i < m; ++i)
 		ft.col(i) = ftAll.col(seen.empty() ? i : seen[i]) +
-					Eigen::Vector2d(uniform(-noise, noise), uniform(-noise, noise));
+		            Eigen::Vector2d(uniform(-noise, noise), uniform(-noise, noise));
 	MatrixXd G1, G2;
 	objectPoseInverse(f0, ft, seen, &G1, &G2);
 	ASSERT_EQ(G1.rows(), 3);
 	ASSERT_EQ(G1.cols(), 2 * f0.cols());
 	ASSERT_EQ(G2.cols(), 2 * m);
 	EXPECT_TRUE(checkJacobian(
-		G1,
-		[&](const VectorXd& v)
-		{ return VectorXd(objectPoseInverse(core_test::unvec(v), ft, seen)); },
-		core_test::vec(f0), {2}, worst))
-		<< "Gamma1, n = " << f0.cols() << ", m = " << m << ", dtheta = " << xi[2];
+	    G1,
+	    [&](const VectorXd& v)
+	    { return VectorXd(objectPoseInverse(core_test::unvec(v), ft, seen)); },
+	    core_test::vec(f0), {2}, worst))
+	    << "Gamma1, n = " << f0.cols() << ", m = " << m << ", dtheta = " << xi[2];
 	EXPECT_TRUE(checkJacobian(
-		G2,
-		[&](const VectorXd& v)
-		{ return VectorXd(objectPoseInverse(f0, core_test::unvec(v), seen)); },
-		core_test::vec(ft), {2}, worst))
-		<< "Gamma2, n = " << f0.cols() << ", m = " << m << ", dtheta = " << xi[2];
+	    G2,
+	    [&](const VectorXd& v)
+	    { return VectorXd(objectPoseInverse(f0, core_test::unvec(v), seen)); },
+	    core_test::vec(ft), {2}, worst))
+	    << "Gamma2, n = " << f0.cols() << ", m = " << m << ", dtheta = " << xi[2];
 }
 }  // namespace
 
@@ -280,11 +279,11 @@ TEST(ObjectPoseJacobians, TranslationInverse)
 		Eigen::Matrix2d G1, G2;
 		objectTranslationInverse(f0, ft, &G1, &G2);
 		EXPECT_TRUE(checkJacobian(
-			G1, [&](const VectorXd& v) { return VectorXd(objectTranslationInverse(v, ft)); }, f0,
-			{}, worst));
+		    G1, [&](const VectorXd& v) { return VectorXd(objectTranslationInverse(v, ft)); }, f0,
+		    {}, worst));
 		EXPECT_TRUE(checkJacobian(
-			G2, [&](const VectorXd& v) { return VectorXd(objectTranslationInverse(f0, v)); }, ft,
-			{}, worst));
+		    G2, [&](const VectorXd& v) { return VectorXd(objectTranslationInverse(f0, v)); }, ft,
+		    {}, worst));
 	}
 	core_test::reportWorst("objectTranslationInverse", worst);
 }
@@ -306,7 +305,8 @@ void checkSmoothingJacobians(int d, double& worst)
 			abc[8] = wrapToPi(th - (i % 2 ? 1e-9 : uniform(-1, 1)));
 		}
 		MatrixXd Ja, Jb, Jc;
-		smoothingResidual(abc.segment(0, d), abc.segment(d, d), abc.segment(2 * d, d), &Ja, &Jb, &Jc);
+		smoothingResidual(abc.segment(0, d), abc.segment(d, d), abc.segment(2 * d, d), &Ja, &Jb,
+		                  &Jc);
 		MatrixXd J(d, 3 * d);
 		J << Ja, Jb, Jc;
 		const VecFn f = [d](const VectorXd& v)

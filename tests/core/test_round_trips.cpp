@@ -94,7 +94,8 @@ TEST(MeasurementRoundTrip, ObserveInverse)
 			EXPECT_LT((f2 - f).norm(), kTolPos);
 			// the stored reading describes the same point in both models
 			const Eigen::Vector2d fc =
-				inverseObserve(MeasurementModel::Cartesian, x, fromRangeBearing(MeasurementModel::Cartesian, r, b));
+			    inverseObserve(MeasurementModel::Cartesian, x,
+			                   fromRangeBearing(MeasurementModel::Cartesian, r, b));
 			EXPECT_LT((fc - f).norm(), kTolPos);
 			EXPECT_NEAR((f - x.head<2>()).norm(), r, kTolPos);
 		}
@@ -131,9 +132,9 @@ TEST(MeasurementModelNames, ParseAndPrint)
 	EXPECT_EQ(measurementModelFromString("cartesian"), MeasurementModel::Cartesian);
 	EXPECT_EQ(measurementModelFromString("Range_Bearing"), MeasurementModel::RangeBearing);
 	EXPECT_EQ(measurementModelFromString(toString(MeasurementModel::RangeBearing)),
-			  MeasurementModel::RangeBearing);
+	          MeasurementModel::RangeBearing);
 	EXPECT_EQ(measurementModelFromString(toString(MeasurementModel::Cartesian)),
-			  MeasurementModel::Cartesian);
+	          MeasurementModel::Cartesian);
 	EXPECT_THROW(measurementModelFromString("polar"), std::invalid_argument);
 	EXPECT_THROW(measurementModelFromString(""), std::invalid_argument);
 }
@@ -143,9 +144,9 @@ namespace
 void expectPoseNear(const Eigen::Vector3d& got, const Eigen::Vector3d& want, const char* what)
 {
 	EXPECT_LT((got.head<2>() - want.head<2>()).norm(), kTolPos)
-		<< what << ": got " << got.transpose() << " want " << want.transpose();
+	    << what << ": got " << got.transpose() << " want " << want.transpose();
 	EXPECT_LT(std::abs(wrapToPi(got[2] - want[2])), kTolAng)
-		<< what << ": got " << got.transpose() << " want " << want.transpose();
+	    << what << ": got " << got.transpose() << " want " << want.transpose();
 }
 }  // namespace
 
@@ -163,7 +164,7 @@ TEST(ObjectPoseRoundTrip, AllSeen)
 			EXPECT_GT(xi2[2], -M_PI);
 			EXPECT_LE(xi2[2], M_PI);
 			worst = std::max(
-				{worst, (xi2.head<2>() - xi.head<2>()).norm(), std::abs(wrapToPi(xi2[2] - xi[2]))});
+			    {worst, (xi2.head<2>() - xi.head<2>()).norm(), std::abs(wrapToPi(xi2[2] - xi[2]))});
 		}
 	core_test::reportWorst("gamma(f0, g(xi, f0)) - xi, all seen", worst);
 }
@@ -188,7 +189,7 @@ TEST(ObjectPoseRoundTrip, SubsetSeen)
 			const Eigen::Vector3d xi2 = objectPoseInverse(f0, ft, seen);
 			expectPoseNear(xi2, xi, "subset seen");
 			worst = std::max(
-				{worst, (xi2.head<2>() - xi.head<2>()).norm(), std::abs(wrapToPi(xi2[2] - xi[2]))});
+			    {worst, (xi2.head<2>() - xi.head<2>()).norm(), std::abs(wrapToPi(xi2[2] - xi[2]))});
 			// the fitted pose predicts the unseen features too
 			const Eigen::Matrix2Xd pred = objectPoseMap(xi2, f0);
 			EXPECT_LT((pred - ftAll).cwiseAbs().maxCoeff(), kTolPos);

@@ -11,6 +11,19 @@ namespace dynslam::ekf
 {
 using models::Matrix23d;
 
+namespace
+{
+/** Throws std::out_of_range unless every i in idx satisfies 0 <= i and i + width <= n. */
+void checkIndices(const char* fn, const std::vector<int>& idx, Eigen::Index n, int width = 1)
+{
+	for (int i : idx)
+		if (i < 0 || Eigen::Index(i) + width > n)
+			throw std::out_of_range(
+				std::string(fn) + ": state index " + std::to_string(i) + " out of range for " +
+				std::to_string(width) + " entries in a state of size " + std::to_string(n));
+}
+}  // namespace
+
 Augmentation featureAugmentation(
 	models::MeasurementModel model, const Eigen::Vector3d& ego,
 	const Eigen::Ref<const RowMatrixXd>& P_ego_rows, const std::vector<Eigen::Vector2d>& z,
@@ -46,6 +59,13 @@ Augmentation objectPoseAugmentation(
 {
 	const int n = int(f0_idx.size()), m = int(ft_idx.size());
 	if (n < 1 || m < 1) throw std::invalid_argument("objectPoseAugmentation: no features");
+	if (P.rows() != x.size() || P.cols() != x.size())
+		throw std::invalid_argument("objectPoseAugmentation: P does not match x");
+	checkIndices("objectPoseAugmentation", f0_idx, x.size(), 2);
+	checkIndices("objectPoseAugmentation", ft_idx, x.size(), 2);
+	if (n == 1 && (m != 1 || (!seen.empty() && (seen.size() != 1 || seen[0] != 0))))
+		throw std::invalid_argument(
+			"objectPoseAugmentation: a one-feature object needs exactly that feature at time t");
 	Eigen::Matrix2Xd f0(2, n), ft(2, m);
 	for (int k = 0; k < n; ++k) f0.col(k) = x.segment<2>(f0_idx[k]);
 	for (int i = 0; i < m; ++i) ft.col(i) = x.segment<2>(ft_idx[i]);
@@ -87,6 +107,9 @@ double sparseUpdate(
 	const Eigen::Index m = H.rows();
 	if (H.cols() != Eigen::Index(idx.size()) || nu.size() != m || R.rows() != m || R.cols() != m)
 		throw std::invalid_argument("sparseUpdate: inconsistent sizes");
+	if (P.rows() != x.size() || P.cols() != x.size())
+		throw std::invalid_argument("sparseUpdate: P does not match x");
+	checkIndices("sparseUpdate", idx, x.size());
 	if (m == 0) return 0.0;
 	const Eigen::MatrixXd PHt = P(Eigen::all, idx) * H.transpose();  // n x m
 	Eigen::MatrixXd S = H * PHt(idx, Eigen::all) + R;
@@ -106,6 +129,9 @@ double smoothingUpdate(
 	const Eigen::MatrixXd& Sigma_s)
 {
 	const int d = int(Sigma_s.rows());
+	if ((d != 2 && d != 3) || Sigma_s.cols() != d)
+		throw std::invalid_argument("smoothingUpdate: Sigma_s must be 2x2 or 3x3");
+	checkIndices("smoothingUpdate", {a, b, c}, x.size(), d);
 	Eigen::MatrixXd Ja, Jb, Jc;
 	const Eigen::VectorXd s = models::smoothingResidual(
 		x.segment(a, d), x.segment(b, d), x.segment(c, d), &Ja, &Jb, &Jc);
@@ -155,6 +181,8 @@ std::vector<int> keptIndices(int n, const std::vector<int>& remove)
 
 Eigen::MatrixXd marginal(const Eigen::Ref<const RowMatrixXd>& P, const std::vector<int>& idx)
 {
+	if (P.rows() != P.cols()) throw std::invalid_argument("marginal: P is not square");
+	checkIndices("marginal", idx, P.rows());
 	return P(idx, idx);
 }
 }  // namespace dynslam::ekf

@@ -34,22 +34,23 @@ inline VecFn unwrapAngles(const VecFn& f, const Eigen::VectorXd& x0, std::vector
 /** Analytic J vs the central-difference Jacobian (h = 1e-6) of f with its angle outputs
  * unwrapped, at x: relative error (dynslam_test::relativeError) <= tol. The error is also
  * folded into `worst` so each test can report its worst case. */
-inline ::testing::AssertionResult checkJacobian(
-	const Eigen::MatrixXd& J, const VecFn& f, const Eigen::VectorXd& x,
-	const std::vector<int>& angleOut, double& worst, double tol = 1e-6)
+inline ::testing::AssertionResult checkJacobian(const Eigen::MatrixXd& J, const VecFn& f,
+                                                const Eigen::VectorXd& x,
+                                                const std::vector<int>& angleOut, double& worst,
+                                                double tol = 1e-6)
 {
 	const Eigen::MatrixXd J_num = dynslam_test::numericJacobian(unwrapAngles(f, x, angleOut), x);
 	if (J_num.rows() != J.rows() || J_num.cols() != J.cols())
-		return ::testing::AssertionFailure() << "size mismatch: analytic " << J.rows() << "x"
-											 << J.cols() << " numeric " << J_num.rows() << "x"
-											 << J_num.cols();
+		return ::testing::AssertionFailure()
+		       << "size mismatch: analytic " << J.rows() << "x" << J.cols() << " numeric "
+		       << J_num.rows() << "x" << J_num.cols();
 	const double e = dynslam_test::relativeError(J, J_num);
 	worst = std::max(worst, e);
 	if (e <= tol) return ::testing::AssertionSuccess();
-	return ::testing::AssertionFailure() << "relative error " << e << " > " << tol << " at x = "
-										 << x.transpose() << "\nanalytic:\n"
-										 << J << "\nnumeric:\n"
-										 << J_num;
+	return ::testing::AssertionFailure() << "relative error " << e << " > " << tol
+	                                     << " at x = " << x.transpose() << "\nanalytic:\n"
+	                                     << J << "\nnumeric:\n"
+	                                     << J_num;
 }
 
 /** Prints the worst error observed by a test (shown in the test log) and records it as a
@@ -64,9 +65,8 @@ inline void reportWorst(const char* what, double worst)
  * accurate to ~1e-12 for the smooth maps used here with h = 1e-2, so dense reference
  * computations built on it can be compared with the library at ~1e-10. Angle outputs listed
  * in angleOut are unwrapped relative to f(x). */
-inline Eigen::MatrixXd numericJacobianHO(
-	const VecFn& fIn, const Eigen::VectorXd& x, const std::vector<int>& angleOut = {},
-	double h = 1e-2)
+inline Eigen::MatrixXd numericJacobianHO(const VecFn& fIn, const Eigen::VectorXd& x,
+                                         const std::vector<int>& angleOut = {}, double h = 1e-2)
 {
 	const VecFn f = unwrapAngles(fIn, x, angleOut);
 	const Eigen::VectorXd f0 = f(x);
@@ -99,7 +99,7 @@ inline Eigen::VectorXd randomVector(int n, double a, double b)
 inline Eigen::Vector3d randomPose()
 {
 	return {dynslam_test::uniform(-50, 50), dynslam_test::uniform(-50, 50),
-			dynslam::models::wrapToPi(dynslam_test::uniform(-M_PI, M_PI))};
+	        dynslam::models::wrapToPi(dynslam_test::uniform(-M_PI, M_PI))};
 }
 
 /** Headings near the wrap: just below +pi, just above -pi, exactly pi, and -pi itself. */
@@ -123,8 +123,8 @@ inline double minEigenvalue(const Eigen::MatrixXd& P)
 {
 	const Eigen::MatrixXd S = 0.5 * (P + P.transpose());
 	return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S, Eigen::EigenvaluesOnly)
-		.eigenvalues()
-		.minCoeff();
+	    .eigenvalues()
+	    .minCoeff();
 }
 
 /** vec() of a 2 x n feature matrix: (x1, y1, x2, y2, ...). */
