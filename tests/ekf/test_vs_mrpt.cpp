@@ -81,3 +81,45 @@ TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_Davison)
 	EXPECT_LT(ex, 1e-9);
 	EXPECT_LT(ep, 1e-9);
 }
+
+TEST(DynamicVsMrpt, SparseStaticUpdateEqualsMrptUpdate)
+{
+	// With objects, both measurement models: the sparse path equals MRPT's kfEKFNaive update.
+	for (bool cart : {true, false})
+	{
+		dynslam_test::TinyScenarioOptions o;
+		o.objects = 2;
+		o.steps = 40;
+		o.landmarks = 20;
+		o.cartesian_noise = cart;
+		const auto sc = dynslam_test::makeTinyScenario(o);
+		CDynamicKFSLAM2D a, b;
+		for (CDynamicKFSLAM2D* f : {&a, &b})
+		{
+			f->options.measurement_model =
+				cart ? models::MeasurementModel::Cartesian : models::MeasurementModel::RangeBearing;
+			f->options.Sigma_v = cart ? o.Sigma_v : o.Sigma_rb;
+			f->options.Sigma_0 = o.Sigma_w;
+			f->KF_options.method = mrpt::bayes::kfEKFNaive;
+		}
+		b.options.sparse_static_update = true;
+		a.reset();
+		b.reset();
+		double worst = 0;
+		for (size_t k = 0; k < sc.actions.size(); ++k)
+		{
+			a.processActionObservation(sc.actions[k], sc.frames[k]);
+			b.processActionObservation(sc.actions[k], sc.frames[k]);
+			ASSERT_EQ(a.fullMean().size(), b.fullMean().size());
+			const Eigen::MatrixXd Pa = a.fullCov().asEigen(), Pb = b.fullCov().asEigen();
+			worst = std::max(worst, (Pa - Pb).cwiseAbs().maxCoeff() / Pa.cwiseAbs().maxCoeff());
+			worst = std::max(
+				worst, (a.fullMean().asEigen() - b.fullMean().asEigen()).cwiseAbs().maxCoeff() /
+						   std::max(1.0, a.fullMean().asEigen().cwiseAbs().maxCoeff()));
+			EXPECT_NEAR(a.getLastStepReport().nis_static, b.getLastStepReport().nis_static,
+						1e-7 * std::max(1.0, a.getLastStepReport().nis_static));
+		}
+		std::cout << (cart ? "cartesian" : "range-bearing") << ": sparse vs MRPT worst relative " << worst << "\n";
+		EXPECT_LT(worst, 1e-9);
+	}
+}

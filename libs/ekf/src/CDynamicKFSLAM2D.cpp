@@ -1,6 +1,7 @@
 /** CDynamicKFSLAM2D: input parsing, the MRPT Kalman-filter hooks (prediction, static update,
  * static augmentation) and the step driver. Object steps: CDynamicKFSLAM2D_objects.cpp. */
 #include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf_steps.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/se2.h>
 
@@ -213,8 +214,10 @@ void CDynamicKFSLAM2D::OnGetObservationNoise(KFMatrix_OxO& R) const { R = option
 void CDynamicKFSLAM2D::OnPreComputingPredictions(
 	const vector_KFArray_OBS&, std::vector<size_t>& out_idx) const
 {
-	// IDs are known: predict exactly the tracked static landmarks seen in this step.
+	// IDs are known: predict exactly the tracked static landmarks seen in this step (none when
+	// the sparse update path does the update itself).
 	out_idx.clear();
+	if (options.sparse_static_update) return;
 	for (const auto& m : m_static)
 	{
 		const auto it = m_staticSlot.find(m.id);
@@ -285,6 +288,27 @@ void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 	vector_KFArray_OBS& Z, std::vector<int>& da, const vector_KFArray_OBS& all_predictions,
 	const KFMatrix& S, const std::vector<size_t>& lm_indices_in_S, const KFMatrix_OxO&)
 {
+	m_zToStatic.clear();
+	if (options.sparse_static_update)
+	{
+		// Called between MRPT's prediction and update: update here, hand MRPT only the new
+		// landmarks (da = -1), which it then augments from the updated state, as it would.
+		sparseStaticUpdate();
+		Z.clear();
+		da.clear();
+		for (size_t i = 0; i < m_static.size(); ++i)
+			if (!m_staticSlot.count(m_static[i].id))
+			{
+				KFArray_OBS z;
+				z[0] = m_static[i].z[0];
+				z[1] = m_static[i].z[1];
+				Z.push_back(z);
+				da.push_back(-1);
+				m_zToStatic.push_back(i);
+			}
+		m_report.static_new = Z.size();
+		return;
+	}
 	const size_t N = m_static.size();
 	Z.resize(N);
 	da.assign(N, -1);
@@ -295,6 +319,7 @@ void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 	{
 		Z[i][0] = m_static[i].z[0];
 		Z[i][1] = m_static[i].z[1];
+		m_zToStatic.push_back(i);
 		const auto it = m_staticSlot.find(m_static[i].id);
 		if (it == m_staticSlot.end())
 		{
@@ -319,6 +344,45 @@ void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 	}
 }
 
+void CDynamicKFSLAM2D::sparseStaticUpdate()
+{
+	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
+	std::vector<std::pair<size_t, size_t>> tracked;  // (m_static index, slot)
+	for (size_t i = 0; i < m_static.size(); ++i)
+	{
+		const auto it = m_staticSlot.find(m_static[i].id);
+		if (it != m_staticSlot.end()) tracked.emplace_back(i, it->second);
+	}
+	const Eigen::Index k = Eigen::Index(tracked.size());
+	m_report.static_updates = size_t(k);
+	m_report.nis_static = 0;
+	m_report.nis_static_dof = size_t(2 * k);
+	if (k == 0) return;
+	std::vector<int> idx{0, 1, 2};
+	Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * k, 3 + 2 * k);
+	Eigen::VectorXd nu(2 * k);
+	Eigen::MatrixXd R = Eigen::MatrixXd::Zero(2 * k, 2 * k);
+	for (Eigen::Index j = 0; j < k; ++j)
+	{
+		const size_t si = slotStateIndex(tracked[j].second);
+		idx.push_back(int(si));
+		idx.push_back(int(si + 1));
+		models::Matrix23d J_z_x;
+		Eigen::Matrix2d J_z_f;
+		const Eigen::Vector2d zhat = models::observe(
+			options.measurement_model, ego, Eigen::Vector2d(m_xkk[si], m_xkk[si + 1]), &J_z_x, &J_z_f);
+		H.block<2, 3>(2 * j, 0) = J_z_x;
+		H.block<2, 2>(2 * j, 3 + 2 * j) = J_z_f;
+		nu.segment<2>(2 * j) =
+			models::innovation(options.measurement_model, m_static[tracked[j].first].z, zhat);
+		R.block<2, 2>(2 * j, 2 * j) = options.Sigma_v;
+	}
+	auto x = m_xkk.asEigen();
+	auto P = m_pkk.asEigen();
+	m_report.nis_static = ekf::sparseUpdate(x, P, idx, H, nu, R);
+	OnNormalizeStateVector();
+}
+
 void CDynamicKFSLAM2D::OnInverseObservationModel(
 	const KFArray_OBS& in_z, KFArray_FEAT& yn, KFMatrix_FxV& dyn_dxv, KFMatrix_FxO& dyn_dhn) const
 {
@@ -339,9 +403,9 @@ void CDynamicKFSLAM2D::OnNewLandmarkAddedToMap(size_t in_obsIdx, size_t in_idxNe
 	const size_t k = m_slots.size();
 	if (in_idxNewFeat != k)
 		throw std::logic_error("CDynamicKFSLAM2D: slot table out of step with MRPT's state");
-	if (in_obsIdx >= m_static.size())
+	if (in_obsIdx >= m_zToStatic.size())
 		throw std::logic_error("CDynamicKFSLAM2D: new landmark from an unknown observation");
-	const int32_t id = m_static[in_obsIdx].id;
+	const int32_t id = m_static[m_zToStatic[in_obsIdx]].id;
 	TSlot s;
 	s.kind = SlotKind::StaticLandmark;
 	s.id = id;

@@ -20,7 +20,7 @@ void CDynamicKFSLAM2D::TOptions::loadFromConfigFile(
 		c, s,
 		{"measurement_model", "Sigma_v", "motion_noise", "Sigma_w", "initial_pose", "Sigma_0",
 		 "Sigma_xi", "smoothing", "Sigma_s", "drop_time_t_features", "keep_last_poses",
-		 "drop_static_after_unseen_steps", "skip_prediction_on_empty_map"});
+		 "drop_static_after_unseen_steps", "skip_prediction_on_empty_map", "static_update"});
 	measurement_model = readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 							? models::MeasurementModel::Cartesian
 							: models::MeasurementModel::RangeBearing;
@@ -38,6 +38,8 @@ void CDynamicKFSLAM2D::TOptions::loadFromConfigFile(
 		int(readInt(c, s, "drop_static_after_unseen_steps", drop_static_after_unseen_steps));
 	skip_prediction_on_empty_map =
 		readBool(c, s, "skip_prediction_on_empty_map", skip_prediction_on_empty_map);
+	sparse_static_update =
+		readChoice(c, s, "static_update", {"mrpt", "sparse"}, sparse_static_update ? 1 : 0) == 1;
 	try
 	{
 		validate();
@@ -83,6 +85,7 @@ void CDynamicKFSLAM2D::TOptions::dumpToTextStream(std::ostream& out) const
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";
 	out << "skip_prediction_on_empty_map   = " << (skip_prediction_on_empty_map ? "true" : "false")
 		<< "\n";
+	out << "static_update                  = " << (sparse_static_update ? "sparse" : "mrpt") << "\n";
 }
 
 // ------------------------------------------------------------------------------------------
