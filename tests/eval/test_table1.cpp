@@ -155,3 +155,38 @@ TEST(Table1, EmbeddedPaperDataEqualsTheSeedCsv)
 	EXPECT_EQ(rows, 27);
 	EXPECT_EQ(cells, 9 * 20);
 }
+
+TEST(Table1, ListsCellsWorseThanThreeTimesThePaper)
+{
+	TTable1 t;
+	// w1v1 paper: ego x 0.008, ego theta 0.000, agent 1 poses x 0.001.
+	TRunMetrics m = fakeRun(1.0);
+	m.ego.x = 0.025;                // 3.1x 0.008: listed
+	m.ego.theta = 0.002;            // paper 0.000 means < 0.0005: 0.002 > 3 x 0.0005, listed
+	m.objects[0].poses.x = 0.0029;  // 2.9x 0.001: not listed
+	t.levels.push_back(aggregateTable1Level("w1v1", {m}));
+	const auto w = worseThanPaper(t, 3.0);
+	auto has = [&](int q, int c)
+	{
+		return std::any_of(w.begin(), w.end(),
+		                   [&](const auto& d)
+		                   { return d.level == "w1v1" && d.quantity == q && d.column == c; });
+	};
+	EXPECT_TRUE(has(0, 0));
+	EXPECT_TRUE(has(2, 0));
+	EXPECT_FALSE(has(0, 5));
+	for (const auto& d : w)
+	{
+		if (d.quantity == 0 && d.column == 0)
+		{
+			EXPECT_NEAR(d.ratio, 0.025 / 0.008, 1e-12);
+		}
+	}
+	// 0.0014 against a printed 0.000 is within 3 x 0.0005: not listed.
+	t.levels[0].cells[2][0].mean = 0.0014;
+	EXPECT_EQ(worseThanPaper(t, 3.0).size(), w.size() - 1);
+	std::ostringstream os;
+	writeTable1Markdown(os, t);
+	EXPECT_NE(os.str().find("- w1v1 x_m ego_poses: 0.025 vs 0.008 (3.1x)"), std::string::npos)
+	    << os.str();
+}

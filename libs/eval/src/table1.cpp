@@ -1,7 +1,9 @@
 #include "dynslam/eval/table1.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "table1_paper.h"
 
@@ -144,6 +146,32 @@ std::string csvNumber(double v)
 }
 }  // namespace
 
+std::vector<TTable1Deviation> worseThanPaper(const TTable1& table, double factor)
+{
+	std::vector<TTable1Deviation> out;
+	for (const auto& L : table.levels)
+		for (int q = 0; q < kTable1Quantities; ++q)
+			for (int c = 0; c < kTable1Columns; ++c)
+			{
+				const auto paper = paperTable1Value(L.label, q, c);
+				const double ours = L.cells[q][c].mean;
+				if (!paper || !std::isfinite(ours)) continue;
+				// The paper rounds to 3 decimals: 0.000 stands for anything below 0.0005.
+				const double ref = std::max(*paper, 0.0005);
+				if (ours <= factor * ref) continue;
+				TTable1Deviation d;
+				d.level = L.label;
+				d.quantity = q;
+				d.column = c;
+				d.ours = ours;
+				d.paper = *paper;
+				d.ratio = *paper > 0 ? ours / *paper : std::numeric_limits<double>::infinity();
+				d.paper_garbled = paperTable1Garbled(L.label, q, c);
+				out.push_back(d);
+			}
+	return out;
+}
+
 void writeTable1Markdown(std::ostream& os, const TTable1& table)
 {
 	static const char* qTitle[kTable1Quantities] = {"x (m)", "y (m)", "θ (rad)"};
@@ -190,6 +218,20 @@ void writeTable1Markdown(std::ostream& os, const TTable1& table)
 		os << "\n† Paper cell that looks like a text-extraction error, kept as printed:\n";
 		for (const auto& g : detail::paperTable1GarbledCells())
 			os << "- " << g.level << " " << g.quantity << " " << g.column << ": " << g.note << "\n";
+	}
+	const auto worse = worseThanPaper(table, 3.0);
+	if (!worse.empty())
+	{
+		os << "\nCells where ours is more than 3x the paper's:\n";
+		for (const auto& d : worse)
+		{
+			char ratio[32] = "paper prints 0.000";
+			if (std::isfinite(d.ratio)) std::snprintf(ratio, sizeof(ratio), "%.1fx", d.ratio);
+			os << "- " << d.level << " " << table1QuantityNames()[d.quantity] << " "
+			   << table1ColumnNames()[d.column] << ": " << formatTable1Number(d.ours) << " vs "
+			   << formatPaper(d.paper) << " (" << ratio << ")"
+			   << (d.paper_garbled ? ", paper cell garbled" : "") << "\n";
+		}
 	}
 }
 

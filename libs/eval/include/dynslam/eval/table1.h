@@ -65,8 +65,22 @@ std::optional<double> paperTable1Value(const std::string& level, int quantity, i
  * ~0.09), w3v3 x agent 2 and 3 features 0.010, 0.014 (other features ~0.16). */
 bool paperTable1Garbled(const std::string& level, int quantity, int column);
 
+/** A cell where ours and the paper's differ by more than a factor. */
+struct TTable1Deviation
+{
+	std::string level;
+	int quantity = 0, column = 0;
+	double ours = kNaN, paper = kNaN;
+	double ratio = kNaN;  ///< ours / paper (inf if the paper prints 0.000)
+	bool paper_garbled = false;
+};
+
+/** Cells where ours > factor x paper (both finite). A paper value printed as 0.000 means
+ * < 0.0005: ours counts as worse only if ours >= factor x 0.0005. */
+std::vector<TTable1Deviation> worseThanPaper(const TTable1& table, double factor = 3.0);
+
 /** Markdown in the paper's layout; each cell "ours / paper", garbled paper cells marked with a
- * dagger and explained below the table. */
+ * dagger and explained below the table, then the list of worseThanPaper(table, 3) cells. */
 void writeTable1Markdown(std::ostream& os, const TTable1& table);
 /** CSV, one row per noise level and quantity:
  * noise_level,quantity,runs,<col>_ours,<col>_ours_std,<col>_paper,... for the 8 columns, then
