@@ -243,9 +243,11 @@ TNoiseLevel noiseLevel(const std::string& name)
 	if (l.size() == 4 && l[0] == 'w' && l[2] == 'v' && l[1] >= '1' && l[1] <= '3' && l[3] >= '1' &&
 		l[3] <= '3')
 	{
-		const double w = std::pow(10.0, -6 + (l[1] - '1')), v = std::pow(10.0, -6 + (l[3] - '1'));
-		n.Sigma_w.diagonal() << w, w, w * 1e-2;
-		n.Sigma_v = v * Eigen::Matrix2d::Identity();
+		// The literals of eq. (5)-(7).
+		static const double xy[] = {1e-6, 1e-5, 1e-4}, th[] = {1e-8, 1e-7, 1e-6};
+		const int w = l[1] - '1', v = l[3] - '1';
+		n.Sigma_w.diagonal() << xy[w], xy[w], th[w];
+		n.Sigma_v = xy[v] * Eigen::Matrix2d::Identity();
 		return n;
 	}
 	throw std::invalid_argument(
