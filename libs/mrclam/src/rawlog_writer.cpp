@@ -29,7 +29,10 @@ mrpt::obs::CActionCollection makeAction(const TStep& s)
 	act.poseChange = mrpt::poses::CPosePDF::Ptr(
 		std::make_shared<mrpt::poses::CPosePDFGaussian>(inc, cov));
 	act.rawOdometryIncrementReading = inc;
-	act.estimationMethod = mrpt::obs::CActionRobotMovement2D::emOdometry;
+	// Not emOdometry: MRPT serializes an emOdometry action as the raw increment plus its own
+	// motion-model parameters and rebuilds the covariance from those when reading, which
+	// would replace our noise model. Any other method stores the PDF itself.
+	act.estimationMethod = mrpt::obs::CActionRobotMovement2D::emScan2DMatching;
 	act.timestamp = mrpt::Clock::fromDouble(s.t);
 	mrpt::obs::CActionCollection acts;
 	acts.insert(act);

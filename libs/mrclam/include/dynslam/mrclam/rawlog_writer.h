@@ -4,7 +4,12 @@
  * CSensoryFrame), one per step, gz-compressed as MRPT writes it.
  *  - The action holds one CActionRobotMovement2D: poseChange = CPosePDFGaussian(increment,
  *    covariance of TOdometryNoiseModel), rawOdometryIncrementReading = increment,
- *    estimationMethod = emOdometry, timestamp = step time. Step 0: zero increment, zero cov.
+ *    timestamp = step time. Step 0: zero increment, zero cov. estimationMethod is
+ *    emScan2DMatching, not emOdometry: MRPT stores an emOdometry action as the raw increment
+ *    plus its own motion-model parameters and rebuilds the covariance from them when reading
+ *    (CActionRobotMovement2D::serializeFrom), which would replace this noise model; with any
+ *    other method the Gaussian itself is stored. Readers (CRangeBearingKFSLAM2D, the dynamic
+ *    EKF) only use poseChange.
  *  - The sensory frame holds one CObservationBearingRange: sensorLabel "RB", timestamp = step
  *    time (from the data), maxSensorDistance = max_range, minSensorDistance = 0,
  *    fieldOfView_yaw = 2 pi, fieldOfView_pitch = 0, sensor at the robot origin,
