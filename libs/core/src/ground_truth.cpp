@@ -1,6 +1,6 @@
 /** @file ground_truth.cpp
  * Plain-text ground-truth files (format documented in ground_truth.h and doc/simulator.md).
- * Numbers are written with 17 significant digits, so reading gives back the same doubles. */
+ * Numbers are written with up to 17 significant digits, so reading gives back the same doubles. */
 #include <dynslam/ground_truth.h>
 #include <dynslam/landmark_ids.h>
 
@@ -23,8 +23,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 std::string num(double v)
 {
 	if (std::isnan(v)) return "nan";
+	// The shortest of 15..17 significant digits that reads back to the same double.
 	char buf[40];
-	std::snprintf(buf, sizeof(buf), "%.17g", v);
+	for (int p = 15; p <= 17; ++p)
+	{
+		std::snprintf(buf, sizeof(buf), "%.*g", p, v);
+		if (std::strtod(buf, nullptr) == v) break;
+	}
 	return buf;
 }
 

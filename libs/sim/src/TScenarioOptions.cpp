@@ -27,7 +27,11 @@ std::string lower(std::string s)
 std::string fmt(double v)
 {
 	char b[40];
-	std::snprintf(b, sizeof(b), "%.17g", v);
+	for (int p = 15; p <= 17; ++p)  // shortest exact representation
+	{
+		std::snprintf(b, sizeof(b), "%.*g", p, v);
+		if (std::strtod(b, nullptr) == v) break;
+	}
 	return b;
 }
 

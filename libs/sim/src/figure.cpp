@@ -59,6 +59,9 @@ void drawScenarioFigure(
 	const double stretch = v.sy / v.sx;
 	if (stretch < 1.0) v.sx = v.sy;
 	if (stretch >= 1.0 && stretch < 3.0) v.sy = v.sx;
+	// Crop the unused width or height of an equal-scale drawing (keep room for the legend).
+	W = std::max(std::min(W, int(std::ceil(bw * v.sx)) + mL + mR), 900);
+	H = std::min(H, int(std::ceil(bh * v.sy)) + mT + mB);
 	v.x0 = xmin - mL / v.sx;
 	v.y0 = ymin - mB / v.sy;
 	v.H = H;
@@ -133,7 +136,7 @@ void drawScenarioFigure(
 	legend("static landmarks", TColor(250, 210, 0));
 	std::snprintf(buf, sizeof(buf), "x: %.0f m per 100 px   y: %.1f m per 100 px%s", 100 / v.sx,
 		100 / v.sy, v.sy > v.sx * 1.01 ? "  (lateral axis stretched)" : "");
-	img.textOut(lx + 10, 30, buf, TColor(60, 60, 60));
+	img.textOut(10, H - 18, buf, TColor(60, 60, 60));
 	if (!img.saveToFile(pngPath)) throw std::runtime_error("drawScenarioFigure: cannot write " + pngPath);
 }
 }  // namespace dynslam::sim
