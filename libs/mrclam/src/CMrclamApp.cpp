@@ -131,7 +131,8 @@ void CMrclamApp::runNoiseEstimation()
 			   << options.import.odometry_delay << " s, gains v "
 			   << options.import.odometry_scale_v << ", w " << options.import.odometry_scale_w
 			   << ")\n"
-			   << noise_per_robot[r].toText() << delayScoresText(scores) << "\n";
+			   << noise_per_robot[r].toText() << delayScoresText(scores)
+			   << deadReckoningText(deadReckoning(res, {10, 30, 60, 120, 300})) << "\n";
 	}
 	noise_pooled = estimateNoise(pooled, f, chi2);
 	if (robots.size() > 1) report << "=== pooled, robots";

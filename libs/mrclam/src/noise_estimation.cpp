@@ -381,6 +381,56 @@ std::string delayScoresText(const std::vector<TDelayScore>& scores)
 	return o.str();
 }
 
+std::vector<TDeadReckoningPoint> deadReckoning(
+	const TImportResult& res, const std::vector<double>& times)
+{
+	std::vector<TDeadReckoningPoint> out(times.size());
+	for (size_t i = 0; i < times.size(); i++) out[i].T = times[i];
+	const auto& gt = res.gt;
+	if (res.steps.empty() || gt.numSteps() != res.steps.size()) return out;
+	Eigen::Vector3d x = gt.ego[0];
+	Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+	double path = 0;
+	for (size_t k = 0; k < res.steps.size(); k++)
+	{
+		if (k > 0)
+		{
+			const Eigen::Vector3d& u = res.steps[k].increment.delta;
+			const double c = std::cos(x.z()), s = std::sin(x.z());
+			Eigen::Matrix3d F = Eigen::Matrix3d::Identity(), G = Eigen::Matrix3d::Identity();
+			F(0, 2) = -s * u.x() - c * u.y();
+			F(1, 2) = c * u.x() - s * u.y();
+			G.topLeftCorner<2, 2>() << c, -s, s, c;
+			P = F * P * F.transpose() + G * res.steps[k].cov * G.transpose();
+			x = composeSE2(x, u);
+			path += (gt.ego[k].head<2>() - gt.ego[k - 1].head<2>()).norm();
+		}
+		const double t = res.steps[k].t - res.steps[0].t;
+		for (auto& p : out)
+			if (t <= p.T)
+			{
+				p.error = (x.head<2>() - gt.ego[k].head<2>()).norm();
+				p.heading_error = wrapAngle(x.z() - gt.ego[k].z());
+				p.sigma = std::sqrt(P(0, 0) + P(1, 1));
+				p.path = path;
+			}
+	}
+	return out;
+}
+
+std::string deadReckoningText(const std::vector<TDeadReckoningPoint>& pts)
+{
+	std::ostringstream o;
+	o << std::setprecision(3);
+	o << "  dead reckoning (T [s]: position error [m] / model sigma [m] / path [m] / error per "
+		 "path / heading error [deg]):\n";
+	for (const auto& p : pts)
+		o << "    " << p.T << ": " << p.error << " / " << p.sigma << " / " << p.path << " / "
+		  << (p.path > 0 ? 100 * p.error / p.path : 0) << "% / " << p.heading_error * 180 / M_PI
+		  << "\n";
+	return o.str();
+}
+
 std::string TNoiseEstimate::toIni() const
 {
 	std::ostringstream o;

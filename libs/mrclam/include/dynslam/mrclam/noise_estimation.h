@@ -112,6 +112,21 @@ void poolDelayScores(std::vector<TDelayScore>& a, const std::vector<TDelayScore>
 TDelayScore bestDelay(const std::vector<TDelayScore>& scores);
 std::string delayScoresText(const std::vector<TDelayScore>& scores);
 
+/** Dead reckoning of an import: the step increments composed from the ground-truth pose at
+ * step 0, with the covariance propagated (F P F^T + G Q G^T), compared with the ground truth
+ * at the last step at or before t_0 + T for each T. */
+struct TDeadReckoningPoint
+{
+	double T = 0;  ///< [s] after the first step
+	double error = 0;  ///< position error [m]
+	double sigma = 0;  ///< sqrt(trace of the propagated position covariance) [m]
+	double path = 0;  ///< ground-truth path length up to there [m]
+	double heading_error = 0;  ///< [rad]
+};
+std::vector<TDeadReckoningPoint> deadReckoning(
+	const TImportResult& res, const std::vector<double>& times);
+std::string deadReckoningText(const std::vector<TDeadReckoningPoint>& pts);
+
 TNoiseEstimate estimateNoise(
 	const TNoiseSamples& s, double outlierFactor = 5, double trimChi2 = 25);
 }  // namespace dynslam::mrclam
