@@ -198,3 +198,12 @@ TEST(DynamicBadInput, FeatureNotSeenAtTimeZeroIsSkippedAndCounted)
 	EXPECT_EQ(f.getLastStepReport().skipped_unknown_object_feature, 1u);
 	EXPECT_EQ(f.getLastStepReport().object_poses_added, 1u);
 }
+
+TEST(DynamicBadInput, IdAboveLastObjectIsInvalid)
+{
+	static_assert(ids::classify(INT32_MAX) == ids::IdKind::Invalid);
+	static_assert(ids::classify(ids::kObjectBase + ids::kMaxObject * ids::kFeaturesPerObject + 999) ==
+				  ids::IdKind::ObjectFeature);
+	Fixture t;
+	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(INT32_MAX, 5, 0.1f)}), "no known ID range");
+}

@@ -6,8 +6,8 @@
  * | range                          | meaning                                             |
  * |--------------------------------|-----------------------------------------------------|
  * | 0 .. 99'999                    | static landmark, ID = landmark number               |
- * | 100'000 + 1000*obj + k         | feature k (0..999) of moving object obj (0..2'147'382) |
- * | negative (e.g. -1, MRPT's INVALID_LANDMARK_ID) | not supported: observation rejected |
+ * | 100'000 + 1000*obj + k         | feature k (0..999) of moving object obj (0..kMaxObject) |
+ * | negative (e.g. -1, MRPT's INVALID_LANDMARK_ID), or above the last object | invalid: rejected |
  *
  * Both filters (the static CRangeBearingKFSLAM2D and the dynamic one) read the same IDs,
  * so the static baseline sees every moving feature as just another landmark. */
@@ -32,7 +32,8 @@ enum class IdKind
 constexpr IdKind classify(int32_t id)
 {
 	if (id >= kStaticMin && id <= kStaticMax) return IdKind::Static;
-	if (id >= kObjectBase) return IdKind::ObjectFeature;
+	if (id >= kObjectBase && (id - kObjectBase) / kFeaturesPerObject <= kMaxObject)
+		return IdKind::ObjectFeature;
 	return IdKind::Invalid;
 }
 constexpr bool isStatic(int32_t id) { return classify(id) == IdKind::Static; }
