@@ -7,7 +7,11 @@
  *
  * Steps that add variables (augmentations) return the new mean entries and covariance blocks
  * (struct Augmentation) and leave the resize to the owner of the storage; steps that change
- * existing entries (updates, propagation) work in place. The ego pose is always x[0..2]. */
+ * existing entries (updates, propagation) work in place. The ego pose is always x[0..2].
+ *
+ * Every function checks its arguments: state indices out of range throw std::out_of_range;
+ * inconsistent sizes (P not matching x, Sigma_s not 2x2 or 3x3, several time-t features for a
+ * one-feature object) throw std::invalid_argument. */
 #include <dynslam/models/measurement.h>
 
 #include <Eigen/Core>
