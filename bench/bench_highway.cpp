@@ -1,0 +1,119 @@
+/** dynslam-bench: the highway run, the side-by-side comparison with MRPT's static EKF, and the
+ * 225-run Monte Carlo. */
+#include <benchmark/benchmark.h>
+#include <dynslam/sim/scenario.h>
+
+#include <atomic>
+#include <string>
+#include <thread>
+
+#include "bench_setup.h"
+
+using namespace dynslam_bench;
+
+namespace
+{
+/** One full run of the shipped highway rawlog (121 steps). Arg: 0 = MRPT update, 1 = sparse. */
+void BM_HighwayRun(benchmark::State& state)
+{
+	const TRun& run = highwayRun();
+	const bool sparse = state.range(0) != 0;
+	for (auto _ : state)
+	{
+		dynslam::CDynamicKFSLAM2D f;
+		configureDynamic(f, run.Sigma_v, run.Sigma_0, sparse);
+		for (size_t k = 0; k < run.actions.size(); ++k)
+			f.processActionObservation(run.actions[k], run.frames[k]);
+		benchmark::DoNotOptimize(f.fullMean()[0]);
+	}
+	state.counters["steps"] = double(run.actions.size());
+	state.SetLabel(sparse ? "sparse" : "mrpt");
+}
+BENCHMARK(BM_HighwayRun)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+/** The same static-only run through MRPT's CRangeBearingKFSLAM2D (filter 0) and the dynamic EKF
+ * with MRPT's update (1) or the sparse one (2). Args: filter, landmarks (highway_static with
+ * num_landmarks overridden). Time per run; per step = run / steps. */
+void BM_StaticRun(benchmark::State& state)
+{
+	const int filter = int(state.range(0));
+	const TRun& run = simulatedRun("highway_static_scenario.ini", int(state.range(1)), 1);
+	for (auto _ : state)
+	{
+		mrpt::slam::CRangeBearingKFSLAM2D rb;
+		dynslam::CDynamicKFSLAM2D dyn;
+		configureAlike(rb, dyn, run.std_range, run.std_yaw, filter == 2);
+		for (size_t k = 0; k < run.actions.size(); ++k)
+		{
+			auto a = run.actions[k];
+			auto sf = run.frames[k];
+			if (filter == 0)
+				rb.processActionObservation(a, sf);
+			else
+				dyn.processActionObservation(run.actions[k], run.frames[k]);
+		}
+		mrpt::poses::CPosePDFGaussian pose;
+		if (filter == 0)
+			rb.getCurrentRobotPose(pose);
+		else
+			pose = dyn.getEgoPose();
+		benchmark::DoNotOptimize(pose.mean.x());
+	}
+	state.counters["steps"] = double(run.actions.size());
+	state.SetLabel(filter == 0 ? "CRangeBearingKFSLAM2D" : filter == 1 ? "dynamic/mrpt" : "dynamic/sparse");
+}
+BENCHMARK(BM_StaticRun)
+	->ArgsProduct({{0, 1, 2}, {80, 400}})
+	->Unit(benchmark::kMillisecond);
+
+/** The Monte Carlo of the paper: 9 noise levels x 25 noise seeds = 225 highway runs, each
+ * simulated in memory and filtered (dynamic EKF, sparse update), on Arg(0) threads. Wall time. */
+void BM_MonteCarlo225(benchmark::State& state)
+{
+	const int threads = int(state.range(0));
+	const bool includeSim = state.range(1) != 0;
+	const char* levels[] = {"w1v1", "w1v2", "w1v3", "w2v1", "w2v2", "w2v3", "w3v1", "w3v2", "w3v3"};
+	const auto base = dynslam::sim::loadScenario(DYNSLAM_SOURCE_DIR "/config/highway.ini");
+	// Pre-simulated runs for the filter-only variant.
+	std::vector<dynslam::sim::TScenarioOptions> opts;
+	std::vector<dynslam::TGroundTruth> gts;
+	for (const char* l : levels)
+	{
+		auto o = base;
+		o.setNoiseLevel(l);
+		opts.push_back(o);
+		gts.push_back(dynslam::sim::buildGroundTruth(o));
+	}
+	std::vector<dynslam::sim::TSimulatedRun> pre;
+	if (!includeSim)
+		for (int r = 0; r < 225; ++r)
+			pre.push_back(dynslam::sim::simulateMeasurements(gts[r / 25], opts[r / 25], 1 + r % 25));
+	for (auto _ : state)
+	{
+		std::atomic<int> next{0};
+		auto worker = [&] {
+			for (int r; (r = next++) < 225;)
+			{
+				const auto& o = opts[r / 25];
+				dynslam::sim::TSimulatedRun sim =
+					includeSim ? dynslam::sim::simulateMeasurements(gts[r / 25], o, 1 + r % 25) : pre[r];
+				dynslam::CDynamicKFSLAM2D f;
+				configureDynamic(f, o.Sigma_v, o.Sigma_0, true);
+				for (size_t k = 0; k < sim.actions.size(); ++k)
+					f.processActionObservation(sim.actions[k], sim.frames[k]);
+				benchmark::DoNotOptimize(f.fullMean()[0]);
+			}
+		};
+		std::vector<std::thread> pool;
+		for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+		for (auto& t : pool) t.join();
+	}
+	state.SetLabel(std::string(includeSim ? "simulate+filter" : "filter only") + ", " +
+				   std::to_string(threads) + " thread(s)");
+}
+BENCHMARK(BM_MonteCarlo225)
+	->ArgsProduct({{1, 2}, {0, 1}})
+	->Unit(benchmark::kMillisecond)
+	->UseRealTime()
+	->Iterations(1);
+}  // namespace

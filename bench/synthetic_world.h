@@ -1,0 +1,197 @@
+#pragma once
+/** @file synthetic_world.h
+ * A controlled, streaming scenario for the scaling benchmarks and the hardening tests (header
+ * only; used by bench/ and tests/hardening/). Unlike the simulator's generated scenarios it
+ * fixes what a scaling curve must hold constant:
+ *  - Ring track: N static landmarks around a circle the ego drives on; the sensor reports the
+ *    `max_visible` nearest landmarks in range (so the work per step is fixed while the state
+ *    grows with N). With `first_step_sees_all`, step 0 reports every landmark, so the state
+ *    holds all N landmarks after one step.
+ *  - Straight track: an endless road with a landmark every `spacing` metres (IDs in order), so
+ *    landmarks leave the range for good and the drop policies keep the state bounded.
+ *  - M objects in convoy with the ego (each rigid, rotating slowly in its own frame, always
+ *    visible), so every step augments M object poses.
+ * Steps are generated on demand (nothing is stored), deterministic given the seed. */
+#include <dynslam/landmark_ids.h>
+#include <dynslam/models/measurement.h>
+#include <dynslam/models/se2.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace dynslam_bench
+{
+struct TSyntheticOptions
+{
+	enum class Track
+	{
+		Ring,
+		Straight
+	} track = Track::Ring;
+	int landmarks = 100;  ///< ring: number of landmarks (straight: unbounded)
+	double spacing = 4.0;  ///< metres of track per landmark
+	double step_length = 2.0;  ///< metres driven per step
+	double range = 30.0;  ///< sensor range for static landmarks [m]
+	int max_visible = 20;  ///< at most this many static landmarks per step (nearest first)
+	bool first_step_sees_all = false;  ///< ring: step 0 reports all landmarks
+	int objects = 0;
+	int features_per_object = 3;
+	Eigen::Matrix3d Sigma_w = Eigen::Vector3d(1e-5, 1e-5, 1e-7).asDiagonal();
+	Eigen::Matrix2d Sigma_v = Eigen::Matrix2d::Identity() * 1e-5;  ///< Cartesian noise
+	unsigned seed = 1;
+};
+
+class CSyntheticWorld
+{
+public:
+	explicit CSyntheticWorld(const TSyntheticOptions& o) : m_o(o), m_rng(o.seed)
+	{
+		if (o.landmarks < 1 && o.track == TSyntheticOptions::Track::Ring)
+			throw std::invalid_argument("CSyntheticWorld: ring needs landmarks >= 1");
+		if (o.objects < 0 || o.objects > 900 || o.features_per_object < 1)
+			throw std::invalid_argument("CSyntheticWorld: bad object counts");
+		m_radius = std::max(60.0, o.landmarks * o.spacing / (2 * M_PI));
+		if (o.track == TSyntheticOptions::Track::Ring)
+			for (int i = 0; i < o.landmarks; ++i) m_ring.push_back(ringLandmark(i));
+		const double dth = o.track == TSyntheticOptions::Track::Ring ? o.step_length / m_radius : 0;
+		m_u = dth == 0 ? Eigen::Vector3d(o.step_length, 0, 0)
+					   : Eigen::Vector3d(m_radius * std::sin(dth), m_radius * (1 - std::cos(dth)), dth);
+		// Ring: start on the circle centred at (0, R), heading +x.
+	}
+
+	/** The ground-truth ego pose of the step about to be generated. */
+	const Eigen::Vector3d& truePose() const { return m_x; }
+	int step() const { return m_k; }
+
+	/** Produces step k = step() (the action into pose k and the frame at pose k), then advances. */
+	void next(mrpt::obs::CActionCollection::Ptr& act, mrpt::obs::CSensoryFrame::Ptr& sf)
+	{
+		Eigen::Vector3d um = Eigen::Vector3d::Zero();
+		Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+		if (m_k > 0)
+		{
+			m_x = dynslam::models::composePose(m_x, m_u);
+			um = m_u + gauss3(m_o.Sigma_w);
+			cov = m_o.Sigma_w;
+		}
+		act = makeAction(um, cov);
+		auto obs = mrpt::obs::CObservationBearingRange::Create();
+		obs->sensorLabel = "RB";
+		obs->maxSensorDistance = float(m_o.range);
+		obs->fieldOfView_yaw = float(2 * M_PI);
+		// Static landmarks: nearest first, at most max_visible (all on step 0 if asked).
+		m_cand.clear();
+		const Eigen::Vector2d p = m_x.head<2>();
+		if (m_o.track == TSyntheticOptions::Track::Ring)
+		{
+			for (int i = 0; i < int(m_ring.size()); ++i)
+			{
+				const double d = (m_ring[i] - p).norm();
+				if (d <= m_o.range || (m_k == 0 && m_o.first_step_sees_all)) m_cand.push_back({d, i});
+			}
+		}
+		else
+		{
+			const int lo = std::max(0, int(std::floor((p.x() - m_o.range) / m_o.spacing)));
+			const int hi = int(std::ceil((p.x() + m_o.range) / m_o.spacing));
+			for (int i = lo; i <= hi; ++i)
+			{
+				if (i > dynslam::ids::kStaticMax)
+					throw std::runtime_error("CSyntheticWorld: ran out of static landmark IDs");
+				const double d = (straightLandmark(i) - p).norm();
+				if (d <= m_o.range) m_cand.push_back({d, i});
+			}
+		}
+		std::sort(m_cand.begin(), m_cand.end());
+		size_t nmax = (m_k == 0 && m_o.first_step_sees_all) ? m_cand.size() : size_t(m_o.max_visible);
+		for (size_t j = 0; j < m_cand.size() && j < nmax; ++j)
+		{
+			const int i = m_cand[j].second;
+			add(*obs, i, m_o.track == TSyntheticOptions::Track::Ring ? m_ring[i] : straightLandmark(i));
+		}
+		// Objects in convoy: body pose = ego pose (+) offset, rotating slowly in place.
+		for (int a = 0; a < m_o.objects; ++a)
+		{
+			const double side = (a % 2 == 0) ? 1.0 : -1.0;
+			const Eigen::Vector3d off(6.0 + 4.0 * (a / 2 % 5), side * (4.0 + 3.0 * (a / 10)),
+									  0.02 * m_k * (1 + a % 3));
+			const Eigen::Vector3d body = dynslam::models::composePose(m_x, off);
+			for (int f = 0; f < m_o.features_per_object; ++f)
+			{
+				const double ang = 2.1 * f + a;
+				const Eigen::Vector2d local = Eigen::Vector2d(std::cos(ang), std::sin(ang)) * (0.8 + 0.3 * f);
+				add(*obs, dynslam::ids::objectFeatureId(a, f),
+					body.head<2>() + dynslam::models::rot2(body[2]) * local);
+			}
+		}
+		sf = mrpt::obs::CSensoryFrame::Create();
+		sf->insert(obs);
+		++m_k;
+	}
+
+private:
+	Eigen::Vector2d ringLandmark(int i) const
+	{
+		const double a = 2 * M_PI * i / m_o.landmarks;
+		const double off = ((i % 2) ? 1.0 : -1.0) * (3.0 + 7.0 * ((i * 7919) % 101) / 100.0);
+		const double r = m_radius + off;
+		return Eigen::Vector2d(r * std::sin(a), m_radius - r * std::cos(a));
+	}
+	Eigen::Vector2d straightLandmark(int i) const
+	{
+		const double off = ((i % 2) ? 1.0 : -1.0) * (5.0 + 10.0 * ((i * 7919) % 101) / 100.0);
+		return Eigen::Vector2d(i * m_o.spacing, off);
+	}
+	Eigen::Vector3d gauss3(const Eigen::Matrix3d& S)
+	{
+		Eigen::Vector3d e;
+		for (int i = 0; i < 3; ++i) e[i] = m_n(m_rng) * std::sqrt(std::max(0.0, S(i, i)));
+		return e;
+	}
+	void add(mrpt::obs::CObservationBearingRange& obs, int32_t id, const Eigen::Vector2d& f)
+	{
+		Eigen::Vector2d z = dynslam::models::cartesianObserve(m_x, f);
+		z[0] += m_n(m_rng) * std::sqrt(m_o.Sigma_v(0, 0));
+		z[1] += m_n(m_rng) * std::sqrt(m_o.Sigma_v(1, 1));
+		const Eigen::Vector2d rb = dynslam::models::cartesianToRangeBearing(z);
+		mrpt::obs::CObservationBearingRange::TMeasurement m;
+		m.range = float(rb[0]);
+		m.yaw = float(rb[1]);
+		m.pitch = 0;
+		m.landmarkID = id;
+		obs.sensedData.push_back(m);
+	}
+	static mrpt::obs::CActionCollection::Ptr makeAction(const Eigen::Vector3d& u, const Eigen::Matrix3d& C)
+	{
+		mrpt::obs::CActionRobotMovement2D mov;
+		mrpt::math::CMatrixDouble33 cov;
+		for (int i = 0; i < 3; ++i)
+			for (int j = 0; j < 3; ++j) cov(i, j) = C(i, j);
+		mov.poseChange =
+			mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(u[0], u[1], u[2]), cov);
+		mov.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
+		auto acts = mrpt::obs::CActionCollection::Create();
+		acts->insert(mov);
+		return acts;
+	}
+
+	TSyntheticOptions m_o;
+	std::mt19937 m_rng;
+	std::normal_distribution<double> m_n{0.0, 1.0};
+	double m_radius = 0;
+	std::vector<Eigen::Vector2d> m_ring;
+	Eigen::Vector3d m_u, m_x = Eigen::Vector3d::Zero();
+	std::vector<std::pair<double, int>> m_cand;
+	int m_k = 0;
+};
+}  // namespace dynslam_bench

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Builds the whole test suite with AddressSanitizer + UndefinedBehaviorSanitizer
+# (-DDYNSLAM_SANITIZE=ON, RelWithDebInfo) in build-sanitize/ and runs ctest there.
+# Not part of ctest (too slow for CI); the clean result is recorded in doc/robustness.md.
+# Usage: scripts/sanitize.sh [extra cmake args, e.g. -DDYNSLAM_TEST_AREAS="core;ekf;hardening"]
+# Environment: DYNSLAM_SANITIZE_BUILD_DIR (default build-sanitize), JOBS (default 2).
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+BUILD="${DYNSLAM_SANITIZE_BUILD_DIR:-$ROOT/build-sanitize}"
+JOBS="${JOBS:-2}"
+cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDYNSLAM_SANITIZE=ON \
+  -DDYNSLAM_BUILD_BENCH=OFF -DDYNSLAM_BUILD_APPS=ON "$@" >/dev/null
+cmake --build "$BUILD" -j"$JOBS"
+# detect_leaks: MRPT's class registry keeps singletons alive at exit; leaks are reported but
+# only the errors below fail the run. halt_on_error: the first ASan/UBSan report fails the test.
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:halt_on_error=1:abort_on_error=1:detect_stack_use_after_return=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+# The soak test runs its short version here (ASan is ~3x slower).
+export DYNSLAM_SOAK_STEPS="${DYNSLAM_SOAK_STEPS:-5000}"
+cd "$BUILD"
+ctest --output-on-failure -j"$JOBS" --timeout 1800
