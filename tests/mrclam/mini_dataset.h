@@ -2,23 +2,24 @@
 /** A tiny synthetic MRCLAM folder written into a temp dir, for the bad-input tests.
  * Subjects 1..20 have barcode 10 + subject; robots drive straight lines during 10 s;
  * robot 1 (the ego) measures landmark 6 and robot 2 at t = 1, 1.01, 2 and 3 s. */
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 namespace mrclam_test
 {
 inline const char* kHeader =
-	"# UTIAS Multi-Robot Cooperative Localization and Mapping Dataset\n"
-	"# synthetic test file\n"
-	"# format line\n"
-	"# columns\n";
+    "# UTIAS Multi-Robot Cooperative Localization and Mapping Dataset\n"
+    "# synthetic test file\n"
+    "# format line\n"
+    "# columns\n";
 
 inline std::string tempDir(const std::string& name)
 {
 	const auto d = std::filesystem::temp_directory_path() /
-				   ("dynslam_mrclam_" + name + "_" + std::to_string(::getpid()));
+	               ("dynslam_mrclam_" + name + "_" + std::to_string(::getpid()));
 	std::filesystem::remove_all(d);
 	std::filesystem::create_directories(d);
 	return d.string();
@@ -33,10 +34,10 @@ inline void writeFile(const std::string& path, const std::string& body)
 /** Body rows of Robot1_Measurement.dat of the mini data set. */
 inline std::string miniMeasurements()
 {
-	return "1.000 16 2.0 0.5\n"  // landmark 6
-		   "1.010 12 1.5 -0.2\n"  // robot 2, same step (10 ms later)
-		   "2.000 16 2.1 0.4\n"
-		   "3.000 12 1.4 -0.1\n";
+	return "1.000 16 2.0 0.5\n"   // landmark 6
+	       "1.010 12 1.5 -0.2\n"  // robot 2, same step (10 ms later)
+	       "2.000 16 2.1 0.4\n"
+	       "3.000 12 1.4 -0.1\n";
 }
 
 inline std::string writeMiniDataset(const std::string& name)
@@ -55,7 +56,7 @@ inline std::string writeMiniDataset(const std::string& name)
 		{
 			const double t = 0.1 * i;
 			gt += std::to_string(t) + " " + std::to_string(0.1 * t) + " " + std::to_string(r) +
-				  " 0.0\n";
+			      " 0.0\n";
 		}
 		writeFile(d + "/Robot" + std::to_string(r) + "_Groundtruth.dat", gt);
 	}

@@ -98,16 +98,14 @@ TEST(MrclamBadInput, MalformedLines)
 TEST(MrclamBadInput, TimestampsOutOfOrder)
 {
 	const auto dir = writeMiniDataset("order");
-	writeFile(
-		dir + "/Robot1_Measurement.dat",
-		std::string(kHeader) + "1.000 16 2.0 0.5\n2.000 16 2.1 0.4\n1.500 12 1.4 -0.1\n");
+	writeFile(dir + "/Robot1_Measurement.dat",
+	          std::string(kHeader) + "1.000 16 2.0 0.5\n2.000 16 2.1 0.4\n1.500 12 1.4 -0.1\n");
 	auto e = importError(dir);
 	expectContains(e, "Robot1_Measurement.dat:7:");
 	expectContains(e, "timestamps out of order");
 	const auto dir2 = writeMiniDataset("order_gt");
-	writeFile(
-		dir2 + "/Robot3_Groundtruth.dat",
-		std::string(kHeader) + "0.0 0 0 0\n5.0 1 0 0\n4.0 1 0 0\n10.0 1 0 0\n");
+	writeFile(dir2 + "/Robot3_Groundtruth.dat",
+	          std::string(kHeader) + "0.0 0 0 0\n5.0 1 0 0\n4.0 1 0 0\n10.0 1 0 0\n");
 	e = importError(dir2);
 	expectContains(e, "Robot3_Groundtruth.dat:7:");
 	expectContains(e, "timestamps out of order");
@@ -131,14 +129,13 @@ TEST(MrclamBadInput, NonFiniteValues)
 TEST(MrclamBadInput, UnknownOwnAndDuplicateBarcodesAreDroppedAndCounted)
 {
 	const auto dir = writeMiniDataset("drops");
-	writeFile(
-		dir + "/Robot1_Measurement.dat", std::string(kHeader) +
-											 "1.000 16 2.0 0.5\n"  // landmark 6: kept
-											 "1.001 99 3.0 0.1\n"  // unknown barcode
-											 "1.002 11 1.0 0.0\n"  // the ego's own barcode
-											 "1.003 16 2.5 0.6\n"  // landmark 6 again: dup
-											 "2.000 99 3.0 0.1\n"  // unknown: step w/o data
-											 "3.000 12 1.4 -0.1\n");
+	writeFile(dir + "/Robot1_Measurement.dat", std::string(kHeader) +
+	                                               "1.000 16 2.0 0.5\n"  // landmark 6: kept
+	                                               "1.001 99 3.0 0.1\n"  // unknown barcode
+	                                               "1.002 11 1.0 0.0\n"  // the ego's own barcode
+	                                               "1.003 16 2.5 0.6\n"  // landmark 6 again: dup
+	                                               "2.000 99 3.0 0.1\n"  // unknown: step w/o data
+	                                               "3.000 12 1.4 -0.1\n");
 	TImportResult r;
 	ASSERT_EQ(importError(dir, &r), "");
 	EXPECT_EQ(r.summary.rows, 6u);
@@ -151,7 +148,7 @@ TEST(MrclamBadInput, UnknownOwnAndDuplicateBarcodesAreDroppedAndCounted)
 	ASSERT_EQ(r.steps[0].meas.size(), 1u);
 	EXPECT_DOUBLE_EQ(r.steps[0].meas[0].range, 2.0);  // the first reading is kept
 	EXPECT_NE(r.summary.toText().find("dropped spurious barcodes: 2 (barcode 99: 2)"),
-			  std::string::npos);
+	          std::string::npos);
 }
 
 TEST(MrclamBadInput, CrlfAndBlankLinesTolerated)
@@ -174,13 +171,13 @@ TEST(MrclamBadInput, CrlfAndBlankLinesTolerated)
 TEST(MrclamBadInput, AppExitsNonZeroWithTheMessage)
 {
 	const auto dir = writeMiniDataset("app");
-	writeFile(
-		dir + "/Robot1_Measurement.dat", std::string(kHeader) + "1.000 16 2.0 0.5\n0.5 16 2 0\n");
+	writeFile(dir + "/Robot1_Measurement.dat",
+	          std::string(kHeader) + "1.000 16 2.0 0.5\n0.5 16 2 0\n");
 	const std::string app = std::string(DYNSLAM_BINARY_DIR) + "/apps/dynslam-mrclam/dynslam-mrclam";
 	ASSERT_TRUE(std::filesystem::exists(app)) << app;
 	const std::string err = dir + "/stderr.txt";
 	const std::string cmd =
-		app + " --dataset " + dir + " --robot 1 --out " + dir + "/out 2> " + err + " > /dev/null";
+	    app + " --dataset " + dir + " --robot 1 --out " + dir + "/out 2> " + err + " > /dev/null";
 	const int rc = std::system(cmd.c_str());
 	EXPECT_NE(rc, 0);
 	std::ifstream f(err);
@@ -188,14 +185,16 @@ TEST(MrclamBadInput, AppExitsNonZeroWithTheMessage)
 	ss << f.rdbuf();
 	expectContains(ss.str(), "Robot1_Measurement.dat:6: timestamps out of order");
 	// a missing folder and a bad option value fail too
-	EXPECT_NE(std::system((app + " --dataset " + dir + "/nope --robot 1 --out x 2>/dev/null").c_str()), 0);
-	EXPECT_NE(std::system((app + " --dataset " + dir + " --robot 9 --out x 2>/dev/null").c_str()), 0);
-	writeFile(dir + "/bad.ini", "[MRCLAM_Import]\ngroup_windw = 0.05\n");
 	EXPECT_NE(
-		std::system(
-			(app + " --dataset " + dir + " --robot 1 --out x --config " + dir + "/bad.ini 2>" + err)
-				.c_str()),
-		0);
+	    std::system((app + " --dataset " + dir + "/nope --robot 1 --out x 2>/dev/null").c_str()),
+	    0);
+	EXPECT_NE(std::system((app + " --dataset " + dir + " --robot 9 --out x 2>/dev/null").c_str()),
+	          0);
+	writeFile(dir + "/bad.ini", "[MRCLAM_Import]\ngroup_windw = 0.05\n");
+	EXPECT_NE(std::system((app + " --dataset " + dir + " --robot 1 --out x --config " + dir +
+	                       "/bad.ini 2>" + err)
+	                          .c_str()),
+	          0);
 	std::ifstream f2(err);
 	std::stringstream ss2;
 	ss2 << f2.rdbuf();
@@ -209,8 +208,8 @@ TEST(MrclamBadInput, OptionsRejectInvalidValues)
 	writeFile(dir + "/neg.ini", "[MRCLAM_Import]\nstd_range = -1\n");
 	CMrclamApp app;
 	const std::string cfg = dir + "/neg.ini";
-	const char* argv[] = {"dynslam-mrclam", "--dataset", dir.c_str(), "--robot", "1",
-						  "--out",			dir.c_str(), "--config", cfg.c_str()};
+	const char* argv[] = {"dynslam-mrclam", "--dataset", dir.c_str(), "--robot",  "1",
+	                      "--out",          dir.c_str(), "--config",  cfg.c_str()};
 	try
 	{
 		app.initialize(9, argv);

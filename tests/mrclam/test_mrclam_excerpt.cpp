@@ -158,8 +158,8 @@ TEST(MrclamExcerpt, RawlogReadsBackWithCRawlog)
 		{
 			EXPECT_EQ(m.pitch, 0.0f);
 			const int subject = dynslam::ids::isStatic(m.landmarkID)
-									? m.landmarkID
-									: dynslam::ids::objectOf(m.landmarkID);
+			                        ? m.landmarkID
+			                        : dynslam::ids::objectOf(m.landmarkID);
 			if (dynslam::ids::isObjectFeature(m.landmarkID))
 			{
 				EXPECT_EQ(dynslam::ids::featureOf(m.landmarkID), 0);
@@ -212,9 +212,10 @@ TEST(MrclamExcerpt, GroundTruthReadsBackAndMatchesTheSteps)
 	for (size_t k = 0; k < K; k++)
 		for (const auto& m : f.res.steps[k].meas)
 		{
-			const Eigen::Vector2d q = isLandmarkSubject(m.subject)
-										  ? gt.landmarks.at(m.subject)
-										  : Eigen::Vector2d(gt.objects[m.subject].features[k].col(0));
+			const Eigen::Vector2d q =
+			    isLandmarkSubject(m.subject)
+			        ? gt.landmarks.at(m.subject)
+			        : Eigen::Vector2d(gt.objects[m.subject].features[k].col(0));
 			res.push_back(std::abs((q - gt.ego[k].head<2>()).norm() - m.range));
 		}
 	std::nth_element(res.begin(), res.begin() + res.size() / 2, res.end());
@@ -233,11 +234,12 @@ TEST(MrclamExcerpt, DeadReckoningFollowsTheGroundTruthAtTheStart)
 	Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
 	const double t0 = gt.t[0];
 	std::map<int, double> errAt, sigmaAt, pathAt;  // last step at or before 10, 20, ... s
-	double path = 0;  // ground-truth path length [m]
+	double path = 0;                               // ground-truth path length [m]
 	size_t n = 0, inside = 0;
 	for (size_t k = 0; 2 * k + 1 < log.size(); k++)
 	{
-		const auto mv = log.getAsAction(2 * k)->getActionByClass<mrpt::obs::CActionRobotMovement2D>();
+		const auto mv =
+		    log.getAsAction(2 * k)->getActionByClass<mrpt::obs::CActionRobotMovement2D>();
 		const auto* g = dynamic_cast<const mrpt::poses::CPosePDFGaussian*>(mv->poseChange.get());
 		const Eigen::Vector3d u(g->mean.x(), g->mean.y(), g->mean.phi());
 		const double c = std::cos(x.z()), s = std::sin(x.z());
@@ -265,7 +267,7 @@ TEST(MrclamExcerpt, DeadReckoningFollowsTheGroundTruthAtTheStart)
 		}
 	}
 	std::cout << "dead reckoning from the rawlog (time: position error / model sigma / path "
-				 "length) [s: m / m / m]:\n";
+	             "length) [s: m / m / m]:\n";
 	for (const auto& [T, e] : errAt)
 		std::cout << "  " << T << ": " << e << " / " << sigmaAt[T] << " / " << pathAt[T] << "\n";
 	std::cout << inside << " of " << n << " steps of the first 60 s inside the 99.9% ellipse\n";

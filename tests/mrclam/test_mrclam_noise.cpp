@@ -51,9 +51,8 @@ TEST(MrclamNoise, OdometryFitRecoversTheModel)
 		o.distance = inc.distance;
 		o.angle = inc.angle;
 		o.odo = Eigen::Vector3d(inc.distance, 0, inc.angle);
-		o.e = Eigen::Vector3d(
-			std::sqrt(C(0, 0)) * n01(rng), std::sqrt(C(1, 1)) * n01(rng),
-			std::sqrt(C(2, 2)) * n01(rng));
+		o.e = Eigen::Vector3d(std::sqrt(C(0, 0)) * n01(rng), std::sqrt(C(1, 1)) * n01(rng),
+		                      std::sqrt(C(2, 2)) * n01(rng));
 		if (i % 200 == 0) o.e *= 30.0;  // gross outliers (0.5%)
 		o.gt = o.odo + o.e;
 		s.odo.push_back(o);

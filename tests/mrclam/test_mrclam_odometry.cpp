@@ -26,9 +26,12 @@ Eigen::Vector3d euler(double v, double w, double dt, int n = 200000)
 
 TEST(MrclamOdometry, UnicycleArcMatchesFineIntegration)
 {
-	for (const auto& [v, w, dt] : std::vector<std::array<double, 3>>{
-			 {0.1, 0.4, 1.3}, {0.2, -1.5, 2.0}, {-0.1, 0.3, 0.7}, {0.15, 0.0, 1.0}, {0.0, 0.5, 1.0},
-			 {0.1, 1e-12, 3.0}})
+	for (const auto& [v, w, dt] : std::vector<std::array<double, 3>>{{0.1, 0.4, 1.3},
+	                                                                 {0.2, -1.5, 2.0},
+	                                                                 {-0.1, 0.3, 0.7},
+	                                                                 {0.15, 0.0, 1.0},
+	                                                                 {0.0, 0.5, 1.0},
+	                                                                 {0.1, 1e-12, 3.0}})
 	{
 		const Eigen::Vector3d a = unicycleArc(v, w, dt);
 		const Eigen::Vector3d e = euler(v, w, dt);
@@ -120,7 +123,7 @@ TEST(MrclamOdometry, NoiseModelGrowsWithDistanceAndAngle)
 TEST(MrclamOdometry, InterpolationWrapsTheAngle)
 {
 	const CTrajectoryInterpolator tr(
-		{{0.0, 0.0, 0.0, 3.0}, {1.0, 1.0, 2.0, -3.0}, {2.0, 1.0, 2.0, -3.0}});
+	    {{0.0, 0.0, 0.0, 3.0}, {1.0, 1.0, 2.0, -3.0}, {2.0, 1.0, 2.0, -3.0}});
 	const Eigen::Vector3d p = tr.at(0.5);
 	EXPECT_NEAR(p.x(), 0.5, 1e-12);
 	EXPECT_NEAR(p.y(), 1.0, 1e-12);

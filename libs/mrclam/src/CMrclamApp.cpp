@@ -1,6 +1,5 @@
 #include <dynslam/mrclam/CMrclamApp.h>
 #include <dynslam/mrclam/rawlog_writer.h>
-
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/config/CConfigFile.h>
 
@@ -17,26 +16,26 @@ CMrclamApp::CMrclamApp() : mrpt::system::COutputLogger("dynslam-mrclam") {}
 bool CMrclamApp::initialize(int argc, const char** argv)
 {
 	TCLAP::CmdLine cmd(
-		"dynslam-mrclam: converts one robot of a UTIAS MRCLAM dataset folder into an MRPT "
-		"rawlog (landmarks as static IDs, the other robots as one-feature moving objects) plus "
-		"ground truth, or estimates the noise parameters from the ground truth.",
-		' ', "0.1");
+	    "dynslam-mrclam: converts one robot of a UTIAS MRCLAM dataset folder into an MRPT "
+	    "rawlog (landmarks as static IDs, the other robots as one-feature moving objects) plus "
+	    "ground truth, or estimates the noise parameters from the ground truth.",
+	    ' ', "0.1");
 	TCLAP::ValueArg<std::string> argDataset(
-		"", "dataset", "MRCLAM dataset folder (Barcodes.dat, RobotN_*.dat, ...)", true, "", "DIR",
-		cmd);
+	    "", "dataset", "MRCLAM dataset folder (Barcodes.dat, RobotN_*.dat, ...)", true, "", "DIR",
+	    cmd);
 	TCLAP::ValueArg<int> argRobot("", "robot", "ego robot, 1..5", false, 0, "N", cmd);
-	TCLAP::ValueArg<std::string> argOut(
-		"", "out", "output folder (required for an import)", false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> argOut("", "out", "output folder (required for an import)", false,
+	                                    "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> argConfig(
-		"", "config", "INI with a [MRCLAM_Import] section (e.g. config/mrclam.ini)", false, "",
-		"INI", cmd);
+	    "", "config", "INI with a [MRCLAM_Import] section (e.g. config/mrclam.ini)", false, "",
+	    "INI", cmd);
 	TCLAP::ValueArg<double> argDuration(
-		"", "duration", "only the first S seconds of measurements (overrides the INI)", false, 0,
-		"S", cmd);
+	    "", "duration", "only the first S seconds of measurements (overrides the INI)", false, 0,
+	    "S", cmd);
 	TCLAP::ValueArg<std::string> argBase(
-		"", "base", "base name of the output files (default robotN)", false, "", "B", cmd);
-	TCLAP::SwitchArg argNoise(
-		"", "estimate-noise", "estimate measurement and odometry noise from the ground truth", cmd);
+	    "", "base", "base name of the output files (default robotN)", false, "", "B", cmd);
+	TCLAP::SwitchArg argNoise("", "estimate-noise",
+	                          "estimate measurement and odometry noise from the ground truth", cmd);
 	TCLAP::SwitchArg argAll("", "all-robots", "with --estimate-noise: robots 1..5", cmd);
 
 	if (!cmd.parse(argc, argv))
@@ -65,8 +64,7 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	}
 	if (argDuration.isSet())
 	{
-		if (!(argDuration.getValue() > 0))
-			throw std::invalid_argument("--duration must be > 0");
+		if (!(argDuration.getValue() > 0)) throw std::invalid_argument("--duration must be > 0");
 		options.import.duration = argDuration.getValue();
 	}
 	return true;
@@ -94,9 +92,8 @@ void CMrclamApp::runImport()
 	writeImport(res, options, out_dir, b);
 	const std::string text = summary.toText();
 	std::cout << text;
-	logFmt(
-		mrpt::system::LVL_INFO, "wrote %s/%s.rawlog (%zu steps) and ground truth", out_dir.c_str(),
-		b.c_str(), summary.steps);
+	logFmt(mrpt::system::LVL_INFO, "wrote %s/%s.rawlog (%zu steps) and ground truth",
+	       out_dir.c_str(), b.c_str(), summary.steps);
 }
 
 void CMrclamApp::runNoiseEstimation()
@@ -122,17 +119,16 @@ void CMrclamApp::runNoiseEstimation()
 		const TNoiseSamples s = collectNoiseSamples(data, res);
 		pooled.append(s);
 		noise_per_robot[r] = estimateNoise(s, f, chi2);
-		const auto scores = scoreOdometryDelays(
-			data, res, delays, options.import.odometry_scale_v, options.import.odometry_scale_w);
+		const auto scores = scoreOdometryDelays(data, res, delays, options.import.odometry_scale_v,
+		                                        options.import.odometry_scale_w);
 		poolDelayScores(pooledDelays, scores);
 		delay_per_robot[r] = bestDelay(scores).delay;
 		report << "=== robot " << r << " (" << res.summary.steps << " steps, "
-			   << res.summary.duration() << " s; odometry integrated with delay "
-			   << options.import.odometry_delay << " s, gains v "
-			   << options.import.odometry_scale_v << ", w " << options.import.odometry_scale_w
-			   << ")\n"
-			   << noise_per_robot[r].toText() << delayScoresText(scores)
-			   << deadReckoningText(deadReckoning(res, {10, 30, 60, 120, 300})) << "\n";
+		       << res.summary.duration() << " s; odometry integrated with delay "
+		       << options.import.odometry_delay << " s, gains v " << options.import.odometry_scale_v
+		       << ", w " << options.import.odometry_scale_w << ")\n"
+		       << noise_per_robot[r].toText() << delayScoresText(scores)
+		       << deadReckoningText(deadReckoning(res, {10, 30, 60, 120, 300})) << "\n";
 	}
 	noise_pooled = estimateNoise(pooled, f, chi2);
 	if (robots.size() > 1) report << "=== pooled, robots";
@@ -141,8 +137,7 @@ void CMrclamApp::runNoiseEstimation()
 	if (robots.size() > 1)
 		report << "\n" << noise_pooled.toText() << delayScoresText(pooledDelays) << "\n";
 	delay_pooled = bestDelay(pooledDelays).delay;
-	report << "Suggested INI values (inlier std; fitted odometry model):\n"
-		   << noise_pooled.toIni();
+	report << "Suggested INI values (inlier std; fitted odometry model):\n" << noise_pooled.toIni();
 	std::cout << report.str();
 	if (!out_dir.empty())
 	{

@@ -1,5 +1,4 @@
 #include <dynslam/mrclam/CMrclamOptions.h>
-
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <algorithm>
@@ -13,38 +12,37 @@ namespace dynslam::mrclam
 {
 namespace
 {
-[[noreturn]] void fail(
-	const std::string& section, const std::string& key, const std::string& value,
-	const std::string& what)
+[[noreturn]] void fail(const std::string& section, const std::string& key, const std::string& value,
+                       const std::string& what)
 {
 	throw std::invalid_argument("[" + section + "] " + key + " = '" + value + "': " + what);
 }
 
 /** Reads a double if the key exists; rejects unparsable, non-finite and below-minimum values. */
-void readNum(
-	const mrpt::config::CConfigFileBase& c, const std::string& sec, const std::string& key,
-	double& v, double minValue, bool strictlyAbove)
+void readNum(const mrpt::config::CConfigFileBase& c, const std::string& sec, const std::string& key,
+             double& v, double minValue, bool strictlyAbove)
 {
 	if (!c.keyExists(sec, key)) return;
 	const std::string s = c.read_string(sec, key, "", true);
 	char* e = nullptr;
 	const double x = std::strtod(s.c_str(), &e);
-	if (s.empty() || e == s.c_str() || (*e != '\0' && std::string(e).find_first_not_of(" \t") !=
-														 std::string::npos))
+	if (s.empty() || e == s.c_str() ||
+	    (*e != '\0' && std::string(e).find_first_not_of(" \t") != std::string::npos))
 		fail(sec, key, s, "not a number");
 	if (!std::isfinite(x)) fail(sec, key, s, "not finite");
 	if (strictlyAbove ? !(x > minValue) : !(x >= minValue))
-		fail(sec, key, s, std::string("must be ") + (strictlyAbove ? "> " : ">= ") +
-							  std::to_string(minValue));
+		fail(sec, key, s,
+		     std::string("must be ") + (strictlyAbove ? "> " : ">= ") + std::to_string(minValue));
 	v = x;
 }
 
-void readFlag(
-	const mrpt::config::CConfigFileBase& c, const std::string& sec, const std::string& key, bool& v)
+void readFlag(const mrpt::config::CConfigFileBase& c, const std::string& sec,
+              const std::string& key, bool& v)
 {
 	if (!c.keyExists(sec, key)) return;
 	std::string s = c.read_string(sec, key, "", true);
-	std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return std::tolower(ch); });
+	std::transform(s.begin(), s.end(), s.begin(),
+	               [](unsigned char ch) { return std::tolower(ch); });
 	if (s == "true" || s == "1" || s == "yes")
 		v = true;
 	else if (s == "false" || s == "0" || s == "no")
@@ -53,17 +51,29 @@ void readFlag(
 		fail(sec, key, s, "not a boolean (true/false)");
 }
 
-const std::vector<std::string> kKeys = {
-	"group_window",	  "max_range",		 "duration",		"clip_to_ground_truth",
-	"std_range",	  "std_bearing",	 "odo_delay", "odo_scale_v", "odo_scale_w",	 "odo_std_xy_min",	"odo_var_xy_per_m",
-	"odo_var_xy_per_rad", "odo_std_phi_min", "odo_var_phi_per_m", "odo_var_phi_per_rad",
-	"noise_outlier_factor", "noise_trim_chi2"};
+const std::vector<std::string> kKeys = {"group_window",
+                                        "max_range",
+                                        "duration",
+                                        "clip_to_ground_truth",
+                                        "std_range",
+                                        "std_bearing",
+                                        "odo_delay",
+                                        "odo_scale_v",
+                                        "odo_scale_w",
+                                        "odo_std_xy_min",
+                                        "odo_var_xy_per_m",
+                                        "odo_var_xy_per_rad",
+                                        "odo_std_phi_min",
+                                        "odo_var_phi_per_m",
+                                        "odo_var_phi_per_rad",
+                                        "noise_outlier_factor",
+                                        "noise_trim_chi2"};
 }  // namespace
 
 TMrclamOptions::TMrclamOptions() = default;
 
-void TMrclamOptions::loadFromConfigFile(
-	const mrpt::config::CConfigFileBase& c, const std::string& sec)
+void TMrclamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                        const std::string& sec)
 {
 	std::vector<std::string> keys;
 	c.getAllKeys(sec, keys);
@@ -102,22 +112,22 @@ void TMrclamOptions::dumpToTextStream(std::ostream& out) const
 	const auto& o = import;
 	const auto& n = o.odometry_noise;
 	out << "[MRCLAM_Import]\n"
-		<< "group_window = " << o.group_window << "\n"
-		<< "max_range = " << o.max_range << "\n"
-		<< "duration = " << o.duration << "\n"
-		<< "clip_to_ground_truth = " << (o.clip_to_ground_truth ? "true" : "false") << "\n"
-		<< "std_range = " << o.std_range << "\n"
-		<< "std_bearing = " << o.std_bearing << "\n"
-		<< "odo_delay = " << o.odometry_delay << "\n"
-		<< "odo_scale_v = " << o.odometry_scale_v << "\n"
-		<< "odo_scale_w = " << o.odometry_scale_w << "\n"
-		<< "odo_std_xy_min = " << n.std_xy_min << "\n"
-		<< "odo_var_xy_per_m = " << n.var_xy_per_m << "\n"
-		<< "odo_var_xy_per_rad = " << n.var_xy_per_rad << "\n"
-		<< "odo_std_phi_min = " << n.std_phi_min << "\n"
-		<< "odo_var_phi_per_m = " << n.var_phi_per_m << "\n"
-		<< "odo_var_phi_per_rad = " << n.var_phi_per_rad << "\n"
-		<< "noise_outlier_factor = " << noise_outlier_factor << "\n"
-		<< "noise_trim_chi2 = " << noise_trim_chi2 << "\n";
+	    << "group_window = " << o.group_window << "\n"
+	    << "max_range = " << o.max_range << "\n"
+	    << "duration = " << o.duration << "\n"
+	    << "clip_to_ground_truth = " << (o.clip_to_ground_truth ? "true" : "false") << "\n"
+	    << "std_range = " << o.std_range << "\n"
+	    << "std_bearing = " << o.std_bearing << "\n"
+	    << "odo_delay = " << o.odometry_delay << "\n"
+	    << "odo_scale_v = " << o.odometry_scale_v << "\n"
+	    << "odo_scale_w = " << o.odometry_scale_w << "\n"
+	    << "odo_std_xy_min = " << n.std_xy_min << "\n"
+	    << "odo_var_xy_per_m = " << n.var_xy_per_m << "\n"
+	    << "odo_var_xy_per_rad = " << n.var_xy_per_rad << "\n"
+	    << "odo_std_phi_min = " << n.std_phi_min << "\n"
+	    << "odo_var_phi_per_m = " << n.var_phi_per_m << "\n"
+	    << "odo_var_phi_per_rad = " << n.var_phi_per_rad << "\n"
+	    << "noise_outlier_factor = " << noise_outlier_factor << "\n"
+	    << "noise_trim_chi2 = " << noise_trim_chi2 << "\n";
 }
 }  // namespace dynslam::mrclam

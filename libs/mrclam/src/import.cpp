@@ -20,9 +20,8 @@ Eigen::Vector2d toFrame(const Eigen::Vector3d& origin, const Eigen::Vector2d& p)
 }
 
 /** [lo, hi] where steps may lie. */
-void timeWindow(
-	const TDataset& d, const std::map<int, CTrajectoryInterpolator>& gt, bool clip, double& lo,
-	double& hi)
+void timeWindow(const TDataset& d, const std::map<int, CTrajectoryInterpolator>& gt, bool clip,
+                double& lo, double& hi)
 {
 	const auto& ego = gt.at(d.ego);
 	lo = ego.tBegin();
@@ -129,7 +128,8 @@ TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
 	double tFirst = kNaN;
 	TStep cur;
 	bool open = false;
-	auto closeGroup = [&]() {
+	auto closeGroup = [&]()
+	{
 		if (open && !cur.meas.empty()) steps.push_back(cur);
 		open = false;
 	};
@@ -162,9 +162,8 @@ TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
 			sum.own_barcode++;
 			continue;
 		}
-		if (std::any_of(cur.meas.begin(), cur.meas.end(), [&](const TStepMeasurement& x) {
-				return x.subject == subject;
-			}))
+		if (std::any_of(cur.meas.begin(), cur.meas.end(),
+		                [&](const TStepMeasurement& x) { return x.subject == subject; }))
 		{
 			sum.duplicates++;
 			continue;
@@ -173,17 +172,17 @@ TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
 		if (isLandmarkSubject(subject))
 		{
 			if (!d.landmarks.count(subject))
-				throw std::runtime_error(
-					measFile + ":" + std::to_string(m.line) + ": landmark subject " +
-					std::to_string(subject) + " has no entry in Landmark_Groundtruth.dat");
+				throw std::runtime_error(measFile + ":" + std::to_string(m.line) +
+				                         ": landmark subject " + std::to_string(subject) +
+				                         " has no entry in Landmark_Groundtruth.dat");
 			id = subject;
 		}
 		else
 		{
 			if (!gt.count(subject))
-				throw std::runtime_error(
-					measFile + ":" + std::to_string(m.line) + ": robot subject " +
-					std::to_string(subject) + " has no ground truth");
+				throw std::runtime_error(measFile + ":" + std::to_string(m.line) +
+				                         ": robot subject " + std::to_string(subject) +
+				                         " has no ground truth");
 			id = ids::objectFeatureId(subject, 0);
 		}
 		if (std::isnan(tFirst)) tFirst = cur.t;
@@ -194,12 +193,12 @@ TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
 	}
 	closeGroup();
 	if (steps.empty())
-		throw std::runtime_error(
-			measFile + ": no valid measurement inside the ground truth's time span");
+		throw std::runtime_error(measFile +
+		                         ": no valid measurement inside the ground truth's time span");
 
 	// --- odometry increments ---
-	const COdometryIntegrator odo(
-		d.odometry, opts.odometry_delay, opts.odometry_scale_v, opts.odometry_scale_w);
+	const COdometryIntegrator odo(d.odometry, opts.odometry_delay, opts.odometry_scale_v,
+	                              opts.odometry_scale_w);
 	for (size_t k = 1; k < steps.size(); k++)
 	{
 		steps[k].increment = odo.integrate(steps[k - 1].t, steps[k].t);
@@ -242,9 +241,8 @@ TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
 		const auto& traj = gt.at(r);
 		for (size_t k = 0; k < K; k++)
 		{
-			const bool vis = std::any_of(
-				steps[k].meas.begin(), steps[k].meas.end(),
-				[&](const TStepMeasurement& x) { return x.subject == r; });
+			const bool vis = std::any_of(steps[k].meas.begin(), steps[k].meas.end(),
+			                             [&](const TStepMeasurement& x) { return x.subject == r; });
 			o.visible.push_back(vis ? 1 : 0);
 			if (vis && o.first_step < 0) o.first_step = static_cast<int>(k);
 			Eigen::Matrix2Xd f(2, 1);

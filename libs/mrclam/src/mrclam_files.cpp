@@ -34,13 +34,14 @@ double parseNumber(const std::string& tok, const std::string& path, int line, si
 	if (e == b || *e != '\0')
 		failAt(path, line, "column " + std::to_string(col + 1) + ": '" + tok + "' is not a number");
 	if (!std::isfinite(v) || errno == ERANGE)
-		failAt(path, line, "column " + std::to_string(col + 1) + ": non-finite value '" + tok + "'");
+		failAt(path, line,
+		       "column " + std::to_string(col + 1) + ": non-finite value '" + tok + "'");
 	return v;
 }
 }  // namespace
 
-TTable readTable(
-	const std::string& path, size_t ncols, const std::vector<size_t>& integerCols, int timeCol)
+TTable readTable(const std::string& path, size_t ncols, const std::vector<size_t>& integerCols,
+                 int timeCol)
 {
 	std::ifstream f(path, std::ios::binary);
 	if (!f) throw std::runtime_error(path + ": cannot open file (missing?)");
@@ -55,27 +56,25 @@ TTable readTable(
 		if (first == std::string::npos || s[first] == '#') continue;
 		const auto toks = splitWs(s);
 		if (toks.size() != ncols)
-			failAt(
-				path, line,
-				"expected " + std::to_string(ncols) + " columns, found " +
-					std::to_string(toks.size()) + " ('" + s + "')");
+			failAt(path, line,
+			       "expected " + std::to_string(ncols) + " columns, found " +
+			           std::to_string(toks.size()) + " ('" + s + "')");
 		std::vector<double> row(ncols);
 		for (size_t c = 0; c < ncols; c++)
 		{
 			row[c] = parseNumber(toks[c], path, line, c);
 			for (size_t ic : integerCols)
 				if (ic == c && row[c] != std::floor(row[c]))
-					failAt(
-						path, line,
-						"column " + std::to_string(c + 1) + ": '" + toks[c] +
-							"' is not an integer");
+					failAt(path, line,
+					       "column " + std::to_string(c + 1) + ": '" + toks[c] +
+					           "' is not an integer");
 		}
 		if (timeCol >= 0 && !t.rows.empty() && row[timeCol] < t.rows.back()[timeCol])
 		{
 			std::ostringstream m;
 			m.precision(15);
-			m << "timestamps out of order: " << row[timeCol] << " after "
-			  << t.rows.back()[timeCol] << " (line " << t.lines.back() << ")";
+			m << "timestamps out of order: " << row[timeCol] << " after " << t.rows.back()[timeCol]
+			  << " (line " << t.lines.back() << ")";
 			failAt(path, line, m.str());
 		}
 		t.rows.push_back(std::move(row));
@@ -95,9 +94,9 @@ std::map<int, int> readBarcodes(const std::string& path)
 		const int subject = static_cast<int>(t.rows[i][0]);
 		const int barcode = static_cast<int>(t.rows[i][1]);
 		if (!isRobotSubject(subject) && !isLandmarkSubject(subject))
-			failAt(
-				path, t.lines[i],
-				"subject " + std::to_string(subject) + " outside 1..20 (robots 1-5, landmarks 6-20)");
+			failAt(path, t.lines[i],
+			       "subject " + std::to_string(subject) +
+			           " outside 1..20 (robots 1-5, landmarks 6-20)");
 		if (!out.emplace(barcode, subject).second)
 			failAt(path, t.lines[i], "duplicate barcode " + std::to_string(barcode));
 		if (!subjects.emplace(subject, barcode).second)
@@ -115,9 +114,8 @@ std::map<int, Eigen::Vector2d> readLandmarks(const std::string& path)
 	{
 		const int subject = static_cast<int>(t.rows[i][0]);
 		if (!isLandmarkSubject(subject))
-			failAt(
-				path, t.lines[i],
-				"subject " + std::to_string(subject) + " is not a landmark (6..20)");
+			failAt(path, t.lines[i],
+			       "subject " + std::to_string(subject) + " is not a landmark (6..20)");
 		if (!out.emplace(subject, Eigen::Vector2d(t.rows[i][1], t.rows[i][2])).second)
 			failAt(path, t.lines[i], "duplicate subject " + std::to_string(subject));
 	}
@@ -168,9 +166,9 @@ std::string robotFile(const std::string& dir, int robot, const std::string& kind
 TDataset loadDataset(const std::string& dir, int egoRobot)
 {
 	if (!isRobotSubject(egoRobot))
-		throw std::invalid_argument(
-			"ego robot " + std::to_string(egoRobot) + " outside " + std::to_string(kFirstRobot) +
-			".." + std::to_string(kLastRobot));
+		throw std::invalid_argument("ego robot " + std::to_string(egoRobot) + " outside " +
+		                            std::to_string(kFirstRobot) + ".." +
+		                            std::to_string(kLastRobot));
 	TDataset d;
 	d.dir = dir;
 	d.ego = egoRobot;

@@ -68,9 +68,8 @@ Eigen::Vector3d nnls3(const Eigen::MatrixX3d& A, const Eigen::VectorXd& y, const
 
 /** Fits var = c0 + c1 d + c2 a to squared errors y (one dof each), with trimming; c0 is
  * kept >= minStd^2 so that a step without motion has a positive variance. */
-Eigen::Vector3d fitVariance(
-	const Eigen::MatrixX3d& A, const Eigen::VectorXd& y, double trimChi2, double minStd,
-	double& trimmedFrac)
+Eigen::Vector3d fitVariance(const Eigen::MatrixX3d& A, const Eigen::VectorXd& y, double trimChi2,
+                            double minStd, double& trimmedFrac)
 {
 	const Eigen::Index n = A.rows();
 	std::vector<bool> use(n, true);
@@ -109,10 +108,9 @@ Eigen::Vector3d fitVariance(
 void printStats(std::ostream& o, const char* name, const TResidualStats& s, double scale)
 {
 	o << "  " << std::left << std::setw(22) << name << std::right << " n=" << std::setw(5) << s.n
-	  << "  mean=" << std::setw(9) << s.mean * scale << "  std=" << std::setw(9)
-	  << s.std * scale << "  median=" << std::setw(9) << s.median * scale
-	  << "  robust_std=" << std::setw(9) << s.robust_std * scale
-	  << "  outliers=" << std::setw(6) << 100 * s.outlier_fraction << "%"
+	  << "  mean=" << std::setw(9) << s.mean * scale << "  std=" << std::setw(9) << s.std * scale
+	  << "  median=" << std::setw(9) << s.median * scale << "  robust_std=" << std::setw(9)
+	  << s.robust_std * scale << "  outliers=" << std::setw(6) << 100 * s.outlier_fraction << "%"
 	  << "  inlier mean=" << std::setw(9) << s.inlier_mean * scale
 	  << "  inlier std=" << std::setw(9) << s.inlier_std * scale << "\n";
 }
@@ -175,7 +173,7 @@ TNoiseSamples collectNoiseSamples(const TDataset& d, const TImportResult& res)
 		Eigen::Vector3d e = gtInc - b.increment.delta;
 		e.z() = wrapAngle(e.z());
 		s.odo.push_back(
-			{d.ego, b.increment.distance, b.increment.angle, b.increment.delta, gtInc, e});
+		    {d.ego, b.increment.distance, b.increment.angle, b.increment.delta, gtInc, e});
 	}
 	return s;
 }
@@ -207,9 +205,9 @@ TNoiseEstimate estimateNoise(const TNoiseSamples& s, double outlierFactor, doubl
 	est.range_robots = residualStats(rR, outlierFactor);
 	est.bearing_robots = residualStats(bR, outlierFactor);
 	for (size_t i = 0; i < binEdges.size(); i++)
-		est.bins.push_back(
-			{binEdges[i].first, binEdges[i].second, residualStats(rB[i], outlierFactor),
-			 residualStats(bB[i], outlierFactor)});
+		est.bins.push_back({binEdges[i].first, binEdges[i].second,
+		                    residualStats(rB[i], outlierFactor),
+		                    residualStats(bB[i], outlierFactor)});
 
 	// --- odometry ---
 	const Eigen::Index n = static_cast<Eigen::Index>(s.odo.size());
@@ -236,9 +234,9 @@ TNoiseEstimate estimateNoise(const TNoiseSamples& s, double outlierFactor, doubl
 		}
 		// floors: about the Vicon resolution (0.1 mm, 1e-4 rad)
 		const Eigen::Vector3d cxy =
-			fitVariance(A, yxy, trimChi2, 1e-4, est.odo_trimmed_fraction_xy);
+		    fitVariance(A, yxy, trimChi2, 1e-4, est.odo_trimmed_fraction_xy);
 		const Eigen::Vector3d cphi =
-			fitVariance(A, yphi, trimChi2, 1e-4, est.odo_trimmed_fraction_phi);
+		    fitVariance(A, yphi, trimChi2, 1e-4, est.odo_trimmed_fraction_phi);
 		auto& m = est.odometry;
 		m.std_xy_min = std::sqrt(cxy[0]);
 		m.var_xy_per_m = cxy[1];
@@ -255,7 +253,7 @@ TNoiseEstimate estimateNoise(const TNoiseSamples& s, double outlierFactor, doubl
 			const double vxy = std::max(1e-30, A.row(i).dot(cxy));
 			const double vphi = std::max(1e-30, A.row(i).dot(cphi));
 			const double nxy = 2 * yxy[i] / vxy;  // chi2 with 2 dof
-			const double nphi = yphi[i] / vphi;  // chi2 with 1 dof
+			const double nphi = yphi[i] / vphi;   // chi2 with 1 dof
 			neesXY += nxy;
 			neesPhi += nphi;
 			if (nxy > 5.991) aboveXY++;
@@ -299,26 +297,26 @@ std::string TNoiseEstimate::toText() const
 	printStats(o, "e_x [m]", odo_ex, 1);
 	printStats(o, "e_y [m]", odo_ey, 1);
 	printStats(o, "e_phi [deg]", odo_ephi, deg);
-	o << "  fitted: var_xy = " << odometry.std_xy_min << "^2 + " << odometry.var_xy_per_m
-	  << " d + " << odometry.var_xy_per_rad << " a   (trimmed " << 100 * odo_trimmed_fraction_xy
-	  << "%)\n"
+	o << "  fitted: var_xy = " << odometry.std_xy_min << "^2 + " << odometry.var_xy_per_m << " d + "
+	  << odometry.var_xy_per_rad << " a   (trimmed " << 100 * odo_trimmed_fraction_xy << "%)\n"
 	  << "          var_phi = " << odometry.std_phi_min << "^2 + " << odometry.var_phi_per_m
-	  << " d + " << odometry.var_phi_per_rad << " a   (trimmed "
-	  << 100 * odo_trimmed_fraction_phi << "%)\n"
-	  << "  gains (ground truth / odometry): translation " << odo_translation_gain
-	  << ", rotation " << odo_rotation_gain << "\n"
-	  << "  check with the fit: mean NEES xy = " << odo_mean_nees_xy << " (2 expected), phi = "
-	  << odo_mean_nees_phi << " (1 expected); above chi2 95%: xy " << 100 * odo_frac_xy_above_95
-	  << "%, phi " << 100 * odo_frac_phi_above_95 << "% (5% expected)\n";
+	  << " d + " << odometry.var_phi_per_rad << " a   (trimmed " << 100 * odo_trimmed_fraction_phi
+	  << "%)\n"
+	  << "  gains (ground truth / odometry): translation " << odo_translation_gain << ", rotation "
+	  << odo_rotation_gain << "\n"
+	  << "  check with the fit: mean NEES xy = " << odo_mean_nees_xy
+	  << " (2 expected), phi = " << odo_mean_nees_phi << " (1 expected); above chi2 95%: xy "
+	  << 100 * odo_frac_xy_above_95 << "%, phi " << 100 * odo_frac_phi_above_95
+	  << "% (5% expected)\n";
 	return o.str();
 }
 
 double TDelayScore::rmsPhi() const { return n ? std::sqrt(sse_phi / n) : 0; }
 double TDelayScore::rmsXY() const { return n ? std::sqrt(sse_xy / n) : 0; }
 
-std::vector<TDelayScore> scoreOdometryDelays(
-	const TDataset& d, const TImportResult& res, const std::vector<double>& delays,
-	double scaleV, double scaleW)
+std::vector<TDelayScore> scoreOdometryDelays(const TDataset& d, const TImportResult& res,
+                                             const std::vector<double>& delays, double scaleV,
+                                             double scaleW)
 {
 	const CTrajectoryInterpolator ego(d.groundTruth.at(d.ego));
 	std::vector<Eigen::Vector3d> gtInc;
@@ -362,9 +360,8 @@ void poolDelayScores(std::vector<TDelayScore>& a, const std::vector<TDelayScore>
 TDelayScore bestDelay(const std::vector<TDelayScore>& scores)
 {
 	if (scores.empty()) throw std::invalid_argument("bestDelay: no scores");
-	return *std::min_element(scores.begin(), scores.end(), [](const auto& a, const auto& b) {
-		return a.rmsPhi() < b.rmsPhi();
-	});
+	return *std::min_element(scores.begin(), scores.end(),
+	                         [](const auto& a, const auto& b) { return a.rmsPhi() < b.rmsPhi(); });
 }
 
 std::string delayScoresText(const std::vector<TDelayScore>& scores)
@@ -372,7 +369,7 @@ std::string delayScoresText(const std::vector<TDelayScore>& scores)
 	std::ostringstream o;
 	o << std::setprecision(4);
 	o << "  odometry delay [s]: RMS heading error per step [deg] / RMS position error per step "
-		 "[mm]\n";
+	     "[mm]\n";
 	for (const auto& s : scores)
 		o << "    " << std::setw(5) << s.delay << ": " << std::setw(7) << s.rmsPhi() * 180 / M_PI
 		  << " / " << std::setw(7) << s.rmsXY() * 1000 << "\n";
@@ -381,8 +378,8 @@ std::string delayScoresText(const std::vector<TDelayScore>& scores)
 	return o.str();
 }
 
-std::vector<TDeadReckoningPoint> deadReckoning(
-	const TImportResult& res, const std::vector<double>& times)
+std::vector<TDeadReckoningPoint> deadReckoning(const TImportResult& res,
+                                               const std::vector<double>& times)
 {
 	std::vector<TDeadReckoningPoint> out(times.size());
 	for (size_t i = 0; i < times.size(); i++) out[i].T = times[i];
@@ -423,7 +420,7 @@ std::string deadReckoningText(const std::vector<TDeadReckoningPoint>& pts)
 	std::ostringstream o;
 	o << std::setprecision(3);
 	o << "  dead reckoning (T [s]: position error [m] / model sigma [m] / path [m] / error per "
-		 "path / heading error [deg]):\n";
+	     "path / heading error [deg]):\n";
 	for (const auto& p : pts)
 		o << "    " << p.T << ": " << p.error << " / " << p.sigma << " / " << p.path << " / "
 		  << (p.path > 0 ? 100 * p.error / p.path : 0) << "% / " << p.heading_error * 180 / M_PI

@@ -38,9 +38,9 @@ Eigen::Vector3d relativeSE2(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
 	return {c * dx + s * dy, -s * dx + c * dy, wrapAngle(b.z() - a.z())};
 }
 
-COdometryIntegrator::COdometryIntegrator(
-	std::vector<TOdometryRow> rows, double delay, double scaleV, double scaleW)
-	: m_rows(std::move(rows))
+COdometryIntegrator::COdometryIntegrator(std::vector<TOdometryRow> rows, double delay,
+                                         double scaleV, double scaleW)
+    : m_rows(std::move(rows))
 {
 	if (!std::isfinite(delay) || !std::isfinite(scaleV) || !std::isfinite(scaleW))
 		throw std::invalid_argument("COdometryIntegrator: delay or gains not finite");
@@ -58,14 +58,13 @@ COdometryIntegrator::COdometryIntegrator(
 TOdometryIncrement COdometryIntegrator::integrate(double ta, double tb) const
 {
 	if (!(tb >= ta))
-		throw std::invalid_argument(
-			"COdometryIntegrator::integrate: tb < ta (" + std::to_string(tb) + " < " +
-			std::to_string(ta) + ")");
+		throw std::invalid_argument("COdometryIntegrator::integrate: tb < ta (" +
+		                            std::to_string(tb) + " < " + std::to_string(ta) + ")");
 	TOdometryIncrement inc;
 	if (m_rows.empty() || tb == ta) return inc;
 	// first row whose time is > ta; the command active at ta is the one before it
-	auto it = std::upper_bound(
-		m_rows.begin(), m_rows.end(), ta, [](double t, const TOdometryRow& r) { return t < r.t; });
+	auto it = std::upper_bound(m_rows.begin(), m_rows.end(), ta,
+	                           [](double t, const TOdometryRow& r) { return t < r.t; });
 	double t = ta;
 	if (it == m_rows.begin())
 	{
@@ -92,14 +91,14 @@ TOdometryIncrement COdometryIntegrator::integrate(double ta, double tb) const
 Eigen::Matrix3d TOdometryNoiseModel::covariance(const TOdometryIncrement& inc) const
 {
 	const double vxy =
-		std_xy_min * std_xy_min + var_xy_per_m * inc.distance + var_xy_per_rad * inc.angle;
+	    std_xy_min * std_xy_min + var_xy_per_m * inc.distance + var_xy_per_rad * inc.angle;
 	const double vphi =
-		std_phi_min * std_phi_min + var_phi_per_m * inc.distance + var_phi_per_rad * inc.angle;
+	    std_phi_min * std_phi_min + var_phi_per_m * inc.distance + var_phi_per_rad * inc.angle;
 	return Eigen::Vector3d(vxy, vxy, vphi).asDiagonal();
 }
 
 CTrajectoryInterpolator::CTrajectoryInterpolator(std::vector<TPoseRow> rows)
-	: m_rows(std::move(rows))
+    : m_rows(std::move(rows))
 {
 	if (m_rows.size() < 2)
 		throw std::invalid_argument("CTrajectoryInterpolator: fewer than 2 poses");
@@ -111,19 +110,18 @@ CTrajectoryInterpolator::CTrajectoryInterpolator(std::vector<TPoseRow> rows)
 Eigen::Vector3d CTrajectoryInterpolator::at(double t) const
 {
 	if (!covers(t))
-		throw std::out_of_range(
-			"ground truth does not cover t = " + std::to_string(t) + " (covers [" +
-			std::to_string(tBegin()) + ", " + std::to_string(tEnd()) + "])");
-	auto it = std::lower_bound(
-		m_rows.begin(), m_rows.end(), t, [](const TPoseRow& r, double tt) { return r.t < tt; });
+		throw std::out_of_range("ground truth does not cover t = " + std::to_string(t) +
+		                        " (covers [" + std::to_string(tBegin()) + ", " +
+		                        std::to_string(tEnd()) + "])");
+	auto it = std::lower_bound(m_rows.begin(), m_rows.end(), t,
+	                           [](const TPoseRow& r, double tt) { return r.t < tt; });
 	if (it == m_rows.begin()) return {it->x, it->y, wrapAngle(it->theta)};
 	const auto& b = *it;
 	const auto& a = *(it - 1);
 	const double dt = b.t - a.t;
 	const double s = dt > 0 ? (t - a.t) / dt : 1.0;
 	const double dth = wrapAngle(b.theta - a.theta);
-	return {
-		a.x + s * (b.x - a.x), a.y + s * (b.y - a.y), wrapAngle(a.theta + s * dth)};
+	return {a.x + s * (b.x - a.x), a.y + s * (b.y - a.y), wrapAngle(a.theta + s * dth)};
 }
 
 double CTrajectoryInterpolator::maxGap(double ta, double tb) const

@@ -1,5 +1,4 @@
 #include <dynslam/mrclam/rawlog_writer.h>
-
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -22,12 +21,13 @@ namespace
 mrpt::obs::CActionCollection makeAction(const TStep& s)
 {
 	mrpt::obs::CActionRobotMovement2D act;
-	const mrpt::poses::CPose2D inc(s.increment.delta.x(), s.increment.delta.y(), s.increment.delta.z());
+	const mrpt::poses::CPose2D inc(s.increment.delta.x(), s.increment.delta.y(),
+	                               s.increment.delta.z());
 	mrpt::math::CMatrixDouble33 cov;
 	for (int i = 0; i < 3; i++)
 		for (int j = 0; j < 3; j++) cov(i, j) = s.cov(i, j);
-	act.poseChange = mrpt::poses::CPosePDF::Ptr(
-		std::make_shared<mrpt::poses::CPosePDFGaussian>(inc, cov));
+	act.poseChange =
+	    mrpt::poses::CPosePDF::Ptr(std::make_shared<mrpt::poses::CPosePDFGaussian>(inc, cov));
 	act.rawOdometryIncrementReading = inc;
 	// Not emOdometry: MRPT serializes an emOdometry action as the raw increment plus its own
 	// motion-model parameters and rebuilds the covariance from those when reading, which
@@ -83,14 +83,12 @@ void writeRawlog(const TImportResult& res, const TImportOptions& opts, const std
 	f.close();
 }
 
-void writeImport(
-	const TImportResult& res, const TMrclamOptions& opts, const std::string& dir,
-	const std::string& base)
+void writeImport(const TImportResult& res, const TMrclamOptions& opts, const std::string& dir,
+                 const std::string& base)
 {
 	std::filesystem::create_directories(dir);
-	const auto file = [&](const std::string& suffix) {
-		return (std::filesystem::path(dir) / (base + suffix)).string();
-	};
+	const auto file = [&](const std::string& suffix)
+	{ return (std::filesystem::path(dir) / (base + suffix)).string(); };
 	writeRawlog(res, opts.import, file(".rawlog"));
 	writeGroundTruth(res.gt, dir, base);
 	{
@@ -109,8 +107,7 @@ void writeImport(
 	  << "steps = " << s.steps << "\n"
 	  << "t_first = " << s.t_first << "\n"
 	  << "t_last = " << s.t_last << "\n"
-	  << "origin_vicon = [" << s.origin.x() << " " << s.origin.y() << " " << s.origin.z()
-	  << "]\n\n"
+	  << "origin_vicon = [" << s.origin.x() << " " << s.origin.y() << " " << s.origin.z() << "]\n\n"
 	  << "[DynamicKFSLAM]\n"
 	  << "initial_pose = [0 0 0]\n"
 	  << "Sigma_0 = [0 0 0]\n\n";

@@ -3,7 +3,8 @@
  * The dynslam-mrclam app (MRPT's KFSLAMApp pattern: a thin main() around this class).
  *
  *   dynslam-mrclam --dataset DIR --robot N --out DIR [--config INI] [--duration S] [--base B]
- *   dynslam-mrclam --dataset DIR --estimate-noise (--robot N | --all-robots) [--out DIR] [--config INI]
+ *   dynslam-mrclam --dataset DIR --estimate-noise (--robot N | --all-robots) [--out DIR] [--config
+ * INI]
  *
  * Import: reads DIR (MRCLAM files), converts robot N (import.h) and writes into --out the
  * rawlog, the ground truth, `<B>_summary.txt` and `<B>_import.ini` (B defaults to robotN).
@@ -12,7 +13,6 @@
 #include <dynslam/mrclam/CMrclamOptions.h>
 #include <dynslam/mrclam/import.h>
 #include <dynslam/mrclam/noise_estimation.h>
-
 #include <mrpt/system/COutputLogger.h>
 
 #include <map>
@@ -45,7 +45,7 @@ public:
 	std::map<int, TNoiseEstimate> noise_per_robot;
 	TNoiseEstimate noise_pooled;
 	std::map<int, double> delay_per_robot;  ///< best odometry delay per robot [s]
-	double delay_pooled = 0;  ///< best odometry delay, all robots pooled [s]
+	double delay_pooled = 0;                ///< best odometry delay, all robots pooled [s]
 
 private:
 	void runImport();

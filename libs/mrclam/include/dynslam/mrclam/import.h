@@ -45,30 +45,30 @@ struct TImportOptions
 {
 	TImportOptions();
 	double group_window = 0.05;  ///< [s] measurements within this of a group's start: one step
-	double max_range = 10.0;  ///< [m] maxSensorDistance written into each observation
-	double duration = 0;  ///< [s] > 0: only the first `duration` seconds of steps
+	double max_range = 10.0;     ///< [m] maxSensorDistance written into each observation
+	double duration = 0;         ///< [s] > 0: only the first `duration` seconds of steps
 	bool clip_to_ground_truth = true;  ///< window within every robot's Vicon coverage
-	double std_range = 0.155;  ///< [m] written as sensor_std_range
-	double std_bearing = 0.0106;  ///< [rad] written as sensor_std_yaw
-	double odometry_delay = 0.2;  ///< [s] command latency d (odometry.h)
-	double odometry_scale_v = 0.95;  ///< gain on v (odometry.h)
-	double odometry_scale_w = 1;  ///< gain on w (odometry.h)
+	double std_range = 0.155;          ///< [m] written as sensor_std_range
+	double std_bearing = 0.0106;       ///< [rad] written as sensor_std_yaw
+	double odometry_delay = 0.2;       ///< [s] command latency d (odometry.h)
+	double odometry_scale_v = 0.95;    ///< gain on v (odometry.h)
+	double odometry_scale_w = 1;       ///< gain on w (odometry.h)
 	TOdometryNoiseModel odometry_noise;
 };
 
 struct TStepMeasurement
 {
 	int subject;
-	int32_t id;  ///< landmark ID written into the rawlog
+	int32_t id;                ///< landmark ID written into the rawlog
 	double t, range, bearing;  ///< own time [s], [m], [rad]
-	int line;  ///< line in the measurement file
+	int line;                  ///< line in the measurement file
 };
 
 struct TStep
 {
 	double t = 0;  ///< step time [s] (time of the group's first measurement)
 	std::vector<TStepMeasurement> meas;
-	TOdometryIncrement increment;  ///< from the previous step (zero for step 0)
+	TOdometryIncrement increment;                   ///< from the previous step (zero for step 0)
 	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();  ///< covariance of the increment
 };
 
@@ -88,7 +88,7 @@ struct TImportSummary
 	double t_first = 0, t_last = 0;  ///< first / last step time [s]
 	double duration() const { return t_last - t_first; }
 	double max_range_seen = 0;  ///< [m] among kept measurements
-	double max_gt_gap = 0;  ///< [s] largest Vicon gap (any robot) inside the window
+	double max_gt_gap = 0;      ///< [s] largest Vicon gap (any robot) inside the window
 	Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< ego Vicon pose at step 0
 	size_t landmarkMeasurements() const;
 	size_t robotMeasurements() const;

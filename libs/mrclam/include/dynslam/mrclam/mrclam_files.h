@@ -32,7 +32,7 @@ struct TMeasurementRow
 	double t;  ///< [s]
 	int barcode;
 	double range, bearing;  ///< [m], [rad]
-	int line;  ///< line number in the file (1-based), for messages
+	int line;               ///< line number in the file (1-based), for messages
 };
 struct TPoseRow
 {
@@ -44,10 +44,10 @@ struct TDataset
 {
 	std::string dir;
 	std::map<int, int> barcodeToSubject;
-	std::map<int, Eigen::Vector2d> landmarks;  ///< subject (6..20) -> Vicon position
+	std::map<int, Eigen::Vector2d> landmarks;          ///< subject (6..20) -> Vicon position
 	std::map<int, std::vector<TPoseRow>> groundTruth;  ///< robot subject -> Vicon poses
 	int ego = 0;
-	std::vector<TOdometryRow> odometry;  ///< of the ego robot
+	std::vector<TOdometryRow> odometry;         ///< of the ego robot
 	std::vector<TMeasurementRow> measurements;  ///< of the ego robot, file order
 };
 
@@ -59,9 +59,8 @@ struct TTable
 };
 /** Reads a table; `integerCols` lists columns that must hold integers; `timeCol` (>= 0) must
  * be non-decreasing. Throws std::runtime_error naming file and line. */
-TTable readTable(
-	const std::string& path, size_t ncols, const std::vector<size_t>& integerCols = {},
-	int timeCol = -1);
+TTable readTable(const std::string& path, size_t ncols, const std::vector<size_t>& integerCols = {},
+                 int timeCol = -1);
 
 std::map<int, int> readBarcodes(const std::string& path);  ///< barcode -> subject
 std::map<int, Eigen::Vector2d> readLandmarks(const std::string& path);

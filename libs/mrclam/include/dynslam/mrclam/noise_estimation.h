@@ -16,8 +16,8 @@
  * squares of (e_x^2 + e_y^2) / 2 (resp. e_phi^2) on (1, distance, angle); samples with a
  * normalized squared error above trim_chi2 are trimmed and the fit repeated (up to 30 rounds
  * until it converges, the later ones weighted by 1/var^2: iteratively reweighted least squares,
- * whose fixed point is the Gaussian maximum-likelihood fit of the inliers). The floors c0 >= (1e-4)^2
- * (m^2, rad^2; the Vicon resolution) keep a step without motion at a positive variance.
+ * whose fixed point is the Gaussian maximum-likelihood fit of the inliers). The floors c0 >=
+ * (1e-4)^2 (m^2, rad^2; the Vicon resolution) keep a step without motion at a positive variance.
  *
  * Odometry delay: the increments over the import's step intervals are recomputed for a grid
  * of delays d (odometry.h); the d with the smallest RMS heading error against the ground
@@ -56,8 +56,8 @@ struct TNoiseSamples
 		int ego;
 		double distance, angle;
 		Eigen::Vector3d odo;  ///< integrated odometry increment
-		Eigen::Vector3d gt;  ///< ground-truth increment
-		Eigen::Vector3d e;  ///< gt - odo, angle wrapped
+		Eigen::Vector3d gt;   ///< ground-truth increment
+		Eigen::Vector3d e;    ///< gt - odo, angle wrapped
 	};
 	std::vector<TMeas> meas;
 	std::vector<TOdo> odo;
@@ -71,7 +71,7 @@ struct TNoiseEstimate
 {
 	double outlier_factor = 5;
 	TResidualStats range_all, bearing_all, range_landmarks, bearing_landmarks, range_robots,
-		bearing_robots;
+	    bearing_robots;
 	struct TBin
 	{
 		double lo, hi;
@@ -82,8 +82,8 @@ struct TNoiseEstimate
 	size_t odo_steps = 0;
 	TOdometryNoiseModel odometry;  ///< fitted model
 	double odo_trimmed_fraction_xy = 0, odo_trimmed_fraction_phi = 0;
-	double odo_translation_gain = 0;  ///< sum |dp_gt| / sum |dp_odo|
-	double odo_rotation_gain = 0;  ///< sum |dtheta_gt| / sum |dtheta_odo|
+	double odo_translation_gain = 0;                     ///< sum |dp_gt| / sum |dp_odo|
+	double odo_rotation_gain = 0;                        ///< sum |dtheta_gt| / sum |dtheta_odo|
 	double odo_mean_nees_xy = 0, odo_mean_nees_phi = 0;  ///< E[e^2/var] with the fit (all)
 	double odo_frac_xy_above_95 = 0, odo_frac_phi_above_95 = 0;  ///< chi2 95% exceedance
 	TResidualStats odo_ex, odo_ey, odo_ephi;
@@ -95,17 +95,17 @@ struct TNoiseEstimate
 /** Score of one odometry delay over the step intervals of an import. */
 struct TDelayScore
 {
-	double delay = 0;  ///< [s]
-	size_t n = 0;  ///< step intervals
+	double delay = 0;                ///< [s]
+	size_t n = 0;                    ///< step intervals
 	double sse_phi = 0, sse_xy = 0;  ///< sums of squared heading [rad^2] / position [m^2] errors
 	double rmsPhi() const;
 	double rmsXY() const;
 };
 /** For each delay: the errors of the increments integrated with it (and the gains) vs the
  * ground truth. */
-std::vector<TDelayScore> scoreOdometryDelays(
-	const TDataset& data, const TImportResult& res, const std::vector<double>& delays,
-	double scaleV = 1, double scaleW = 1);
+std::vector<TDelayScore> scoreOdometryDelays(const TDataset& data, const TImportResult& res,
+                                             const std::vector<double>& delays, double scaleV = 1,
+                                             double scaleW = 1);
 /** Adds b's sums to a (same delays, pooling robots). */
 void poolDelayScores(std::vector<TDelayScore>& a, const std::vector<TDelayScore>& b);
 /** The entry with the smallest sse_phi. */
@@ -117,16 +117,16 @@ std::string delayScoresText(const std::vector<TDelayScore>& scores);
  * at the last step at or before t_0 + T for each T. */
 struct TDeadReckoningPoint
 {
-	double T = 0;  ///< [s] after the first step
-	double error = 0;  ///< position error [m]
-	double sigma = 0;  ///< sqrt(trace of the propagated position covariance) [m]
-	double path = 0;  ///< ground-truth path length up to there [m]
+	double T = 0;              ///< [s] after the first step
+	double error = 0;          ///< position error [m]
+	double sigma = 0;          ///< sqrt(trace of the propagated position covariance) [m]
+	double path = 0;           ///< ground-truth path length up to there [m]
 	double heading_error = 0;  ///< [rad]
 };
-std::vector<TDeadReckoningPoint> deadReckoning(
-	const TImportResult& res, const std::vector<double>& times);
+std::vector<TDeadReckoningPoint> deadReckoning(const TImportResult& res,
+                                               const std::vector<double>& times);
 std::string deadReckoningText(const std::vector<TDeadReckoningPoint>& pts);
 
-TNoiseEstimate estimateNoise(
-	const TNoiseSamples& s, double outlierFactor = 5, double trimChi2 = 25);
+TNoiseEstimate estimateNoise(const TNoiseSamples& s, double outlierFactor = 5,
+                             double trimChi2 = 25);
 }  // namespace dynslam::mrclam

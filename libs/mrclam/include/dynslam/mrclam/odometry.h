@@ -8,12 +8,11 @@
  * [t_i + d, t_{i+1} + d); before the first row the robot stands still; the last row holds
  * until the end. d models the actuation/logging latency (about 0.2 s on Dataset 6, estimated
  * from the ground truth, see noise_estimation.h). Optional gains scale the commands:
- * (v, w) -> (scale_v v, scale_w w) (a calibration, also estimated from the ground truth). Each piece
- * is a unicycle arc, integrated exactly:
- *   w != 0: dx = v/w sin(w dt), dy = v/w (1 - cos(w dt)), dtheta = w dt
- *   w == 0: dx = v dt,          dy = 0,                   dtheta = 0
- * and the pieces are composed in SE(2). The increment from t_a to t_b is expressed in the
- * robot frame at t_a (MRPT's CActionRobotMovement2D convention: x_b = x_a (+) increment). */
+ * (v, w) -> (scale_v v, scale_w w) (a calibration, also estimated from the ground truth). Each
+ * piece is a unicycle arc, integrated exactly: w != 0: dx = v/w sin(w dt), dy = v/w (1 - cos(w
+ * dt)), dtheta = w dt w == 0: dx = v dt,          dy = 0,                   dtheta = 0 and the
+ * pieces are composed in SE(2). The increment from t_a to t_b is expressed in the robot frame at
+ * t_a (MRPT's CActionRobotMovement2D convention: x_b = x_a (+) increment). */
 #include <dynslam/mrclam/mrclam_files.h>
 
 #include <Eigen/Core>
@@ -25,7 +24,7 @@ namespace dynslam::mrclam
 struct TOdometryIncrement
 {
 	Eigen::Vector3d delta = Eigen::Vector3d::Zero();  ///< (dx, dy, dtheta) in the frame at t_a
-	double distance = 0;  ///< integrated path length  sum |v| dt  [m]
+	double distance = 0;                              ///< integrated path length  sum |v| dt  [m]
 	double angle = 0;  ///< integrated absolute rotation  sum |w| dt  [rad]
 };
 
@@ -42,8 +41,8 @@ class COdometryIntegrator
 public:
 	/** rows must be sorted by time (readOdometry guarantees it); delay d [s] and gains as
 	 * above. */
-	explicit COdometryIntegrator(
-		std::vector<TOdometryRow> rows, double delay = 0, double scaleV = 1, double scaleW = 1);
+	explicit COdometryIntegrator(std::vector<TOdometryRow> rows, double delay = 0,
+	                             double scaleV = 1, double scaleW = 1);
 	/** Increment from ta to tb (ta <= tb, else std::invalid_argument). */
 	TOdometryIncrement integrate(double ta, double tb) const;
 
@@ -58,11 +57,11 @@ private:
  * integrated absolute rotation, plus a floor. Covariance = diag(var_xy, var_xy, var_phi). */
 struct TOdometryNoiseModel
 {
-	double std_xy_min = 1e-3;  ///< [m]
-	double var_xy_per_m = 1e-4;  ///< [m^2/m]
-	double var_xy_per_rad = 0;  ///< [m^2/rad]
-	double std_phi_min = 1e-3;  ///< [rad]
-	double var_phi_per_m = 1e-3;  ///< [rad^2/m]
+	double std_xy_min = 1e-3;       ///< [m]
+	double var_xy_per_m = 1e-4;     ///< [m^2/m]
+	double var_xy_per_rad = 0;      ///< [m^2/rad]
+	double std_phi_min = 1e-3;      ///< [rad]
+	double var_phi_per_m = 1e-3;    ///< [rad^2/m]
 	double var_phi_per_rad = 1e-3;  ///< [rad^2/rad]
 	Eigen::Matrix3d covariance(const TOdometryIncrement& inc) const;
 };

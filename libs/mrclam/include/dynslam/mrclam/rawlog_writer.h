@@ -30,7 +30,6 @@ void writeRawlog(const TImportResult& res, const TImportOptions& opts, const std
  * (dynslam::writeGroundTruth, files `<base>_gt_*`), `<base>_summary.txt` and
  * `<base>_import.ini` (effective options, the world origin, and the filter start
  * [DynamicKFSLAM] initial_pose / Sigma_0). */
-void writeImport(
-	const TImportResult& res, const TMrclamOptions& opts, const std::string& dir,
-	const std::string& base);
+void writeImport(const TImportResult& res, const TMrclamOptions& opts, const std::string& dir,
+                 const std::string& base);
 }  // namespace dynslam::mrclam
