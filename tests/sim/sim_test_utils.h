@@ -29,12 +29,13 @@ inline dynslam::sim::TScenarioOptions highwayOptions()
 inline std::pair<double, double> chi2Interval(double dof, double z = 3.2905)
 {
 	const double a = 2.0 / (9.0 * dof);
-	return {dof * std::pow(1 - a - z * std::sqrt(a), 3), dof * std::pow(1 - a + z * std::sqrt(a), 3)};
+	return {dof * std::pow(1 - a - z * std::sqrt(a), 3),
+	        dof * std::pow(1 - a + z * std::sqrt(a), 3)};
 }
 
 /** Replaces (or adds) `key = value` in [section] of an INI text. */
-inline std::string setIniKey(
-	const std::string& ini, const std::string& section, const std::string& key, const std::string& value)
+inline std::string setIniKey(const std::string& ini, const std::string& section,
+                             const std::string& key, const std::string& value)
 {
 	std::istringstream in(ini);
 	std::ostringstream out;
@@ -75,7 +76,8 @@ inline std::string setIniKey(
 }
 
 /** Removes `key` from [section]. */
-inline std::string removeIniKey(const std::string& ini, const std::string& section, const std::string& key)
+inline std::string removeIniKey(const std::string& ini, const std::string& section,
+                                const std::string& key)
 {
 	std::istringstream in(ini);
 	std::ostringstream out;
@@ -84,7 +86,8 @@ inline std::string removeIniKey(const std::string& ini, const std::string& secti
 	{
 		std::string t = line;
 		t.erase(0, t.find_first_not_of(" \t"));
-		if (!t.empty() && t[0] == '[') cur = t.substr(1, t.find(']') - 1);
+		if (!t.empty() && t[0] == '[')
+			cur = t.substr(1, t.find(']') - 1);
 		else if (cur == section && t.rfind(key, 0) == 0)
 		{
 			const std::string rest = t.substr(key.size());

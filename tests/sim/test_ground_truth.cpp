@@ -94,7 +94,8 @@ TEST(SimGroundTruth, HighwayLayout)
 	// Every agent is seen, and landmarks enter and leave view (some are never in view at k=0).
 	for (const auto& og : gt.objects) EXPECT_GE(og.first_step, 0);
 	int seenAtStart = 0;
-	for (const auto& [id, p] : gt.landmarks) seenAtStart += (p - gt.ego[0].head<2>()).norm() <= o.sensor_range;
+	for (const auto& [id, p] : gt.landmarks)
+		seenAtStart += (p - gt.ego[0].head<2>()).norm() <= o.sensor_range;
 	EXPECT_GT(seenAtStart, 0);
 	EXPECT_LT(seenAtStart, int(gt.landmarks.size()) / 4);
 }
@@ -105,7 +106,8 @@ TEST(SimGroundTruth, TrajectoriesAreSmooth)
 	const dynslam::TGroundTruth gt = buildGroundTruth(o);
 	// No teleporting: the displacement per step is bounded by the top speed, and the
 	// acceleration (second difference) by a few m/s^2.
-	auto check = [&](auto positionAt, const std::string& what, double maxAccel) {
+	auto check = [&](auto positionAt, const std::string& what, double maxAccel)
+	{
 		for (size_t k = 2; k < gt.numSteps(); ++k)
 		{
 			const Eigen::Vector2d a = positionAt(k - 2), b = positionAt(k - 1), c = positionAt(k);
@@ -116,20 +118,22 @@ TEST(SimGroundTruth, TrajectoriesAreSmooth)
 	check([&](size_t k) { return Eigen::Vector2d(gt.ego[k].head<2>()); }, "ego", 3.0);
 	for (const auto& og : gt.objects)
 		check([&](size_t k) { return Eigen::Vector2d(og.features[k].rowwise().mean()); },
-			"object " + std::to_string(og.object), 3.0);
+		      "object " + std::to_string(og.object), 3.0);
 	for (size_t k = 1; k < gt.numSteps(); ++k)
 		EXPECT_LT(std::abs(dynslam::models::wrapToPi(gt.ego[k][2] - gt.ego[k - 1][2])), 0.1);
 }
 
 TEST(SimGroundTruth, ObjectPosesReproduceFeaturesToMachinePrecision)
 {
-	for (const std::string file : {"highway.ini", "generated_small_scenario.ini", "generated_circle_scenario.ini"})
+	for (const std::string file :
+	     {"highway.ini", "generated_small_scenario.ini", "generated_circle_scenario.ini"})
 	{
 		SCOPED_TRACE(file);
 		const TScenarioOptions o = configOptions(file);
 		double err = 0;
 		expectObjectPosesExact(buildGroundTruth(o), &err);
-		std::cout << "[          ] " << file << ": max |g^o(xi_k, f_0) - f_k| / max|f_k| = " << err << "\n";
+		std::cout << "[          ] " << file << ": max |g^o(xi_k, f_0) - f_k| / max|f_k| = " << err
+		          << "\n";
 	}
 }
 
@@ -156,7 +160,8 @@ TEST(SimGroundTruth, DeterministicGivenTheWorldSeed)
 	ASSERT_EQ(a.landmarks.size(), b.landmarks.size());
 	for (const auto& [id, p] : a.landmarks) EXPECT_EQ(b.landmarks.at(id), p);
 	for (size_t i = 0; i < a.objects.size(); ++i)
-		for (size_t k = 0; k < a.numSteps(); ++k) EXPECT_EQ(a.objects[i].features[k], b.objects[i].features[k]);
+		for (size_t k = 0; k < a.numSteps(); ++k)
+			EXPECT_EQ(a.objects[i].features[k], b.objects[i].features[k]);
 	o.world_seed += 1;
 	const dynslam::TGroundTruth c = buildGroundTruth(o);
 	EXPECT_NE(c.landmarks.at(0), a.landmarks.at(0));
@@ -183,7 +188,9 @@ TEST(SimGroundTruth, GeneratedScenarios)
 	{
 		const auto& og = gt.objects[g.num_cars + g.num_pedestrians + i];
 		EXPECT_EQ(og.num_features, g.features_per_rotating);
-		EXPECT_LT((og.features.back().rowwise().mean() - og.features.front().rowwise().mean()).norm(), 1e-9);
+		EXPECT_LT(
+		    (og.features.back().rowwise().mean() - og.features.front().rowwise().mean()).norm(),
+		    1e-9);
 		if (og.first_step >= 0 && og.first_step + 4 < int(gt.numSteps()))
 		{
 			EXPECT_GT(std::abs(og.pose[og.first_step + 4][2]), 0.1 * 4 * o.dt * 0.99);
@@ -198,5 +205,5 @@ TEST(SimGroundTruth, GeneratedScenarios)
 	EXPECT_LT(gc.ego[kLap].head<2>().norm(), c.generated.ego_speed * c.dt);
 	for (const auto& x : gc.ego)
 		EXPECT_NEAR((x.head<2>() - Eigen::Vector2d(0, c.generated.track_radius)).norm(),
-			c.generated.track_radius, 1e-9);
+		            c.generated.track_radius, 1e-9);
 }

@@ -39,8 +39,9 @@ TGroundTruth randomGroundTruth()
 			for (int j = 0; j < o.num_features; ++j) F.col(j) << u(rng), u(rng);
 			o.features.push_back(F);
 			const bool seen = o.first_step >= 0 && int(k) >= o.first_step;
-			o.pose.push_back(seen ? Eigen::Vector3d(u(rng), u(rng), 0.1 * k)
-								  : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+			o.pose.push_back(
+			    seen ? Eigen::Vector3d(u(rng), u(rng), 0.1 * k)
+			         : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
 			o.visible.push_back(seen && k % 3 != 0);
 		}
 		gt.objects.push_back(o);
@@ -105,7 +106,8 @@ TEST(SimGroundTruthIO, MalformedFilesAreRejectedWithFileAndLine)
 	dynslam::writeGroundTruth(gt, dir, "b");
 	const std::string ego = dir + "/b_gt_ego.csv";
 	const std::string good = dynslam_test::readFile(ego);
-	auto expectError = [&](const std::string& content, const std::string& needle) {
+	auto expectError = [&](const std::string& content, const std::string& needle)
+	{
 		std::ofstream(ego, std::ios::binary) << content;
 		try
 		{

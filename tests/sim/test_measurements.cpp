@@ -24,7 +24,8 @@ Eigen::Vector3d increment(const TSimulatedRun& run, size_t k, Eigen::Matrix3d* c
 {
 	const auto a = run.actions[k]->getActionByClass<CActionRobotMovement2D>();
 	EXPECT_TRUE(a);
-	const auto g = std::dynamic_pointer_cast<mrpt::poses::CPosePDFGaussian>(a->poseChange.get_ptr());
+	const auto g =
+	    std::dynamic_pointer_cast<mrpt::poses::CPosePDFGaussian>(a->poseChange.get_ptr());
 	EXPECT_TRUE(g);
 	EXPECT_EQ(a->estimationMethod, CActionRobotMovement2D::emOdometry);
 	EXPECT_EQ(a->rawOdometryIncrementReading, g->mean);
@@ -89,18 +90,21 @@ TEST(SimMeasurements, NoiseFreeRunReproducesTheModel)
 		const auto obs = observation(run, k);
 		for (const auto& m : obs->sensedData)
 		{
-			const Eigen::Vector2d h = dynslam::models::cartesianObserve(gt.ego[k], truePosition(gt, k, m.landmarkID));
-			const Eigen::Vector2d z = dynslam::models::rangeBearingToCartesian(Eigen::Vector2d(m.range, m.yaw));
+			const Eigen::Vector2d h =
+			    dynslam::models::cartesianObserve(gt.ego[k], truePosition(gt, k, m.landmarkID));
+			const Eigen::Vector2d z =
+			    dynslam::models::rangeBearingToCartesian(Eigen::Vector2d(m.range, m.yaw));
 			// float storage: 0.5 ulp relative on range and yaw
 			maxRel = std::max(maxRel, (z - h).norm() / h.norm());
-			EXPECT_LT((z - h).norm(), 3e-7 * h.norm() + 1e-12) << "k " << k << " id " << m.landmarkID;
+			EXPECT_LT((z - h).norm(), 3e-7 * h.norm() + 1e-12)
+			    << "k " << k << " id " << m.landmarkID;
 			++count;
 		}
 	}
 	EXPECT_LT(maxOdo, 1e-13);
 	EXPECT_GT(count, 1000u);
 	std::cout << "[          ] noise-free: " << count << " readings, max |z - h| / |h| = " << maxRel
-			  << ", max odometry error " << maxOdo << "\n";
+	          << ", max odometry error " << maxOdo << "\n";
 }
 
 TEST(SimMeasurements, ObservationContents)
@@ -127,7 +131,8 @@ TEST(SimMeasurements, ObservationContents)
 			if ((p - gt.ego[k].head<2>()).norm() <= o.sensor_range) expected.insert(id);
 		for (const auto& og : gt.objects)
 			if (og.visible[k])
-				for (int j = 0; j < og.num_features; ++j) expected.insert(dynslam::ids::objectFeatureId(og.object, j));
+				for (int j = 0; j < og.num_features; ++j)
+					expected.insert(dynslam::ids::objectFeatureId(og.object, j));
 		for (const auto& m : obs->sensedData)
 		{
 			EXPECT_TRUE(got.insert(m.landmarkID).second) << "duplicate ID " << m.landmarkID;
@@ -160,7 +165,8 @@ TEST(SimMeasurements, NoiseCovariancesMatchChiSquare)
 			for (size_t k = 1; k < gt.numSteps(); ++k)
 			{
 				Eigen::Matrix3d cov;
-				Eigen::Vector3d e = increment(run, k, &cov) - dynslam::models::poseDifference(gt.ego[k], gt.ego[k - 1]);
+				Eigen::Vector3d e = increment(run, k, &cov) -
+				                    dynslam::models::poseDifference(gt.ego[k], gt.ego[k - 1]);
 				e[2] = dynslam::models::wrapToPi(e[2]);
 				EXPECT_EQ(cov, o.Sigma_w);
 				odo.add(e.dot(Wi * e));
@@ -170,23 +176,28 @@ TEST(SimMeasurements, NoiseCovariancesMatchChiSquare)
 				for (const auto& m : observation(run, k)->sensedData)
 				{
 					const Eigen::Vector2d e =
-						dynslam::models::rangeBearingToCartesian(Eigen::Vector2d(m.range, m.yaw)) -
-						dynslam::models::cartesianObserve(gt.ego[k], truePosition(gt, k, m.landmarkID));
+					    dynslam::models::rangeBearingToCartesian(Eigen::Vector2d(m.range, m.yaw)) -
+					    dynslam::models::cartesianObserve(gt.ego[k],
+					                                      truePosition(gt, k, m.landmarkID));
 					meas.add(e.dot(Vi * e));
 					for (int c = 0; c < 2; ++c) measComp[c].add(e[c] * e[c] / o.Sigma_v(c, c));
 				}
 		}
 		double lo, hi;
-		EXPECT_TRUE(odo.inside(&lo, &hi)) << "odometry NEES sum " << odo.sum << " not in [" << lo << ", " << hi << "]";
+		EXPECT_TRUE(odo.inside(&lo, &hi))
+		    << "odometry NEES sum " << odo.sum << " not in [" << lo << ", " << hi << "]";
 		std::cout << "[          ] " << level << " odometry: " << odo.n << " samples, mean NEES "
-				  << odo.sum / odo.n << " (dof 3; 99.9% bounds of the mean [" << lo / odo.n << ", "
-				  << hi / odo.n << "])\n";
-		EXPECT_TRUE(meas.inside(&lo, &hi)) << "measurement NEES sum " << meas.sum << " not in [" << lo << ", " << hi << "]";
-		std::cout << "[          ] " << level << " Cartesian measurement: " << meas.n << " samples, mean NEES "
-				  << meas.sum / meas.n << " (dof 2; 99.9% bounds of the mean [" << lo / meas.n << ", "
-				  << hi / meas.n << "])\n";
+		          << odo.sum / odo.n << " (dof 3; 99.9% bounds of the mean [" << lo / odo.n << ", "
+		          << hi / odo.n << "])\n";
+		EXPECT_TRUE(meas.inside(&lo, &hi))
+		    << "measurement NEES sum " << meas.sum << " not in [" << lo << ", " << hi << "]";
+		std::cout << "[          ] " << level << " Cartesian measurement: " << meas.n
+		          << " samples, mean NEES " << meas.sum / meas.n
+		          << " (dof 2; 99.9% bounds of the mean [" << lo / meas.n << ", " << hi / meas.n
+		          << "])\n";
 		for (int c = 0; c < 3; ++c) EXPECT_TRUE(odoComp[c].inside()) << "odometry component " << c;
-		for (int c = 0; c < 2; ++c) EXPECT_TRUE(measComp[c].inside()) << "measurement component " << c;
+		for (int c = 0; c < 2; ++c)
+			EXPECT_TRUE(measComp[c].inside()) << "measurement component " << c;
 	}
 }
 
@@ -205,15 +216,17 @@ TEST(SimMeasurements, RangeBearingNoiseModel)
 		for (size_t k = 0; k < gt.numSteps(); ++k)
 			for (const auto& m : observation(run, k)->sensedData)
 			{
-				const Eigen::Vector2d h = dynslam::models::rangeBearingObserve(gt.ego[k], truePosition(gt, k, m.landmarkID));
+				const Eigen::Vector2d h = dynslam::models::rangeBearingObserve(
+				    gt.ego[k], truePosition(gt, k, m.landmarkID));
 				rng.add(std::pow((m.range - h[0]) / o.std_range, 2));
 				yaw.add(std::pow(dynslam::models::wrapToPi(m.yaw - h[1]) / o.std_yaw, 2));
 			}
 	}
 	EXPECT_TRUE(rng.inside()) << rng.sum / rng.n;
 	EXPECT_TRUE(yaw.inside()) << yaw.sum / yaw.n;
-	std::cout << "[          ] range-bearing model: " << rng.n << " samples, mean normalized squared range error "
-			  << rng.sum / rng.n << ", yaw " << yaw.sum / yaw.n << "\n";
+	std::cout << "[          ] range-bearing model: " << rng.n
+	          << " samples, mean normalized squared range error " << rng.sum / rng.n << ", yaw "
+	          << yaw.sum / yaw.n << "\n";
 }
 
 TEST(SimMeasurements, SameSeedsSameData)

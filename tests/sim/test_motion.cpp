@@ -37,9 +37,11 @@ TEST(SimMotion, IntegralAndDerivativeMatchNumerics)
 	const CSmoothProfile p(3, {{1, 2.5, -1}, {6, 1, 4}}, 0.7, 0.9, 0.3);
 	for (double t : {0.0, 0.5, 1.7, 3.4, 5.0, 6.3, 7.5, 12.0})
 	{
-		EXPECT_NEAR(p.integral(t), simpson(p, t), 1e-8 * std::max(1.0, std::abs(p.integral(t)))) << "t = " << t;
+		EXPECT_NEAR(p.integral(t), simpson(p, t), 1e-8 * std::max(1.0, std::abs(p.integral(t))))
+		    << "t = " << t;
 		const double h = 1e-6;
-		EXPECT_NEAR(p.derivative(t), (p.value(t + h) - p.value(t - h)) / (2 * h), 1e-6) << "t = " << t;
+		EXPECT_NEAR(p.derivative(t), (p.value(t + h) - p.value(t - h)) / (2 * h), 1e-6)
+		    << "t = " << t;
 	}
 }
 
@@ -65,10 +67,11 @@ TEST(SimMotion, PoseHeadingFollowsVelocityOnBothTracks)
 		for (double t : {0.0, 1.5, 2.9, 4.0, 7.0})
 		{
 			const double h = 1e-6;
-			const Eigen::Vector3d a = m.pose(track, t - h), b = m.pose(track, t + h), x = m.pose(track, t);
+			const Eigen::Vector3d a = m.pose(track, t - h), b = m.pose(track, t + h),
+			                      x = m.pose(track, t);
 			const Eigen::Vector2d v = (b.head<2>() - a.head<2>()) / (2 * h);
 			EXPECT_NEAR(dynslam::models::wrapToPi(x[2] - std::atan2(v[1], v[0])), 0, 1e-7)
-				<< "radius " << radius << " t " << t;
+			    << "radius " << radius << " t " << t;
 		}
 	}
 	// The track passes through the origin with heading 0.

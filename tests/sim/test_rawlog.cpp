@@ -64,9 +64,15 @@ int runCommand(const std::string& cmd, std::string& output)
 	return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-const char* kGtSuffixes[] = {"_gt_ego.csv", "_gt_ego.tum", "_gt_landmarks.csv", "_gt_objects.csv",
-	"_gt_object_features.csv", "_gt_landmarks.txt", "_gt_robot_path.txt",
-	"_gt_data_association.txt", "_scenario.ini"};
+const char* kGtSuffixes[] = {"_gt_ego.csv",
+                             "_gt_ego.tum",
+                             "_gt_landmarks.csv",
+                             "_gt_objects.csv",
+                             "_gt_object_features.csv",
+                             "_gt_landmarks.txt",
+                             "_gt_robot_path.txt",
+                             "_gt_data_association.txt",
+                             "_scenario.ini"};
 
 /** kf-slam DA performance totals: TP FP TN FN unknown. */
 std::array<long, 5> daPerformance(const std::string& file)
@@ -89,7 +95,8 @@ std::array<long, 5> daPerformance(const std::string& file)
 /** Writes an INI for kf-slam with absolute paths for this scenario, output in the build dir. */
 std::string kfSlamIni(const std::string& dir, const std::string& base, const std::string& outDir)
 {
-	mrpt::config::CConfigFileMemory c(dynslam_test::readFile(std::string(DYNSLAM_CONFIG_DIR) + "/kf-slam_highway.ini"));
+	mrpt::config::CConfigFileMemory c(
+	    dynslam_test::readFile(std::string(DYNSLAM_CONFIG_DIR) + "/kf-slam_highway.ini"));
 	const std::string S = "MappingApplication";
 	c.write(S, "rawlog_file", dir + "/" + base + ".rawlog");
 	c.write(S, "ground_truth_file", dir + "/" + base + "_gt_landmarks.txt");
@@ -117,8 +124,8 @@ TEST(SimRawlog, MrptReadsTheRawlog)
 	ASSERT_EQ(r.size(), 2 * gt.numSteps());  // 242 for the highway
 	for (size_t i = 0; i < r.size(); ++i)
 		EXPECT_EQ(r.getType(i), i % 2 == 0 ? mrpt::obs::CRawlog::etActionCollection
-										   : mrpt::obs::CRawlog::etSensoryFrame)
-			<< "entry " << i;
+		                                   : mrpt::obs::CRawlog::etSensoryFrame)
+		    << "entry " << i;
 	EXPECT_EQ(r.getCommentText(), ini.str());
 	// The comment is the effective configuration: it loads back.
 	EXPECT_EQ(loadScenarioFromText(r.getCommentText()).Sigma_w, o.Sigma_w);
@@ -146,10 +153,14 @@ TEST(SimRawlog, SameSeedsGiveBitIdenticalFiles)
 	runApp({"-c", cfg, "-o", c, "--noise-seed", "2"});
 	EXPECT_EQ(appA.numRawlogEntries, 242u);
 	for (const char* s : kGtSuffixes)
-		EXPECT_EQ(dynslam_test::readFile(a + "/highway" + s), dynslam_test::readFile(b + "/highway" + s)) << s;
-	EXPECT_EQ(dynslam_test::readFile(a + "/highway.rawlog"), dynslam_test::readFile(b + "/highway.rawlog"));
+		EXPECT_EQ(dynslam_test::readFile(a + "/highway" + s),
+		          dynslam_test::readFile(b + "/highway" + s))
+		    << s;
+	EXPECT_EQ(dynslam_test::readFile(a + "/highway.rawlog"),
+	          dynslam_test::readFile(b + "/highway.rawlog"));
 	EXPECT_NE(gunzip(a + "/highway.rawlog"), gunzip(c + "/highway.rawlog"));
-	EXPECT_EQ(dynslam_test::readFile(a + "/highway_gt_ego.csv"), dynslam_test::readFile(c + "/highway_gt_ego.csv"));
+	EXPECT_EQ(dynslam_test::readFile(a + "/highway_gt_ego.csv"),
+	          dynslam_test::readFile(c + "/highway_gt_ego.csv"));
 }
 
 TEST(SimRawlog, DatasetRegeneratesIdentically)
@@ -160,8 +171,9 @@ TEST(SimRawlog, DatasetRegeneratesIdentically)
 	// The documented command: dynslam-simulate -c config/highway.ini -o datasets
 	runApp({"-c", dynslam_test::highwayIni(), "-o", out});
 	for (const char* s : kGtSuffixes)
-		EXPECT_EQ(dynslam_test::readFile(out + "/highway" + s), dynslam_test::readFile(ds + "/highway" + s))
-			<< "datasets/highway" << s << " differs from a fresh regeneration";
+		EXPECT_EQ(dynslam_test::readFile(out + "/highway" + s),
+		          dynslam_test::readFile(ds + "/highway" + s))
+		    << "datasets/highway" << s << " differs from a fresh regeneration";
 	EXPECT_EQ(gunzip(out + "/highway.rawlog"), gunzip(ds + "/highway.rawlog"));
 	// The shipped ground truth reads back.
 	const dynslam::TGroundTruth gt = dynslam::readGroundTruth(ds, "highway");
@@ -174,12 +186,15 @@ TEST(SimRawlog, RawlogEditListsAllEntries)
 	const std::string exe = "/usr/bin/rawlog-edit";
 	if (!fs::exists(exe)) GTEST_SKIP() << exe << " not installed (Debian package mrpt-apps)";
 	std::string out;
-	const int rc = runCommand(exe + " -i " + std::string(DYNSLAM_DATASETS_DIR) + "/highway.rawlog --info", out);
+	const int rc = runCommand(
+	    exe + " -i " + std::string(DYNSLAM_DATASETS_DIR) + "/highway.rawlog --info", out);
 	ASSERT_EQ(rc, 0) << out;
 	std::smatch m;
-	ASSERT_TRUE(std::regex_search(out, m, std::regex("Overall number of objects\\s*:\\s*(\\d+)"))) << out;
+	ASSERT_TRUE(std::regex_search(out, m, std::regex("Overall number of objects\\s*:\\s*(\\d+)")))
+	    << out;
 	EXPECT_EQ(std::stoi(m[1]), 243);  // 121 ACT + 121 SF + the comment (scenario INI)
-	EXPECT_TRUE(std::regex_search(out, std::regex("Actions/SensoryFrame format\\s*:\\s*Yes"))) << out;
+	EXPECT_TRUE(std::regex_search(out, std::regex("Actions/SensoryFrame format\\s*:\\s*Yes")))
+	    << out;
 	ASSERT_TRUE(std::regex_search(out, m, std::regex("RB\\s*/\\s*(\\d+)\\s*/"))) << out;
 	EXPECT_EQ(std::stoi(m[1]), 121);
 }
@@ -197,7 +212,7 @@ TEST(SimRawlog, KfSlamRunsOnTheHighwayAndIsAccurateWithoutMovers)
 	EXPECT_NE(log.find("KF-SLAM finished"), std::string::npos);
 	const auto daH = daPerformance(outH + "/data_association_performance.log");
 	EXPECT_GT(daH[0], 1000);  // true positives
-	EXPECT_EQ(daH[4], 0);  // every reading had a DA ground-truth row (timestamps match)
+	EXPECT_EQ(daH[4], 0);     // every reading had a DA ground-truth row (timestamps match)
 
 	// 2) The same highway without the agents: the static filter is accurate.
 	const std::string dir = tmpDir("kfslam_static");
@@ -216,21 +231,24 @@ TEST(SimRawlog, KfSlamRunsOnTheHighwayAndIsAccurateWithoutMovers)
 	const dynslam::TGroundTruth gt = dynslam::readGroundTruth(dir, "highway_static");
 	EXPECT_LT(std::hypot(pose(0, 0) - gt.ego.back()[0], pose(1, 0) - gt.ego.back()[1]), 1.0);
 	std::cout << "[          ] kf-slam highway: DA TP " << daH[0] << " TN " << daH[2]
-			  << "; static-only: mean landmark error " << m[1] << " m, final pose error "
-			  << std::hypot(pose(0, 0) - gt.ego.back()[0], pose(1, 0) - gt.ego.back()[1]) << " m\n";
+	          << "; static-only: mean landmark error " << m[1] << " m, final pose error "
+	          << std::hypot(pose(0, 0) - gt.ego.back()[0], pose(1, 0) - gt.ego.back()[1]) << " m\n";
 }
 
 TEST(SimRawlog, AppCommandLineAndFigure)
 {
 	const std::string dir = tmpDir("app_cli");
 	EXPECT_THROW(runApp({"-o", dir}), std::invalid_argument);  // missing --config
-	EXPECT_THROW(runApp({"-c", dynslam_test::highwayIni(), "--noise", "w9v9"}), std::invalid_argument);
+	EXPECT_THROW(runApp({"-c", dynslam_test::highwayIni(), "--noise", "w9v9"}),
+	             std::invalid_argument);
 	EXPECT_THROW(runApp({"-c", dir + "/missing.ini"}), std::runtime_error);
-	EXPECT_THROW(runApp({"-c", dynslam_test::highwayIni(), "--figure-only"}), std::invalid_argument);
+	EXPECT_THROW(runApp({"-c", dynslam_test::highwayIni(), "--figure-only"}),
+	             std::invalid_argument);
 	const CSimulateApp help = runApp({"--help"});
 	EXPECT_TRUE(help.writtenFiles.empty());
-	const CSimulateApp app = runApp({"-c", dynslam_test::highwayIni(), "-o", dir, "--name", "h3",
-		"--noise", "w3v1", "--world-seed", "0", "--noise-seed", "0", "--figure", dir + "/fig.png"});
+	const CSimulateApp app =
+	    runApp({"-c", dynslam_test::highwayIni(), "-o", dir, "--name", "h3", "--noise", "w3v1",
+	            "--world-seed", "0", "--noise-seed", "0", "--figure", dir + "/fig.png"});
 	EXPECT_EQ(app.options.noise_level, "w3v1");
 	EXPECT_EQ(app.options.Sigma_0, app.options.Sigma_w);
 	mrpt::img::CImage img;

@@ -24,7 +24,8 @@ void expectRejected(const std::string& ini, const std::vector<std::string>& need
 	catch (const std::invalid_argument& e)
 	{
 		const std::string msg = e.what();
-		for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "message: " << msg;
+		for (const auto& n : needles)
+			EXPECT_NE(msg.find(n), std::string::npos) << "message: " << msg;
 	}
 }
 }  // namespace
@@ -78,8 +79,8 @@ TEST(SimOptions, NoiseGridOfThePaper)
 
 TEST(SimOptions, DumpReloadsToTheSameOptions)
 {
-	for (const std::string file : {"highway.ini", "highway_static_scenario.ini", "generated_small_scenario.ini",
-			 "generated_circle_scenario.ini"})
+	for (const std::string file : {"highway.ini", "highway_static_scenario.ini",
+	                               "generated_small_scenario.ini", "generated_circle_scenario.ini"})
 	{
 		const TScenarioOptions o = loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/" + file);
 		std::ostringstream a, b;
@@ -102,28 +103,34 @@ TEST(SimOptions, BadIniIsRejectedNamingTheKey)
 	expectRejected(removeIniKey(ini, "Agent2", "speed"), {"[Agent2] speed", "missing"});
 	expectRejected(removeIniKey(ini, "Noise", "level"), {"[Noise] level"});
 	// negative counts
-	expectRejected(setIniKey(ini, "Highway", "num_landmarks", "-5"), {"[Highway] num_landmarks", "negative"});
-	expectRejected(setIniKey(ini, "Highway", "num_agents", "-1"), {"[Highway] num_agents", "negative"});
+	expectRejected(setIniKey(ini, "Highway", "num_landmarks", "-5"),
+	               {"[Highway] num_landmarks", "negative"});
+	expectRejected(setIniKey(ini, "Highway", "num_agents", "-1"),
+	               {"[Highway] num_agents", "negative"});
 	// lane changes outside the road
 	expectRejected(setIniKey(ini, "Agent1", "lane_changes", "[14 5 3]"),
-		{"[Agent1] lane_changes", "lane 3", "outside the road"});
+	               {"[Agent1] lane_changes", "lane 3", "outside the road"});
 	expectRejected(setIniKey(ini, "Agent2", "lane_changes", "[26 4 1; 40 4 -1]"),
-		{"[Agent2] lane_changes", "lane -1", "outside the road"});
+	               {"[Agent2] lane_changes", "lane -1", "outside the road"});
 	expectRejected(setIniKey(ini, "Agent1", "lane0", "5"), {"[Agent1] lane0", "outside the road"});
-	expectRejected(setIniKey(ini, "Ego", "lane_changes", "[46 5 7]"), {"[Ego] lane_changes", "lane 7"});
+	expectRejected(setIniKey(ini, "Ego", "lane_changes", "[46 5 7]"),
+	               {"[Ego] lane_changes", "lane 7"});
 	// unknown noise level
 	expectRejected(setIniKey(ini, "Noise", "level", "w4v2"), {"[Noise] level", "w4v2"});
 	// other invalid values
-	expectRejected(setIniKey(ini, "Agent1", "lane_changes", "[14 5]"), {"[Agent1] lane_changes", "triples"});
+	expectRejected(setIniKey(ini, "Agent1", "lane_changes", "[14 5]"),
+	               {"[Agent1] lane_changes", "triples"});
 	expectRejected(setIniKey(ini, "Agent1", "speed_changes", "[8 6 18; 10 6 15]"),
-		{"[Agent1] speed_changes", "overlaps"});
+	               {"[Agent1] speed_changes", "overlaps"});
 	expectRejected(setIniKey(ini, "Scenario", "dt", "0"), {"[Scenario] dt", "> 0"});
 	expectRejected(setIniKey(ini, "Scenario", "world_seed", "-3"), {"[Scenario] world_seed"});
 	expectRejected(setIniKey(ini, "Sensor", "range", "abc"), {"[Sensor] range", "not a number"});
 	expectRejected(setIniKey(ini, "Agent3", "type", "bicycle"), {"[Agent3] type", "bicycle"});
 	expectRejected(setIniKey(ini, "Agent3", "num_features", "3"), {"[Agent3] num_features"});
-	expectRejected(setIniKey(ini, "Highway", "num_lanse", "3"), {"[Highway] num_lanse", "unknown key"});
-	expectRejected(setIniKey(ini, "Noise", "sigma_w", "[1e-4 1e-4 1e-6]"), {"[Noise] sigma_w", "conflicts"});
+	expectRejected(setIniKey(ini, "Highway", "num_lanse", "3"),
+	               {"[Highway] num_lanse", "unknown key"});
+	expectRejected(setIniKey(ini, "Noise", "sigma_w", "[1e-4 1e-4 1e-6]"),
+	               {"[Noise] sigma_w", "conflicts"});
 	expectRejected(setIniKey(ini, "Highway", "num_agents", "4"), {"[Agent4] type", "missing"});
 }
 
@@ -138,9 +145,11 @@ TEST(SimOptions, CustomNoiseAndRangeBearingModel)
 	EXPECT_EQ(o.Sigma_0, o.Sigma_w);
 	EXPECT_EQ(o.Sigma_v(1, 1), 4e-4);
 	expectRejected(removeIniKey(ini, "Noise", "sigma_v"), {"[Noise] sigma_v", "missing"});
-	expectRejected(setIniKey(ini, "Noise", "sigma_v", "[1e-4 -1e-4]"), {"[Noise] sigma_v", "positive"});
+	expectRejected(setIniKey(ini, "Noise", "sigma_v", "[1e-4 -1e-4]"),
+	               {"[Noise] sigma_v", "positive"});
 
-	std::string rb = setIniKey(readFile(dynslam_test::highwayIni()), "Sensor", "noise_model", "range_bearing");
+	std::string rb =
+	    setIniKey(readFile(dynslam_test::highwayIni()), "Sensor", "noise_model", "range_bearing");
 	expectRejected(rb, {"[Noise] std_range", "missing"});
 	rb = setIniKey(rb, "Noise", "std_range", "0.05");
 	rb = setIniKey(rb, "Noise", "std_yaw", "0.002");
@@ -152,12 +161,18 @@ TEST(SimOptions, CustomNoiseAndRangeBearingModel)
 
 TEST(SimOptions, GeneratedScenarioRejectsBadCounts)
 {
-	const std::string ini = readFile(std::string(DYNSLAM_CONFIG_DIR) + "/generated_small_scenario.ini");
+	const std::string ini =
+	    readFile(std::string(DYNSLAM_CONFIG_DIR) + "/generated_small_scenario.ini");
 	ASSERT_NO_THROW(loadScenarioFromText(ini));
-	expectRejected(setIniKey(ini, "Generated", "num_cars", "-2"), {"[Generated] num_cars", "negative"});
-	expectRejected(setIniKey(ini, "Generated", "num_landmarks", "100001"), {"[Generated] num_landmarks"});
-	expectRejected(setIniKey(ini, "Generated", "features_per_car", "0"), {"[Generated] features_per_car"});
-	expectRejected(setIniKey(ini, "Generated", "features_per_car", "1001"), {"[Generated] features_per_car"});
-	expectRejected(removeIniKey(ini, "Generated", "num_pedestrians"), {"[Generated] num_pedestrians", "missing"});
+	expectRejected(setIniKey(ini, "Generated", "num_cars", "-2"),
+	               {"[Generated] num_cars", "negative"});
+	expectRejected(setIniKey(ini, "Generated", "num_landmarks", "100001"),
+	               {"[Generated] num_landmarks"});
+	expectRejected(setIniKey(ini, "Generated", "features_per_car", "0"),
+	               {"[Generated] features_per_car"});
+	expectRejected(setIniKey(ini, "Generated", "features_per_car", "1001"),
+	               {"[Generated] features_per_car"});
+	expectRejected(removeIniKey(ini, "Generated", "num_pedestrians"),
+	               {"[Generated] num_pedestrians", "missing"});
 	expectRejected(setIniKey(ini, "Generated", "track_radius", "10"), {"[Generated] track_radius"});
 }

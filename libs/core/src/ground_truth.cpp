@@ -56,7 +56,7 @@ class CCsvReader
 {
 public:
 	CCsvReader(const std::string& path, const std::string& header)
-		: m_path(path), m_in(path, std::ios::binary)
+	    : m_path(path), m_in(path, std::ios::binary)
 	{
 		if (!m_in) throw std::runtime_error("readGroundTruth: cannot open " + path);
 		std::string h;
@@ -106,8 +106,8 @@ public:
 	}
 	[[noreturn]] void fail(const std::string& what) const
 	{
-		throw std::runtime_error(
-			"readGroundTruth: " + m_path + ":" + std::to_string(m_line) + ": " + what);
+		throw std::runtime_error("readGroundTruth: " + m_path + ":" + std::to_string(m_line) +
+		                         ": " + what);
 	}
 
 private:
@@ -122,17 +122,18 @@ void TGroundTruth::checkConsistent() const
 {
 	const size_t n = ego.size();
 	if (t.size() != n)
-		throw std::runtime_error(
-			"TGroundTruth: " + std::to_string(t.size()) + " times for " + std::to_string(n) +
-			" ego poses");
+		throw std::runtime_error("TGroundTruth: " + std::to_string(t.size()) + " times for " +
+		                         std::to_string(n) + " ego poses");
 	for (size_t i = 0; i < objects.size(); ++i)
 	{
 		const TObjectGroundTruth& o = objects[i];
 		const std::string name = "TGroundTruth: object " + std::to_string(o.object);
-		if (o.object != int32_t(i)) throw std::runtime_error(name + " stored at index " + std::to_string(i));
+		if (o.object != int32_t(i))
+			throw std::runtime_error(name + " stored at index " + std::to_string(i));
 		if (o.num_features < 1) throw std::runtime_error(name + " has no features");
 		if (o.features.size() != n || o.pose.size() != n || o.visible.size() != n)
-			throw std::runtime_error(name + ": per-step vectors differ in length from the ego path");
+			throw std::runtime_error(name +
+			                         ": per-step vectors differ in length from the ego path");
 		for (const auto& f : o.features)
 			if (f.cols() != o.num_features)
 				throw std::runtime_error(name + ": feature matrix with wrong column count");
@@ -141,7 +142,8 @@ void TGroundTruth::checkConsistent() const
 	}
 	for (const auto& [id, p] : landmarks)
 		if (!ids::isStatic(id))
-			throw std::runtime_error("TGroundTruth: landmark ID " + std::to_string(id) + " is not static");
+			throw std::runtime_error("TGroundTruth: landmark ID " + std::to_string(id) +
+			                         " is not static");
 }
 
 void writeGroundTruth(const TGroundTruth& gt, const std::string& dir, const std::string& base)
@@ -226,23 +228,27 @@ TGroundTruth readGroundTruth(const std::string& dir, const std::string& base)
 		while (in.next(r))
 		{
 			const long id = in.integer(r, 0, "id");
-			if (!ids::isStatic(int32_t(id))) in.fail("id " + std::to_string(id) + " is not a static landmark ID");
+			if (!ids::isStatic(int32_t(id)))
+				in.fail("id " + std::to_string(id) + " is not a static landmark ID");
 			if (!gt.landmarks.emplace(int32_t(id), Eigen::Vector2d(r[1], r[2])).second)
 				in.fail("duplicate landmark id " + std::to_string(id));
 		}
 	}
 	{
-		CCsvReader in(
-			fileName(dir, base, "_gt_objects.csv"), "step,t,object,visible,first_step,dx,dy,dtheta");
+		CCsvReader in(fileName(dir, base, "_gt_objects.csv"),
+		              "step,t,object,visible,first_step,dx,dy,dtheta");
 		std::vector<std::vector<uint8_t>> seen;
 		while (in.next(r))
 		{
 			const long k = in.integer(r, 0, "step"), obj = in.integer(r, 2, "object");
-			if (k < 0 || size_t(k) >= n) in.fail("step " + std::to_string(k) + " not in the ego path");
-			if (obj < 0 || obj > ids::kMaxObject) in.fail("bad object index " + std::to_string(obj));
+			if (k < 0 || size_t(k) >= n)
+				in.fail("step " + std::to_string(k) + " not in the ego path");
+			if (obj < 0 || obj > ids::kMaxObject)
+				in.fail("bad object index " + std::to_string(obj));
 			if (size_t(obj) >= gt.objects.size())
 			{
-				if (size_t(obj) != gt.objects.size()) in.fail("object " + std::to_string(obj) + " out of order");
+				if (size_t(obj) != gt.objects.size())
+					in.fail("object " + std::to_string(obj) + " out of order");
 				TObjectGroundTruth o;
 				o.object = int32_t(obj);
 				o.first_step = int(in.integer(r, 4, "first_step"));
@@ -264,21 +270,24 @@ TGroundTruth readGroundTruth(const std::string& dir, const std::string& base)
 		for (size_t i = 0; i < seen.size(); ++i)
 			for (size_t k = 0; k < n; ++k)
 				if (!seen[i][k])
-					in.fail("object " + std::to_string(i) + " has no row for step " + std::to_string(k));
+					in.fail("object " + std::to_string(i) + " has no row for step " +
+					        std::to_string(k));
 	}
 	{
-		CCsvReader in(
-			fileName(dir, base, "_gt_object_features.csv"), "step,t,object,feature,id,x,y,visible");
+		CCsvReader in(fileName(dir, base, "_gt_object_features.csv"),
+		              "step,t,object,feature,id,x,y,visible");
 		std::vector<std::vector<std::vector<Eigen::Vector2d>>> feats(gt.objects.size());
 		for (auto& f : feats) f.resize(n);
 		while (in.next(r))
 		{
 			const long k = in.integer(r, 0, "step"), obj = in.integer(r, 2, "object");
 			const long j = in.integer(r, 3, "feature"), id = in.integer(r, 4, "id");
-			if (k < 0 || size_t(k) >= n) in.fail("step " + std::to_string(k) + " not in the ego path");
+			if (k < 0 || size_t(k) >= n)
+				in.fail("step " + std::to_string(k) + " not in the ego path");
 			if (obj < 0 || size_t(obj) >= gt.objects.size())
 				in.fail("object " + std::to_string(obj) + " missing from the objects file");
-			if (j < 0 || j >= ids::kFeaturesPerObject) in.fail("bad feature index " + std::to_string(j));
+			if (j < 0 || j >= ids::kFeaturesPerObject)
+				in.fail("bad feature index " + std::to_string(j));
 			if (id != ids::objectFeatureId(int32_t(obj), int32_t(j)))
 				in.fail("id " + std::to_string(id) + " does not match object/feature");
 			auto& v = feats[obj][k];
@@ -293,7 +302,7 @@ TGroundTruth readGroundTruth(const std::string& dir, const std::string& base)
 			{
 				if (int(feats[i][k].size()) != o.num_features || o.num_features == 0)
 					in.fail("object " + std::to_string(i) + " step " + std::to_string(k) +
-							" has an inconsistent number of features");
+					        " has an inconsistent number of features");
 				o.features[k].resize(2, o.num_features);
 				for (int j = 0; j < o.num_features; ++j) o.features[k].col(j) = feats[i][k][j];
 			}

@@ -16,27 +16,30 @@ CSimulateApp::CSimulateApp() : mrpt::system::COutputLogger("dynslam-simulate") {
 bool CSimulateApp::initialize(int argc, const char** argv)
 {
 	TCLAP::CmdLine cmd(
-		"dynslam-simulate: writes a scenario (the highway of the paper or a generated one) as an "
-		"MRPT rawlog with ground truth. See doc/simulator.md.",
-		' ', "0.1");
-	TCLAP::ValueArg<std::string> argConfig("c", "config", "Scenario INI file (e.g. config/highway.ini)",
-		true, "", "file.ini", cmd);
-	TCLAP::ValueArg<std::string> argOut("o", "out", "Output directory (created if missing)", false, ".",
-		"dir", cmd);
-	TCLAP::ValueArg<std::string> argName("", "name", "Base name of the output files ([Scenario] name)",
-		false, "", "base", cmd);
-	TCLAP::ValueArg<std::string> argNoise("", "noise",
-		"Noise level of eq. (5)-(7): w1v1..w3v3, or none ([Noise] level)", false, "", "level", cmd);
-	TCLAP::ValueArg<long> argWorldSeed("", "world-seed", "World seed ([Scenario] world_seed)", false, -1,
-		"n", cmd);
-	TCLAP::ValueArg<long> argNoiseSeed("", "noise-seed", "Noise seed ([Scenario] noise_seed)", false, -1,
-		"n", cmd);
-	TCLAP::ValueArg<long> argSteps("", "steps", "Number of steps ([Scenario] steps)", false, -1, "n", cmd);
-	TCLAP::ValueArg<std::string> argFigure("", "figure", "Also draw the scenario into this PNG", false,
-		"", "file.png", cmd);
+	    "dynslam-simulate: writes a scenario (the highway of the paper or a generated one) as an "
+	    "MRPT rawlog with ground truth. See doc/simulator.md.",
+	    ' ', "0.1");
+	TCLAP::ValueArg<std::string> argConfig(
+	    "c", "config", "Scenario INI file (e.g. config/highway.ini)", true, "", "file.ini", cmd);
+	TCLAP::ValueArg<std::string> argOut("o", "out", "Output directory (created if missing)", false,
+	                                    ".", "dir", cmd);
+	TCLAP::ValueArg<std::string> argName(
+	    "", "name", "Base name of the output files ([Scenario] name)", false, "", "base", cmd);
+	TCLAP::ValueArg<std::string> argNoise(
+	    "", "noise", "Noise level of eq. (5)-(7): w1v1..w3v3, or none ([Noise] level)", false, "",
+	    "level", cmd);
+	TCLAP::ValueArg<long> argWorldSeed("", "world-seed", "World seed ([Scenario] world_seed)",
+	                                   false, -1, "n", cmd);
+	TCLAP::ValueArg<long> argNoiseSeed("", "noise-seed", "Noise seed ([Scenario] noise_seed)",
+	                                   false, -1, "n", cmd);
+	TCLAP::ValueArg<long> argSteps("", "steps", "Number of steps ([Scenario] steps)", false, -1,
+	                               "n", cmd);
+	TCLAP::ValueArg<std::string> argFigure("", "figure", "Also draw the scenario into this PNG",
+	                                       false, "", "file.png", cmd);
 	TCLAP::SwitchArg argFigureOnly("", "figure-only", "Only draw the figure (needs --figure)", cmd);
-	TCLAP::SwitchArg argStream("", "stream",
-		"Stream the simulation into the rawlog (long scenarios; no DA ground-truth file)", cmd);
+	TCLAP::SwitchArg argStream(
+	    "", "stream",
+	    "Stream the simulation into the rawlog (long scenarios; no DA ground-truth file)", cmd);
 	// MRPT's TCLAP returns false both for --help/--version and for errors (after printing).
 	if (!cmd.parse(argc, argv))
 	{
@@ -53,7 +56,8 @@ bool CSimulateApp::initialize(int argc, const char** argv)
 	outDir = argOut.getValue();
 	if (!argName.getValue().empty()) options.name = argName.getValue();
 	if (!argNoise.getValue().empty()) options.setNoiseLevel(argNoise.getValue());
-	auto seed = [](long v, const char* flag) {
+	auto seed = [](long v, const char* flag)
+	{
 		if (v < 0 || v > long(UINT32_MAX))
 			throw std::invalid_argument(std::string("--") + flag + " must be in [0, 4294967295]");
 		return uint32_t(v);
@@ -67,7 +71,8 @@ bool CSimulateApp::initialize(int argc, const char** argv)
 	}
 	figureFile = argFigure.getValue();
 	figureOnly = argFigureOnly.getValue();
-	if (figureOnly && figureFile.empty()) throw std::invalid_argument("--figure-only needs --figure");
+	if (figureOnly && figureFile.empty())
+		throw std::invalid_argument("--figure-only needs --figure");
 	stream = argStream.getValue();
 	options.validate();
 	return true;
@@ -91,9 +96,8 @@ void CSimulateApp::run()
 
 	std::filesystem::create_directories(outDir);
 	const std::string base = options.name;
-	auto path = [&](const std::string& suffix) {
-		return (std::filesystem::path(outDir) / (base + suffix)).string();
-	};
+	auto path = [&](const std::string& suffix)
+	{ return (std::filesystem::path(outDir) / (base + suffix)).string(); };
 	std::ostringstream ini;
 	options.dumpToTextStream(ini);
 
@@ -108,14 +112,15 @@ void CSimulateApp::run()
 			if (auto o = sf->getObservationByClass<mrpt::obs::CObservationBearingRange>())
 				numMeasurements += o->sensedData.size();
 		writeKfSlamGroundTruth(groundTruth, run, outDir, base);
-		for (const char* s : {"_gt_landmarks.txt", "_gt_robot_path.txt", "_gt_data_association.txt"})
+		for (const char* s :
+		     {"_gt_landmarks.txt", "_gt_robot_path.txt", "_gt_data_association.txt"})
 			writtenFiles.push_back(path(s));
 	}
 	numRawlogEntries = 2 * groundTruth.numSteps();
 	writtenFiles.push_back(rawlog);
 	writeGroundTruth(groundTruth, outDir, base);
 	for (const char* s : {"_gt_ego.csv", "_gt_ego.tum", "_gt_landmarks.csv", "_gt_objects.csv",
-			 "_gt_object_features.csv"})
+	                      "_gt_object_features.csv"})
 		writtenFiles.push_back(path(s));
 	{
 		const std::string p = path("_scenario.ini");
@@ -124,13 +129,14 @@ void CSimulateApp::run()
 		if (!f) throw std::runtime_error("cannot write " + p);
 		writtenFiles.push_back(p);
 	}
-	MRPT_LOG_INFO_STREAM("Scenario '" << options.name << "': " << groundTruth.numSteps() << " poses, "
-									  << groundTruth.landmarks.size() << " static landmarks, "
-									  << groundTruth.objects.size() << " moving objects, noise "
-									  << options.noise_level << ", seeds world " << options.world_seed
-									  << " noise " << options.noise_seed);
+	MRPT_LOG_INFO_STREAM("Scenario '" << options.name << "': " << groundTruth.numSteps()
+	                                  << " poses, " << groundTruth.landmarks.size()
+	                                  << " static landmarks, " << groundTruth.objects.size()
+	                                  << " moving objects, noise " << options.noise_level
+	                                  << ", seeds world " << options.world_seed << " noise "
+	                                  << options.noise_seed);
 	MRPT_LOG_INFO_STREAM("Rawlog: " << rawlog << " (" << numRawlogEntries << " entries, "
-									<< numMeasurements << " range-bearing readings)");
+	                                << numMeasurements << " range-bearing readings)");
 	for (const auto& f : writtenFiles) MRPT_LOG_INFO_STREAM("Wrote " << f);
 }
 }  // namespace dynslam::sim

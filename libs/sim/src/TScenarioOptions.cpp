@@ -50,12 +50,14 @@ std::string fmtRamps(const std::vector<TRamp>& r)
 {
 	std::string s = "[";
 	for (size_t i = 0; i < r.size(); ++i)
-		s += (i ? "; " : "") + fmt(r[i].t_start) + " " + fmt(r[i].duration) + " " + fmt(r[i].target);
+		s +=
+		    (i ? "; " : "") + fmt(r[i].t_start) + " " + fmt(r[i].duration) + " " + fmt(r[i].target);
 	return s + "]";
 }
 
 /** A list of (t_start, duration, target) triples, e.g. `[10 4 2; 30 4 1]`; empty if missing. */
-std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec, const std::string& key)
+std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec,
+                             const std::string& key)
 {
 	const std::string v = cfg::readString(c, sec, key, "");
 	std::string s = v;
@@ -73,8 +75,9 @@ std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec, c
 		nums.push_back(d);
 	}
 	if (nums.size() % 3 != 0)
-		cfg::fail(sec, key, v, "expected triples (t_start duration target), got " +
-								   std::to_string(nums.size()) + " numbers");
+		cfg::fail(sec, key, v,
+		          "expected triples (t_start duration target), got " + std::to_string(nums.size()) +
+		              " numbers");
 	std::vector<TRamp> r;
 	for (size_t i = 0; i < nums.size(); i += 3) r.push_back({nums[i], nums[i + 1], nums[i + 2]});
 	try
@@ -89,11 +92,12 @@ std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec, c
 }
 
 long readCount(const CConfigFileBase& c, const std::string& sec, const std::string& key, long def,
-	bool required, long maxValue)
+               bool required, long maxValue)
 {
 	const long n = cfg::readInt(c, sec, key, def, required);
 	if (n < 0) cfg::fail(sec, key, std::to_string(n), "negative count");
-	if (n > maxValue) cfg::fail(sec, key, std::to_string(n), "larger than " + std::to_string(maxValue));
+	if (n > maxValue)
+		cfg::fail(sec, key, std::to_string(n), "larger than " + std::to_string(maxValue));
 	return n;
 }
 
@@ -110,23 +114,23 @@ int readLane(const CConfigFileBase& c, const std::string& sec, const std::string
 	const long l = cfg::readInt(c, sec, key, 0, true);
 	if (l < 0 || l >= numLanes)
 		cfg::fail(sec, key, std::to_string(l),
-			"lane outside the road (lanes 0.." + std::to_string(numLanes - 1) + ")");
+		          "lane outside the road (lanes 0.." + std::to_string(numLanes - 1) + ")");
 	return int(l);
 }
 
 void checkLanes(const std::vector<TRamp>& r, const std::string& sec, const std::string& key,
-	int numLanes)
+                int numLanes)
 {
 	for (const TRamp& x : r)
 		if (x.target != std::floor(x.target) || x.target < 0 || x.target > numLanes - 1)
 			cfg::fail(sec, key, fmtRamps(r),
-				"lane change to lane " + fmt(x.target) + " outside the road (lanes 0.." +
-					std::to_string(numLanes - 1) + ")");
+			          "lane change to lane " + fmt(x.target) + " outside the road (lanes 0.." +
+			              std::to_string(numLanes - 1) + ")");
 }
 
 /** A derived key written by dumpToTextStream may be present: it must agree. */
 void checkDerived(const CConfigFileBase& c, const std::string& sec, const std::string& key,
-	const Eigen::MatrixXd& expected)
+                  const Eigen::MatrixXd& expected)
 {
 	if (!cfg::has(c, sec, key)) return;
 	const std::string v = cfg::readString(c, sec, key, "");
@@ -143,35 +147,38 @@ void checkDerived(const CConfigFileBase& c, const std::string& sec, const std::s
 		for (Eigen::Index j = 0; ok && j < expected.cols(); ++j)
 		{
 			const double got = diag ? (i == j ? nums[i] : 0.0) : nums[i * expected.cols() + j];
-			ok = std::abs(got - expected(i, j)) <= 1e-9 * std::max(1e-300, std::abs(expected(i, j))) ||
-				 got == expected(i, j);
+			ok = std::abs(got - expected(i, j)) <=
+			         1e-9 * std::max(1e-300, std::abs(expected(i, j))) ||
+			     got == expected(i, j);
 		}
 	if (!ok)
 		cfg::fail(sec, key, v,
-			"conflicts with the value derived from the noise level (" + fmtMatrix(expected) +
-				"); use level = custom to set it");
+		          "conflicts with the value derived from the noise level (" + fmtMatrix(expected) +
+		              "); use level = custom to set it");
 }
 
 THighwayAgent readAgent(const CConfigFileBase& c, const std::string& sec, const THighwayOptions& h,
-	bool isEgo)
+                        bool isEgo)
 {
 	THighwayAgent a;
 	a.section = sec;
 	if (isEgo)
 	{
-		cfg::rejectUnknownKeys(c, sec, {"speed", "speed_changes", "lane_changes", "length", "width"});
+		cfg::rejectUnknownKeys(c, sec,
+		                       {"speed", "speed_changes", "lane_changes", "length", "width"});
 		a.kind = THighwayAgent::Kind::Car;
 		a.x0 = 0;
 		a.lane0 = h.ego_lane;
 	}
 	else
 	{
-		cfg::rejectUnknownKeys(c, sec,
-			{"type", "x0", "lane0", "y0", "speed", "speed_changes", "lane_changes", "lateral_moves",
-				"length", "width", "num_features"});
+		cfg::rejectUnknownKeys(
+		    c, sec,
+		    {"type", "x0", "lane0", "y0", "speed", "speed_changes", "lane_changes", "lateral_moves",
+		     "length", "width", "num_features"});
 		a.kind = cfg::readChoice(c, sec, "type", {"car", "pedestrian"}, 0, true) == 0
-					 ? THighwayAgent::Kind::Car
-					 : THighwayAgent::Kind::Pedestrian;
+		             ? THighwayAgent::Kind::Car
+		             : THighwayAgent::Kind::Pedestrian;
 		a.x0 = cfg::readDouble(c, sec, "x0", 0, true);
 	}
 	a.speed = cfg::readDouble(c, sec, "speed", 0, true);
@@ -190,7 +197,8 @@ THighwayAgent readAgent(const CConfigFileBase& c, const std::string& sec, const 
 		if (a.width > h.lane_width) cfg::fail(sec, "width", fmt(a.width), "wider than a lane");
 		a.num_features = int(cfg::readInt(c, sec, "num_features", 4));
 		if (a.num_features != 4)
-			cfg::fail(sec, "num_features", std::to_string(a.num_features), "a car has 4 corner features");
+			cfg::fail(sec, "num_features", std::to_string(a.num_features),
+			          "a car has 4 corner features");
 		if (a.speed < 0) cfg::fail(sec, "speed", fmt(a.speed), "a car cannot drive backwards");
 		for (const TRamp& r : a.speed_changes)
 			if (r.target < 0)
@@ -208,7 +216,7 @@ THighwayAgent readAgent(const CConfigFileBase& c, const std::string& sec, const 
 		a.num_features = int(cfg::readInt(c, sec, "num_features", 2));
 		if (a.num_features != 1 && a.num_features != 2)
 			cfg::fail(sec, "num_features", std::to_string(a.num_features),
-				"a pedestrian has 1 or 2 features");
+			          "a pedestrian has 1 or 2 features");
 	}
 	if (isEgo && !(a.speed > 0)) cfg::fail(sec, "speed", fmt(a.speed), "the ego must move (> 0)");
 	return a;
@@ -245,7 +253,7 @@ TNoiseLevel noiseLevel(const std::string& name)
 	TNoiseLevel n;
 	if (l == "none") return n;
 	if (l.size() == 4 && l[0] == 'w' && l[2] == 'v' && l[1] >= '1' && l[1] <= '3' && l[3] >= '1' &&
-		l[3] <= '3')
+	    l[3] <= '3')
 	{
 		// The literals of eq. (5)-(7).
 		static const double xy[] = {1e-6, 1e-5, 1e-4}, th[] = {1e-8, 1e-7, 1e-6};
@@ -254,8 +262,8 @@ TNoiseLevel noiseLevel(const std::string& name)
 		n.Sigma_v = xy[v] * Eigen::Matrix2d::Identity();
 		return n;
 	}
-	throw std::invalid_argument(
-		"unknown noise level '" + name + "' (expected w1v1..w3v3, none or custom)");
+	throw std::invalid_argument("unknown noise level '" + name +
+	                            "' (expected w1v1..w3v3, none or custom)");
 }
 
 void TScenarioOptions::setNoiseLevel(const std::string& level)
@@ -282,10 +290,10 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	*this = TScenarioOptions();
 	const std::string S = "Scenario", SE = "Sensor", N = "Noise";
 	cfg::rejectUnknownKeys(
-		c, S, {"type", "name", "dt", "steps", "world_seed", "noise_seed", "start_time"});
+	    c, S, {"type", "name", "dt", "steps", "world_seed", "noise_seed", "start_time"});
 	type = cfg::readChoice(c, S, "type", {"highway", "generated"}, 0, true) == 0
-			   ? ScenarioType::Highway
-			   : ScenarioType::Generated;
+	           ? ScenarioType::Highway
+	           : ScenarioType::Generated;
 	name = cfg::readString(c, S, "name", type == ScenarioType::Highway ? "highway" : "generated");
 	if (name.empty() || name.find_first_of("/\\ ") != std::string::npos)
 		cfg::fail(S, "name", name, "must be a non-empty file base name without spaces or slashes");
@@ -300,12 +308,12 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	sensor_range = cfg::readPositive(c, SE, "range", 55, true);
 	sensor_label = cfg::readString(c, SE, "label", "RB");
 	noise_model = cfg::readChoice(c, SE, "noise_model", {"cartesian", "range_bearing"}, 0) == 0
-					  ? models::MeasurementModel::Cartesian
-					  : models::MeasurementModel::RangeBearing;
+	                  ? models::MeasurementModel::Cartesian
+	                  : models::MeasurementModel::RangeBearing;
 	typical_range = cfg::readPositive(c, SE, "typical_range", sensor_range / 2);
 
 	cfg::rejectUnknownKeys(
-		c, N, {"level", "sigma_w", "sigma_v", "sigma_0", "std_range", "std_yaw", "std_yaw_deg"});
+	    c, N, {"level", "sigma_w", "sigma_v", "sigma_0", "std_range", "std_yaw", "std_yaw_deg"});
 	const std::string lvl = cfg::requireString(c, N, "level");
 	if (lower(lvl) == "custom")
 	{
@@ -345,8 +353,8 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	{
 		const std::string H = "Highway";
 		cfg::rejectUnknownKeys(c, H,
-			{"length", "num_lanes", "lane_width", "ego_lane", "num_landmarks", "landmark_offset_min",
-				"landmark_offset_max", "num_agents"});
+		                       {"length", "num_lanes", "lane_width", "ego_lane", "num_landmarks",
+		                        "landmark_offset_min", "landmark_offset_max", "num_agents"});
 		THighwayOptions& h = highway;
 		h.length = cfg::readPositive(c, H, "length", 1000, true);
 		h.num_lanes = int(readCount(c, H, "num_lanes", 3, true, 100));
@@ -358,7 +366,7 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 		h.landmark_offset_max = cfg::readPositive(c, H, "landmark_offset_max", 30, true);
 		if (h.landmark_offset_max < h.landmark_offset_min)
 			cfg::fail(H, "landmark_offset_max", fmt(h.landmark_offset_max),
-				"smaller than landmark_offset_min");
+			          "smaller than landmark_offset_min");
 		const long na = readCount(c, H, "num_agents", 3, true, 1000);
 		h.ego = readAgent(c, "Ego", h, true);
 		h.ego.section = "Ego";
@@ -369,12 +377,28 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	{
 		const std::string G = "Generated";
 		cfg::rejectUnknownKeys(c, G,
-			{"track_radius", "ego_speed", "num_landmarks", "landmark_offset_min",
-				"landmark_offset_max", "num_lanes", "lane_width", "num_cars", "num_pedestrians",
-				"num_rotating", "features_per_car", "features_per_pedestrian",
-				"features_per_rotating", "car_length", "car_width", "pedestrian_width",
-				"rotating_radius", "car_speed_factor_min", "car_speed_factor_max",
-				"pedestrian_speed", "yaw_rate_max", "object_spread"});
+		                       {"track_radius",
+		                        "ego_speed",
+		                        "num_landmarks",
+		                        "landmark_offset_min",
+		                        "landmark_offset_max",
+		                        "num_lanes",
+		                        "lane_width",
+		                        "num_cars",
+		                        "num_pedestrians",
+		                        "num_rotating",
+		                        "features_per_car",
+		                        "features_per_pedestrian",
+		                        "features_per_rotating",
+		                        "car_length",
+		                        "car_width",
+		                        "pedestrian_width",
+		                        "rotating_radius",
+		                        "car_speed_factor_min",
+		                        "car_speed_factor_max",
+		                        "pedestrian_speed",
+		                        "yaw_rate_max",
+		                        "object_spread"});
 		TGeneratedOptions& g = generated;
 		g.track_radius = cfg::readNonNegative(c, G, "track_radius", 0, true);
 		g.ego_speed = cfg::readPositive(c, G, "ego_speed", 10, true);
@@ -383,7 +407,7 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 		g.landmark_offset_max = cfg::readPositive(c, G, "landmark_offset_max", 30);
 		if (g.landmark_offset_max < g.landmark_offset_min)
 			cfg::fail(G, "landmark_offset_max", fmt(g.landmark_offset_max),
-				"smaller than landmark_offset_min");
+			          "smaller than landmark_offset_min");
 		g.num_lanes = int(readCount(c, G, "num_lanes", 3, false, 100));
 		if (g.num_lanes < 1) cfg::fail(G, "num_lanes", "0", "need at least one lane");
 		g.lane_width = cfg::readPositive(c, G, "lane_width", 3.5);
@@ -397,9 +421,10 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 		g.features_per_car = int(readCount(c, G, "features_per_car", 4, false, maxF));
 		g.features_per_pedestrian = int(readCount(c, G, "features_per_pedestrian", 2, false, maxF));
 		g.features_per_rotating = int(readCount(c, G, "features_per_rotating", 3, false, maxF));
-		for (const auto& [k, v] : {std::pair<const char*, int>{"features_per_car", g.features_per_car},
-				 {"features_per_pedestrian", g.features_per_pedestrian},
-				 {"features_per_rotating", g.features_per_rotating}})
+		for (const auto& [k, v] :
+		     {std::pair<const char*, int>{"features_per_car", g.features_per_car},
+		      {"features_per_pedestrian", g.features_per_pedestrian},
+		      {"features_per_rotating", g.features_per_rotating}})
 			if (v < 1) cfg::fail(G, k, std::to_string(v), "an object needs at least one feature");
 		g.car_length = cfg::readPositive(c, G, "car_length", 4.5);
 		g.car_width = cfg::readPositive(c, G, "car_width", 1.8);
@@ -409,17 +434,18 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 		g.car_speed_factor_max = cfg::readNonNegative(c, G, "car_speed_factor_max", 1.2);
 		if (g.car_speed_factor_max < g.car_speed_factor_min)
 			cfg::fail(G, "car_speed_factor_max", fmt(g.car_speed_factor_max),
-				"smaller than car_speed_factor_min");
+			          "smaller than car_speed_factor_min");
 		g.pedestrian_speed = cfg::readPositive(c, G, "pedestrian_speed", 1.4);
 		g.yaw_rate_max = cfg::readPositive(c, G, "yaw_rate_max", 0.5);
 		g.object_spread = cfg::readPositive(c, G, "object_spread", 60);
 		if (g.track_radius > 0)
 		{
-			const double reach = std::max(g.landmark_offset_max, (g.num_lanes + 1.0) * g.lane_width +
-																	 g.rotating_radius + 2.0);
+			const double reach =
+			    std::max(g.landmark_offset_max,
+			             (g.num_lanes + 1.0) * g.lane_width + g.rotating_radius + 2.0);
 			if (reach >= g.track_radius)
 				cfg::fail(G, "track_radius", fmt(g.track_radius),
-					"must exceed the lateral extent of the world (" + fmt(reach) + " m)");
+				          "must exceed the lateral extent of the world (" + fmt(reach) + " m)");
 		}
 	}
 	validate();

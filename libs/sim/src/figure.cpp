@@ -23,19 +23,20 @@ struct TView
 
 TColor objectColor(size_t i)
 {
-	static const TColor c[] = {TColor(0, 160, 0), TColor(0, 70, 230), TColor(150, 0, 170),
-		TColor(0, 160, 160), TColor(200, 110, 0), TColor(120, 120, 0)};
+	static const TColor c[] = {TColor(0, 160, 0),   TColor(0, 70, 230),  TColor(150, 0, 170),
+	                           TColor(0, 160, 160), TColor(200, 110, 0), TColor(120, 120, 0)};
 	return c[i % (sizeof(c) / sizeof(c[0]))];
 }
 }  // namespace
 
-void drawScenarioFigure(
-	const TGroundTruth& gt, const TScenarioOptions& o, const std::string& pngPath, int W, int H)
+void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
+                        const std::string& pngPath, int W, int H)
 {
 	gt.checkConsistent();
 	// Bounding box of everything drawn.
 	double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-	auto grow = [&](double x, double y) {
+	auto grow = [&](double x, double y)
+	{
 		xmin = std::min(xmin, x), xmax = std::max(xmax, x);
 		ymin = std::min(ymin, y), ymax = std::max(ymax, y);
 	};
@@ -74,14 +75,14 @@ void drawScenarioFigure(
 	{
 		const THighwayOptions& h = o.highway;
 		img.filledRectangle(v.px(0), v.py(h.roadLeft()), v.px(h.length), v.py(h.roadRight()),
-			TColor(225, 225, 225));
+		                    TColor(225, 225, 225));
 		for (double y : {h.roadLeft(), h.roadRight()})
 			img.line(v.px(0), v.py(y), v.px(h.length), v.py(y), TColor(90, 90, 90), 2);
 		for (int l = 1; l < h.num_lanes; ++l)
 		{
 			const double y = h.roadRight() + l * h.lane_width;
 			img.line(v.px(0), v.py(y), v.px(h.length), v.py(y), TColor(150, 150, 150), 1,
-				mrpt::img::CCanvas::psDash);
+			         mrpt::img::CCanvas::psDash);
 		}
 	}
 	for (const auto& [id, p] : gt.landmarks)
@@ -90,9 +91,11 @@ void drawScenarioFigure(
 		img.filledRectangle(x - 3, y - 3, x + 3, y + 3, TColor(250, 210, 0));
 		img.rectangle(x - 3, y - 3, x + 3, y + 3, TColor(120, 100, 0));
 	}
-	auto polyline = [&](const std::vector<Eigen::Vector2d>& pts, TColor c, int w) {
+	auto polyline = [&](const std::vector<Eigen::Vector2d>& pts, TColor c, int w)
+	{
 		for (size_t k = 1; k < pts.size(); ++k)
-			img.line(v.px(pts[k - 1][0]), v.py(pts[k - 1][1]), v.px(pts[k][0]), v.py(pts[k][1]), c, w);
+			img.line(v.px(pts[k - 1][0]), v.py(pts[k - 1][1]), v.px(pts[k][0]), v.py(pts[k][1]), c,
+			         w);
 	};
 	for (size_t i = 0; i < gt.objects.size(); ++i)
 	{
@@ -117,12 +120,15 @@ void drawScenarioFigure(
 
 	// Legend and scale.
 	char buf[200];
-	std::snprintf(buf, sizeof(buf),
-		"%s: %zu steps of %.2f s, %zu static landmarks, %zu moving objects, sensor range %.0f m",
-		o.name.c_str(), gt.numSteps(), o.dt, gt.landmarks.size(), gt.objects.size(), o.sensor_range);
+	std::snprintf(
+	    buf, sizeof(buf),
+	    "%s: %zu steps of %.2f s, %zu static landmarks, %zu moving objects, sensor range %.0f m",
+	    o.name.c_str(), gt.numSteps(), o.dt, gt.landmarks.size(), gt.objects.size(),
+	    o.sensor_range);
 	img.textOut(10, 8, buf, TColor(0, 0, 0));
 	int lx = 10;
-	auto legend = [&](const std::string& s, TColor c) {
+	auto legend = [&](const std::string& s, TColor c)
+	{
 		img.filledRectangle(lx, 32, lx + 14, 44, c);
 		img.textOut(lx + 20, 30, s, TColor(0, 0, 0));
 		lx += 30 + int(s.size()) * 9;
@@ -130,13 +136,14 @@ void drawScenarioFigure(
 	legend("ego", TColor(220, 0, 0));
 	for (size_t i = 0; i < gt.objects.size() && i < 6; ++i)
 		legend(highway && i < o.highway.agents.size()
-				   ? "Agent " + std::to_string(i + 1) + " (object " + std::to_string(i) + ")"
-				   : "object " + std::to_string(i),
-			objectColor(i));
+		           ? "Agent " + std::to_string(i + 1) + " (object " + std::to_string(i) + ")"
+		           : "object " + std::to_string(i),
+		       objectColor(i));
 	legend("static landmarks", TColor(250, 210, 0));
 	std::snprintf(buf, sizeof(buf), "x: %.0f m per 100 px   y: %.1f m per 100 px%s", 100 / v.sx,
-		100 / v.sy, v.sy > v.sx * 1.01 ? "  (lateral axis stretched)" : "");
+	              100 / v.sy, v.sy > v.sx * 1.01 ? "  (lateral axis stretched)" : "");
 	img.textOut(10, H - 18, buf, TColor(60, 60, 60));
-	if (!img.saveToFile(pngPath)) throw std::runtime_error("drawScenarioFigure: cannot write " + pngPath);
+	if (!img.saveToFile(pngPath))
+		throw std::runtime_error("drawScenarioFigure: cannot write " + pngPath);
 }
 }  // namespace dynslam::sim

@@ -37,7 +37,7 @@ std::string join(const std::string& dir, const std::string& name)
 }  // namespace
 
 void writeKfSlamGroundTruth(const TGroundTruth& gt, const TSimulatedRun& run,
-	const std::string& dir, const std::string& base)
+                            const std::string& dir, const std::string& base)
 {
 	std::filesystem::create_directories(dir);
 	{
@@ -51,19 +51,25 @@ void writeKfSlamGroundTruth(const TGroundTruth& gt, const TSimulatedRun& run,
 		auto f = openText(join(dir, base + "_gt_robot_path.txt"));
 		std::fprintf(f.get(), "%% Ego ground truth, one row per step k (pose of SF_k):\n");
 		std::fprintf(f.get(), "%% x y z yaw pitch roll\n");
-		for (const auto& x : gt.ego) std::fprintf(f.get(), "%.9f %.9f 0 %.12f 0 0\n", x[0], x[1], x[2]);
+		for (const auto& x : gt.ego)
+			std::fprintf(f.get(), "%.9f %.9f 0 %.12f 0 0\n", x[0], x[1], x[2]);
 	}
 	{
 		auto f = openText(join(dir, base + "_gt_data_association.txt"));
-		std::fprintf(f.get(), "%% Data-association ground truth for kf-slam (ground_truth_data_association):\n");
-		std::fprintf(f.get(), "%% timestamp (Clock::toDouble of the observation) index_in_observation landmark_ID\n");
+		std::fprintf(
+		    f.get(),
+		    "%% Data-association ground truth for kf-slam (ground_truth_data_association):\n");
+		std::fprintf(
+		    f.get(),
+		    "%% timestamp (Clock::toDouble of the observation) index_in_observation landmark_ID\n");
 		for (const auto& sf : run.frames)
 		{
 			const auto obs = sf->getObservationByClass<mrpt::obs::CObservationBearingRange>();
 			if (!obs) continue;
 			const double t = mrpt::Clock::toDouble(obs->timestamp);
 			for (size_t i = 0; i < obs->sensedData.size(); ++i)
-				std::fprintf(f.get(), "%.17g %d %d\n", t, int(i), int(obs->sensedData[i].landmarkID));
+				std::fprintf(f.get(), "%.17g %d %d\n", t, int(i),
+				             int(obs->sensedData[i].landmarkID));
 		}
 	}
 }

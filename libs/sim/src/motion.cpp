@@ -26,26 +26,31 @@ double smoothstepIntegral(double u)
 }
 }  // namespace
 
-CSmoothProfile::CSmoothProfile(
-	double base, std::vector<TRamp> ramps, double sine_amp, double sine_omega, double sine_phase)
-	: m_base(base), m_ramps(std::move(ramps)), m_amp(sine_amp), m_omega(sine_omega), m_phase(sine_phase)
+CSmoothProfile::CSmoothProfile(double base, std::vector<TRamp> ramps, double sine_amp,
+                               double sine_omega, double sine_phase)
+    : m_base(base),
+      m_ramps(std::move(ramps)),
+      m_amp(sine_amp),
+      m_omega(sine_omega),
+      m_phase(sine_phase)
 {
 	double prevEnd = 0;
 	for (size_t i = 0; i < m_ramps.size(); ++i)
 	{
 		const TRamp& r = m_ramps[i];
-		const std::string which = "ramp " + std::to_string(i + 1) + " (t_start " +
-								  std::to_string(r.t_start) + ")";
+		const std::string which =
+		    "ramp " + std::to_string(i + 1) + " (t_start " + std::to_string(r.t_start) + ")";
 		if (!std::isfinite(r.t_start) || !std::isfinite(r.duration) || !std::isfinite(r.target))
 			throw std::invalid_argument(which + ": not finite");
 		if (!(r.duration > 0)) throw std::invalid_argument(which + ": duration must be > 0");
 		if (r.t_start < prevEnd)
 			throw std::invalid_argument(
-				which + (i == 0 ? ": starts before t = 0" : ": overlaps the previous ramp or is unsorted"));
+			    which +
+			    (i == 0 ? ": starts before t = 0" : ": overlaps the previous ramp or is unsorted"));
 		prevEnd = r.t_start + r.duration;
 	}
 	if (!std::isfinite(base) || !std::isfinite(sine_amp) || !std::isfinite(sine_omega) ||
-		!std::isfinite(sine_phase))
+	    !std::isfinite(sine_phase))
 		throw std::invalid_argument("profile: base or sine parameters not finite");
 }
 
@@ -96,7 +101,8 @@ Eigen::Vector2d CSmoothProfile::bounds(double t_end) const
 	// Without the sine the profile is monotone between ramp ends: check base, ramp ends, t_end.
 	const CSmoothProfile plain(m_base, m_ramps);
 	double lo = m_base, hi = m_base;
-	auto take = [&](double t) {
+	auto take = [&](double t)
+	{
 		const double v = plain.value(std::min(t, t_end));
 		lo = std::min(lo, v);
 		hi = std::max(hi, v);
@@ -125,7 +131,8 @@ Eigen::Vector3d TBodyMotion::pose(const TTrack& track, double t) const
 	if (spin)
 		th = heading0 + yaw_rate * t;
 	else
-		th = track.tangentAngle(s) + std::atan2(lateral.derivative(t), speed.value(t) * track.speedScale(d));
+		th = track.tangentAngle(s) +
+		     std::atan2(lateral.derivative(t), speed.value(t) * track.speedScale(d));
 	return {p[0], p[1], models::wrapToPi(th)};
 }
 

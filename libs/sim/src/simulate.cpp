@@ -53,20 +53,23 @@ class CStepSimulator
 {
 public:
 	CStepSimulator(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t seed)
-		: m_gt(gt),
-		  m_o(o),
-		  m_rng(seed32(seed)),
-		  m_Lw(covSqrt<3>(o.Sigma_w, "[Noise] sigma_w")),
-		  m_Lv(covSqrt<2>(o.Sigma_v, "[Noise] sigma_v")),
-		  m_cell(o.sensor_range)
+	    : m_gt(gt),
+	      m_o(o),
+	      m_rng(seed32(seed)),
+	      m_Lw(covSqrt<3>(o.Sigma_w, "[Noise] sigma_w")),
+	      m_Lv(covSqrt<2>(o.Sigma_v, "[Noise] sigma_v")),
+	      m_cell(o.sensor_range)
 	{
 		gt.checkConsistent();
 		if (gt.numSteps() != o.numSteps())
-			throw std::invalid_argument("simulateMeasurements: ground truth and options disagree on steps");
-		for (const auto& [id, p] : gt.landmarks) m_grid[cellKey(cellOf(p[0]), cellOf(p[1]))].push_back(id);
+			throw std::invalid_argument(
+			    "simulateMeasurements: ground truth and options disagree on steps");
+		for (const auto& [id, p] : gt.landmarks)
+			m_grid[cellKey(cellOf(p[0]), cellOf(p[1]))].push_back(id);
 	}
 
-	void step(size_t k, mrpt::obs::CActionCollection::Ptr& actOut, mrpt::obs::CSensoryFrame::Ptr& sfOut)
+	void step(size_t k, mrpt::obs::CActionCollection::Ptr& actOut,
+	          mrpt::obs::CSensoryFrame::Ptr& sfOut)
 	{
 		using namespace mrpt::obs;
 		const auto stamp = stepTimestamp(m_o, k);
@@ -86,7 +89,7 @@ public:
 		act.estimationMethod = CActionRobotMovement2D::emOdometry;
 		act.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
 		act.poseChange = mrpt::poses::CPosePDFGaussian::Create(
-			mrpt::poses::CPose2D(u[0], u[1], u[2]), mrpt::math::CMatrixDouble33(cov));
+		    mrpt::poses::CPose2D(u[0], u[1], u[2]), mrpt::math::CMatrixDouble33(cov));
 		actOut = CActionCollection::Create();
 		actOut->insert(act);
 
@@ -119,7 +122,8 @@ public:
 		for (const TObjectGroundTruth& og : m_gt.objects)
 			if (og.visible[k])
 				for (int j = 0; j < og.num_features; ++j)
-					addMeasurement(*obs, x, og.features[k].col(j), ids::objectFeatureId(og.object, j));
+					addMeasurement(*obs, x, og.features[k].col(j),
+					               ids::objectFeatureId(og.object, j));
 		sfOut = CSensoryFrame::Create();
 		sfOut->insert(obs);
 	}
@@ -139,7 +143,7 @@ private:
 	}
 
 	void addMeasurement(mrpt::obs::CObservationBearingRange& obs, const Eigen::Vector3d& x,
-		const Eigen::Vector2d& f, int32_t id)
+	                    const Eigen::Vector2d& f, int32_t id)
 	{
 		double range, yaw;
 		if (m_o.noise_model == models::MeasurementModel::Cartesian)
@@ -168,7 +172,10 @@ private:
 	}
 
 	long cellOf(double v) const { return long(std::floor(v / m_cell)); }
-	static uint64_t cellKey(long i, long j) { return (uint64_t(uint32_t(int32_t(i))) << 32) | uint32_t(int32_t(j)); }
+	static uint64_t cellKey(long i, long j)
+	{
+		return (uint64_t(uint32_t(int32_t(i))) << 32) | uint32_t(int32_t(j));
+	}
 
 	const TGroundTruth& m_gt;
 	const TScenarioOptions& m_o;
@@ -195,7 +202,8 @@ mrpt::Clock::time_point stepTimestamp(const TScenarioOptions& o, size_t k)
 	return mrpt::Clock::fromDouble(o.start_time + o.stepTime(k));
 }
 
-TSimulatedRun simulateMeasurements(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed)
+TSimulatedRun simulateMeasurements(const TGroundTruth& gt, const TScenarioOptions& o,
+                                   uint64_t noise_seed)
 {
 	CStepSimulator sim(gt, o, noise_seed);
 	TSimulatedRun run;
@@ -216,8 +224,8 @@ void writeRawlog(const TSimulatedRun& run, const std::string& path, const std::s
 	if (!comment.empty())
 	{
 		const auto stamp = run.frames.empty() || run.frames[0]->size() == 0
-							   ? mrpt::Clock::fromDouble(0)
-							   : (*run.frames[0]->begin())->timestamp;
+		                       ? mrpt::Clock::fromDouble(0)
+		                       : (*run.frames[0]->begin())->timestamp;
 		ar << commentObject(comment, stamp);
 	}
 	for (size_t k = 0; k < run.actions.size(); ++k) ar << *run.actions[k] << *run.frames[k];
@@ -225,7 +233,7 @@ void writeRawlog(const TSimulatedRun& run, const std::string& path, const std::s
 }
 
 void simulateToRawlog(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed,
-	const std::string& path, const std::string& comment)
+                      const std::string& path, const std::string& comment)
 {
 	CStepSimulator sim(gt, o, noise_seed);
 	mrpt::io::CFileGZOutputStream f;

@@ -102,14 +102,17 @@ TWorld buildGenerated(const TScenarioOptions& o)
 		const double s0 = rng.drawUniform(-g.object_spread, g.object_spread);
 		const int lane = 1 + int(rng.drawUniform(0.0, double(sideLanes) - 1e-9));
 		const double d0 = side() * lane * g.lane_width;
-		const double v = g.ego_speed * rng.drawUniform(g.car_speed_factor_min, g.car_speed_factor_max);
-		const double wv = 2 * M_PI / rng.drawUniform(20.0, 60.0), wl = 2 * M_PI / rng.drawUniform(10.0, 30.0);
+		const double v =
+		    g.ego_speed * rng.drawUniform(g.car_speed_factor_min, g.car_speed_factor_max);
+		const double wv = 2 * M_PI / rng.drawUniform(20.0, 60.0),
+		             wl = 2 * M_PI / rng.drawUniform(10.0, 30.0);
 		obj.motion.s0 = s0;
 		obj.motion.speed = CSmoothProfile(v, {}, 0.1 * v, wv, rng.drawUniform(0.0, 2 * M_PI));
-		obj.motion.lateral =
-			CSmoothProfile(d0, {}, rng.drawUniform(0.0, 0.25 * g.lane_width), wl, rng.drawUniform(0.0, 2 * M_PI));
-		obj.body = g.features_per_car == 4 ? carCorners(g.car_length, g.car_width)
-										   : ellipsePoints(g.features_per_car, g.car_length / 2, g.car_width / 2);
+		obj.motion.lateral = CSmoothProfile(d0, {}, rng.drawUniform(0.0, 0.25 * g.lane_width), wl,
+		                                    rng.drawUniform(0.0, 2 * M_PI));
+		obj.body = g.features_per_car == 4
+		               ? carCorners(g.car_length, g.car_width)
+		               : ellipsePoints(g.features_per_car, g.car_length / 2, g.car_width / 2);
 		w.objects.push_back(std::move(obj));
 	}
 	// Pedestrians: cross the road back and forth (d = D sin(w t + phi), D = half the road plus
@@ -122,11 +125,12 @@ TWorld buildGenerated(const TScenarioOptions& o)
 		obj.kind = ObjectKind::Pedestrian;
 		obj.name = "pedestrian" + std::to_string(i);
 		obj.motion.s0 = circle ? rng.drawUniform(0.0, trackLength)
-							   : rng.drawUniform(-g.object_spread, pathLength + g.object_spread);
+		                       : rng.drawUniform(-g.object_spread, pathLength + g.object_spread);
 		obj.motion.speed = CSmoothProfile(0.3 * side(), {});
 		obj.motion.lateral =
-			CSmoothProfile(0, {}, D, g.pedestrian_speed / D, rng.drawUniform(0.0, 2 * M_PI));
-		obj.body = ellipsePoints(g.features_per_pedestrian, g.pedestrian_width / 2, g.pedestrian_width / 2);
+		    CSmoothProfile(0, {}, D, g.pedestrian_speed / D, rng.drawUniform(0.0, 2 * M_PI));
+		obj.body = ellipsePoints(g.features_per_pedestrian, g.pedestrian_width / 2,
+		                         g.pedestrian_width / 2);
 		w.objects.push_back(std::move(obj));
 	}
 	// Rotating objects: fixed beside the road (like the landmarks), spinning at a constant
@@ -137,13 +141,14 @@ TWorld buildGenerated(const TScenarioOptions& o)
 		obj.kind = ObjectKind::Rotating;
 		obj.name = "rotating" + std::to_string(i);
 		obj.motion.s0 = circle ? rng.drawUniform(0.0, trackLength)
-							   : rng.drawUniform(-g.object_spread, pathLength + g.object_spread);
+		                       : rng.drawUniform(-g.object_spread, pathLength + g.object_spread);
 		obj.motion.speed = CSmoothProfile(0, {});
 		obj.motion.lateral =
-			CSmoothProfile(side() * rng.drawUniform(D, D + g.landmark_offset_min + 5.0), {});
+		    CSmoothProfile(side() * rng.drawUniform(D, D + g.landmark_offset_min + 5.0), {});
 		obj.motion.spin = true;
 		obj.motion.heading0 = rng.drawUniform(-M_PI, M_PI);
-		obj.motion.yaw_rate = side() * rng.drawUniform(std::min(0.1, g.yaw_rate_max), g.yaw_rate_max);
+		obj.motion.yaw_rate =
+		    side() * rng.drawUniform(std::min(0.1, g.yaw_rate_max), g.yaw_rate_max);
 		obj.body = ellipsePoints(g.features_per_rotating, g.rotating_radius, g.rotating_radius);
 		w.objects.push_back(std::move(obj));
 	}
@@ -157,7 +162,10 @@ TWorld buildWorld(const TScenarioOptions& o)
 	return o.type == ScenarioType::Highway ? buildHighway(o) : buildGenerated(o);
 }
 
-TGroundTruth buildGroundTruth(const TScenarioOptions& o) { return groundTruthFromWorld(buildWorld(o), o); }
+TGroundTruth buildGroundTruth(const TScenarioOptions& o)
+{
+	return groundTruthFromWorld(buildWorld(o), o);
+}
 
 TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
 {

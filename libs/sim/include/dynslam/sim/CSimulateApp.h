@@ -41,6 +41,6 @@ public:
 	TGroundTruth groundTruth;
 	std::vector<std::string> writtenFiles;
 	size_t numRawlogEntries = 0;  ///< ACT + SF entries (2 per step)
-	size_t numMeasurements = 0;  ///< range-bearing readings in all SFs (0 with --stream)
+	size_t numMeasurements = 0;   ///< range-bearing readings in all SFs (0 with --stream)
 };
 }  // namespace dynslam::sim

@@ -43,15 +43,15 @@ struct THighwayAgent
 		Car,
 		Pedestrian
 	} kind = Kind::Car;
-	double x0 = 0;  ///< start position along the road [m]
-	int lane0 = 0;  ///< car: start lane (0 = rightmost)
-	double y0 = 0;  ///< pedestrian: start lateral position [m]
-	double speed = 0;  ///< initial speed along the road [m/s]
+	double x0 = 0;                     ///< start position along the road [m]
+	int lane0 = 0;                     ///< car: start lane (0 = rightmost)
+	double y0 = 0;                     ///< pedestrian: start lateral position [m]
+	double speed = 0;                  ///< initial speed along the road [m/s]
 	std::vector<TRamp> speed_changes;  ///< (t_start, duration, new speed)
-	std::vector<TRamp> lane_changes;  ///< car: (t_start, duration, target lane)
+	std::vector<TRamp> lane_changes;   ///< car: (t_start, duration, target lane)
 	std::vector<TRamp> lateral_moves;  ///< pedestrian: (t_start, duration, target y [m])
 	double length = 4.5, width = 1.8;  ///< car body [m]; pedestrian: width = shoulder width
-	int num_features = 4;  ///< car: 4 (corners); pedestrian: 1 or 2
+	int num_features = 4;              ///< car: 4 (corners); pedestrian: 1 or 2
 };
 
 struct THighwayOptions
@@ -62,7 +62,7 @@ struct THighwayOptions
 	int ego_lane = 1;  ///< the ego's start lane; its centre is y = 0
 	int num_landmarks = 40;
 	double landmark_offset_min = 3, landmark_offset_max = 30;  ///< from the road edge [m]
-	THighwayAgent ego;  ///< [Ego]: kind Car, lane0 = ego_lane, x0 = 0
+	THighwayAgent ego;                  ///< [Ego]: kind Car, lane0 = ego_lane, x0 = 0
 	std::vector<THighwayAgent> agents;  ///< [Agent1]..[AgentN]
 
 	/** Lateral position of a lane centre (ego lane at 0). */
@@ -74,7 +74,7 @@ struct THighwayOptions
 struct TGeneratedOptions
 {
 	double track_radius = 0;  ///< 0: straight track along x; > 0: circle through the origin
-	double ego_speed = 10;  ///< [m/s]
+	double ego_speed = 10;    ///< [m/s]
 	int num_landmarks = 200;
 	double landmark_offset_min = 3, landmark_offset_max = 30;  ///< from the track centre [m]
 	int num_lanes = 3;  ///< lanes for the cars (ego lane in the middle), width lane_width
@@ -83,7 +83,7 @@ struct TGeneratedOptions
 	int features_per_car = 4, features_per_pedestrian = 2, features_per_rotating = 3;
 	double car_length = 4.5, car_width = 1.8, pedestrian_width = 0.5, rotating_radius = 1.0;
 	double car_speed_factor_min = 0.8, car_speed_factor_max = 1.2;  ///< times ego_speed
-	double pedestrian_speed = 1.4;  ///< crossing speed [m/s]
+	double pedestrian_speed = 1.4;                                  ///< crossing speed [m/s]
 	double yaw_rate_max = 0.5;  ///< rotating objects: |yaw rate| uniform in [0.1, max] [rad/s]
 	double object_spread = 60;  ///< objects start within this distance of the ego [m]
 };
@@ -93,11 +93,11 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 	// [Scenario]
 	ScenarioType type = ScenarioType::Highway;
 	std::string name = "highway";  ///< base name of the output files
-	double dt = 0.5;  ///< [s]
-	int steps = 120;  ///< the scenario has steps + 1 poses, k = 0..steps
-	uint32_t world_seed = 1;  ///< landmark placement, generated objects
-	uint32_t noise_seed = 1;  ///< odometry and measurement noise
-	double start_time = 1.6e9;  ///< timestamp of step 0 [s since 1970]; t_k = start + k dt
+	double dt = 0.5;               ///< [s]
+	int steps = 120;               ///< the scenario has steps + 1 poses, k = 0..steps
+	uint32_t world_seed = 1;       ///< landmark placement, generated objects
+	uint32_t noise_seed = 1;       ///< odometry and measurement noise
+	double start_time = 1.6e9;     ///< timestamp of step 0 [s since 1970]; t_k = start + k dt
 
 	// [Sensor]
 	double sensor_range = 55;  ///< [m]; static landmarks by true range, objects by centroid
@@ -116,8 +116,8 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 	TGeneratedOptions generated;
 
 	/** Reads the whole scenario; `section` is unused (the scenario spans several sections). */
-	void loadFromConfigFile(
-		const mrpt::config::CConfigFileBase& source, const std::string& section = "") override;
+	void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+	                        const std::string& section = "") override;
 	/** Writes a complete INI that loadFromConfigFile() reads back to the same options (the
 	 * effective configuration, <base>_scenario.ini), including the derived values. */
 	void dumpToTextStream(std::ostream& out) const override;

@@ -31,8 +31,8 @@ public:
 	CSmoothProfile() = default;
 	/** Throws std::invalid_argument if ramps overlap, are unsorted, start before 0 or have
 	 * non-positive duration (message says which ramp). */
-	CSmoothProfile(double base, std::vector<TRamp> ramps, double sine_amp = 0, double sine_omega = 0,
-		double sine_phase = 0);
+	CSmoothProfile(double base, std::vector<TRamp> ramps, double sine_amp = 0,
+	               double sine_omega = 0, double sine_phase = 0);
 
 	double value(double t) const;
 	double derivative(double t) const;
@@ -64,10 +64,10 @@ struct TTrack
 /** Motion of one rigid body. */
 struct TBodyMotion
 {
-	double s0 = 0;  ///< along-track start
-	CSmoothProfile speed;  ///< ds/dt [m/s]
+	double s0 = 0;           ///< along-track start
+	CSmoothProfile speed;    ///< ds/dt [m/s]
 	CSmoothProfile lateral;  ///< d(t) [m]
-	bool spin = false;  ///< heading = heading0 + yaw_rate t instead of the velocity direction
+	bool spin = false;       ///< heading = heading0 + yaw_rate t instead of the velocity direction
 	double heading0 = 0, yaw_rate = 0;
 
 	/** World pose (x, y, theta) at time t on the given track. */

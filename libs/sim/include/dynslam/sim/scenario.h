@@ -54,22 +54,23 @@ TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o);
 struct TSimulatedRun
 {
 	std::vector<mrpt::obs::CActionCollection::Ptr> actions;  ///< ACT_k, k = 0..steps
-	std::vector<mrpt::obs::CSensoryFrame::Ptr> frames;  ///< SF_k
+	std::vector<mrpt::obs::CSensoryFrame::Ptr> frames;       ///< SF_k
 };
 
 /** Noisy odometry and measurements for the ground truth. Deterministic given noise_seed
  * (a fresh private MT19937 generator; seed 0 is a seed like any other). Throws
  * std::invalid_argument if noise_seed > 2^32 - 1. */
-TSimulatedRun simulateMeasurements(
-	const TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed);
+TSimulatedRun simulateMeasurements(const TGroundTruth& gt, const TScenarioOptions& o,
+                                   uint64_t noise_seed);
 
 /** Writes the run as a gz rawlog (format #1: a CObservationComment holding `comment` (if not
  * empty) and then ACT_k, SF_k for each step). Byte-identical for identical input. */
-void writeRawlog(const TSimulatedRun& run, const std::string& path, const std::string& comment = "");
+void writeRawlog(const TSimulatedRun& run, const std::string& path,
+                 const std::string& comment = "");
 
 /** The simulation of a long scenario streamed straight into a rawlog (no run kept in memory). */
 void simulateToRawlog(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed,
-	const std::string& path, const std::string& comment = "");
+                      const std::string& path, const std::string& comment = "");
 
 /** Timestamp of step k (start_time + k dt) as MRPT stores it. */
 mrpt::Clock::time_point stepTimestamp(const TScenarioOptions& o, size_t k);
@@ -80,5 +81,5 @@ mrpt::Clock::time_point stepTimestamp(const TScenarioOptions& o, size_t k);
  * observation, true label = landmark ID), read by kf-slam's ground_truth_data_association.
  * The DA rows follow the observations of `run` (objects included). */
 void writeKfSlamGroundTruth(const TGroundTruth& gt, const TSimulatedRun& run,
-	const std::string& dir, const std::string& base);
+                            const std::string& dir, const std::string& base);
 }  // namespace dynslam::sim
