@@ -307,6 +307,7 @@ TGaussNewtonResult CRunningCost::gaussNewtonStep(const TGaussNewtonOptions& opts
 	if (!delta.allFinite())
 		throw std::runtime_error("CRunningCost::gaussNewtonStep: non-finite step");
 	res.max_step = delta.cwiseAbs().maxCoeff();
+	res.cost_linear_min = res.cost_before + g.dot(delta);
 	for (size_t i = 0; i < m_keys.size(); ++i)
 		m_values[i] =
 			blockPlus(m_keys[i].kind, m_values[i], delta.segment(m_offsets[i], m_values[i].size()));

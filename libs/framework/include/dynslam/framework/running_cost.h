@@ -44,6 +44,9 @@ struct TGaussNewtonResult
 {
 	double cost_before = 0;  ///< cost at x*
 	double max_step = 0;  ///< max |delta| (the convergence measure)
+	/** Minimum of the linearized cost, C^T C + g^T delta (g = J^T C): for an update on a
+	 * prior, the NIS nu^T (H Sigma H^T + R)^-1 nu. */
+	double cost_linear_min = 0;
 	bool dense = true;
 	Eigen::MatrixXd information;  ///< dense J^T J (dense solver only)
 	Eigen::MatrixXd covariance;  ///< dense (J^T J)^+ (dense solver, compute_covariance)

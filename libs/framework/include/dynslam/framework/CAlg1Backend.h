@@ -1,0 +1,84 @@
+#pragma once
+/** @file CAlg1Backend.h
+ * Alg. 1 of the paper (dynamic EKF-SLAM as iterative optimization), driven like
+ * CDynamicKFSLAM2D: one (action, sensory frame) pair per step, the same step order and the
+ * same bookkeeping, but every step is a Gauss-Newton or marginalization step on a running
+ * cost (framework/running_cost.h) instead of a Kalman-filter formula:
+ *
+ *  1. propagation (Alg. 7, Theorem A.5): add x_t with the odometry residual, marginalize
+ *     x_{t-1} (a zero-covariance action, e.g. the rawlog's ACT_0, is the exact change of
+ *     variables x_t = x_{t-1} (+) u, the limit of the marginalization);
+ *  2. static update (Alg. 5, Theorem A.3): measurement residuals of tracked landmarks, GN;
+ *  3. static augmentation (Alg. 3, Theorem A.1): new landmarks at l(x, z), GN;
+ *  4. object-feature augmentation (Alg. 3): time-0 features of new objects, time-t features;
+ *  5. object-pose augmentation (Alg. 4, Theorem 4.1) per object, GN (pose-space residual by
+ *     default, the exact equivalent of Alg. 4; feature_space selects the paper's form);
+ *  6. smoothing (Alg. 6, Theorem 4.2), optional, GN;
+ *  7. drops (time-t features, old object poses, unseen static landmarks): marginalization
+ *     (deleting rows and columns of a covariance is marginalizing the Gaussian).
+ * After every GN step the cost is replaced by ||x - mu||^2_{J^T J} (Alg. 1: "cost <- ...").
+ * The state is kept in information form; covariances are computed when asked for. */
+#include <dynslam/ISlamBackend.h>
+#include <dynslam/framework/TBackendOptions.h>
+#include <dynslam/framework/running_cost.h>
+#include <dynslam/framework/step_input.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace dynslam::framework
+{
+class CAlg1Backend : public ISlamBackend
+{
+public:
+	/** Throws std::invalid_argument if the options are invalid (validate()). */
+	explicit CAlg1Backend(const TBackendOptions& opts);
+	void reset();
+	void processActionObservation(
+		const mrpt::obs::CActionCollection::Ptr& action,
+		const mrpt::obs::CSensoryFrame::Ptr& SF) override;
+	std::string name() const override { return "alg1"; }
+	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(bool includeDropped = true) const override;
+	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
+	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
+	const TStepReport& getLastStepReport() const override { return m_report; }
+
+	/** Mean, covariance and labels of the whole state in storage order; the labels are those
+	 * of CDynamicKFSLAM2D::getStateWithoutPads (e.g. "ego.x", "lm3.y", "obj1.f2.t0.x",
+	 * "obj1.xi7.dtheta"), so both can be compared entry by entry. */
+	void getLabelledState(
+		Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>& labels) const;
+	const CRunningCost& cost() const { return m_cost; }
+	const TBackendOptions& options() const { return m_opts; }
+	int stepCount() const { return m_step + 1; }
+
+private:
+	struct TObject
+	{
+		int first_step = -1;
+		std::vector<int32_t> feature_ids;  ///< features seen at time 0, in observation order
+		std::vector<TObjectPoseEstimate> dropped;
+	};
+	TGaussNewtonResult gnAndCollapse();
+	void propagate(const TStepInput& in);
+	void staticSteps(const TStepInput& in);
+	void objectFeatureAugmentation(const TStepInput& in);
+	void objectPoseAugmentation(const TStepInput& in);
+	void smoothing();
+	void drops();
+	Eigen::MatrixXd marginalCov(const TVarKey& k) const;
+	bool isTimeT(const TVarKey& k) const;
+
+	TBackendOptions m_opts;
+	CRunningCost m_cost;
+	TVarKey m_ego;
+	int m_step = -1;
+	std::map<int32_t, int> m_lastSeen;
+	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
+	std::map<int32_t, TObject> m_objects;
+	std::vector<TVarKey> m_newTimeT;  ///< time-t features added this step, observation order
+	TStepReport m_report;
+};
+}  // namespace dynslam::framework

@@ -1,0 +1,419 @@
+#include <dynslam/framework/CAlg1Backend.h>
+#include <dynslam/landmark_ids.h>
+#include <dynslam/models/object_pose.h>
+#include <dynslam/models/se2.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+
+namespace dynslam::framework
+{
+CAlg1Backend::CAlg1Backend(const TBackendOptions& opts) : m_opts(opts)
+{
+	m_opts.validate();
+	reset();
+}
+
+void CAlg1Backend::reset()
+{
+	m_cost = CRunningCost();
+	m_ego = TVarKey::ego(-1);
+	m_cost.addVariable(m_ego, m_opts.model.initial_pose);
+	m_cost.addTerm(
+		CPriorTerm::fromCovariance({m_ego}, {3}, m_opts.model.initial_pose, m_opts.model.Sigma_0));
+	m_step = -1;
+	m_lastSeen.clear();
+	m_droppedStatic.clear();
+	m_objects.clear();
+	m_report = TStepReport();
+}
+
+TGaussNewtonResult CAlg1Backend::gnAndCollapse()
+{
+	TGaussNewtonOptions o;
+	o.solver = SolverKind::Dense;
+	o.compute_covariance = false;
+	TGaussNewtonResult r = m_cost.gaussNewtonStep(o);
+	m_cost.collapseToPrior(r.information);
+	return r;
+}
+
+Eigen::MatrixXd CAlg1Backend::marginalCov(const TVarKey& k) const
+{
+	TGaussNewtonOptions o;
+	o.solver = SolverKind::Dense;
+	return m_cost.covariance({k}, o);
+}
+
+bool CAlg1Backend::isTimeT(const TVarKey& k) const
+{
+	return k.kind == VarKind::ObjectFeature && m_objects.count(k.id) &&
+		   m_objects.at(k.id).first_step != k.step;
+}
+
+void CAlg1Backend::processActionObservation(
+	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
+{
+	const TStepInput in = parseStepInput(action, SF, m_opts.model.measurement_model, "CAlg1Backend");
+	++m_step;
+	m_report = TStepReport();
+	m_report.step = m_step;
+	propagate(in);  // Alg. 7 / Theorem A.5
+	staticSteps(in);  // Alg. 5 / A.3, then Alg. 3 / A.1
+	objectFeatureAugmentation(in);  // Alg. 3 / A.1 (objects)
+	objectPoseAugmentation(in);  // Alg. 4 / Theorem 4.1
+	smoothing();  // Alg. 6 / Theorem 4.2 (optional)
+	drops();
+}
+
+// Alg. 7 as a marginalization (Theorem A.5).
+void CAlg1Backend::propagate(const TStepInput& in)
+{
+	if (m_opts.model.skip_prediction_on_empty_map && m_cost.numVariables() == 1) return;
+	const Eigen::Matrix3d Su = m_opts.model.motion_noise_from_action ? in.U : m_opts.model.Sigma_w;
+	const TVarKey next = TVarKey::ego(m_step);
+	Eigen::Matrix3d F;
+	const Eigen::Vector3d pred = models::composePose(m_cost.value(m_ego), in.u, &F);
+	if (Su.isZero(0))
+	{
+		// Noise-free motion: x_t = x_{t-1} (+) u is a change of variables, the limit of the
+		// marginalization as Sigma_u -> 0: Omega' = T^-T Omega T^-1, T = blkdiag(F, I).
+		if (m_cost.terms().size() != 1)
+			throw std::logic_error("CAlg1Backend: the running cost is not a single prior");
+		const auto* prior = dynamic_cast<const CPriorTerm*>(m_cost.terms()[0].get());
+		const int n = m_cost.totalDim(), e = m_cost.offset(m_ego);
+		Eigen::MatrixXd Tinv = Eigen::MatrixXd::Identity(n, n);
+		Tinv.block<3, 3>(e, e) = F.inverse();
+		const Eigen::MatrixXd Omega = Tinv.transpose() * prior->information() * Tinv;
+		CRunningCost c;
+		for (const auto& k : m_cost.keys())
+			c.addVariable(k == m_ego ? next : k, k == m_ego ? Eigen::VectorXd(pred) : m_cost.value(k));
+		m_cost = c;
+		m_ego = next;
+		m_cost.collapseToPrior(0.5 * (Omega + Omega.transpose()));
+		return;
+	}
+	if (Eigen::LLT<Eigen::Matrix3d>(Su).info() != Eigen::Success)
+		throw std::runtime_error(
+			"CAlg1Backend: the odometry covariance is singular but not zero; the framework "
+			"needs it positive definite (or exactly zero)");
+	m_cost.addVariable(next, pred);
+	m_cost.addTerm(std::make_shared<COdometryTerm>(m_ego.step, m_step, in.u, Su));
+	m_cost.marginalize({m_ego});
+	m_ego = next;
+}
+
+// Alg. 5 (tracked landmarks), then Alg. 3 (new ones): GN steps (Theorems A.3, A.1).
+void CAlg1Backend::staticSteps(const TStepInput& in)
+{
+	const auto& mo = m_opts.model;
+	std::vector<TMeasurement> tracked, fresh;
+	for (const auto& m : in.statics) (m_cost.has(TVarKey::landmark(m.id)) ? tracked : fresh).push_back(m);
+	if (!tracked.empty())
+	{
+		for (const auto& m : tracked)
+			m_cost.addTerm(std::make_shared<CMeasurementTerm>(
+				m_ego.step, TVarKey::landmark(m.id), m.z, mo.measurement_model, mo.Sigma_v));
+		const auto r = gnAndCollapse();
+		m_report.static_updates = tracked.size();
+		m_report.nis_static = r.cost_linear_min;
+		m_report.nis_static_dof = 2 * tracked.size();
+	}
+	if (!fresh.empty())
+	{
+		const Eigen::Vector3d x = m_cost.value(m_ego);
+		for (const auto& m : fresh)
+		{
+			const TVarKey k = TVarKey::landmark(m.id);
+			m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.z));
+			m_cost.addTerm(
+				std::make_shared<CMeasurementTerm>(m_ego.step, k, m.z, mo.measurement_model, mo.Sigma_v));
+		}
+		gnAndCollapse();
+		m_report.static_new = fresh.size();
+	}
+	for (const auto& m : in.statics) m_lastSeen[m.id] = m_step;
+}
+
+// Alg. 3 for object features (time 0 of new objects, time t of known ones).
+void CAlg1Backend::objectFeatureAugmentation(const TStepInput& in)
+{
+	m_newTimeT.clear();
+	if (in.objects.empty()) return;
+	const auto& mo = m_opts.model;
+	std::set<int32_t> seenObjects;
+	for (const auto& m : in.objects) seenObjects.insert(ids::objectOf(m.id));
+	std::vector<TVarKey> stale;
+	for (const auto& k : m_cost.keys())
+		if (isTimeT(k) && seenObjects.count(k.id)) stale.push_back(k);
+	if (!stale.empty())
+	{
+		m_report.dropped_time_t += stale.size();
+		m_cost.marginalize(stale);
+	}
+	const Eigen::Vector3d x = m_cost.value(m_ego);
+	bool any = false;
+	for (const auto& m : in.objects)
+	{
+		const int32_t obj = ids::objectOf(m.id), f = ids::featureOf(m.id);
+		auto it = m_objects.find(obj);
+		if (it == m_objects.end() || it->second.first_step == m_step)
+		{
+			TObject& o = m_objects[obj];
+			o.first_step = m_step;
+			o.feature_ids.push_back(m.id);
+			++m_report.object_features_new;
+		}
+		else if (std::find(it->second.feature_ids.begin(), it->second.feature_ids.end(), m.id) !=
+				 it->second.feature_ids.end())
+		{
+			++m_report.object_features_t;
+			m_newTimeT.push_back(TVarKey::objectFeature(obj, f, m_step));
+		}
+		else
+		{
+			++m_report.skipped_unknown_object_feature;
+			continue;
+		}
+		const TVarKey k = TVarKey::objectFeature(obj, f, m_step);
+		m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.z));
+		m_cost.addTerm(
+			std::make_shared<CMeasurementTerm>(m_ego.step, k, m.z, mo.measurement_model, mo.Sigma_v));
+		any = true;
+	}
+	if (any) gnAndCollapse();
+}
+
+// Alg. 4 per object as a GN step (Theorem 4.1).
+void CAlg1Backend::objectPoseAugmentation(const TStepInput&)
+{
+	for (const auto& [obj, o] : m_objects)
+	{
+		TObjectPoseKeys k;
+		for (const auto& key : m_newTimeT)
+			if (key.id == obj)
+			{
+				k.ft.push_back(key);
+				const int32_t id = ids::objectFeatureId(obj, key.feature);
+				k.seen.push_back(int(
+					std::find(o.feature_ids.begin(), o.feature_ids.end(), id) - o.feature_ids.begin()));
+			}
+		if (k.ft.empty()) continue;
+		const size_t n = o.feature_ids.size(), m = k.ft.size();
+		if (n >= 2 && m < 2)
+		{
+			++m_report.skipped_pose_degenerate;
+			continue;
+		}
+		Eigen::Matrix2Xd f0(2, n), ft(2, m);
+		for (size_t j = 0; j < n; ++j)
+		{
+			k.f0.push_back(TVarKey::objectFeature(obj, ids::featureOf(o.feature_ids[j]), o.first_step));
+			f0.col(j) = m_cost.value(k.f0.back());
+		}
+		for (size_t i = 0; i < m; ++i) ft.col(i) = m_cost.value(k.ft[i]);
+		Eigen::VectorXd xi;
+		try
+		{
+			xi = n == 1 ? Eigen::VectorXd(models::objectTranslationInverse(f0.col(0), ft.col(0)))
+						: Eigen::VectorXd(models::objectPoseInverse(f0, ft, k.seen));
+		}
+		catch (const std::domain_error&)
+		{
+			++m_report.skipped_pose_degenerate;
+			continue;
+		}
+		k.pose = TVarKey::objectPose(obj, m_step);
+		m_cost.addVariable(k.pose, xi);
+		if (m_opts.pose_residual == PoseResidual::PoseSpace)
+			m_cost.addTerm(std::make_shared<CObjectPosePoseTerm>(k, m_opts.model.Sigma_xi));
+		else
+			m_cost.addTerm(std::make_shared<CObjectPoseFeatureTerm>(k, m_opts.model.Sigma_xi));
+		gnAndCollapse();
+		++m_report.object_poses_added;
+	}
+}
+
+// Alg. 6 per object as a GN step (Theorem 4.2).
+void CAlg1Backend::smoothing()
+{
+	if (!m_opts.model.smoothing) return;
+	for (const auto& [obj, o] : m_objects)
+	{
+		const TVarKey a = TVarKey::objectPose(obj, m_step - 2), b = TVarKey::objectPose(obj, m_step - 1),
+					  c = TVarKey::objectPose(obj, m_step);
+		if (!m_cost.has(a) || !m_cost.has(b) || !m_cost.has(c)) continue;
+		const int d = m_cost.dim(c);
+		m_cost.addTerm(
+			std::make_shared<CSmoothingTerm>(a, b, c, m_opts.model.Sigma_s.topLeftCorner(d, d)));
+		gnAndCollapse();
+		++m_report.smoothing_updates;
+	}
+}
+
+// The drop policies: removing blocks from (mu, Sigma) is marginalization.
+void CAlg1Backend::drops()
+{
+	const auto& mo = m_opts.model;
+	std::vector<TVarKey> M;
+	if (mo.drop_time_t_features)
+		for (const auto& k : m_cost.keys())
+			if (isTimeT(k))
+			{
+				M.push_back(k);
+				++m_report.dropped_time_t;
+			}
+	for (auto& [obj, o] : m_objects)
+	{
+		std::vector<TVarKey> poses;
+		for (const auto& k : m_cost.keys())
+			if (k.kind == VarKind::ObjectPose && k.id == obj) poses.push_back(k);
+		std::sort(poses.begin(), poses.end());
+		const size_t K = size_t(mo.keep_last_poses);
+		for (size_t i = 0; poses.size() > K && i < poses.size() - K; ++i)
+		{
+			TObjectPoseEstimate e;
+			e.step = poses[i].step;
+			e.mean = m_cost.value(poses[i]);
+			e.cov = marginalCov(poses[i]);
+			e.in_state = false;
+			o.dropped.push_back(e);
+			M.push_back(poses[i]);
+			++m_report.dropped_poses;
+		}
+	}
+	if (mo.drop_static_after_unseen_steps > 0)
+		for (const auto& k : m_cost.keys())
+		{
+			if (k.kind != VarKind::StaticLandmark) continue;
+			if (m_step - m_lastSeen.at(k.id) < mo.drop_static_after_unseen_steps) continue;
+			TStaticLandmarkEstimate e;
+			e.id = k.id;
+			e.mean = m_cost.value(k);
+			e.cov = marginalCov(k);
+			e.in_state = false;
+			m_droppedStatic.push_back(e);
+			M.push_back(k);
+			++m_report.dropped_static;
+		}
+	if (!M.empty()) m_cost.marginalize(M);
+}
+
+// ------------------------------------------------------------------------------------------
+// Results
+// ------------------------------------------------------------------------------------------
+mrpt::poses::CPosePDFGaussian CAlg1Backend::getEgoPose() const
+{
+	mrpt::poses::CPosePDFGaussian p;
+	const Eigen::Vector3d x = m_cost.value(m_ego);
+	p.mean = mrpt::poses::CPose2D(x[0], x[1], x[2]);
+	p.cov = mrpt::math::CMatrixDouble33(Eigen::Matrix3d(marginalCov(m_ego)));
+	return p;
+}
+
+std::vector<TStaticLandmarkEstimate> CAlg1Backend::getStaticLandmarks(bool includeDropped) const
+{
+	std::vector<TStaticLandmarkEstimate> out;
+	for (const auto& k : m_cost.keys())
+		if (k.kind == VarKind::StaticLandmark)
+		{
+			TStaticLandmarkEstimate e;
+			e.id = k.id;
+			e.mean = m_cost.value(k);
+			e.cov = marginalCov(k);
+			out.push_back(e);
+		}
+	if (includeDropped) out.insert(out.end(), m_droppedStatic.begin(), m_droppedStatic.end());
+	return out;
+}
+
+std::vector<TObjectFeatureEstimate> CAlg1Backend::getObjectFeatures() const
+{
+	std::vector<TObjectFeatureEstimate> out;
+	for (const auto& k : m_cost.keys())
+		if (k.kind == VarKind::ObjectFeature)
+		{
+			TObjectFeatureEstimate e;
+			e.object = k.id;
+			e.feature = k.feature;
+			e.id = ids::objectFeatureId(k.id, k.feature);
+			e.at_time0 = !isTimeT(k);
+			e.step = k.step;
+			e.mean = m_cost.value(k);
+			e.cov = marginalCov(k);
+			out.push_back(e);
+		}
+	return out;
+}
+
+std::map<int32_t, TObjectTrack> CAlg1Backend::getObjectTracks() const
+{
+	std::map<int32_t, TObjectTrack> out;
+	for (const auto& [obj, o] : m_objects)
+	{
+		TObjectTrack& tr = out[obj];
+		tr.object = obj;
+		tr.first_step = o.first_step;
+		tr.num_features = int(o.feature_ids.size());
+		tr.poses = o.dropped;
+	}
+	for (const auto& k : m_cost.keys())
+		if (k.kind == VarKind::ObjectPose)
+		{
+			TObjectPoseEstimate e;
+			e.step = k.step;
+			e.mean = m_cost.value(k);
+			e.cov = marginalCov(k);
+			e.in_state = true;
+			out[k.id].poses.push_back(e);
+		}
+	for (auto& [obj, tr] : out)
+		std::stable_sort(tr.poses.begin(), tr.poses.end(), [](const auto& a, const auto& b) {
+			return a.step < b.step;
+		});
+	return out;
+}
+
+void CAlg1Backend::getLabelledState(
+	Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>& labels) const
+{
+	TGaussNewtonOptions o;
+	o.solver = SolverKind::Dense;
+	x = m_cost.stackedValues();
+	P = m_cost.covariance(m_cost.keys(), o);
+	labels.clear();
+	for (const auto& k : m_cost.keys())
+	{
+		const std::string ob = "obj" + std::to_string(k.id);
+		switch (k.kind)
+		{
+			case VarKind::EgoPose:
+				labels.insert(labels.end(), {"ego.x", "ego.y", "ego.theta"});
+				break;
+			case VarKind::StaticLandmark:
+				labels.push_back("lm" + std::to_string(k.id) + ".x");
+				labels.push_back("lm" + std::to_string(k.id) + ".y");
+				break;
+			case VarKind::ObjectFeature:
+			{
+				const std::string f = ob + ".f" + std::to_string(k.feature) +
+									  (isTimeT(k) ? ".t" + std::to_string(k.step) : ".t0");
+				labels.push_back(f + ".x");
+				labels.push_back(f + ".y");
+				break;
+			}
+			case VarKind::ObjectPose:
+			case VarKind::ObjectBodyPose:
+			{
+				const std::string p = ob + ".xi" + std::to_string(k.step);
+				labels.push_back(p + ".dx");
+				labels.push_back(p + ".dy");
+				if (m_cost.dim(k) == 3) labels.push_back(p + ".dtheta");
+				break;
+			}
+		}
+	}
+}
+}  // namespace dynslam::framework
