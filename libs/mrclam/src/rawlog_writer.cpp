@@ -101,6 +101,8 @@ void writeImport(const TImportResult& res, const TMrclamOptions& opts, const std
 	f.precision(17);
 	f << "; Written by dynslam-mrclam. World frame: the ego's ground-truth pose at step 0, so\n"
 	  << "; the filter starts at the origin with zero covariance (exact by construction).\n"
+	  << "; [DynamicKFSLAM] here holds only the start; the other filter keys (measurement\n"
+	  << "; model, noise) are in config/mrclam.ini.\n"
 	  << "[MRCLAM_ImportResult]\n"
 	  << "dataset = " << s.dataset << "\n"
 	  << "ego_robot = " << s.ego << "\n"
