@@ -1,3 +1,5 @@
+/** @file TScenarioOptions.cpp
+ * Strict reading of a scenario INI into TScenarioOptions. */
 #include <dynslam/config_utils.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/sim/TScenarioOptions.h>
@@ -11,9 +13,14 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "options_format.h"
+
 namespace dynslam::sim
 {
 namespace cfg = dynslam::config;
+using detail::fmt;
+using detail::fmtMatrix;
+using detail::fmtRamps;
 using mrpt::config::CConfigFileBase;
 
 namespace
@@ -24,38 +31,6 @@ std::string lower(std::string s)
 	return s;
 }
 
-std::string fmt(double v)
-{
-	char b[40];
-	for (int p = 15; p <= 17; ++p)  // shortest exact representation
-	{
-		std::snprintf(b, sizeof(b), "%.*g", p, v);
-		if (std::strtod(b, nullptr) == v) break;
-	}
-	return b;
-}
-
-std::string fmtMatrix(const Eigen::MatrixXd& m)
-{
-	std::string s = "[";
-	for (Eigen::Index i = 0; i < m.rows(); ++i)
-	{
-		for (Eigen::Index j = 0; j < m.cols(); ++j) s += (j ? " " : "") + fmt(m(i, j));
-		if (i + 1 < m.rows()) s += "; ";
-	}
-	return s + "]";
-}
-
-std::string fmtRamps(const std::vector<TRamp>& r)
-{
-	std::string s = "[";
-	for (size_t i = 0; i < r.size(); ++i)
-		s +=
-		    (i ? "; " : "") + fmt(r[i].t_start) + " " + fmt(r[i].duration) + " " + fmt(r[i].target);
-	return s + "]";
-}
-
-/** A list of (t_start, duration, target) triples, e.g. `[10 4 2; 30 4 1]`; empty if missing. */
 std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec,
                              const std::string& key)
 {
@@ -221,69 +196,7 @@ THighwayAgent readAgent(const CConfigFileBase& c, const std::string& sec, const 
 	if (isEgo && !(a.speed > 0)) cfg::fail(sec, "speed", fmt(a.speed), "the ego must move (> 0)");
 	return a;
 }
-
-void dumpAgent(std::ostream& o, const THighwayAgent& a, bool isEgo)
-{
-	o << "\n[" << a.section << "]\n";
-	const bool car = a.kind == THighwayAgent::Kind::Car;
-	if (!isEgo)
-	{
-		o << "type = " << (car ? "car" : "pedestrian") << "\n";
-		o << "x0 = " << fmt(a.x0) << "\n";
-		if (car)
-			o << "lane0 = " << a.lane0 << "\n";
-		else
-			o << "y0 = " << fmt(a.y0) << "\n";
-	}
-	o << "speed = " << fmt(a.speed) << "\n";
-	o << "speed_changes = " << fmtRamps(a.speed_changes) << "\n";
-	if (car)
-		o << "lane_changes = " << fmtRamps(a.lane_changes) << "\n";
-	else
-		o << "lateral_moves = " << fmtRamps(a.lateral_moves) << "\n";
-	if (car) o << "length = " << fmt(a.length) << "\n";
-	o << "width = " << fmt(a.width) << "\n";
-	if (!isEgo) o << "num_features = " << a.num_features << "\n";
-}
 }  // namespace
-
-TNoiseLevel noiseLevel(const std::string& name)
-{
-	const std::string l = lower(name);
-	TNoiseLevel n;
-	if (l == "none") return n;
-	if (l.size() == 4 && l[0] == 'w' && l[2] == 'v' && l[1] >= '1' && l[1] <= '3' && l[3] >= '1' &&
-	    l[3] <= '3')
-	{
-		// The literals of eq. (5)-(7).
-		static const double xy[] = {1e-6, 1e-5, 1e-4}, th[] = {1e-8, 1e-7, 1e-6};
-		const int w = l[1] - '1', v = l[3] - '1';
-		n.Sigma_w.diagonal() << xy[w], xy[w], th[w];
-		n.Sigma_v = xy[v] * Eigen::Matrix2d::Identity();
-		return n;
-	}
-	throw std::invalid_argument("unknown noise level '" + name +
-	                            "' (expected w1v1..w3v3, none or custom)");
-}
-
-void TScenarioOptions::setNoiseLevel(const std::string& level)
-{
-	const TNoiseLevel n = noiseLevel(level);
-	noise_level = lower(level);
-	Sigma_w = n.Sigma_w;
-	Sigma_v = n.Sigma_v;
-	Sigma_0 = Sigma_w;
-	updateEquivalentStds();
-}
-
-void TScenarioOptions::updateEquivalentStds()
-{
-	if (noise_model != models::MeasurementModel::Cartesian) return;
-	// Cartesian noise of std s on z gives, to first order, range std s and yaw std s / r.
-	const double s = std::sqrt(0.5 * Sigma_v.trace());
-	std_range = s;
-	std_yaw = s / typical_range;
-}
 
 void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::string&)
 {
@@ -458,74 +371,6 @@ void TScenarioOptions::validate() const
 	if (!(sensor_range > 0)) throw std::invalid_argument("[Sensor] range must be > 0");
 	if (!Sigma_w.allFinite() || !Sigma_v.allFinite() || !Sigma_0.allFinite())
 		throw std::invalid_argument("[Noise] covariances must be finite");
-}
-
-void TScenarioOptions::dumpToTextStream(std::ostream& o) const
-{
-	o << "# Effective scenario configuration written by dynslam-simulate (loadable as is).\n";
-	o << "[Scenario]\n";
-	o << "type = " << (type == ScenarioType::Highway ? "highway" : "generated") << "\n";
-	o << "name = " << name << "\n";
-	o << "dt = " << fmt(dt) << "\n";
-	o << "steps = " << steps << "\n";
-	o << "world_seed = " << world_seed << "\n";
-	o << "noise_seed = " << noise_seed << "\n";
-	o << "start_time = " << fmt(start_time) << "\n";
-	o << "\n[Sensor]\n";
-	o << "range = " << fmt(sensor_range) << "\n";
-	o << "label = " << sensor_label << "\n";
-	o << "noise_model = " << models::toString(noise_model) << "\n";
-	o << "typical_range = " << fmt(typical_range) << "\n";
-	o << "\n[Noise]\n";
-	o << "level = " << noise_level << "\n";
-	o << "sigma_w = " << fmtMatrix(Sigma_w) << "\n";
-	o << "sigma_v = " << fmtMatrix(Sigma_v) << "\n";
-	o << "sigma_0 = " << fmtMatrix(Sigma_0) << "\n";
-	o << "std_range = " << fmt(std_range) << "\n";
-	o << "std_yaw = " << fmt(std_yaw) << "\n";
-	o << "std_yaw_deg = " << fmt(std_yaw * 180 / M_PI) << "\n";
-	if (type == ScenarioType::Highway)
-	{
-		const THighwayOptions& h = highway;
-		o << "\n[Highway]\n";
-		o << "length = " << fmt(h.length) << "\n";
-		o << "num_lanes = " << h.num_lanes << "\n";
-		o << "lane_width = " << fmt(h.lane_width) << "\n";
-		o << "ego_lane = " << h.ego_lane << "\n";
-		o << "num_landmarks = " << h.num_landmarks << "\n";
-		o << "landmark_offset_min = " << fmt(h.landmark_offset_min) << "\n";
-		o << "landmark_offset_max = " << fmt(h.landmark_offset_max) << "\n";
-		o << "num_agents = " << h.agents.size() << "\n";
-		dumpAgent(o, h.ego, true);
-		for (const auto& a : h.agents) dumpAgent(o, a, false);
-	}
-	else
-	{
-		const TGeneratedOptions& g = generated;
-		o << "\n[Generated]\n";
-		o << "track_radius = " << fmt(g.track_radius) << "\n";
-		o << "ego_speed = " << fmt(g.ego_speed) << "\n";
-		o << "num_landmarks = " << g.num_landmarks << "\n";
-		o << "landmark_offset_min = " << fmt(g.landmark_offset_min) << "\n";
-		o << "landmark_offset_max = " << fmt(g.landmark_offset_max) << "\n";
-		o << "num_lanes = " << g.num_lanes << "\n";
-		o << "lane_width = " << fmt(g.lane_width) << "\n";
-		o << "num_cars = " << g.num_cars << "\n";
-		o << "num_pedestrians = " << g.num_pedestrians << "\n";
-		o << "num_rotating = " << g.num_rotating << "\n";
-		o << "features_per_car = " << g.features_per_car << "\n";
-		o << "features_per_pedestrian = " << g.features_per_pedestrian << "\n";
-		o << "features_per_rotating = " << g.features_per_rotating << "\n";
-		o << "car_length = " << fmt(g.car_length) << "\n";
-		o << "car_width = " << fmt(g.car_width) << "\n";
-		o << "pedestrian_width = " << fmt(g.pedestrian_width) << "\n";
-		o << "rotating_radius = " << fmt(g.rotating_radius) << "\n";
-		o << "car_speed_factor_min = " << fmt(g.car_speed_factor_min) << "\n";
-		o << "car_speed_factor_max = " << fmt(g.car_speed_factor_max) << "\n";
-		o << "pedestrian_speed = " << fmt(g.pedestrian_speed) << "\n";
-		o << "yaw_rate_max = " << fmt(g.yaw_rate_max) << "\n";
-		o << "object_spread = " << fmt(g.object_spread) << "\n";
-	}
 }
 
 TScenarioOptions loadScenario(const std::string& iniPath)

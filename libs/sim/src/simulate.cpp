@@ -86,7 +86,11 @@ public:
 		}
 		CActionRobotMovement2D act;
 		act.timestamp = stamp;
-		act.estimationMethod = CActionRobotMovement2D::emOdometry;
+		// Not emOdometry: MRPT serializes an emOdometry action as the raw increment plus its
+		// motion-model parameters and, when reading the rawlog, rebuilds the covariance from
+		// its default Gaussian model (std 0.01 m + 1% of the distance): Sigma_w would be lost
+		// for every reader of the file. Any other method stores the PDF itself.
+		act.estimationMethod = CActionRobotMovement2D::emScan2DMatching;
 		act.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
 		act.poseChange = mrpt::poses::CPosePDFGaussian::Create(
 		    mrpt::poses::CPose2D(u[0], u[1], u[2]), mrpt::math::CMatrixDouble33(cov));
