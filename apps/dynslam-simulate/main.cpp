@@ -1,7 +1,6 @@
 /** dynslam-simulate: writes a scenario as an MRPT rawlog with ground truth.
  * All logic is in dynslam::sim::CSimulateApp (libs/sim); see doc/simulator.md. */
 #include <dynslam/sim/CSimulateApp.h>
-#include <mrpt/core/exceptions.h>
 
 #include <iostream>
 
@@ -16,7 +15,7 @@ int main(int argc, const char** argv)
 	}
 	catch (const std::exception& e)
 	{
-		std::cerr << "dynslam-simulate: " << mrpt::exception_to_str(e) << "\n";
+		std::cerr << "dynslam-simulate: " << e.what() << "\n";
 		return 1;
 	}
 }
