@@ -1,0 +1,67 @@
+#pragma once
+/** @file CCompareApp.h
+ * The dynslam-compare application: on one rawlog, side by side,
+ *  (a) static_all: mrpt::slam::CRangeBearingKFSLAM2D unchanged, every feature treated as a
+ *      static landmark;
+ *  (b) static_landmarks_only: the same filter given only the static landmarks (moving
+ *      features removed by ID, dynslam/landmark_ids.h);
+ *  (c) dynamic: the dynamic EKF (CDynamicKFSLAM2D).
+ * Prints one table of metrics and timing per filter; with --out DIR writes DIR/metrics.csv
+ * (header + one row per filter: filter,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,
+ * static_rmse_y,ate,ms_per_step,...), the per-filter estimate files, overlaid figures and the
+ * effective configuration.
+ *
+ *   dynslam-compare [-c INI] [-r file.rawlog] [--gt DIR/BASE | --no-gt] [--out DIR]
+ *                   [--filters static_all,static_landmarks_only,dynamic] [--no-figures] [-q]
+ *
+ * Without -c it uses the shipped highway default config/compare_highway.ini (which points at
+ * datasets/highway.rawlog), searched in the current directory, then <exe>/../share/dynslam,
+ * then the source tree (data_files.h), and prints which files it used. */
+#include <dynslam/apps/app_common.h>
+#include <dynslam/apps/filter_run.h>
+#include <dynslam/eval/writers.h>
+#include <dynslam/ground_truth.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/system/COutputLogger.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dynslam::apps
+{
+class CCompareApp : public mrpt::system::COutputLogger
+{
+public:
+	CCompareApp();
+	/** Parses the command line, loads the INI and checks every filter's options. Returns false
+	 * for --help / --version. Throws on bad arguments, missing files or bad INI values. */
+	bool initialize(int argc, const char** argv);
+	/** Runs the filters, prints the table and (with an output dir) writes the files. */
+	void run();
+
+	/** Filter names in table order. */
+	static const std::vector<std::string>& allFilters();
+
+	// --- settings (filled by initialize(); may be edited before run()) ---
+	mrpt::config::CConfigFileMemory params;
+	std::string iniFile;
+	TDataSettings data;
+	std::vector<std::string> filters = allFilters();
+	std::string outDir;  ///< empty: print only
+	bool figures = true;
+
+	// --- results of run() ---
+	std::vector<TFilterRun> runs;  ///< one per filter, in `filters` order
+	std::vector<eval::TMetricsRow> rows;  ///< metrics per filter (only with ground truth)
+	bool hasGroundTruth = false;
+	TGroundTruth gt;
+	std::string groundTruthUsed, noiseUsed;
+	std::string tableText;  ///< the printed table
+	std::vector<std::string> writtenFiles;
+
+private:
+	void writeOutputs(const std::string& optionsDump);
+	void drawFigures();
+};
+}  // namespace dynslam::apps

@@ -1,0 +1,81 @@
+#pragma once
+/** @file app_common.h
+ * Pieces shared by the app classes: INI loading, evaluation of one run against the ground
+ * truth, and the per-filter output files. */
+#include <dynslam/apps/filter_run.h>
+#include <dynslam/apps/rawlog_io.h>
+#include <dynslam/eval/consistency.h>
+#include <dynslam/eval/metrics.h>
+#include <dynslam/ground_truth.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dynslam::apps
+{
+/** Loads an INI file into memory. Throws std::runtime_error naming the file if it is missing
+ * or unreadable. */
+void loadIniFile(const std::string& path, mrpt::config::CConfigFileMemory& out);
+
+/** Metrics and consistency of one run (only with ground truth). */
+struct TEvaluation
+{
+	eval::TRunMetrics metrics;
+	eval::TRunConsistency consistency;
+	eval::TConsistencySummary summary;  ///< the single-run summary (chi-square bounds of 1 run)
+};
+TEvaluation evaluateRun(const TGroundTruth& gt, const eval::TRunEstimates& est);
+
+/** Without ground truth, the TUM writer needs time stamps: copies the rawlog's observation
+ * stamps into the ego estimates (with ground truth they stay NaN and gt.t is used, so that
+ * our trajectory and the ground truth's TUM file share one time base). */
+void setEgoTimes(TFilterRun& run, bool haveGroundTruth);
+
+/** Writes <dir>/<prefix>ego.csv, trajectory.tum, landmarks.csv, object_features.csv,
+ * object_poses.csv (writers.h); appends the paths to `written`. */
+void writeEstimateFiles(
+	const std::string& dir, const std::string& prefix, const eval::TRunEstimates& est,
+	const TGroundTruth* gt, std::vector<std::string>& written);
+
+/** The data keys shared by [Run] and [Compare] (paths already resolved). */
+struct TDataSettings
+{
+	std::string rawlog;
+	std::string groundTruth;  ///< "DIR/BASE", "auto" (beside the rawlog, if there) or empty
+	std::string scenario = "auto";  ///< scenario INI for the noise, "auto": beside the rawlog
+	/** noise_from_scenario = false | true | auto: write the scenario's noise into the filter
+	 * sections; auto: only if the scenario file exists (else the INI's values are used). */
+	enum class ScenarioNoise
+	{
+		Off,
+		On,
+		Auto
+	} noiseFromScenario = ScenarioNoise::Off;
+};
+/** Reads rawlog, ground_truth, scenario and noise_from_scenario from [section]; paths are
+ * resolved relative to iniDir. */
+TDataSettings readDataSettings(
+	const mrpt::config::CConfigFileBase& ini, const std::string& section, const std::string& iniDir);
+
+struct TLoadedData
+{
+	TRawlog rawlog;
+	std::optional<TGroundTruth> gt;
+	std::string groundTruthUsed;  ///< "DIR/BASE" or empty
+	std::string noiseUsed;  ///< description of the scenario noise written into the INI, or empty
+};
+/** Loads the rawlog, the ground truth (checked against the rawlog) and, with
+ * noiseFromScenario, writes the scenario noise into the filter sections of `params`
+ * (applyScenarioNoise). Throws std::runtime_error with clear messages. */
+TLoadedData loadData(
+	const TDataSettings& s, mrpt::config::CConfigFileMemory& params, const std::string& dynSection,
+	const std::string& staticSection);
+
+/** NIS samples of a run without ground truth (for the NIS figure). */
+eval::TRunConsistency nisOnly(const eval::TRunEstimates& est);
+
+/** dir/name as a string. */
+std::string joinPath(const std::string& dir, const std::string& name);
+}  // namespace dynslam::apps

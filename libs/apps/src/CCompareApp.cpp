@@ -1,0 +1,242 @@
+#include "cmdline.h"
+
+#include <dynslam/apps/CCompareApp.h>
+#include <dynslam/apps/data_files.h>
+#include <dynslam/config_utils.h>
+#include <dynslam/eval/figures.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+namespace dynslam::apps
+{
+namespace
+{
+const char* kSection = "Compare";
+const char* kDefaultIni = "config/compare_highway.ini";
+
+std::string backendOf(const std::string& filter) { return filter == "dynamic" ? "ekf" : filter; }
+
+std::vector<std::string> splitList(const std::string& s)
+{
+	std::vector<std::string> out;
+	std::string cur;
+	for (char c : s + ",")
+		if (c == ',' || c == ' ' || c == '\t')
+		{
+			if (!cur.empty()) out.push_back(cur);
+			cur.clear();
+		}
+		else
+			cur += c;
+	return out;
+}
+}  // namespace
+
+const std::vector<std::string>& CCompareApp::allFilters()
+{
+	static const std::vector<std::string> f{"static_all", "static_landmarks_only", "dynamic"};
+	return f;
+}
+
+CCompareApp::CCompareApp() : mrpt::system::COutputLogger("dynslam-compare") {}
+
+bool CCompareApp::initialize(int argc, const char** argv)
+{
+	TCLAP::CmdLine cmd(
+		"dynslam-compare: MRPT's static EKF-SLAM (CRangeBearingKFSLAM2D) with all features, the same "
+		"filter with static landmarks only, and the dynamic EKF, side by side on one rawlog. Without "
+		"arguments: the shipped highway default. See doc/apps.md.",
+		' ', "0.1");
+	TCLAP::ValueArg<std::string> argIni(
+		"c", "config", std::string("INI file ([Compare] and the filters' sections); default ") + kDefaultIni,
+		false, "", "file.ini", cmd);
+	TCLAP::ValueArg<std::string> argRawlog(
+		"r", "rawlog", "Rawlog (overrides [Compare] rawlog)", false, "", "file.rawlog", cmd);
+	TCLAP::ValueArg<std::string> argGt(
+		"", "gt", "Ground truth DIR/BASE (overrides [Compare] ground_truth)", false, "", "DIR/BASE", cmd);
+	TCLAP::SwitchArg argNoGt("", "no-gt", "Do not use any ground truth", cmd);
+	TCLAP::ValueArg<std::string> argOut(
+		"o", "out", "Write metrics.csv, estimates and figures into this directory", false, "", "dir", cmd);
+	TCLAP::ValueArg<std::string> argFilters(
+		"", "filters", "Comma-separated subset of static_all,static_landmarks_only,dynamic", false, "",
+		"list", cmd);
+	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the PNG figures", cmd);
+	TCLAP::SwitchArg argQuiet("q", "quiet", "Only the table, warnings and errors", cmd);
+	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-compare")) return false;
+	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
+
+	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
+	loadIniFile(iniFile, params);
+	using namespace dynslam::config;
+	rejectUnknownKeys(
+		params, kSection,
+		{"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters", "figures", "out_dir"});
+	data = readDataSettings(params, kSection, folderOf(iniFile));
+	if (argRawlog.isSet())
+	{
+		// The INI's ground truth belongs to its rawlog: look beside the new one instead.
+		data.rawlog = argRawlog.getValue();
+		data.groundTruth = "auto";
+	}
+	if (argGt.isSet()) data.groundTruth = argGt.getValue();
+	if (argNoGt.getValue()) data.groundTruth.clear();
+	if (data.rawlog.empty())
+		throw std::invalid_argument("dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
+
+	const std::string fl = argFilters.isSet() ? argFilters.getValue()
+											  : readString(params, kSection, "filters", "");
+	if (!fl.empty())
+	{
+		filters = splitList(fl);
+		for (const auto& f : filters)
+			if (std::find(allFilters().begin(), allFilters().end(), f) == allFilters().end())
+				fail(kSection, "filters", fl,
+					"unknown filter '" + f + "' (known: static_all, static_landmarks_only, dynamic)");
+		if (filters.empty()) fail(kSection, "filters", fl, "empty list");
+	}
+	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+	outDir = readString(params, kSection, "out_dir", "");
+	if (argOut.isSet()) outDir = argOut.getValue();
+	for (const auto& f : filters) makeBackend(backendOf(f), params);  // fail early on bad options
+	return true;
+}
+
+void CCompareApp::run()
+{
+	runs.clear();
+	rows.clear();
+	writtenFiles.clear();
+	TLoadedData d = loadData(data, params, "DynamicKFSLAM", "RangeBearingKFSLAM");
+	hasGroundTruth = d.gt.has_value();
+	if (hasGroundTruth) gt = *d.gt;
+	groundTruthUsed = d.groundTruthUsed;
+	noiseUsed = d.noiseUsed;
+	std::cout << "dynslam-compare: config " << iniFile << "\n  rawlog " << data.rawlog << " ("
+			  << d.rawlog.size() << " steps)\n  ground truth "
+			  << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
+	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
+
+	std::ostringstream dump;
+	for (const auto& f : filters)
+	{
+		dump << "\n# ======== filter " << f << " ========\n";
+		auto backend = makeBackend(backendOf(f), params, &dump);
+		TFilterRun r = runFilter(*backend, d.rawlog.actions, d.rawlog.frames);
+		r.name = f;
+		setEgoTimes(r, hasGroundTruth);
+		MRPT_LOG_INFO_FMT("%s: %zu steps, %.3f ms/step", f.c_str(), r.steps, r.est.ms_per_step);
+		if (hasGroundTruth)
+		{
+			const TEvaluation ev = evaluateRun(gt, r.est);
+			rows.push_back({f, ev.metrics, ev.summary});
+		}
+		else
+		{
+			eval::TMetricsRow row;
+			row.filter = f;
+			row.metrics.ms_per_step = r.est.ms_per_step;
+			rows.push_back(row);
+		}
+		runs.push_back(std::move(r));
+	}
+
+	std::ostringstream table;
+	eval::writeMetricsTable(table, rows);
+	table << "RMSE against the ground truth (map: static landmarks only); ms/step: wall time of one "
+			 "filter step on this machine.\n";
+	if (!hasGroundTruth) table << "(no ground truth: only timing)\n";
+	tableText = table.str();
+	std::cout << "\n" << tableText;
+	if (!outDir.empty())
+		writeOutputs(dump.str());
+	else
+		std::cout << "(add --out DIR to write metrics.csv, per-filter estimates and figures)\n";
+}
+
+void CCompareApp::writeOutputs(const std::string& optionsDump)
+{
+	std::filesystem::create_directories(outDir);
+	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w) {
+		const std::string p = joinPath(outDir, name);
+		eval::writeFile(p, w);
+		writtenFiles.push_back(p);
+	};
+	out("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
+	out("metrics.txt", [&](std::ostream& os) {
+		os << tableText;
+		for (const auto& r : rows)
+			if (r.consistency)
+			{
+				os << "\n" << r.filter << ": ";
+				eval::writeConsistencySummary(os, *r.consistency);
+			}
+	});
+	for (const auto& r : runs) writeEstimateFiles(outDir, r.name + "_", r.est, g, writtenFiles);
+	out("effective_config.ini", [&](std::ostream& os) {
+		os << "# Effective configuration of dynslam-compare\n# config: " << iniFile
+		   << "\n# rawlog: " << data.rawlog << "\n# ground truth: " << (g ? groundTruthUsed : "none")
+		   << "\n";
+		if (!noiseUsed.empty()) os << "# " << noiseUsed << "\n";
+		os << "\n" << params.getContent() << "\n\n# ---- effective options of every filter ----\n"
+		   << optionsDump;
+	});
+	if (figures) drawFigures();
+	std::cout << "wrote " << writtenFiles.size() << " files into " << outDir << "\n";
+}
+
+void CCompareApp::drawFigures()
+{
+	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	std::vector<eval::TFigureSeries> series;
+	for (size_t i = 0; i < runs.size(); ++i)
+	{
+		// fixed colours per filter, whatever the subset: static_all red, static only orange,
+		// dynamic blue
+		const auto& n = runs[i].name;
+		const size_t c = n == "static_all" ? 0 : n == "static_landmarks_only" ? 3 : 1;
+		series.push_back({n, eval::seriesColor(c), &runs[i].est});
+	}
+	auto png = [&](const std::string& name, const mrpt::img::CImage& img) {
+		const std::string p = joinPath(outDir, name);
+		eval::savePng(img, p);
+		writtenFiles.push_back(p);
+	};
+	eval::TMapFigureOptions mo;
+	mo.title = "Ego paths and maps of the three filters over the ground truth (black)";
+	png("compare_map.png", eval::drawMapFigure(g, series, mo));
+	if (!hasGroundTruth) return;
+	png("compare_ego_errors.png", eval::drawEgoErrorFigure(gt, series));
+
+	// Zoom: around the step where the first filter (static_all by default) is worst.
+	const auto& worst = runs.front().est.ego;
+	double emax = -1;
+	int kmax = -1;
+	for (const auto& e : worst)
+		if (e.step >= 0 && size_t(e.step) < gt.numSteps())
+		{
+			const double err = (e.mean.head<2>() - gt.ego[size_t(e.step)].head<2>()).norm();
+			if (err > emax) emax = err, kmax = e.step;
+		}
+	if (kmax < 0) return;
+	const Eigen::Vector3d c = gt.ego[size_t(kmax)];
+	eval::TBox box;
+	box.xmin = c.x() - 80;
+	box.xmax = c.x() + 80;
+	box.ymin = c.y() - 25;
+	box.ymax = c.y() + 25;
+	eval::TMapFigureOptions zo;
+	zo.view = box;
+	zo.equal_aspect = true;
+	std::ostringstream t;
+	t.precision(3);
+	t << "Zoom at step " << kmax << " (t = " << gt.t[size_t(kmax)] << " s), where " << runs.front().name
+	  << " has its largest ego error (" << emax << " m)";
+	zo.title = t.str();
+	png("compare_map_zoom.png", eval::drawMapFigure(g, series, zo));
+}
+}  // namespace dynslam::apps

@@ -1,0 +1,258 @@
+#include "cmdline.h"
+
+#include <dynslam/apps/CMonteCarloApp.h>
+#include <dynslam/apps/app_common.h>
+#include <dynslam/apps/data_files.h>
+#include <dynslam/apps/filter_run.h>
+#include <dynslam/apps/progress.h>
+#include <dynslam/config_utils.h>
+#include <dynslam/sim/scenario.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+namespace dynslam::apps
+{
+namespace
+{
+const char* kSection = "MonteCarlo";
+
+std::vector<std::string> parseLevels(const std::string& s)
+{
+	std::vector<std::string> out;
+	std::string cur;
+	for (char c : s + ",")
+		if (c == ',' || c == ' ' || c == '\t')
+		{
+			if (!cur.empty()) out.push_back(cur);
+			cur.clear();
+		}
+		else
+			cur += char(std::tolower(static_cast<unsigned char>(c)));
+	if (out.size() == 1 && out[0] == "all") return eval::paperNoiseLevels();
+	const auto& known = eval::paperNoiseLevels();
+	for (const auto& l : out)
+		if (std::find(known.begin(), known.end(), l) == known.end())
+			throw std::invalid_argument("unknown noise level '" + l + "' (known: w1v1..w3v3 or all)");
+	if (out.empty()) throw std::invalid_argument("empty list of noise levels");
+	return out;
+}
+
+int levelIndex(const std::string& level)
+{
+	const auto& k = eval::paperNoiseLevels();
+	return int(std::find(k.begin(), k.end(), level) - k.begin());
+}
+}  // namespace
+
+CMonteCarloApp::CMonteCarloApp() : mrpt::system::COutputLogger("dynslam-montecarlo")
+{
+	levels = eval::paperNoiseLevels();
+}
+
+uint64_t CMonteCarloApp::runSeed(const std::string& level, int r) const
+{
+	return seed + 1000u * uint64_t(levelIndex(level)) + uint64_t(r);
+}
+
+bool CMonteCarloApp::initialize(int argc, const char** argv)
+{
+	TCLAP::CmdLine cmd(
+		"dynslam-montecarlo: the Monte Carlo experiment of the paper (Table I): noise levels x runs of "
+		"the highway scenario, simulated in memory, on all cores. See doc/apps.md.",
+		' ', "0.1");
+	TCLAP::ValueArg<std::string> argIni(
+		"c", "config", "INI file ([MonteCarlo] and the back-end's sections); default config/montecarlo.ini",
+		false, "", "file.ini", cmd);
+	TCLAP::ValueArg<int> argRuns("", "runs", "Runs per noise level ([MonteCarlo] runs)", false, 0, "N", cmd);
+	TCLAP::ValueArg<std::string> argLevels(
+		"", "levels", "Comma-separated noise levels w1v1..w3v3, or all ([MonteCarlo] levels)", false, "",
+		"list", cmd);
+	TCLAP::ValueArg<int> argThreads(
+		"", "threads", "Worker threads (0: all cores) ([MonteCarlo] threads)", false, -1, "T", cmd);
+	TCLAP::ValueArg<long long> argSeed(
+		"", "seed", "Base noise seed ([MonteCarlo] seed)", false, -1, "S", cmd);
+	TCLAP::ValueArg<std::string> argOut(
+		"o", "out", "Write table1.md/.csv, NEES summaries, runs.csv and figures here", false, "", "dir", cmd);
+	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the NEES figures", cmd);
+	TCLAP::SwitchArg argQuiet("q", "quiet", "No progress bar; only the tables", cmd);
+	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-montecarlo")) return false;
+
+	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile("config/montecarlo.ini");
+	loadIniFile(iniFile, params);
+	using namespace dynslam::config;
+	rejectUnknownKeys(
+		params, kSection, {"scenario", "backend", "runs", "levels", "threads", "seed", "figures"});
+	scenarioFile = resolvePath(requireString(params, kSection, "scenario"), folderOf(iniFile));
+	scenario = sim::loadScenario(scenarioFile);
+	backend = readString(params, kSection, "backend", "ekf");
+	runs = int(readInt(params, kSection, "runs", 25));
+	if (argRuns.isSet()) runs = argRuns.getValue();
+	if (runs < 1) fail(kSection, "runs", std::to_string(runs), "must be >= 1");
+	const std::string lv = argLevels.isSet() ? argLevels.getValue() : readString(params, kSection, "levels", "all");
+	try
+	{
+		levels = parseLevels(lv);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		fail(kSection, "levels", lv, e.what());
+	}
+	threads = int(readInt(params, kSection, "threads", 0));
+	if (argThreads.isSet()) threads = argThreads.getValue();
+	if (threads < 0) fail(kSection, "threads", std::to_string(threads), "must be >= 0");
+	const long long s = argSeed.isSet() ? argSeed.getValue() : readInt(params, kSection, "seed", 1);
+	if (s < 0 || s + 1000LL * 9 + runs > 4294967295LL)
+		fail(kSection, "seed", std::to_string(s), "seed + 1000 * 8 + runs must be in [0, 4294967295]");
+	seed = uint64_t(s);
+	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+	outDir = argOut.getValue();
+	progress = !argQuiet.getValue();
+	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
+	makeBackend(backend, params);  // fail early on bad options
+	return true;
+}
+
+void CMonteCarloApp::run()
+{
+	using Clock = std::chrono::steady_clock;
+	const auto t0 = Clock::now();
+	results.clear();
+	nees.clear();
+	table = eval::TTable1();
+	writtenFiles.clear();
+	const bool isStatic = backend != "ekf" && backend != "dynamic";
+
+	// Per level: scenario options with the level's noise, ground truth, filter INI text.
+	struct TLevel
+	{
+		sim::TScenarioOptions opt;
+		TGroundTruth gt;
+		std::string ini;
+	};
+	std::vector<TLevel> lv(levels.size());
+	for (size_t i = 0; i < levels.size(); ++i)
+	{
+		lv[i].opt = scenario;
+		lv[i].opt.setNoiseLevel(levels[i]);
+		lv[i].opt.Sigma_0 = lv[i].opt.Sigma_w;  // the paper: Sigma_0 = Sigma_w
+		lv[i].gt = sim::buildGroundTruth(lv[i].opt);
+		TScenarioNoise n;
+		n.file = "noise level " + levels[i];
+		n.level = levels[i];
+		n.Sigma_w = lv[i].opt.Sigma_w;
+		n.Sigma_v = lv[i].opt.Sigma_v;
+		n.Sigma_0 = lv[i].opt.Sigma_0;
+		n.std_range = lv[i].opt.std_range;
+		n.std_yaw_deg = lv[i].opt.std_yaw * 180.0 / M_PI;
+		mrpt::config::CConfigFileMemory ini(params.getContent());
+		applyScenarioNoise(ini, n, isStatic ? "" : "DynamicKFSLAM", isStatic ? "RangeBearingKFSLAM" : "");
+		lv[i].ini = ini.getContent();
+	}
+
+	const size_t total = levels.size() * size_t(runs);
+	results.assign(total, TRunResult());
+	threadsUsed = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+	threadsUsed = int(std::min<size_t>(size_t(threadsUsed), total));
+	MRPT_LOG_INFO_STREAM(
+		levels.size() << " noise level(s) x " << runs << " runs = " << total << " runs of '" << backend
+					  << "' on " << threadsUsed << " thread(s); scenario " << scenarioFile);
+
+	std::atomic<size_t> next{0};
+	std::atomic<bool> failed{false};
+	std::exception_ptr error;
+	std::mutex errMtx;
+	std::vector<double> msPerStep(total, 0.0);
+	CProgressBar bar("runs", total, std::cerr, progress);
+	auto worker = [&]() {
+		for (;;)
+		{
+			const size_t j = next.fetch_add(1);
+			if (j >= total || failed) return;
+			const size_t li = j / size_t(runs);
+			const int r = int(j % size_t(runs));
+			try
+			{
+				TRunResult& res = results[j];
+				res.level = levels[li];
+				res.run = r;
+				res.seed = runSeed(levels[li], r);
+				const sim::TSimulatedRun simRun = sim::simulateMeasurements(lv[li].gt, lv[li].opt, res.seed);
+				mrpt::config::CConfigFileMemory ini(lv[li].ini);
+				auto filter = makeBackend(backend, ini);
+				if (auto* lg = dynamic_cast<mrpt::system::COutputLogger*>(filter.get()))
+					lg->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+				const TFilterRun fr = runFilter(*filter, simRun.actions, simRun.frames);
+				res.steps = fr.steps;
+				msPerStep[j] = fr.est.ms_per_step;
+				res.metrics = eval::computeRunMetrics(lv[li].gt, fr.est);
+				res.consistency = eval::computeRunConsistency(lv[li].gt, fr.est);
+			}
+			catch (...)
+			{
+				std::lock_guard<std::mutex> lk(errMtx);
+				if (!error)
+				{
+					std::ostringstream what;
+					try
+					{
+						throw;
+					}
+					catch (const std::exception& e)
+					{
+						what << "level " << levels[li] << " run " << r << ": " << e.what();
+					}
+					catch (...)
+					{
+						what << "level " << levels[li] << " run " << r << ": unknown error";
+					}
+					error = std::make_exception_ptr(std::runtime_error(what.str()));
+				}
+				failed = true;
+				return;
+			}
+			bar.advance();
+		}
+	};
+	std::vector<std::thread> pool;
+	for (int t = 0; t < threadsUsed; ++t) pool.emplace_back(worker);
+	for (auto& t : pool) t.join();
+	bar.finish();
+	if (error) std::rethrow_exception(error);
+
+	for (size_t li = 0; li < levels.size(); ++li)
+	{
+		std::vector<eval::TRunMetrics> m;
+		std::vector<eval::TRunConsistency> c;
+		for (int r = 0; r < runs; ++r)
+		{
+			m.push_back(results[li * size_t(runs) + size_t(r)].metrics);
+			c.push_back(results[li * size_t(runs) + size_t(r)].consistency);
+		}
+		table.levels.push_back(eval::aggregateTable1Level(levels[li], m));
+		nees.emplace_back(levels[li], eval::summarizeConsistency(c));
+	}
+	meanMsPerStep = 0;
+	for (double v : msPerStep) meanMsPerStep += v / double(total);
+	wallSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+
+	std::cout << "\nTable I: RMSE averaged over " << runs << " run(s) per level, ours / paper\n\n";
+	eval::writeTable1Markdown(std::cout, table);
+	std::cout << "\nNEES / NIS per level (average over runs, two-sided 95% chi-square bounds)\n\n";
+	writeNeesMarkdown(std::cout, nees);
+	char buf[200];
+	std::snprintf(buf, sizeof(buf),
+		"\n%zu runs (%zu levels x %d) on %d thread(s): wall time %.2f s; filter %.3f ms/step, %.1f ms/run\n",
+		total, levels.size(), runs, threadsUsed, wallSeconds, meanMsPerStep,
+		meanMsPerStep * double(results.empty() ? 0 : results.front().steps));
+	std::cout << buf << std::flush;
+	if (!outDir.empty()) writeOutputs();
+}
+}  // namespace dynslam::apps

@@ -1,0 +1,23 @@
+#pragma once
+// Private helper of the app classes: parses a TCLAP command line with MRPT's bundled TCLAP,
+// which returns false both for --help/--version and for errors (after printing them).
+#include <mrpt/3rdparty/tclap/CmdLine.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace dynslam::apps::detail
+{
+/** True: go on. False: --help or --version was shown. Throws std::invalid_argument on a bad
+ * command line (TCLAP has printed the details). */
+inline bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, const char** argv, const std::string& app)
+{
+	if (cmd.parse(argc, argv)) return true;
+	for (int i = 1; i < argc; ++i)
+	{
+		const std::string a = argv[i];
+		if (a == "-h" || a == "--help" || a == "--version") return false;
+	}
+	throw std::invalid_argument(app + ": bad command line (see " + app + " --help)");
+}
+}  // namespace dynslam::apps::detail

@@ -1,0 +1,173 @@
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/apps/CStaticBaselineBackend.h>
+#include <dynslam/apps/filter_run.h>
+#include <mrpt/core/exceptions.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace dynslam::apps
+{
+const std::vector<std::string>& backendKinds()
+{
+	static const std::vector<std::string> k{"ekf", "static_all", "static_landmarks_only"};
+	return k;
+}
+
+std::unique_ptr<ISlamBackend> makeBackend(
+	const std::string& kind, const mrpt::config::CConfigFileBase& ini, std::ostream* optionsDump)
+{
+	if (kind == "ekf" || kind == "dynamic")
+	{
+		auto f = std::make_unique<CDynamicKFSLAM2D>();
+		f->loadOptions(ini, "DynamicKFSLAM");
+		if (optionsDump)
+		{
+			*optionsDump << "# [DynamicKFSLAM] (CDynamicKFSLAM2D::TOptions)";
+			f->options.dumpToTextStream(*optionsDump);
+			*optionsDump << "\n# [DynamicKFSLAM_KalmanFilter] (mrpt::bayes::TKF_options)";
+			f->KF_options.dumpToTextStream(*optionsDump);
+		}
+		return f;
+	}
+	if (kind == "static_all" || kind == "static_landmarks_only")
+	{
+		auto f = std::make_unique<CStaticBaselineBackend>(
+			kind == "static_all" ? CStaticBaselineBackend::Mode::AllFeatures
+								 : CStaticBaselineBackend::Mode::StaticOnly);
+		f->loadOptions(ini, "RangeBearingKFSLAM");
+		if (optionsDump)
+		{
+			*optionsDump << "# [RangeBearingKFSLAM] and [RangeBearingKFSLAM_KalmanFilter] "
+							"(mrpt::slam::CRangeBearingKFSLAM2D, "
+						 << f->name() << ")";
+			f->dumpOptions(*optionsDump);
+		}
+		return f;
+	}
+	std::string known;
+	for (const auto& k : backendKinds()) known += (known.empty() ? "" : " | ") + k;
+	throw std::invalid_argument("unknown back-end '" + kind + "' (known: " + known + ")");
+}
+
+void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est)
+{
+	est.landmarks.clear();
+	est.landmarks_cov.resize(0, 0);
+	est.object_features.clear();
+	est.object_poses.clear();
+
+	const auto lms = backend.getStaticLandmarks(true);
+	bool allInState = true;
+	for (const auto& l : lms)
+	{
+		eval::TLandmarkEstimate e;
+		e.id = l.id;
+		e.mean = l.mean;
+		e.cov = l.cov;
+		est.landmarks.push_back(e);
+		allInState = allInState && l.in_state;
+	}
+
+	// Joint landmark covariance, in the order of est.landmarks.
+	if (const auto* dyn = dynamic_cast<const CDynamicKFSLAM2D*>(&backend); dyn && allInState)
+	{
+		std::vector<size_t> idx;
+		const auto& slots = dyn->getSlots();
+		for (size_t s = 0; s < slots.size(); ++s)
+			if (slots[s].kind == SlotKind::StaticLandmark)
+			{
+				if (idx.size() / 2 >= lms.size() || slots[s].id != lms[idx.size() / 2].id) break;
+				idx.push_back(3 + 2 * s);
+				idx.push_back(4 + 2 * s);
+			}
+		if (idx.size() == 2 * lms.size())
+		{
+			const auto& P = dyn->fullCov();
+			est.landmarks_cov.resize(Eigen::Index(idx.size()), Eigen::Index(idx.size()));
+			for (size_t i = 0; i < idx.size(); ++i)
+				for (size_t j = 0; j < idx.size(); ++j) est.landmarks_cov(i, j) = P(idx[i], idx[j]);
+		}
+	}
+	else if (const auto* st = dynamic_cast<const CStaticBaselineBackend*>(&backend))
+	{
+		Eigen::MatrixXd C = st->landmarksJointCov();
+		if (C.rows() == Eigen::Index(2 * lms.size())) est.landmarks_cov = std::move(C);
+	}
+
+	for (const auto& f : backend.getObjectFeatures())
+	{
+		if (!f.at_time0) continue;
+		eval::TObjectFeatureEstimate e;
+		e.object = f.object;
+		e.feature = f.feature;
+		e.mean = f.mean;
+		e.cov = f.cov;
+		est.object_features.push_back(e);
+	}
+	for (const auto& [obj, track] : backend.getObjectTracks())
+		for (const auto& p : track.poses)
+		{
+			eval::TObjectPoseEstimate e;
+			e.object = obj;
+			e.step = p.step;
+			e.mean = p.mean;
+			e.cov = p.cov;
+			est.object_poses.push_back(e);
+		}
+}
+
+TFilterRun runFilter(
+	ISlamBackend& backend, const std::vector<mrpt::obs::CActionCollection::Ptr>& actions,
+	const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames,
+	const std::function<void(size_t, size_t)>& progress)
+{
+	if (actions.size() != frames.size())
+		throw std::invalid_argument("runFilter: different numbers of actions and sensory frames");
+	using Clock = std::chrono::steady_clock;
+	TFilterRun r;
+	r.name = backend.name();
+	const size_t n = actions.size();
+	r.est.ego.reserve(n);
+	r.est.nis.assign(n, 0.0);
+	r.est.nis_dof.assign(n, 0);
+	r.stamps.assign(n, std::numeric_limits<double>::quiet_NaN());
+	double ns = 0;
+	for (size_t k = 0; k < n; ++k)
+	{
+		const auto t0 = Clock::now();
+		try
+		{
+			backend.processActionObservation(actions[k], frames[k]);
+		}
+		catch (const std::exception& e)
+		{
+			throw std::runtime_error(
+				r.name + ": step " + std::to_string(k) + ": " + mrpt::exception_to_str(e));
+		}
+		ns += double(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());
+
+		const auto pose = backend.getEgoPose();
+		eval::TEgoEstimate e;
+		e.step = int(k);
+		e.mean = Eigen::Vector3d(pose.mean.x(), pose.mean.y(), pose.mean.phi());
+		e.cov = pose.cov.asEigen();
+		r.est.ego.push_back(e);
+		const TStepReport& rep = backend.getLastStepReport();
+		r.est.nis[k] = rep.nis_static;
+		r.est.nis_dof[k] = int(rep.nis_static_dof);
+		if (frames[k])
+			if (auto o = frames[k]->getObservationByClass<mrpt::obs::CObservationBearingRange>())
+				r.stamps[k] = mrpt::Clock::toDouble(o->timestamp);
+		if (progress) progress(k + 1, n);
+	}
+	r.steps = n;
+	r.total_ms = ns * 1e-6;
+	r.est.ms_per_step = n ? r.total_ms / double(n) : 0.0;
+	collectFinalEstimates(backend, r.est);
+	return r;
+}
+}  // namespace dynslam::apps
