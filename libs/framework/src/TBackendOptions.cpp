@@ -52,7 +52,10 @@ void TBackendOptions::loadFromConfigFile(
 		c, s,
 		{"backend", "model_section", "window_size", "max_iterations", "tolerance", "pose_residual",
 		 "object_features", "solver"});
-	const int k = readChoice(c, s, "backend", backendKinds(), 0, true);
+	// backend: optional when the caller already chose the kind (defaultBackendOptions(kind)).
+	const int current = int(std::find(backendKinds().begin(), backendKinds().end(), backend) -
+							backendKinds().begin());
+	const int k = readChoice(c, s, "backend", backendKinds(), current);
 	*this = defaultBackendOptions(backendKinds()[k]);
 	model_section = readString(c, s, "model_section", model_section);
 	if (has(c, s, "window_size"))

@@ -161,6 +161,14 @@ void CRunningCost::addTerm(const CTermPtr& term)
 	m_terms.push_back(term);
 }
 
+bool CRunningCost::removeTerm(const CTermPtr& term)
+{
+	const auto it = std::find(m_terms.begin(), m_terms.end(), term);
+	if (it == m_terms.end()) return false;
+	m_terms.erase(it);
+	return true;
+}
+
 std::vector<Eigen::VectorXd> CRunningCost::termValues(const CTerm& t) const
 {
 	std::vector<Eigen::VectorXd> x;

@@ -77,6 +77,8 @@ public:
 	 * (a variable referenced before it exists) or a block of the wrong size. */
 	void addTerm(const CTermPtr& term);
 	const std::vector<CTermPtr>& terms() const { return m_terms; }
+	/** Removes one term (by identity); returns false if it is not in the cost. */
+	bool removeTerm(const CTermPtr& term);
 	/** Sum of r^T W r at the current values. */
 	double evaluate() const;
 

@@ -1,0 +1,507 @@
+#include <dynslam/framework/CWindowBackend.h>
+#include <dynslam/landmark_ids.h>
+#include <dynslam/models/object_pose.h>
+#include <dynslam/models/se2.h>
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+
+namespace dynslam::framework
+{
+CWindowBackend::CWindowBackend(const TBackendOptions& opts) : m_opts(opts)
+{
+	if (m_opts.backend == "alg1")
+		throw std::invalid_argument("CWindowBackend: use CAlg1Backend for backend = alg1");
+	m_opts.validate();
+	reset();
+}
+
+bool CWindowBackend::coupled() const
+{
+	return m_opts.backend.rfind("clusterslam", 0) != 0;
+}
+
+void CWindowBackend::reset()
+{
+	m_cost = CRunningCost();
+	m_objCost = CRunningCost();
+	m_egoLink.reset();
+	m_step = -1;
+	m_objects.clear();
+	m_droppedStatic.clear();
+	m_lastSeen.clear();
+	m_report = TStepReport();
+}
+
+TGaussNewtonOptions CWindowBackend::gnOptions() const
+{
+	TGaussNewtonOptions o;
+	o.solver = m_opts.solver == 1 ? SolverKind::Dense
+									  : (m_opts.solver == 2 ? SolverKind::Sparse : SolverKind::Auto);
+	o.compute_covariance = false;
+	return o;
+}
+
+Eigen::Matrix2d CWindowBackend::pointCov(const Eigen::Vector2d& z) const
+{
+	if (m_opts.model.measurement_model == models::MeasurementModel::Cartesian) return m_opts.model.Sigma_v;
+	Eigen::Matrix2d J;
+	models::rangeBearingToCartesian(z, &J);
+	return J * m_opts.model.Sigma_v * J.transpose();
+}
+
+void CWindowBackend::processActionObservation(
+	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
+{
+	const auto& mo = m_opts.model;
+	const TStepInput in = parseStepInput(action, SF, mo.measurement_model, "CWindowBackend");
+	++m_step;
+	m_report = TStepReport();
+	m_report.step = m_step;
+	const TVarKey ego = TVarKey::ego(m_step);
+	const Eigen::Matrix3d Su = mo.motion_noise_from_action ? in.U : mo.Sigma_w;
+	// 1. ego pose: prior (first step) or odometry residual
+	if (m_step == 0)
+	{
+		Eigen::Matrix3d G;
+		const Eigen::Vector3d x0 = models::composePose(mo.initial_pose, in.u, nullptr, &G);
+		m_cost.addVariable(ego, x0);
+		m_cost.addTerm(CPriorTerm::fromCovariance({ego}, {3}, x0, mo.Sigma_0 + G * Su * G.transpose()));
+	}
+	else
+	{
+		const TVarKey prev = TVarKey::ego(m_step - 1);
+		m_cost.addVariable(ego, models::composePose(m_cost.value(prev), in.u));
+		m_cost.addTerm(std::make_shared<COdometryTerm>(m_step - 1, m_step, in.u, Su));
+	}
+	// 2. static landmarks
+	for (const auto& m : in.statics)
+	{
+		const TVarKey k = TVarKey::landmark(m.id);
+		if (!m_cost.has(k))
+		{
+			m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, m_cost.value(ego), m.z));
+			++m_report.static_new;
+		}
+		else
+			++m_report.static_updates;
+		m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_step, k, m.z, mo.measurement_model, mo.Sigma_v));
+		m_lastSeen[m.id] = m_step;
+	}
+	// 3. objects
+	if (!coupled())
+	{
+		optimize(m_cost);
+		m_objCost.addVariable(ego, m_cost.value(ego));
+		linkEgoToObjectCost();
+	}
+	if (cube())
+		addCubeObjects(in, ego);
+	else
+		addObjects(in, ego);
+	if (!coupled()) linkEgoToObjectCost();
+	optimize(objectCost());
+	// 4. time-t features (dynaslam2, clusterslam): marginalize or drop right away
+	if (!cube() && m_opts.object_features != TBackendOptions::FeaturePolicy::Keep)
+	{
+		std::vector<TVarKey> ft;
+		for (const auto& k : objectCost().keys())
+			if (k.kind == VarKind::ObjectFeature && k.step == m_step &&
+				m_objects.at(k.id).first_step != m_step)
+				ft.push_back(k);
+		if (!ft.empty())
+		{
+			if (m_opts.object_features == TBackendOptions::FeaturePolicy::Drop)
+				objectCost().drop(ft);
+			else
+				objectCost().marginalize(ft);
+			m_report.dropped_time_t += ft.size();
+		}
+	}
+	slideWindow();
+}
+
+void CWindowBackend::optimize(CRunningCost& c)
+{
+	m_lastIterations = 0;
+	for (int it = 0; it < m_opts.max_iterations; ++it)
+	{
+		const auto r = c.gaussNewtonStep(gnOptions());
+		++m_lastIterations;
+		if (r.max_step < m_opts.tolerance) break;
+	}
+}
+
+void CWindowBackend::linkEgoToObjectCost()
+{
+	if (m_egoLink) m_objCost.removeTerm(m_egoLink);
+	std::vector<TVarKey> keys;
+	std::vector<int> dims;
+	for (const auto& k : m_objCost.keys())
+		if (k.kind == VarKind::EgoPose)
+		{
+			keys.push_back(k);
+			dims.push_back(3);
+			m_objCost.setValue(k, m_cost.value(k));
+		}
+	if (keys.empty()) return;
+	Eigen::VectorXd mean(3 * keys.size());
+	for (size_t i = 0; i < keys.size(); ++i) mean.segment<3>(3 * i) = m_cost.value(keys[i]);
+	Eigen::MatrixXd C;
+	if (m_opts.backend == "clusterslam_semidecoupled")
+		C = m_cost.covariance(keys, gnOptions());  // one-way coupling: the static marginal
+	else
+		C = Eigen::MatrixXd::Identity(3 * keys.size(), 3 * keys.size()) * 1e-12;  // held fixed
+	auto p = CPriorTerm::fromCovariance(keys, dims, mean, C);
+	m_objCost.addTerm(p);
+	m_egoLink = p;
+}
+
+void CWindowBackend::addObjects(const TStepInput& in, const TVarKey& ego)
+{
+	const auto& mo = m_opts.model;
+	CRunningCost& c = objectCost();
+	const Eigen::Vector3d x = c.value(ego);
+	std::vector<TVarKey> newT;
+	for (const auto& m : in.objects)
+	{
+		const int32_t obj = ids::objectOf(m.id), f = ids::featureOf(m.id);
+		auto it = m_objects.find(obj);
+		if (it == m_objects.end() || it->second.first_step == m_step)
+		{
+			TObject& o = m_objects[obj];
+			o.first_step = m_step;
+			o.feature_ids.push_back(m.id);
+			++m_report.object_features_new;
+		}
+		else if (std::find(it->second.feature_ids.begin(), it->second.feature_ids.end(), m.id) !=
+				 it->second.feature_ids.end())
+		{
+			newT.push_back(TVarKey::objectFeature(obj, f, m_step));
+			++m_report.object_features_t;
+		}
+		else
+		{
+			++m_report.skipped_unknown_object_feature;
+			continue;
+		}
+		const TVarKey k = TVarKey::objectFeature(obj, f, m_step);
+		c.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.z));
+		c.addTerm(std::make_shared<CMeasurementTerm>(m_step, k, m.z, mo.measurement_model, mo.Sigma_v));
+	}
+	for (const auto& [obj, o] : m_objects)
+	{
+		TObjectPoseKeys k;
+		for (const auto& key : newT)
+			if (key.id == obj)
+			{
+				k.ft.push_back(key);
+				const int32_t id = ids::objectFeatureId(obj, key.feature);
+				k.seen.push_back(int(
+					std::find(o.feature_ids.begin(), o.feature_ids.end(), id) - o.feature_ids.begin()));
+			}
+		const size_t n = o.feature_ids.size(), m = k.ft.size();
+		if (m == 0) continue;
+		if (n >= 2 && m < 2)
+		{
+			++m_report.skipped_pose_degenerate;
+			continue;
+		}
+		Eigen::Matrix2Xd f0(2, n), ft(2, m);
+		for (size_t j = 0; j < n; ++j)
+		{
+			k.f0.push_back(TVarKey::objectFeature(obj, ids::featureOf(o.feature_ids[j]), o.first_step));
+			f0.col(j) = c.value(k.f0.back());
+		}
+		for (size_t i = 0; i < m; ++i) ft.col(i) = c.value(k.ft[i]);
+		Eigen::VectorXd xi;
+		try
+		{
+			xi = n == 1 ? Eigen::VectorXd(models::objectTranslationInverse(f0.col(0), ft.col(0)))
+						: Eigen::VectorXd(models::objectPoseInverse(f0, ft, k.seen));
+		}
+		catch (const std::domain_error&)
+		{
+			++m_report.skipped_pose_degenerate;
+			continue;
+		}
+		k.pose = TVarKey::objectPose(obj, m_step);
+		c.addVariable(k.pose, xi);
+		if (m_opts.pose_residual == PoseResidual::PoseSpace)
+			c.addTerm(std::make_shared<CObjectPosePoseTerm>(k, mo.Sigma_xi));
+		else
+			c.addTerm(std::make_shared<CObjectPoseFeatureTerm>(k, mo.Sigma_xi));
+		++m_report.object_poses_added;
+		const TVarKey a = TVarKey::objectPose(obj, m_step - 2), b = TVarKey::objectPose(obj, m_step - 1);
+		if (mo.smoothing && c.has(a) && c.has(b))
+		{
+			c.addTerm(std::make_shared<CSmoothingTerm>(
+				a, b, k.pose, mo.Sigma_s.topLeftCorner(xi.size(), xi.size())));
+			++m_report.smoothing_updates;
+		}
+	}
+}
+
+void CWindowBackend::addCubeObjects(const TStepInput& in, const TVarKey& ego)
+{
+	CRunningCost& c = objectCost();
+	const Eigen::Vector3d x = c.value(ego);
+	// Group this step's measurements per object, as sensor-frame points.
+	std::map<int32_t, std::vector<std::pair<int32_t, Eigen::Vector2d>>> per;
+	for (const auto& m : in.objects)
+	{
+		const Eigen::Vector2d p =
+			m_opts.model.measurement_model == models::MeasurementModel::Cartesian
+				? m.z
+				: models::rangeBearingToCartesian(m.z);
+		per[ids::objectOf(m.id)].push_back({m.id, p});
+	}
+	for (const auto& [obj, meas] : per)
+	{
+		const bool first = !m_objects.count(obj);
+		TObject& o = m_objects[obj];
+		std::vector<int> seen;
+		std::vector<Eigen::Vector2d> pts;
+		std::vector<Eigen::Matrix2d> covs;
+		if (first)
+		{
+			o.first_step = m_step;
+			o.body.resize(2, Eigen::Index(meas.size()));
+			for (size_t i = 0; i < meas.size(); ++i)
+			{
+				o.feature_ids.push_back(meas[i].first);
+				o.body.col(Eigen::Index(i)) = meas[i].second;
+			}
+			m_report.object_features_new += meas.size();
+		}
+		for (const auto& [id, p] : meas)
+		{
+			const auto pos = std::find(o.feature_ids.begin(), o.feature_ids.end(), id);
+			if (pos == o.feature_ids.end())
+			{
+				++m_report.skipped_unknown_object_feature;
+				continue;
+			}
+			seen.push_back(int(pos - o.feature_ids.begin()));
+			pts.push_back(p);
+			covs.push_back(pointCov(Eigen::Vector2d(
+				m_opts.model.measurement_model == models::MeasurementModel::Cartesian ? p
+																					  : models::cartesianToRangeBearing(p))));
+		}
+		const size_t n = o.feature_ids.size(), m = pts.size();
+		if (m == 0) continue;
+		if (n >= 2 && m < 2)
+		{
+			++m_report.skipped_pose_degenerate;
+			continue;
+		}
+		Eigen::VectorXd T;
+		Eigen::MatrixXd ST;
+		if (n == 1)
+		{
+			T = pts[0];
+			ST = covs[0];
+		}
+		else
+		{
+			Eigen::Matrix2Xd zt(2, m);
+			for (size_t i = 0; i < m; ++i) zt.col(Eigen::Index(i)) = pts[i];
+			Eigen::MatrixXd G1, G2;
+			Eigen::Vector3d xi;
+			try
+			{
+				xi = models::objectPoseInverse(o.body, zt, seen, &G1, &G2);
+			}
+			catch (const std::domain_error&)
+			{
+				++m_report.skipped_pose_degenerate;
+				continue;
+			}
+			const Eigen::Vector2d c0 = o.body.rowwise().mean();
+			T = Eigen::Vector3d(c0[0] + xi[0], c0[1] + xi[1], xi[2]);
+			ST = Eigen::MatrixXd::Zero(3, 3);
+			for (size_t i = 0; i < m; ++i)
+				ST += G2.middleCols(2 * i, 2) * covs[i] * G2.middleCols(2 * i, 2).transpose();
+		}
+		const TVarKey k = TVarKey::objectBodyPose(obj, m_step);
+		Eigen::VectorXd init(T.size());
+		init.head<2>() = models::cartesianInverse(x, T.head<2>());
+		if (T.size() == 3) init[2] = models::wrapToPi(x[2] + T[2]);
+		c.addVariable(k, init);
+		c.addTerm(std::make_shared<CBodyPoseMeasurementTerm>(m_step, k, T, ST));
+		if (!first) ++m_report.object_poses_added;
+	}
+}
+
+TObjectPoseEstimate CWindowBackend::poseEstimate(int32_t obj, int step) const
+{
+	const CRunningCost& c = objectCost();
+	TObjectPoseEstimate e;
+	e.step = step;
+	e.in_state = true;
+	if (!cube())
+	{
+		const TVarKey k = TVarKey::objectPose(obj, step);
+		e.mean = c.value(k);
+		e.cov = c.covariance({k}, gnOptions());
+		return e;
+	}
+	const TObject& o = m_objects.at(obj);
+	const TVarKey k0 = TVarKey::objectBodyPose(obj, o.first_step), kt = TVarKey::objectBodyPose(obj, step);
+	const Eigen::VectorXd a = c.value(k0), b = c.value(kt);
+	const Eigen::Index d = a.size();
+	e.mean = blockMinus(VarKind::ObjectBodyPose, b, a);
+	const Eigen::MatrixXd C = c.covariance({k0, kt}, gnOptions());
+	Eigen::MatrixXd J(d, 2 * d);
+	J << -Eigen::MatrixXd::Identity(d, d), Eigen::MatrixXd::Identity(d, d);
+	e.cov = J * C * J.transpose();
+	return e;
+}
+
+void CWindowBackend::slideWindow()
+{
+	if (m_opts.window_size < 0) return;
+	const int oldest = m_step - m_opts.window_size + 1;
+	const TVarKey old = TVarKey::ego(oldest - 1);
+	if (oldest - 1 < 0 || !m_cost.has(old)) return;
+	// Object poses of that step leave with it (recorded with their last estimate).
+	CRunningCost& oc = objectCost();
+	std::vector<TVarKey> M;
+	for (auto& [obj, o] : m_objects)
+	{
+		const TVarKey pk = cube() ? TVarKey::objectBodyPose(obj, oldest - 1)
+								  : TVarKey::objectPose(obj, oldest - 1);
+		if (!oc.has(pk) || (cube() && oldest - 1 == o.first_step)) continue;
+		TObjectPoseEstimate e = poseEstimate(obj, oldest - 1);
+		e.in_state = false;
+		o.recorded.push_back(e);
+		M.push_back(pk);
+		++m_report.dropped_poses;
+	}
+	if (coupled())
+	{
+		M.push_back(old);
+		m_cost.marginalize(M);
+		return;
+	}
+	// Separate costs: the object cost's ego copy keeps its static prior while it leaves.
+	if (m_objCost.has(old)) M.push_back(old);
+	if (!M.empty())
+	{
+		m_objCost.marginalize(M);  // folds the current ego link into a prior
+		m_egoLink.reset();
+	}
+	m_cost.marginalize({old});
+}
+
+// ------------------------------------------------------------------------------------------
+mrpt::poses::CPosePDFGaussian CWindowBackend::getEgoPose() const
+{
+	const TVarKey k = TVarKey::ego(m_step);
+	mrpt::poses::CPosePDFGaussian p;
+	if (m_step < 0) return p;
+	const Eigen::Vector3d x = m_cost.value(k);
+	p.mean = mrpt::poses::CPose2D(x[0], x[1], x[2]);
+	p.cov = mrpt::math::CMatrixDouble33(Eigen::Matrix3d(m_cost.covariance({k}, gnOptions())));
+	return p;
+}
+
+std::vector<TStaticLandmarkEstimate> CWindowBackend::getStaticLandmarks(bool includeDropped) const
+{
+	std::vector<TStaticLandmarkEstimate> out;
+	std::vector<TVarKey> keys;
+	for (const auto& k : m_cost.keys())
+		if (k.kind == VarKind::StaticLandmark) keys.push_back(k);
+	if (!keys.empty())
+	{
+		const Eigen::MatrixXd C = m_cost.covariance(keys, gnOptions());
+		for (size_t i = 0; i < keys.size(); ++i)
+		{
+			TStaticLandmarkEstimate e;
+			e.id = keys[i].id;
+			e.mean = m_cost.value(keys[i]);
+			e.cov = C.block<2, 2>(2 * i, 2 * i);
+			out.push_back(e);
+		}
+	}
+	if (includeDropped) out.insert(out.end(), m_droppedStatic.begin(), m_droppedStatic.end());
+	return out;
+}
+
+std::vector<TObjectFeatureEstimate> CWindowBackend::getObjectFeatures() const
+{
+	std::vector<TObjectFeatureEstimate> out;
+	const CRunningCost& c = objectCost();
+	if (cube())
+	{
+		// f_0 = O_0 (+) (body_k - c0), the time-0 features implied by the body model.
+		for (const auto& [obj, o] : m_objects)
+		{
+			const TVarKey k0 = TVarKey::objectBodyPose(obj, o.first_step);
+			if (!c.has(k0)) continue;
+			const Eigen::VectorXd O = c.value(k0);
+			const Eigen::MatrixXd C = c.covariance({k0}, gnOptions());
+			const Eigen::Vector2d c0 = o.body.rowwise().mean();
+			for (size_t j = 0; j < o.feature_ids.size(); ++j)
+			{
+				const Eigen::Vector2d mb = o.body.col(Eigen::Index(j)) - c0;
+				TObjectFeatureEstimate e;
+				e.object = obj;
+				e.feature = ids::featureOf(o.feature_ids[j]);
+				e.id = o.feature_ids[j];
+				e.at_time0 = true;
+				e.step = o.first_step;
+				const double th = O.size() == 3 ? O[2] : 0.0;
+				e.mean = O.head<2>() + models::rot2(th) * mb;
+				Eigen::MatrixXd J = Eigen::MatrixXd::Identity(2, O.size());
+				if (O.size() == 3) J.col(2) = models::rot2Derivative(th) * mb;
+				e.cov = J * C * J.transpose();
+				out.push_back(e);
+			}
+		}
+		return out;
+	}
+	std::vector<TVarKey> keys;
+	for (const auto& k : c.keys())
+		if (k.kind == VarKind::ObjectFeature) keys.push_back(k);
+	if (keys.empty()) return out;
+	const Eigen::MatrixXd C = c.covariance(keys, gnOptions());
+	for (size_t i = 0; i < keys.size(); ++i)
+	{
+		const auto& k = keys[i];
+		TObjectFeatureEstimate e;
+		e.object = k.id;
+		e.feature = k.feature;
+		e.id = ids::objectFeatureId(k.id, k.feature);
+		e.at_time0 = m_objects.at(k.id).first_step == k.step;
+		e.step = k.step;
+		e.mean = c.value(k);
+		e.cov = C.block<2, 2>(2 * i, 2 * i);
+		out.push_back(e);
+	}
+	return out;
+}
+
+std::map<int32_t, TObjectTrack> CWindowBackend::getObjectTracks() const
+{
+	std::map<int32_t, TObjectTrack> out;
+	const CRunningCost& c = objectCost();
+	for (const auto& [obj, o] : m_objects)
+	{
+		TObjectTrack& tr = out[obj];
+		tr.object = obj;
+		tr.first_step = o.first_step;
+		tr.num_features = int(o.feature_ids.size());
+		tr.poses = o.recorded;
+		for (const auto& k : c.keys())
+			if (k.id == obj && (cube() ? k.kind == VarKind::ObjectBodyPose && k.step != o.first_step
+									   : k.kind == VarKind::ObjectPose))
+				tr.poses.push_back(poseEstimate(obj, k.step));
+		std::stable_sort(tr.poses.begin(), tr.poses.end(), [](const auto& a, const auto& b) {
+			return a.step < b.step;
+		});
+	}
+	return out;
+}
+}  // namespace dynslam::framework

@@ -1,0 +1,90 @@
+/** The back-ends of Section III as configurations (makeBackend): every kind runs on a short
+ * highway, its ego, map and object-pose errors against the ground truth are small, and bad
+ * options are rejected. */
+#include <dynslam/framework/CWindowBackend.h>
+#include <dynslam/framework/backend_factory.h>
+#include <dynslam/models/se2.h>
+#include <dynslam/sim/scenario.h>
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <cmath>
+#include <iostream>
+
+using namespace dynslam;
+using namespace dynslam::framework;
+
+namespace
+{
+const char* kIni =
+	"[DynamicKFSLAM]\n"
+	"measurement_model = cartesian\n"
+	"Sigma_v = [1e-5 1e-5]\n"
+	"motion_noise = action\n"
+	"Sigma_0 = [1e-6 1e-6 1e-8]\n"
+	"Sigma_xi = [0.1 0.1]\n"
+	"[Framework]\n"
+	"window_size = 5\n";
+
+struct TErrors
+{
+	double ego = 0, map = 0, pose = 0;
+	size_t poses = 0;
+};
+
+TErrors run(const std::string& kind, int steps)
+{
+	sim::TScenarioOptions so = sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/highway.ini");
+	so.steps = steps;
+	const TGroundTruth gt = sim::buildGroundTruth(so);
+	const auto r = sim::simulateMeasurements(gt, so, 7);
+	mrpt::config::CConfigFileMemory ini(kIni);
+	auto be = makeBackend(kind, ini, "Framework");
+	TErrors e;
+	for (size_t k = 0; k < r.actions.size(); ++k)
+	{
+		be->processActionObservation(r.actions[k], r.frames[k]);
+		const auto p = be->getEgoPose();
+		e.ego = std::max(e.ego, std::hypot(p.mean.x() - gt.ego[k][0], p.mean.y() - gt.ego[k][1]));
+		EXPECT_TRUE(p.cov.asEigen().allFinite());
+	}
+	for (const auto& l : be->getStaticLandmarks())
+		e.map = std::max(e.map, (l.mean - gt.landmarks.at(l.id)).norm());
+	for (const auto& [obj, tr] : be->getObjectTracks())
+		for (const auto& p : tr.poses)
+		{
+			const Eigen::Vector3d& t = gt.objects.at(size_t(obj)).pose.at(size_t(p.step));
+			e.pose = std::max(e.pose, (p.mean.head<2>() - t.head<2>()).norm());
+			EXPECT_TRUE(p.cov.allFinite());
+			++e.poses;
+		}
+	std::cout << "[backend] " << kind << ": max ego error " << e.ego << " m, max landmark error "
+			  << e.map << " m, max object translation error " << e.pose << " m over " << e.poses
+			  << " poses\n";
+	return e;
+}
+}  // namespace
+
+TEST(Backends, EveryKindRunsOnTheHighway)
+{
+	for (const auto& kind : backendKinds())
+	{
+		const TErrors e = run(kind, 30);
+		EXPECT_LT(e.ego, 0.5) << kind;
+		EXPECT_LT(e.map, 1.0) << kind;
+		EXPECT_GT(e.poses, 10u) << kind;
+		EXPECT_LT(e.pose, 1.0) << kind;
+	}
+}
+
+TEST(Backends, BadOptions)
+{
+	mrpt::config::CConfigFileMemory ini(std::string(kIni) + "backend = vdo\n");
+	EXPECT_THROW(makeBackend("dynaslam2", ini, "Framework"), std::invalid_argument);
+	TBackendOptions o = defaultBackendOptions("dynaslam2");
+	o.window_size = 0;
+	EXPECT_THROW(makeBackend(o), std::invalid_argument);
+	EXPECT_THROW(defaultBackendOptions("orb"), std::invalid_argument);
+	mrpt::config::CConfigFileMemory bad(std::string(kIni) + "pose_residual = both\n");
+	EXPECT_THROW(makeBackend("vdo", bad, "Framework"), std::invalid_argument);
+}
