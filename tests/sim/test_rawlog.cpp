@@ -8,6 +8,8 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CRawlog.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -139,6 +141,36 @@ TEST(SimRawlog, MrptReadsTheRawlog)
 	while (mrpt::obs::CRawlog::readActionObservationPair(ar, act, sf, entry)) ++pairs;
 	EXPECT_EQ(pairs, gt.numSteps());
 
+	// What a reader gets back from the file: the same increments, Sigma_w as their covariance
+	// (not a covariance rebuilt from MRPT's default motion model), the same readings.
+	for (size_t k = 0; k < gt.numSteps(); ++k)
+	{
+		const auto a = r.getAsAction(2 * k)->getActionByClass<mrpt::obs::CActionRobotMovement2D>();
+		const auto a0 = run.actions[k]->getActionByClass<mrpt::obs::CActionRobotMovement2D>();
+		ASSERT_TRUE(a && a0);
+		mrpt::poses::CPose2D mean, mean0;
+		mrpt::math::CMatrixDouble33 cov, cov0;
+		a->poseChange->getCovarianceAndMean(cov, mean);
+		a0->poseChange->getCovarianceAndMean(cov0, mean0);
+		EXPECT_EQ(mean, mean0) << "k " << k;
+		EXPECT_EQ(cov.asEigen(), k == 0 ? Eigen::Matrix3d::Zero() : o.Sigma_w) << "k " << k;
+		const auto ob = r.getAsObservations(2 * k + 1)
+		                    ->getObservationByClass<mrpt::obs::CObservationBearingRange>();
+		const auto ob0 =
+		    run.frames[k]->getObservationByClass<mrpt::obs::CObservationBearingRange>();
+		ASSERT_TRUE(ob && ob0);
+		ASSERT_EQ(ob->sensedData.size(), ob0->sensedData.size());
+		for (size_t i = 0; i < ob->sensedData.size(); ++i)
+		{
+			EXPECT_EQ(ob->sensedData[i].range, ob0->sensedData[i].range);
+			EXPECT_EQ(ob->sensedData[i].yaw, ob0->sensedData[i].yaw);
+			EXPECT_EQ(ob->sensedData[i].landmarkID, ob0->sensedData[i].landmarkID);
+		}
+		EXPECT_EQ(ob->timestamp, ob0->timestamp);
+		EXPECT_EQ(ob->maxSensorDistance, ob0->maxSensorDistance);
+		EXPECT_EQ(ob->sensor_std_range, ob0->sensor_std_range);
+	}
+
 	// Streaming writes the same bytes.
 	simulateToRawlog(gt, o, o.noise_seed, dir + "/s.rawlog", ini.str());
 	EXPECT_EQ(gunzip(dir + "/s.rawlog"), gunzip(dir + "/h.rawlog"));
@@ -233,6 +265,50 @@ TEST(SimRawlog, KfSlamRunsOnTheHighwayAndIsAccurateWithoutMovers)
 	std::cout << "[          ] kf-slam highway: DA TP " << daH[0] << " TN " << daH[2]
 	          << "; static-only: mean landmark error " << m[1] << " m, final pose error "
 	          << std::hypot(pose(0, 0) - gt.ego.back()[0], pose(1, 0) - gt.ego.back()[1]) << " m\n";
+}
+
+TEST(SimRawlog, KfSlamGroundTruthFilesLoadAsMrptMatrices)
+{
+	// kf-slam loads these with CMatrix{Float,Double}::loadFromTextFile ('%' lines are comments).
+	const std::string ds = DYNSLAM_DATASETS_DIR;
+	const dynslam::TGroundTruth gt = dynslam::readGroundTruth(ds, "highway");
+	mrpt::math::CMatrixDouble lm, path, da;
+	lm.loadFromTextFile(ds + "/highway_gt_landmarks.txt");
+	path.loadFromTextFile(ds + "/highway_gt_robot_path.txt");
+	da.loadFromTextFile(ds + "/highway_gt_data_association.txt");
+	ASSERT_EQ(lm.cols(), 7);  // x y z type seenCount tLastSeen ID
+	ASSERT_EQ(size_t(lm.rows()), gt.landmarks.size());
+	for (int r = 0; r < lm.rows(); ++r)
+	{
+		const auto& p = gt.landmarks.at(int32_t(lm(r, 6)));
+		EXPECT_NEAR(lm(r, 0), p[0], 1e-9);
+		EXPECT_NEAR(lm(r, 1), p[1], 1e-9);
+	}
+	ASSERT_EQ(path.cols(), 6);  // x y z yaw pitch roll
+	ASSERT_EQ(size_t(path.rows()), gt.numSteps());
+	for (size_t k = 0; k < gt.numSteps(); ++k)
+	{
+		EXPECT_NEAR(path(k, 0), gt.ego[k][0], 1e-9);
+		EXPECT_NEAR(path(k, 3), gt.ego[k][2], 1e-12);
+	}
+	// One row per reading; timestamps equal Clock::toDouble of the rawlog's observations.
+	const TScenarioOptions o = dynslam_test::highwayOptions();
+	const TSimulatedRun run = simulateMeasurements(gt, o, o.noise_seed);
+	ASSERT_EQ(da.cols(), 3);
+	int row = 0;
+	for (size_t k = 0; k < run.frames.size(); ++k)
+	{
+		const auto obs =
+		    run.frames[k]->getObservationByClass<mrpt::obs::CObservationBearingRange>();
+		for (size_t i = 0; i < obs->sensedData.size(); ++i, ++row)
+		{
+			ASSERT_LT(row, da.rows());
+			EXPECT_EQ(da(row, 0), mrpt::Clock::toDouble(obs->timestamp));
+			EXPECT_EQ(da(row, 1), double(i));
+			EXPECT_EQ(da(row, 2), double(obs->sensedData[i].landmarkID));
+		}
+	}
+	EXPECT_EQ(row, da.rows());
 }
 
 TEST(SimRawlog, AppCommandLineAndFigure)
