@@ -61,7 +61,7 @@ void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
 	if (stretch < 1.0) v.sx = v.sy;
 	if (stretch >= 1.0 && stretch < 3.0) v.sy = v.sx;
 	// Crop the unused width or height of an equal-scale drawing (keep room for the legend).
-	W = std::max(std::min(W, int(std::ceil(bw * v.sx)) + mL + mR), 900);
+	W = std::max(std::min(W, int(std::ceil(bw * v.sx)) + mL + mR), 1000);
 	H = std::min(H, int(std::ceil(bh * v.sy)) + mT + mB);
 	v.x0 = xmin - mL / v.sx;
 	v.y0 = ymin - mB / v.sy;
