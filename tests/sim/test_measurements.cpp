@@ -251,5 +251,8 @@ TEST(SimMeasurements, SameSeedsSameData)
 	}
 	EXPECT_TRUE(anyDiff);  // a different noise seed gives different noise
 	EXPECT_NE(increment(z, 5), increment(a, 5));
+	// Seed 0 is an ordinary seed (not time-seeded): the same data every time.
+	const TSimulatedRun z2 = simulateMeasurements(gt, o, 0);
+	for (size_t k = 0; k < gt.numSteps(); ++k) EXPECT_EQ(increment(z, k), increment(z2, k));
 	EXPECT_THROW(simulateMeasurements(gt, o, uint64_t(1) << 32), std::invalid_argument);
 }

@@ -311,6 +311,21 @@ TEST(SimRawlog, KfSlamGroundTruthFilesLoadAsMrptMatrices)
 	EXPECT_EQ(row, da.rows());
 }
 
+TEST(SimRawlog, AppStreamModeWritesTheSameRawlog)
+{
+	const std::string cfg = std::string(DYNSLAM_CONFIG_DIR) + "/generated_small_scenario.ini";
+	const std::string a = tmpDir("stream_a"), b = tmpDir("stream_b");
+	const CSimulateApp inMemory = runApp({"-c", cfg, "-o", a});
+	const CSimulateApp streamed = runApp({"-c", cfg, "-o", b, "--stream"});
+	EXPECT_EQ(streamed.numRawlogEntries, 2 * 201u);
+	EXPECT_GT(inMemory.numMeasurements, 0u);
+	EXPECT_EQ(gunzip(a + "/generated_small.rawlog"), gunzip(b + "/generated_small.rawlog"));
+	EXPECT_FALSE(fs::exists(b + "/generated_small_gt_data_association.txt"));
+	mrpt::obs::CRawlog r;
+	ASSERT_TRUE(r.loadFromRawLogFile(b + "/generated_small.rawlog"));
+	EXPECT_EQ(r.size(), 2 * 201u);
+}
+
 TEST(SimRawlog, AppCommandLineAndFigure)
 {
 	const std::string dir = tmpDir("app_cli");
