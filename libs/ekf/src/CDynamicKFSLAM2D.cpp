@@ -9,7 +9,9 @@
 #include <mrpt/obs/CObservationBearingRange.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
@@ -284,102 +286,134 @@ void CDynamicKFSLAM2D::OnSubstractObservationVectors(KFArray_OBS& A, const KFArr
 	A[1] = d[1];
 }
 
+double CDynamicKFSLAM2D::gateThreshold() const
+{
+	// Chi-square quantile with 2 dof in closed form: F(x) = 1 - exp(-x/2).
+	return options.innovation_gate > 0 ? -2.0 * std::log(1.0 - options.innovation_gate)
+									   : std::numeric_limits<double>::infinity();
+}
+
 void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 	vector_KFArray_OBS& Z, std::vector<int>& da, const vector_KFArray_OBS& all_predictions,
 	const KFMatrix& S, const std::vector<size_t>& lm_indices_in_S, const KFMatrix_OxO&)
 {
 	m_zToStatic.clear();
+	Z.clear();
+	da.clear();
+	auto emit = [&](size_t i, int assoc) {
+		KFArray_OBS z;
+		z[0] = m_static[i].z[0];
+		z[1] = m_static[i].z[1];
+		Z.push_back(z);
+		da.push_back(assoc);
+		m_zToStatic.push_back(i);
+	};
 	if (options.sparse_static_update)
 	{
 		// Called between MRPT's prediction and update: update here, hand MRPT only the new
 		// landmarks (da = -1), which it then augments from the updated state, as it would.
 		sparseStaticUpdate();
-		Z.clear();
-		da.clear();
 		for (size_t i = 0; i < m_static.size(); ++i)
-			if (!m_staticSlot.count(m_static[i].id))
-			{
-				KFArray_OBS z;
-				z[0] = m_static[i].z[0];
-				z[1] = m_static[i].z[1];
-				Z.push_back(z);
-				da.push_back(-1);
-				m_zToStatic.push_back(i);
-			}
+			if (!m_staticSlot.count(m_static[i].id)) emit(i, -1);
 		m_report.static_new = Z.size();
 		return;
 	}
-	const size_t N = m_static.size();
-	Z.resize(N);
-	da.assign(N, -1);
+	const double thr = gateThreshold();
+	std::vector<int> sIdx;  // accepted rows of S
+	std::vector<Eigen::Vector2d> nus;
 	size_t numNew = 0;
-	// Innovation of the tracked ones, in the order of lm_indices_in_S, for the NIS.
-	Eigen::VectorXd nu(2 * lm_indices_in_S.size());
-	for (size_t i = 0; i < N; ++i)
+	for (size_t i = 0; i < m_static.size(); ++i)
 	{
-		Z[i][0] = m_static[i].z[0];
-		Z[i][1] = m_static[i].z[1];
-		m_zToStatic.push_back(i);
 		const auto it = m_staticSlot.find(m_static[i].id);
 		if (it == m_staticSlot.end())
 		{
+			emit(i, -1);
 			++numNew;
 			continue;
 		}
-		da[i] = int(it->second);
-		for (size_t q = 0; q < lm_indices_in_S.size(); ++q)
-			if (lm_indices_in_S[q] == it->second)
-				nu.segment<2>(2 * q) = models::innovation(
-					options.measurement_model, m_static[i].z,
-					Eigen::Vector2d(all_predictions[it->second][0], all_predictions[it->second][1]));
+		const size_t q = size_t(
+			std::find(lm_indices_in_S.begin(), lm_indices_in_S.end(), it->second) -
+			lm_indices_in_S.begin());
+		const Eigen::Vector2d nu = models::innovation(
+			options.measurement_model, m_static[i].z,
+			Eigen::Vector2d(all_predictions[it->second][0], all_predictions[it->second][1]));
+		const Eigen::Matrix2d Sqq = S.asEigen().block<2, 2>(2 * q, 2 * q);
+		if (nu.dot(Sqq.ldlt().solve(nu)) > thr)
+		{
+			++m_report.gated_out;
+			continue;
+		}
+		emit(i, int(it->second));
+		sIdx.insert(sIdx.end(), {int(2 * q), int(2 * q + 1)});
+		nus.push_back(nu);
 	}
-	m_report.static_updates = lm_indices_in_S.size();
+	m_report.static_updates = nus.size();
 	m_report.static_new = numNew;
 	m_report.nis_static = 0;
-	m_report.nis_static_dof = nu.size();
-	if (nu.size() > 0)
+	m_report.nis_static_dof = 2 * nus.size();
+	if (!nus.empty())
 	{
-		const Eigen::LDLT<Eigen::MatrixXd> ldlt(S.asEigen());
-		m_report.nis_static = nu.dot(ldlt.solve(nu));
+		Eigen::VectorXd nu(2 * nus.size());
+		for (size_t j = 0; j < nus.size(); ++j) nu.segment<2>(2 * j) = nus[j];
+		const Eigen::MatrixXd Ssub = S.asEigen()(sIdx, sIdx);
+		m_report.nis_static = nu.dot(Ssub.ldlt().solve(nu));
 	}
 }
 
 void CDynamicKFSLAM2D::sparseStaticUpdate()
 {
 	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
-	std::vector<std::pair<size_t, size_t>> tracked;  // (m_static index, slot)
+	const double thr = gateThreshold();
+	const auto P = m_pkk.asEigen();
+	std::vector<int> idx{0, 1, 2};
+	std::vector<models::Matrix23d> Jx;
+	std::vector<Eigen::Matrix2d> Jf;
+	std::vector<Eigen::Vector2d> nus;
 	for (size_t i = 0; i < m_static.size(); ++i)
 	{
 		const auto it = m_staticSlot.find(m_static[i].id);
-		if (it != m_staticSlot.end()) tracked.emplace_back(i, it->second);
+		if (it == m_staticSlot.end()) continue;
+		const int si = int(slotStateIndex(it->second));
+		models::Matrix23d J_z_x;
+		Eigen::Matrix2d J_z_f;
+		const Eigen::Vector2d zhat = models::observe(
+			options.measurement_model, ego, Eigen::Vector2d(m_xkk[si], m_xkk[si + 1]), &J_z_x, &J_z_f);
+		const Eigen::Vector2d nu = models::innovation(options.measurement_model, m_static[i].z, zhat);
+		if (std::isfinite(thr))
+		{
+			const std::vector<int> loc{0, 1, 2, si, si + 1};
+			Eigen::Matrix<double, 2, 5> Hi;
+			Hi << J_z_x, J_z_f;
+			const Eigen::Matrix2d Si = Hi * P(loc, loc) * Hi.transpose() + options.Sigma_v;
+			if (nu.dot(Si.ldlt().solve(nu)) > thr)
+			{
+				++m_report.gated_out;
+				continue;
+			}
+		}
+		idx.insert(idx.end(), {si, si + 1});
+		Jx.push_back(J_z_x);
+		Jf.push_back(J_z_f);
+		nus.push_back(nu);
 	}
-	const Eigen::Index k = Eigen::Index(tracked.size());
+	const Eigen::Index k = Eigen::Index(nus.size());
 	m_report.static_updates = size_t(k);
 	m_report.nis_static = 0;
 	m_report.nis_static_dof = size_t(2 * k);
 	if (k == 0) return;
-	std::vector<int> idx{0, 1, 2};
 	Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * k, 3 + 2 * k);
 	Eigen::VectorXd nu(2 * k);
 	Eigen::MatrixXd R = Eigen::MatrixXd::Zero(2 * k, 2 * k);
 	for (Eigen::Index j = 0; j < k; ++j)
 	{
-		const size_t si = slotStateIndex(tracked[j].second);
-		idx.push_back(int(si));
-		idx.push_back(int(si + 1));
-		models::Matrix23d J_z_x;
-		Eigen::Matrix2d J_z_f;
-		const Eigen::Vector2d zhat = models::observe(
-			options.measurement_model, ego, Eigen::Vector2d(m_xkk[si], m_xkk[si + 1]), &J_z_x, &J_z_f);
-		H.block<2, 3>(2 * j, 0) = J_z_x;
-		H.block<2, 2>(2 * j, 3 + 2 * j) = J_z_f;
-		nu.segment<2>(2 * j) =
-			models::innovation(options.measurement_model, m_static[tracked[j].first].z, zhat);
+		H.block<2, 3>(2 * j, 0) = Jx[j];
+		H.block<2, 2>(2 * j, 3 + 2 * j) = Jf[j];
+		nu.segment<2>(2 * j) = nus[j];
 		R.block<2, 2>(2 * j, 2 * j) = options.Sigma_v;
 	}
 	auto x = m_xkk.asEigen();
-	auto P = m_pkk.asEigen();
-	m_report.nis_static = ekf::sparseUpdate(x, P, idx, H, nu, R);
+	auto Pm = m_pkk.asEigen();
+	m_report.nis_static = ekf::sparseUpdate(x, Pm, idx, H, nu, R);
 	OnNormalizeStateVector();
 }
 

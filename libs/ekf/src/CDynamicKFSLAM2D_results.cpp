@@ -20,7 +20,7 @@ void CDynamicKFSLAM2D::TOptions::loadFromConfigFile(
 		c, s,
 		{"measurement_model", "Sigma_v", "motion_noise", "Sigma_w", "initial_pose", "Sigma_0",
 		 "Sigma_xi", "smoothing", "Sigma_s", "drop_time_t_features", "keep_last_poses",
-		 "drop_static_after_unseen_steps", "skip_prediction_on_empty_map", "static_update"});
+		 "drop_static_after_unseen_steps", "skip_prediction_on_empty_map", "static_update", "innovation_gate"});
 	measurement_model = readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 							? models::MeasurementModel::Cartesian
 							: models::MeasurementModel::RangeBearing;
@@ -40,6 +40,7 @@ void CDynamicKFSLAM2D::TOptions::loadFromConfigFile(
 		readBool(c, s, "skip_prediction_on_empty_map", skip_prediction_on_empty_map);
 	sparse_static_update =
 		readChoice(c, s, "static_update", {"mrpt", "sparse"}, sparse_static_update ? 1 : 0) == 1;
+	innovation_gate = readNonNegative(c, s, "innovation_gate", innovation_gate);
 	try
 	{
 		validate();
@@ -64,6 +65,10 @@ void CDynamicKFSLAM2D::TOptions::validate() const
 			"drop_static_after_unseen_steps = " + std::to_string(drop_static_after_unseen_steps) +
 			": must be >= 0");
 	if (!initial_pose.allFinite()) throw std::invalid_argument("initial_pose: not finite");
+	if (!(innovation_gate >= 0 && innovation_gate < 1))
+		throw std::invalid_argument(
+			"innovation_gate = " + std::to_string(innovation_gate) +
+			": must be a probability in [0, 1) (0 = no gate)");
 }
 
 void CDynamicKFSLAM2D::TOptions::dumpToTextStream(std::ostream& out) const
@@ -86,6 +91,7 @@ void CDynamicKFSLAM2D::TOptions::dumpToTextStream(std::ostream& out) const
 	out << "skip_prediction_on_empty_map   = " << (skip_prediction_on_empty_map ? "true" : "false")
 		<< "\n";
 	out << "static_update                  = " << (sparse_static_update ? "sparse" : "mrpt") << "\n";
+	out << "innovation_gate                = " << innovation_gate << "\n";
 }
 
 // ------------------------------------------------------------------------------------------

@@ -110,6 +110,11 @@ public:
 		 * non-zero columns of H (ekf::sparseUpdate, O(n^2 k)); equal to kfEKFNaive within
 		 * rounding (tested to 1e-9). */
 		bool sparse_static_update = false;
+		/** Innovation gate for static-landmark updates: a measurement whose squared
+		 * Mahalanobis distance (with its own 2x2 innovation covariance) exceeds the chi-square
+		 * quantile of this probability (2 dof) is not used, and counted
+		 * (TStepReport::gated_out). 0 = no gate (default; MRPT's filter has none). */
+		double innovation_gate = 0;
 	};
 
 	TOptions options;
@@ -218,6 +223,7 @@ private:
 	std::vector<TMeas> m_static, m_objectMeas;
 	std::vector<size_t> m_zToStatic;  ///< row of MRPT's Z -> index in m_static
 	void sparseStaticUpdate();
+	double gateThreshold() const;
 	double m_maxRange = 0;
 
 	// slot table and indices

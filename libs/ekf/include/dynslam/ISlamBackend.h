@@ -60,6 +60,7 @@ struct TStepReport
 	size_t skipped_unknown_object_feature = 0;  ///< feature of a known object not seen at its time 0
 	size_t skipped_pose_degenerate = 0;  ///< gamma undetermined (one feature seen, coinciding)
 	size_t dropped_static = 0, dropped_poses = 0, dropped_time_t = 0;
+	size_t gated_out = 0;  ///< static measurements rejected by the innovation gate
 	double nis_static = 0;  ///< NIS of the static update (0 if none)
 	size_t nis_static_dof = 0;
 };
