@@ -22,6 +22,15 @@ std::string num(double v)
 	return buf;
 }
 
+/** Time stamps need more digits than num(): absolute times (1.6e9 s) would collapse. */
+std::string numTime(double v)
+{
+	if (!std::isfinite(v)) return "";
+	char buf[40];
+	std::snprintf(buf, sizeof(buf), "%.15g", v);
+	return buf;
+}
+
 double sig3(double var) { return 3.0 * std::sqrt(std::max(0.0, var)); }
 
 double timeOf(const TEgoEstimate& e, const TGroundTruth* gt)
@@ -67,7 +76,7 @@ void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego, const TGro
 			                            std::to_string(e->step) +
 			                            " (set TEgoEstimate::t or pass the ground truth)");
 		const double th = e->mean[2];
-		os << num(t) << " " << num(e->mean[0]) << " " << num(e->mean[1]) << " 0 0 0 "
+		os << numTime(t) << " " << num(e->mean[0]) << " " << num(e->mean[1]) << " 0 0 0 "
 		   << num(std::sin(0.5 * th)) << " " << num(std::cos(0.5 * th)) << "\n";
 	}
 }
@@ -78,7 +87,7 @@ void writeEgoCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth*
 	      "err_theta,nees,nis,nis_dof\n";
 	for (const TEgoEstimate* e : sortedEgo(est.ego))
 	{
-		os << e->step << "," << num(timeOf(*e, gt));
+		os << e->step << "," << numTime(timeOf(*e, gt));
 		for (int i = 0; i < 3; ++i) os << "," << num(e->mean[i]);
 		for (int i = 0; i < 3; ++i) os << "," << num(sig3(e->cov(i, i)));
 		if (gt && e->step < static_cast<int>(gt->numSteps()))
