@@ -115,6 +115,7 @@ void CCompareApp::run()
 	if (hasGroundTruth) gt = *d.gt;
 	groundTruthUsed = d.groundTruthUsed;
 	noiseUsed = d.noiseUsed;
+	m_rawlog = d.rawlog;
 	std::cout << "dynslam-compare: config " << iniFile << "\n  rawlog " << data.rawlog << " ("
 			  << d.rawlog.size() << " steps)\n  ground truth "
 			  << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
@@ -206,37 +207,64 @@ void CCompareApp::drawFigures()
 		eval::savePng(img, p);
 		writtenFiles.push_back(p);
 	};
+	// The whole run, framed on the ground truth: a diverging filter leaves the frame (its path
+	// is clipped) instead of shrinking everything else to a dot.
+	eval::TBox truthBox = eval::TBox::empty();
+	if (g)
+	{
+		for (const auto& x : gt.ego) truthBox.expand(x.x(), x.y());
+		for (const auto& [id, p] : gt.landmarks) truthBox.expand(p.x(), p.y());
+	}
 	eval::TMapFigureOptions mo;
-	mo.title = "Ego paths and maps of the three filters over the ground truth (black)";
+	mo.title = "Ego paths and maps of the filters over the ground truth";
+	if (g && truthBox.valid()) mo.view = truthBox.withMargin(0.03);
 	png("compare_map.png", eval::drawMapFigure(g, series, mo));
 	if (!hasGroundTruth) return;
 	png("compare_ego_errors.png", eval::drawEgoErrorFigure(gt, series));
+	std::vector<eval::TFigureSeries> good;
+	for (const auto& s : series)
+		if (s.name != "static_all") good.push_back(s);
+	if (!good.empty() && good.size() < series.size())
+	{
+		eval::TErrorFigureOptions eo;
+		eo.title = "Ego pose error without static_all";
+		png("compare_ego_errors_without_static_all.png", eval::drawEgoErrorFigure(gt, good, eo));
+	}
 
-	// Zoom: around the step where the first filter (static_all by default) is worst.
-	const auto& worst = runs.front().est.ego;
-	double emax = -1;
-	int kmax = -1;
-	for (const auto& e : worst)
-		if (e.step >= 0 && size_t(e.step) < gt.numSteps())
-		{
-			const double err = (e.mean.head<2>() - gt.ego[size_t(e.step)].head<2>()).norm();
-			if (err > emax) emax = err, kmax = e.step;
-		}
-	if (kmax < 0) return;
-	const Eigen::Vector3d c = gt.ego[size_t(kmax)];
-	eval::TBox box;
-	box.xmin = c.x() - 80;
-	box.xmax = c.x() + 80;
-	box.ymin = c.y() - 25;
-	box.ymax = c.y() + 25;
+	// Snapshot after the first seconds, when the moving features start to drag the static
+	// filter: every filter re-run on the first steps only, drawn with equal aspect.
+	const double snapSeconds = 4.0;
+	size_t K = 0;
+	while (K + 1 < gt.numSteps() && K + 1 < m_rawlog.size() && gt.t[K + 1] - gt.t.front() <= snapSeconds)
+		++K;
+	const std::vector<mrpt::obs::CActionCollection::Ptr> acts(
+		m_rawlog.actions.begin(), m_rawlog.actions.begin() + long(K + 1));
+	const std::vector<mrpt::obs::CSensoryFrame::Ptr> sfs(
+		m_rawlog.frames.begin(), m_rawlog.frames.begin() + long(K + 1));
+	std::vector<TFilterRun> snaps;
+	snaps.reserve(runs.size());
+	for (const auto& r : runs)
+	{
+		auto b = makeBackend(backendOf(r.name), params);
+		snaps.push_back(runFilter(*b, acts, sfs));
+		snaps.back().name = r.name;
+	}
+	std::vector<eval::TFigureSeries> snapSeries = series;
+	for (size_t i = 0; i < snaps.size(); ++i) snapSeries[i].est = &snaps[i].est;
+	eval::TBox box = eval::TBox::empty();
+	for (size_t k = 0; k <= K && k < gt.numSteps(); ++k) box.expand(gt.ego[k].x(), gt.ego[k].y());
+	box.xmin -= 40;
+	box.xmax += 60;
+	box.ymin = std::min(box.ymin, -30.0) - 8;
+	box.ymax = std::max(box.ymax, 30.0) + 8;
 	eval::TMapFigureOptions zo;
 	zo.view = box;
 	zo.equal_aspect = true;
 	std::ostringstream t;
-	t.precision(3);
-	t << "Zoom at step " << kmax << " (t = " << gt.t[size_t(kmax)] << " s), where " << runs.front().name
-	  << " has its largest ego error (" << emax << " m)";
+	t << "Estimates at step " << K << " (t = " << gt.t[K] - gt.t.front()
+	  << " s): ego paths and maps so far, 3-sigma ellipses";
 	zo.title = t.str();
-	png("compare_map_zoom.png", eval::drawMapFigure(g, series, zo));
+	png("compare_map_start.png", eval::drawMapFigure(g, snapSeries, zo));
 }
+
 }  // namespace dynslam::apps

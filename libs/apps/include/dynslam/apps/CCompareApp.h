@@ -19,6 +19,7 @@
  * then the source tree (data_files.h), and prints which files it used. */
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/filter_run.h>
+#include <dynslam/apps/rawlog_io.h>
 #include <dynslam/eval/writers.h>
 #include <dynslam/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -61,6 +62,7 @@ public:
 	std::vector<std::string> writtenFiles;
 
 private:
+	TRawlog m_rawlog;  ///< kept for the snapshot figure
 	void writeOutputs(const std::string& optionsDump);
 	void drawFigures();
 };

@@ -1,0 +1,222 @@
+/** The three apps end to end on the shipped highway dataset (app classes driven directly).
+ *
+ * Thresholds: about 1.5-2x the values measured on 2026-11-21 with the shipped
+ * datasets/highway.rawlog (level w2v2, noise seed 1) and config/run_highway.ini:
+ *   dynamic EKF ego RMSE x 0.0060 m, y 0.127 m, theta 2.7e-4 rad; static map x 0.0077 m,
+ *   y 0.127 m; ATE 0.128 m; NIS inside its 95% bounds at 98% of the steps;
+ *   static_landmarks_only ego y 0.115 m; static_all ego x 555 m (diverges).
+ * Monte Carlo, 2 runs (seeds 1, 2 and 8001, 8002): ego y RMSE w1v1 0.032 m, w3v3 0.284 m. */
+#include <dynslam/apps/CCompareApp.h>
+#include <dynslam/apps/CMonteCarloApp.h>
+#include <dynslam/apps/CRunApp.h>
+
+#include <apps_test_utils.h>
+
+#include <filesystem>
+
+using namespace dynslam;
+using namespace dynslam::apps;
+using apps_test::TArgs;
+
+TEST(RunApp, HighwayDefaultMeetsAccuracyAndWritesEverything)
+{
+	const std::string out = apps_test::freshDir("run");
+	CRunApp app;
+	TArgs a({"-c", apps_test::configFile("run_highway.ini"), "-o", out, "-q"});
+	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
+	app.run();
+	ASSERT_TRUE(app.hasGroundTruth);
+	ASSERT_TRUE(app.evaluation.has_value());
+	const auto& m = app.evaluation->metrics;
+	EXPECT_EQ(app.result.steps, 121u);
+	EXPECT_LT(m.ego.x, 0.012);
+	EXPECT_LT(m.ego.y, 0.20);
+	EXPECT_LT(m.ego.theta, 5e-4);
+	EXPECT_LT(m.static_map.x, 0.015);
+	EXPECT_LT(m.static_map.y, 0.20);
+	EXPECT_LT(m.ate, 0.20);
+	EXPECT_EQ(m.landmarks_missing, 0u);
+	ASSERT_EQ(m.objects.size(), 3u);
+	for (const auto& o : m.objects)
+	{
+		EXPECT_EQ(o.features_missing, 0u) << "object " << o.object;
+		EXPECT_LT(o.features.x, 0.01) << "object " << o.object;  // measured <= 0.004 m
+		EXPECT_GT(o.poses.n_xy, 10u) << "object " << o.object;
+	}
+	EXPECT_GE(app.evaluation->summary.nis.fraction_inside, 0.90);
+	// The scenario's noise (w2v2) was taken over.
+	EXPECT_NE(app.scenarioNoiseUsed.find("w2v2"), std::string::npos) << app.scenarioNoiseUsed;
+
+	for (const char* f : {"ego.csv", "trajectory.tum", "landmarks.csv", "object_features.csv",
+			 "object_poses.csv", "metrics.csv", "metrics.txt", "nees_ego.csv", "nis.csv",
+			 "effective_config.ini"})
+		EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + f)) << f;
+	for (const char* f : {"map.png", "ego_errors.png", "nees_ego.png", "nis.png"})
+		EXPECT_TRUE(apps_test::isPng(out + "/" + f)) << f;
+	const auto ego = apps_test::readLines(out + "/ego.csv");
+	ASSERT_EQ(ego.size(), 122u);
+	EXPECT_EQ(ego[0].rfind("step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta", 0), 0u);
+	EXPECT_EQ(apps_test::readLines(out + "/trajectory.tum").size(), 121u);
+	const std::string cfg = apps_test::readFile(out + "/effective_config.ini");
+	EXPECT_NE(cfg.find("CDynamicKFSLAM2D::TOptions"), std::string::npos);
+	EXPECT_NE(cfg.find("Sigma_xi"), std::string::npos);
+	EXPECT_NE(cfg.find("method"), std::string::npos);  // TKF_options dumped too
+}
+
+TEST(RunApp, WithoutGroundTruthAndWithTheStaticBackend)
+{
+	const std::string out = apps_test::freshDir("nogt");
+	CRunApp app;
+	TArgs a({"-c", apps_test::configFile("run_highway.ini"), "-o", out, "--no-gt", "--backend",
+		"static_landmarks_only", "--no-figures", "-q"});
+	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
+	app.run();
+	EXPECT_FALSE(app.hasGroundTruth);
+	EXPECT_FALSE(app.evaluation.has_value());
+	EXPECT_EQ(app.result.name, "static_landmarks_only");
+	EXPECT_FALSE(std::filesystem::exists(out + "/metrics.csv"));
+	EXPECT_FALSE(std::filesystem::exists(out + "/map.png"));
+	// TUM time stamps from the rawlog (the scenario starts at 1.6e9 s).
+	const auto tum = apps_test::readLines(out + "/trajectory.tum");
+	ASSERT_EQ(tum.size(), 121u);
+	EXPECT_EQ(tum[0].rfind("1600000000", 0), 0u) << tum[0];
+}
+
+TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
+{
+	const std::string out = apps_test::freshDir("cmp");
+	CCompareApp app;
+	TArgs a({"--out", out, "-q"});  // no -c: the shipped default
+	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
+	app.run();
+	ASSERT_EQ(app.rows.size(), 3u);
+	EXPECT_EQ(app.rows[0].filter, "static_all");
+	EXPECT_EQ(app.rows[1].filter, "static_landmarks_only");
+	EXPECT_EQ(app.rows[2].filter, "dynamic");
+	const auto& sa = app.rows[0].metrics;
+	const auto& so = app.rows[1].metrics;
+	const auto& dy = app.rows[2].metrics;
+	// The claim of the comparison: moving features ruin the static filter, not the dynamic one.
+	EXPECT_LT(dy.ego.x, sa.ego.x);
+	EXPECT_LT(dy.ego.y, sa.ego.y);
+	EXPECT_LT(dy.ego.theta, sa.ego.theta);
+	EXPECT_LT(dy.static_map.x, sa.static_map.x);
+	EXPECT_LT(dy.static_map.y, sa.static_map.y);
+	EXPECT_GT(sa.ate, 10.0);  // measured 564 m
+	// ...and the dynamic EKF is about as good as the oracle that drops the moving features.
+	EXPECT_LT(dy.ego.y, 1.5 * so.ego.y);
+	EXPECT_LT(dy.ate, 0.20);
+	EXPECT_LT(so.ate, 0.20);
+
+	const auto lines = apps_test::readLines(out + "/metrics.csv");
+	ASSERT_EQ(lines.size(), 4u);
+	const auto header = apps_test::splitCsv(lines[0]);
+	const std::vector<std::string> required{"filter", "ego_rmse_x", "ego_rmse_y", "ego_rmse_theta",
+		"static_rmse_x", "static_rmse_y", "ate", "ms_per_step"};
+	ASSERT_GE(header.size(), required.size());
+	for (size_t i = 0; i < required.size(); ++i) EXPECT_EQ(header[i], required[i]);
+	EXPECT_EQ(apps_test::splitCsv(lines[1])[0], "static_all");
+	EXPECT_EQ(apps_test::splitCsv(lines[2])[0], "static_landmarks_only");
+	EXPECT_EQ(apps_test::splitCsv(lines[3])[0], "dynamic");
+	for (size_t r = 1; r < 4; ++r)
+		EXPECT_GT(std::stod(apps_test::splitCsv(lines[r])[7]), 0.0);  // ms_per_step
+	for (const char* f : {"compare_map.png", "compare_map_start.png", "compare_ego_errors.png",
+			 "compare_ego_errors_without_static_all.png"})
+		EXPECT_TRUE(apps_test::isPng(out + "/" + f)) << f;
+	for (const char* f : {"static_all_ego.csv", "dynamic_object_poses.csv", "effective_config.ini"})
+		EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + f)) << f;
+}
+
+TEST(CompareApp, ExecutableWithoutArgumentsRunsTheShippedDefault)
+{
+	// From a folder with no datasets/ or config/: found via the executable's share folder or the
+	// source tree, and named in the output.
+	const std::string cwd = apps_test::freshDir("cwd");
+	const auto r = apps_test::runCommand(std::string("'") + DYNSLAM_COMPARE_EXE + "'", cwd);
+	ASSERT_TRUE(r.exitedNormally) << r.output;
+	EXPECT_EQ(r.exitCode, 0) << r.output;
+	EXPECT_NE(r.output.find("config/compare_highway.ini"), std::string::npos) << r.output;
+	EXPECT_NE(r.output.find("datasets/highway.rawlog (121 steps)"), std::string::npos) << r.output;
+	for (const char* f : {"\nstatic_all ", "\nstatic_landmarks_only ", "\ndynamic "})
+		EXPECT_NE(r.output.find(f), std::string::npos) << f << "\n" << r.output;
+	EXPECT_FALSE(std::filesystem::exists(cwd + "/metrics.csv"));  // nothing written without --out
+}
+
+namespace
+{
+void runMonteCarlo(CMonteCarloApp& app, const std::vector<std::string>& args)
+{
+	TArgs a(args);
+	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
+	app.run();
+}
+void expectSameMetrics(const eval::TRunMetrics& a, const eval::TRunMetrics& b, const std::string& what)
+{
+	EXPECT_EQ(a.ego.x, b.ego.x) << what;
+	EXPECT_EQ(a.ego.y, b.ego.y) << what;
+	EXPECT_EQ(a.ego.theta, b.ego.theta) << what;
+	EXPECT_EQ(a.static_map.x, b.static_map.x) << what;
+	EXPECT_EQ(a.static_map.y, b.static_map.y) << what;
+	ASSERT_EQ(a.objects.size(), b.objects.size()) << what;
+	for (size_t i = 0; i < a.objects.size(); ++i)
+	{
+		EXPECT_EQ(a.objects[i].poses.x, b.objects[i].poses.x) << what;
+		EXPECT_EQ(a.objects[i].features.y, b.objects[i].features.y) << what;
+	}
+}
+}  // namespace
+
+TEST(MonteCarloApp, TwoLevelsTwoRunsTableAndThreadIndependence)
+{
+	const std::string out = apps_test::freshDir("mc");
+	CMonteCarloApp one, two, single;
+	runMonteCarlo(one, {"--runs", "2", "--levels", "w1v1,w3v3", "--threads", "1", "--out", out, "-q",
+						   "--no-figures"});
+	runMonteCarlo(two, {"--runs", "2", "--levels", "w1v1,w3v3", "--threads", "2", "-q"});
+	EXPECT_EQ(one.threadsUsed, 1);
+	EXPECT_EQ(two.threadsUsed, 2);
+	ASSERT_EQ(one.results.size(), 4u);
+	ASSERT_EQ(two.results.size(), 4u);
+	for (size_t i = 0; i < 4; ++i)
+	{
+		EXPECT_EQ(one.results[i].seed, two.results[i].seed);
+		expectSameMetrics(one.results[i].metrics, two.results[i].metrics, "run " + std::to_string(i));
+	}
+	// A run does not depend on which levels are selected either.
+	runMonteCarlo(single, {"--runs", "1", "--levels", "w3v3", "--threads", "2", "-q"});
+	ASSERT_EQ(single.results.size(), 1u);
+	EXPECT_EQ(single.results[0].seed, one.results[2].seed);
+	expectSameMetrics(single.results[0].metrics, one.results[2].metrics, "w3v3 run 0 alone");
+
+	// Accuracy per level and graceful degradation (Table I, ego y; thresholds ~2x measured).
+	ASSERT_EQ(one.table.levels.size(), 2u);
+	const double w1 = one.table.levels[0].cells[1][0].mean;  // y, ego poses
+	const double w3 = one.table.levels[1].cells[1][0].mean;
+	EXPECT_LT(w1, 0.06);
+	EXPECT_LT(w3, 0.60);
+	EXPECT_GT(w3, w1);
+	EXPECT_GT(one.table.levels[1].cells[0][1].mean, one.table.levels[0].cells[0][1].mean);  // static x
+	EXPECT_EQ(one.table.levels[0].runs, 2);
+
+	// table1.csv: header + one row per level and quantity, ours and the paper's.
+	const auto lines = apps_test::readLines(out + "/table1.csv");
+	ASSERT_EQ(lines.size(), 7u);
+	const auto h = apps_test::splitCsv(lines[0]);
+	EXPECT_EQ(h[0], "noise_level");
+	EXPECT_EQ(h[1], "quantity");
+	EXPECT_NE(std::find(h.begin(), h.end(), "ego_poses_ours"), h.end());
+	const auto paperCol = std::find(h.begin(), h.end(), "ego_poses_paper") - h.begin();
+	ASSERT_LT(size_t(paperCol), h.size());
+	const char* want[6][2] = {{"w1v1", "x_m"}, {"w1v1", "y_m"}, {"w1v1", "theta_rad"},
+		{"w3v3", "x_m"}, {"w3v3", "y_m"}, {"w3v3", "theta_rad"}};
+	for (size_t r = 0; r < 6; ++r)
+	{
+		const auto c = apps_test::splitCsv(lines[r + 1]);
+		EXPECT_EQ(c[0], want[r][0]);
+		EXPECT_EQ(c[1], want[r][1]);
+	}
+	EXPECT_DOUBLE_EQ(std::stod(apps_test::splitCsv(lines[1])[size_t(paperCol)]), 0.008);  // paper w1v1 x
+	for (const char* f : {"table1.md", "nees_summary.csv", "nees_summary.md", "runs.csv", "effective_config.ini"})
+		EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + f)) << f;
+	EXPECT_EQ(apps_test::readLines(out + "/runs.csv").size(), 5u);
+}
