@@ -31,7 +31,16 @@ void CWindowBackend::reset()
 	m_objects.clear();
 	m_droppedStatic.clear();
 	m_lastSeen.clear();
+	m_egoRecorded.clear();
 	m_report = TStepReport();
+}
+
+std::map<int, Eigen::Vector3d> CWindowBackend::finalTrajectory() const
+{
+	std::map<int, Eigen::Vector3d> out = m_egoRecorded;
+	for (const auto& k : m_cost.keys())
+		if (k.kind == VarKind::EgoPose) out[k.step] = m_cost.value(k);
+	return out;
 }
 
 TGaussNewtonOptions CWindowBackend::gnOptions() const
@@ -365,6 +374,7 @@ void CWindowBackend::slideWindow()
 	const int oldest = m_step - m_opts.window_size + 1;
 	const TVarKey old = TVarKey::ego(oldest - 1);
 	if (oldest - 1 < 0 || !m_cost.has(old)) return;
+	m_egoRecorded[old.step] = m_cost.value(old);
 	// Object poses of that step leave with it (recorded with their last estimate).
 	CRunningCost& oc = objectCost();
 	std::vector<TVarKey> M;

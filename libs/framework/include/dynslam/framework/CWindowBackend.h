@@ -42,6 +42,9 @@ public:
 	const TStepReport& getLastStepReport() const override { return m_report; }
 	const CRunningCost& cost() const { return m_cost; }
 	int lastIterations() const { return m_lastIterations; }
+	/** The ego trajectory as the back-end finally holds it: the smoothed poses still in the
+	 * window and, for those that left it, their estimate at marginalization (fixed-lag). */
+	std::map<int, Eigen::Vector3d> finalTrajectory() const;
 
 private:
 	struct TObject
@@ -71,6 +74,7 @@ private:
 	std::map<int32_t, TObject> m_objects;
 	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
 	std::map<int32_t, int> m_lastSeen;
+	std::map<int, Eigen::Vector3d> m_egoRecorded;
 	TStepReport m_report;
 	int m_lastIterations = 0;
 };

@@ -1,0 +1,42 @@
+/** dynslam-backend-table: every back-end on the highway Monte Carlo (doc/backends.md). */
+#include <dynslam/framework/backend_table.h>
+#include <mrpt/3rdparty/tclap/CmdLine.h>
+
+#include <fstream>
+#include <iostream>
+
+int main(int argc, char** argv)
+{
+	try
+	{
+		TCLAP::CmdLine cmd("dynslam-backend-table: every back-end on the same Monte Carlo", ' ');
+		TCLAP::ValueArg<std::string> ini("s", "scenario", "scenario INI", true, "", "file", cmd);
+		TCLAP::ValueArg<int> runs("n", "runs", "Monte Carlo runs", false, 3, "N", cmd);
+		TCLAP::ValueArg<int> steps("k", "steps", "steps (-1: the scenario's)", false, -1, "K", cmd);
+		TCLAP::ValueArg<std::string> noise("l", "noise", "noise level w1v1..w3v3", false, "w2v2", "L", cmd);
+		TCLAP::ValueArg<int> window("w", "window", "window size W", false, 10, "W", cmd);
+		TCLAP::ValueArg<double> sxi("x", "sigma-xi", "Sigma_xi = value * I", false, 0.1, "s", cmd);
+		TCLAP::ValueArg<std::string> out("o", "out", "also write the Markdown table here", false, "", "file", cmd);
+		cmd.parse(argc, argv);
+		dynslam::framework::TBackendTableOptions o;
+		o.scenario_ini = ini.getValue();
+		o.runs = runs.getValue();
+		o.steps = steps.getValue();
+		o.noise_level = noise.getValue();
+		o.window_size = window.getValue();
+		o.sigma_xi = sxi.getValue();
+		const auto rows = dynslam::framework::runBackendTable(o);
+		dynslam::framework::writeBackendTableMarkdown(std::cout, rows);
+		if (!out.getValue().empty())
+		{
+			std::ofstream f(out.getValue());
+			dynslam::framework::writeBackendTableMarkdown(f, rows);
+		}
+		return 0;
+	}
+	catch (const std::exception& e)
+	{
+		std::cerr << "dynslam-backend-table: " << e.what() << "\n";
+		return 1;
+	}
+}
