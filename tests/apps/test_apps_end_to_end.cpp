@@ -82,6 +82,29 @@ TEST(RunApp, WithoutGroundTruthAndWithTheStaticBackend)
 	EXPECT_EQ(tum[0].rfind("1600000000", 0), 0u) << tum[0];
 }
 
+TEST(RunApp, FrameworkBackendAlg1EqualsTheEkf)
+{
+	// backend = alg1 (the optimization framework's Alg. 1) must give the EKF's estimates
+	// (Theorems 4.1, 4.2, A.1-A.5), here end to end through the app.
+	auto runWith = [](const std::string& backend) {
+		CRunApp app;
+		TArgs a({"-c", apps_test::configFile("run_highway.ini"), "-o", apps_test::freshDir(backend),
+			"--backend", backend, "--no-figures", "-q"});
+		EXPECT_TRUE(app.initialize(a.argc(), a.argv()));
+		app.run();
+		return app.result;
+	};
+	const TFilterRun ekf = runWith("ekf"), alg1 = runWith("alg1");
+	EXPECT_EQ(alg1.name, "alg1");
+	ASSERT_EQ(ekf.est.ego.size(), alg1.est.ego.size());
+	double dmax = 0;
+	for (size_t k = 0; k < ekf.est.ego.size(); ++k)
+		dmax = std::max(dmax, (ekf.est.ego[k].mean - alg1.est.ego[k].mean).cwiseAbs().maxCoeff());
+	std::cout << "max ego difference alg1 - ekf: " << dmax << "\n";
+	EXPECT_LT(dmax, 1e-9);  // measured 1.1e-12 m: two algorithms, equal up to rounding
+	ASSERT_EQ(ekf.est.landmarks.size(), alg1.est.landmarks.size());
+}
+
 TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 {
 	const std::string out = apps_test::freshDir("cmp");

@@ -89,7 +89,8 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	loadIniFile(iniFile, params);
 	using namespace dynslam::config;
 	rejectUnknownKeys(
-		params, kSection, {"scenario", "backend", "runs", "levels", "threads", "seed", "figures"});
+		params, kSection,
+		{"scenario", "backend", "runs", "levels", "threads", "seed", "figures", "initial_covariance"});
 	scenarioFile = resolvePath(requireString(params, kSection, "scenario"), folderOf(iniFile));
 	scenario = sim::loadScenario(scenarioFile);
 	backend = readString(params, kSection, "backend", "ekf");
@@ -113,6 +114,7 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 		fail(kSection, "seed", std::to_string(s), "seed + 1000 * 8 + runs must be in [0, 4294967295]");
 	seed = uint64_t(s);
 	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+	sigma0FromLevel = readChoice(params, kSection, "initial_covariance", {"sigma_w", "ini"}, 0) == 0;
 	outDir = argOut.getValue();
 	progress = !argQuiet.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
@@ -128,7 +130,7 @@ void CMonteCarloApp::run()
 	nees.clear();
 	table = eval::TTable1();
 	writtenFiles.clear();
-	const bool isStatic = backend != "ekf" && backend != "dynamic";
+	const bool isStatic = backend == "static_all" || backend == "static_landmarks_only";
 
 	// Per level: scenario options with the level's noise, ground truth, filter INI text.
 	struct TLevel
@@ -142,7 +144,11 @@ void CMonteCarloApp::run()
 	{
 		lv[i].opt = scenario;
 		lv[i].opt.setNoiseLevel(levels[i]);
-		lv[i].opt.Sigma_0 = lv[i].opt.Sigma_w;  // the paper: Sigma_0 = Sigma_w
+		// The paper: Sigma_0 = Sigma_w; initial_covariance = ini keeps the INI's Sigma_0.
+		lv[i].opt.Sigma_0 = sigma0FromLevel
+								? lv[i].opt.Sigma_w
+								: Eigen::Matrix3d(config::readCovariance(
+									  params, "DynamicKFSLAM", "Sigma_0", Eigen::Matrix3d::Zero(), 3, false, true));
 		lv[i].gt = sim::buildGroundTruth(lv[i].opt);
 		TScenarioNoise n;
 		n.file = "noise level " + levels[i];

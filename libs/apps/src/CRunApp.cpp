@@ -39,7 +39,7 @@ bool CRunApp::initialize(int argc, const char** argv)
 		"o", "out", "Output directory (created; default [Run] out_dir or dynslam-run-out)", false, "",
 		"dir", cmd);
 	TCLAP::ValueArg<std::string> argBackend(
-		"", "backend", "Back-end: ekf | static_all | static_landmarks_only ([Run] backend)", false,
+		"", "backend", "Back-end: ekf | static_all | static_landmarks_only | alg1 | vdo | dynaslam2 | cubeslam | clusterslam_decoupled | clusterslam_semidecoupled ([Run] backend)", false,
 		"", "kind", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the PNG figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "Only warnings and errors on the console", cmd);
@@ -84,7 +84,7 @@ void CRunApp::run()
 	ds.groundTruth = groundTruth;
 	ds.scenario = scenarioFile;
 	ds.noiseFromScenario = noiseFromScenario;
-	const bool isStatic = backend != "ekf" && backend != "dynamic";
+	const bool isStatic = backend == "static_all" || backend == "static_landmarks_only";
 	TLoadedData data = loadData(ds, params, isStatic ? "" : "DynamicKFSLAM", isStatic ? "RangeBearingKFSLAM" : "");
 	hasGroundTruth = data.gt.has_value();
 	if (hasGroundTruth) gt = *data.gt;

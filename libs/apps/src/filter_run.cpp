@@ -1,9 +1,12 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CStaticBaselineBackend.h>
 #include <dynslam/apps/filter_run.h>
+#include <dynslam/framework/TBackendOptions.h>
+#include <dynslam/framework/backend_factory.h>
 #include <mrpt/core/exceptions.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -13,7 +16,11 @@ namespace dynslam::apps
 {
 const std::vector<std::string>& backendKinds()
 {
-	static const std::vector<std::string> k{"ekf", "static_all", "static_landmarks_only"};
+	static const std::vector<std::string> k = [] {
+		std::vector<std::string> v{"ekf", "static_all", "static_landmarks_only"};
+		for (const auto& f : framework::backendKinds()) v.push_back(f);
+		return v;
+	}();
 	return k;
 }
 
@@ -47,6 +54,23 @@ std::unique_ptr<ISlamBackend> makeBackend(
 			f->dumpOptions(*optionsDump);
 		}
 		return f;
+	}
+	const auto& fk = framework::backendKinds();
+	if (std::find(fk.begin(), fk.end(), kind) != fk.end())
+	{
+		// The optimization framework's back-ends: [Backend] (window, iterations, ...) and the
+		// model from its model_section (default [DynamicKFSLAM]).
+		framework::TBackendOptions o = framework::defaultBackendOptions(kind);
+		o.loadFromConfigFile(ini, "Backend");
+		if (o.backend != kind)
+			throw std::invalid_argument(
+				"[Backend] backend = " + o.backend + " differs from the requested back-end " + kind);
+		if (optionsDump)
+		{
+			*optionsDump << "# [Backend] and its model section (framework::TBackendOptions)";
+			o.dumpToTextStream(*optionsDump);
+		}
+		return framework::makeBackend(o);
 	}
 	std::string known;
 	for (const auto& k : backendKinds()) known += (known.empty() ? "" : " | ") + k;

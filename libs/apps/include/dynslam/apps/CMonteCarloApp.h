@@ -53,6 +53,9 @@ public:
 	uint64_t seed = 1;
 	std::string outDir;  ///< empty: print only
 	bool figures = true, progress = true;
+	/** [MonteCarlo] initial_covariance: sigma_w (the paper: Sigma_0 = Sigma_w of the level) or
+	 * ini ([DynamicKFSLAM] Sigma_0 as written, e.g. 0 for a filter anchored at the true start). */
+	bool sigma0FromLevel = true;
 
 	// --- results of run() ---
 	struct TRunResult

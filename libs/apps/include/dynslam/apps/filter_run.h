@@ -18,7 +18,9 @@ namespace dynslam::apps
 /** Back-end kinds the apps can build: "ekf" (the dynamic EKF, CDynamicKFSLAM2D, sections
  * [DynamicKFSLAM] and [DynamicKFSLAM_KalmanFilter]), "static_all" and "static_landmarks_only"
  * (MRPT's CRangeBearingKFSLAM2D, CStaticBaselineBackend, sections [RangeBearingKFSLAM] and
- * [RangeBearingKFSLAM_KalmanFilter]). */
+ * [RangeBearingKFSLAM_KalmanFilter]), and the optimization framework's back-ends
+ * (dynslam/framework/backend_factory.h: alg1, vdo, dynaslam2, cubeslam, clusterslam_*; section
+ * [Backend] plus the model section, default [DynamicKFSLAM]). */
 const std::vector<std::string>& backendKinds();
 
 /** Builds and configures a back-end of the given kind. If `optionsDump` is given, the
