@@ -246,7 +246,11 @@ void writeMetricsTable(std::ostream& os, const std::vector<TMetricsRow>& rows)
 	{
 		if (!std::isfinite(v)) return std::string("-");
 		char buf[40];
-		std::snprintf(buf, sizeof(buf), "%.*f", prec, v);
+		// huge values (a diverged filter) in scientific notation, so the columns stay aligned
+		if (std::fabs(v) >= 1e5)
+			std::snprintf(buf, sizeof(buf), "%.2e", v);
+		else
+			std::snprintf(buf, sizeof(buf), "%.*f", prec, v);
 		return std::string(buf);
 	};
 	size_t w = 6;
