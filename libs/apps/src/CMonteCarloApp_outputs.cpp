@@ -107,8 +107,7 @@ void CMonteCarloApp::writeOutputs()
 		{
 			if (s.ego.rows.empty()) continue;
 			eval::TConsistencyFigureOptions fo;
-			fo.title = "Ego NEES, level " + l + ", average over " + std::to_string(s.runs) +
-					   " runs, 95% bounds";
+			fo.title = "Ego NEES " + l + " (" + std::to_string(s.runs) + " runs)";
 			const std::string p = joinPath(outDir, "nees_ego_" + l + ".png");
 			eval::savePng(eval::drawConsistencyFigure(s.ego, fo), p);
 			writtenFiles.push_back(p);
