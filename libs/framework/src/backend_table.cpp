@@ -4,6 +4,7 @@
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/backend_factory.h>
 #include <dynslam/framework/backend_table.h>
+#include <dynslam/models/se2.h>
 #include <dynslam/sim/scenario.h>
 
 #include <chrono>
@@ -18,8 +19,8 @@ namespace
 /** Pooled sums of squared errors for the RMSE over runs. */
 struct TAcc
 {
-	double s[12] = {0};
-	size_t n[12] = {0};
+	double s[13] = {0};
+	size_t n[13] = {0};
 	void add(int i, double rmse, size_t cnt)
 	{
 		if (cnt == 0 || !std::isfinite(rmse)) return;
@@ -122,6 +123,20 @@ std::vector<TBackendTableRow> runBackendTable(const TBackendTableOptions& o)
 				}
 				acc[kind].add(10, std::sqrt(sx / double(fin.size())), fin.size());
 				acc[kind].add(11, std::sqrt(sy / double(fin.size())), fin.size());
+				// Relative pose error over 10 steps of the final trajectory (drift removed).
+				double sr = 0;
+				size_t nr = 0;
+				for (const auto& [k, v] : fin)
+				{
+					const auto it = fin.find(k + 10);
+					if (it == fin.end()) continue;
+					const Eigen::Vector3d de = models::poseDifference(it->second, v);
+					const Eigen::Vector3d dg =
+						models::poseDifference(gt.ego[size_t(k + 10)], gt.ego[size_t(k)]);
+					sr += (de.head<2>() - dg.head<2>()).squaredNorm();
+					++nr;
+				}
+				if (nr) acc[kind].add(12, std::sqrt(sr / double(nr)), nr);
 				const auto m = eval::computeRunMetrics(gt, est);
 				TAcc& a = acc[kind];
 				a.add(0, m.ego.x, m.ego.n_xy);
@@ -164,6 +179,7 @@ std::vector<TBackendTableRow> runBackendTable(const TBackendTableOptions& o)
 		row.pose_theta = a.get(9);
 		row.final_x = a.get(10);
 		row.final_y = a.get(11);
+		row.rpe10 = a.get(12);
 		double se = 0, de = 0, sp = 0, dp = 0;
 		for (const auto& c : cons[kind])
 		{
@@ -182,15 +198,15 @@ std::vector<TBackendTableRow> runBackendTable(const TBackendTableOptions& o)
 void writeBackendTableMarkdown(std::ostream& os, const std::vector<TBackendTableRow>& rows)
 {
 	os << "| back-end | runs | ego x | ego y | ego theta | final ego x | final ego y | map x | map y | "
-		  "feature x | feature y | pose x | pose y | pose theta | ANEES ego | ANEES pose | ms/step |\n";
-	os << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+		  "feature x | feature y | pose x | pose y | pose theta | RPE10 | ANEES ego | ANEES pose | ms/step |\n";
+	os << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 	os << std::setprecision(3);
 	for (const auto& r : rows)
 	{
 		os << "| " << r.kind << " | " << r.runs;
 		if (r.failures) os << " (" << r.failures << " failed)";
 		for (double v : {r.ego_x, r.ego_y, r.ego_theta, r.final_x, r.final_y, r.map_x, r.map_y, r.feat_x, r.feat_y,
-				 r.pose_x, r.pose_y, r.pose_theta, r.anees_ego, r.anees_pose, r.ms_per_step})
+				 r.pose_x, r.pose_y, r.pose_theta, r.rpe10, r.anees_ego, r.anees_pose, r.ms_per_step})
 			os << " | " << v;
 		os << " |\n";
 	}

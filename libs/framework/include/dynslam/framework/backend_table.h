@@ -37,6 +37,9 @@ struct TBackendTableRow
 	double anees_ego = 0, anees_pose = 0;
 	/** Ego RMSE (x, y) of the final trajectory (smoothed / fixed-lag; = online for filters). */
 	double final_x = 0, final_y = 0;
+	/** RMSE of the translation of the 10-step relative poses of the final trajectory (the
+	 * common drift removed). */
+	double rpe10 = 0;
 	double ms_per_step = 0;
 };
 
