@@ -6,11 +6,10 @@
  *   y 0.127 m; ATE 0.128 m; NIS inside its 95% bounds at 98% of the steps;
  *   static_landmarks_only ego y 0.115 m; static_all ego x 555 m (diverges).
  * Monte Carlo, 2 runs (seeds 1, 2 and 8001, 8002): ego y RMSE w1v1 0.032 m, w3v3 0.284 m. */
+#include <apps_test_utils.h>
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/CMonteCarloApp.h>
 #include <dynslam/apps/CRunApp.h>
-
-#include <apps_test_utils.h>
 
 #include <filesystem>
 
@@ -47,15 +46,16 @@ TEST(RunApp, HighwayDefaultMeetsAccuracyAndWritesEverything)
 	// The scenario's noise (w2v2) was taken over.
 	EXPECT_NE(app.scenarioNoiseUsed.find("w2v2"), std::string::npos) << app.scenarioNoiseUsed;
 
-	for (const char* f : {"ego.csv", "trajectory.tum", "landmarks.csv", "object_features.csv",
-			 "object_poses.csv", "metrics.csv", "metrics.txt", "nees_ego.csv", "nis.csv",
-			 "effective_config.ini"})
+	for (const char* f :
+	     {"ego.csv", "trajectory.tum", "landmarks.csv", "object_features.csv", "object_poses.csv",
+	      "metrics.csv", "metrics.txt", "nees_ego.csv", "nis.csv", "effective_config.ini"})
 		EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + f)) << f;
 	for (const char* f : {"map.png", "ego_errors.png", "nees_ego.png", "nis.png"})
 		EXPECT_TRUE(apps_test::isPng(out + "/" + f)) << f;
 	const auto ego = apps_test::readLines(out + "/ego.csv");
 	ASSERT_EQ(ego.size(), 122u);
-	EXPECT_EQ(ego[0].rfind("step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta", 0), 0u);
+	EXPECT_EQ(ego[0].rfind("step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta", 0),
+	          0u);
 	EXPECT_EQ(apps_test::readLines(out + "/trajectory.tum").size(), 121u);
 	const std::string cfg = apps_test::readFile(out + "/effective_config.ini");
 	EXPECT_NE(cfg.find("CDynamicKFSLAM2D::TOptions"), std::string::npos);
@@ -68,7 +68,7 @@ TEST(RunApp, WithoutGroundTruthAndWithTheStaticBackend)
 	const std::string out = apps_test::freshDir("nogt");
 	CRunApp app;
 	TArgs a({"-c", apps_test::configFile("run_highway.ini"), "-o", out, "--no-gt", "--backend",
-		"static_landmarks_only", "--no-figures", "-q"});
+	         "static_landmarks_only", "--no-figures", "-q"});
 	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
 	app.run();
 	EXPECT_FALSE(app.hasGroundTruth);
@@ -86,10 +86,11 @@ TEST(RunApp, FrameworkBackendAlg1EqualsTheEkf)
 {
 	// backend = alg1 (the optimization framework's Alg. 1) must give the EKF's estimates
 	// (Theorems 4.1, 4.2, A.1-A.5), here end to end through the app.
-	auto runWith = [](const std::string& backend) {
+	auto runWith = [](const std::string& backend)
+	{
 		CRunApp app;
 		TArgs a({"-c", apps_test::configFile("run_highway.ini"), "-o", apps_test::freshDir(backend),
-			"--backend", backend, "--no-figures", "-q"});
+		         "--backend", backend, "--no-figures", "-q"});
 		EXPECT_TRUE(app.initialize(a.argc(), a.argv()));
 		app.run();
 		return app.result;
@@ -134,8 +135,9 @@ TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 	const auto lines = apps_test::readLines(out + "/metrics.csv");
 	ASSERT_EQ(lines.size(), 4u);
 	const auto header = apps_test::splitCsv(lines[0]);
-	const std::vector<std::string> required{"filter", "ego_rmse_x", "ego_rmse_y", "ego_rmse_theta",
-		"static_rmse_x", "static_rmse_y", "ate", "ms_per_step"};
+	const std::vector<std::string> required{
+	    "filter",        "ego_rmse_x",    "ego_rmse_y", "ego_rmse_theta",
+	    "static_rmse_x", "static_rmse_y", "ate",        "ms_per_step"};
 	ASSERT_GE(header.size(), required.size());
 	for (size_t i = 0; i < required.size(); ++i) EXPECT_EQ(header[i], required[i]);
 	EXPECT_EQ(apps_test::splitCsv(lines[1])[0], "static_all");
@@ -144,7 +146,7 @@ TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 	for (size_t r = 1; r < 4; ++r)
 		EXPECT_GT(std::stod(apps_test::splitCsv(lines[r])[7]), 0.0);  // ms_per_step
 	for (const char* f : {"compare_map.png", "compare_map_start.png", "compare_ego_errors.png",
-			 "compare_ego_errors_without_static_all.png"})
+	                      "compare_ego_errors_without_static_all.png"})
 		EXPECT_TRUE(apps_test::isPng(out + "/" + f)) << f;
 	for (const char* f : {"static_all_ego.csv", "dynamic_object_poses.csv", "effective_config.ini"})
 		EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + f)) << f;
@@ -173,7 +175,8 @@ void runMonteCarlo(CMonteCarloApp& app, const std::vector<std::string>& args)
 	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
 	app.run();
 }
-void expectSameMetrics(const eval::TRunMetrics& a, const eval::TRunMetrics& b, const std::string& what)
+void expectSameMetrics(const eval::TRunMetrics& a, const eval::TRunMetrics& b,
+                       const std::string& what)
 {
 	EXPECT_EQ(a.ego.x, b.ego.x) << what;
 	EXPECT_EQ(a.ego.y, b.ego.y) << what;
@@ -193,8 +196,8 @@ TEST(MonteCarloApp, TwoLevelsTwoRunsTableAndThreadIndependence)
 {
 	const std::string out = apps_test::freshDir("mc");
 	CMonteCarloApp one, two, single;
-	runMonteCarlo(one, {"--runs", "2", "--levels", "w1v1,w3v3", "--threads", "1", "--out", out, "-q",
-						   "--no-figures"});
+	runMonteCarlo(one, {"--runs", "2", "--levels", "w1v1,w3v3", "--threads", "1", "--out", out,
+	                    "-q", "--no-figures"});
 	runMonteCarlo(two, {"--runs", "2", "--levels", "w1v1,w3v3", "--threads", "2", "-q"});
 	EXPECT_EQ(one.threadsUsed, 1);
 	EXPECT_EQ(two.threadsUsed, 2);
@@ -203,7 +206,8 @@ TEST(MonteCarloApp, TwoLevelsTwoRunsTableAndThreadIndependence)
 	for (size_t i = 0; i < 4; ++i)
 	{
 		EXPECT_EQ(one.results[i].seed, two.results[i].seed);
-		expectSameMetrics(one.results[i].metrics, two.results[i].metrics, "run " + std::to_string(i));
+		expectSameMetrics(one.results[i].metrics, two.results[i].metrics,
+		                  "run " + std::to_string(i));
 	}
 	// A run does not depend on which levels are selected either.
 	runMonteCarlo(single, {"--runs", "1", "--levels", "w3v3", "--threads", "2", "-q"});
@@ -218,7 +222,8 @@ TEST(MonteCarloApp, TwoLevelsTwoRunsTableAndThreadIndependence)
 	EXPECT_LT(w1, 0.06);
 	EXPECT_LT(w3, 0.60);
 	EXPECT_GT(w3, w1);
-	EXPECT_GT(one.table.levels[1].cells[0][1].mean, one.table.levels[0].cells[0][1].mean);  // static x
+	EXPECT_GT(one.table.levels[1].cells[0][1].mean,
+	          one.table.levels[0].cells[0][1].mean);  // static x
 	EXPECT_EQ(one.table.levels[0].runs, 2);
 
 	// table1.csv: header + one row per level and quantity, ours and the paper's.
@@ -231,15 +236,17 @@ TEST(MonteCarloApp, TwoLevelsTwoRunsTableAndThreadIndependence)
 	const auto paperCol = std::find(h.begin(), h.end(), "ego_poses_paper") - h.begin();
 	ASSERT_LT(size_t(paperCol), h.size());
 	const char* want[6][2] = {{"w1v1", "x_m"}, {"w1v1", "y_m"}, {"w1v1", "theta_rad"},
-		{"w3v3", "x_m"}, {"w3v3", "y_m"}, {"w3v3", "theta_rad"}};
+	                          {"w3v3", "x_m"}, {"w3v3", "y_m"}, {"w3v3", "theta_rad"}};
 	for (size_t r = 0; r < 6; ++r)
 	{
 		const auto c = apps_test::splitCsv(lines[r + 1]);
 		EXPECT_EQ(c[0], want[r][0]);
 		EXPECT_EQ(c[1], want[r][1]);
 	}
-	EXPECT_DOUBLE_EQ(std::stod(apps_test::splitCsv(lines[1])[size_t(paperCol)]), 0.008);  // paper w1v1 x
-	for (const char* f : {"table1.md", "nees_summary.csv", "nees_summary.md", "runs.csv", "effective_config.ini"})
+	EXPECT_DOUBLE_EQ(std::stod(apps_test::splitCsv(lines[1])[size_t(paperCol)]),
+	                 0.008);  // paper w1v1 x
+	for (const char* f :
+	     {"table1.md", "nees_summary.csv", "nees_summary.md", "runs.csv", "effective_config.ini"})
 		EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + f)) << f;
 	EXPECT_EQ(apps_test::readLines(out + "/runs.csv").size(), 5u);
 }

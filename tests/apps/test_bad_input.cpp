@@ -1,8 +1,7 @@
 /** Bad input to the executables: a clear message and exit code 1, never a crash. Each case
  * runs the real executable (paths from CMake) with its output captured. */
-#include <dynslam/ground_truth.h>
-
 #include <apps_test_utils.h>
+#include <dynslam/ground_truth.h>
 
 #include <random>
 #include <regex>
@@ -20,16 +19,18 @@ void expectCleanFailure(const apps_test::TCommandResult& r, const std::vector<st
 {
 	ASSERT_TRUE(r.exitedNormally) << "crashed:\n" << r.output;
 	EXPECT_EQ(r.exitCode, 1) << r.output;
-	for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "'" << n << "' not in:\n" << r.output;
+	for (const auto& n : needles)
+		EXPECT_NE(r.output.find(n), std::string::npos) << "'" << n << "' not in:\n" << r.output;
 }
 
 /** A copy of a shipped INI with one line replaced (the key at the start of the line) and
  * relative paths made absolute. */
 std::string editedIni(const std::string& dir, const std::string& shipped, const std::string& key,
-	const std::string& newLine)
+                      const std::string& newLine)
 {
 	std::string text = apps_test::readFile(configFile(shipped));
-	text = std::regex_replace(text, std::regex("\\.\\./datasets"), std::string(DYNSLAM_DATASETS_DIR));
+	text =
+	    std::regex_replace(text, std::regex("\\.\\./datasets"), std::string(DYNSLAM_DATASETS_DIR));
 	text = std::regex_replace(text, std::regex("(^|\\n)" + key + " *=[^\\n]*"), "$1" + newLine);
 	const std::string p = dir + "/" + shipped;
 	apps_test::writeFile(p, text);
@@ -39,9 +40,11 @@ std::string editedIni(const std::string& dir, const std::string& shipped, const 
 
 TEST(BadInput, MissingRawlog)
 {
-	const auto r = runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " + q(configFile("run_highway.ini")) +
-							  " -r /nonexistent/none.rawlog -o " + q(apps_test::freshDir("o")));
-	expectCleanFailure(r, {"dynslam-run: error", "rawlog '/nonexistent/none.rawlog': file not found"});
+	const auto r =
+	    runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " + q(configFile("run_highway.ini")) +
+	               " -r /nonexistent/none.rawlog -o " + q(apps_test::freshDir("o")));
+	expectCleanFailure(r,
+	                   {"dynslam-run: error", "rawlog '/nonexistent/none.rawlog': file not found"});
 	const auto c = runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -r /nonexistent/none.rawlog");
 	expectCleanFailure(c, {"dynslam-compare: error", "/nonexistent/none.rawlog': file not found"});
 }
@@ -53,12 +56,15 @@ TEST(BadInput, CorruptRawlog)
 	std::string bytes(4096, '\0');
 	for (char& ch : bytes) ch = char(rng() & 0xFF);
 	apps_test::writeFile(dir + "/garbage.rawlog", bytes);
-	const auto r = runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " + q(configFile("run_highway.ini")) +
-							  " -r " + q(dir + "/garbage.rawlog") + " -o " + q(dir + "/out"));
+	const auto r =
+	    runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " + q(configFile("run_highway.ini")) +
+	               " -r " + q(dir + "/garbage.rawlog") + " -o " + q(dir + "/out"));
 	expectCleanFailure(r, {"garbage.rawlog': corrupt or truncated at entry 0"});
 	// A truncated copy of the real rawlog.
-	apps_test::writeFile(dir + "/cut.rawlog", apps_test::readFile(dataset("highway.rawlog")).substr(0, 9000));
-	const auto c = runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -q -r " + q(dir + "/cut.rawlog"));
+	apps_test::writeFile(dir + "/cut.rawlog",
+	                     apps_test::readFile(dataset("highway.rawlog")).substr(0, 9000));
+	const auto c =
+	    runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -q -r " + q(dir + "/cut.rawlog"));
 	expectCleanFailure(c, {"cut.rawlog': corrupt or truncated at entry"});
 }
 
@@ -76,10 +82,12 @@ TEST(BadInput, GroundTruthOfAnotherLength)
 		o.visible.resize(100);
 	}
 	dynslam::writeGroundTruth(gt, dir, "short");
-	const auto r = runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " + q(configFile("run_highway.ini")) +
-							  " --gt " + q(dir + "/short") + " -o " + q(dir + "/out"));
+	const auto r =
+	    runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " + q(configFile("run_highway.ini")) +
+	               " --gt " + q(dir + "/short") + " -o " + q(dir + "/out"));
 	expectCleanFailure(r, {"does not match rawlog", "100 steps", "121 action/observation pairs"});
-	const auto c = runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -q --gt " + q(dir + "/short"));
+	const auto c =
+	    runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -q --gt " + q(dir + "/short"));
 	expectCleanFailure(c, {"does not match rawlog"});
 }
 
@@ -87,24 +95,27 @@ TEST(BadInput, IniWithBadValues)
 {
 	const std::string dir = apps_test::freshDir("ini");
 	// dynamic EKF option
-	const auto r = runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " +
-							  q(editedIni(dir, "run_highway.ini", "Sigma_v", "Sigma_v = [1e-5 abc]")) +
-							  " -o " + q(dir + "/out"));
+	const auto r =
+	    runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " +
+	               q(editedIni(dir, "run_highway.ini", "Sigma_v", "Sigma_v = [1e-5 abc]")) +
+	               " -o " + q(dir + "/out"));
 	expectCleanFailure(r, {"[DynamicKFSLAM] Sigma_v", "abc"});
 	// misspelled [Run] key
 	const auto k = runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " +
-							  q(editedIni(dir, "run_highway.ini", "figures", "figurez = true")) +
-							  " -o " + q(dir + "/out"));
+	                          q(editedIni(dir, "run_highway.ini", "figures", "figurez = true")) +
+	                          " -o " + q(dir + "/out"));
 	expectCleanFailure(k, {"figurez", "unknown"});
 	// MRPT filter's R (compare)
-	const auto c = runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -c " +
-							  q(editedIni(dir, "compare_highway.ini", "std_sensor_range", "std_sensor_range = -0.1")));
+	const auto c = runCommand(
+	    std::string(q(DYNSLAM_COMPARE_EXE)) + " -c " +
+	    q(editedIni(dir, "compare_highway.ini", "std_sensor_range", "std_sensor_range = -0.1")));
 	expectCleanFailure(c, {"[RangeBearingKFSLAM] std_sensor_range"});
 	// unknown filter name
 	const auto f = runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " --filters static_all,ukf");
 	expectCleanFailure(f, {"unknown filter 'ukf'"});
 	// Monte Carlo: a noise level that does not exist, a zero run count
-	const auto m = runCommand(std::string(q(DYNSLAM_MONTECARLO_EXE)) + " --levels w1v1,w4v4 --runs 1 -q");
+	const auto m =
+	    runCommand(std::string(q(DYNSLAM_MONTECARLO_EXE)) + " --levels w1v1,w4v4 --runs 1 -q");
 	expectCleanFailure(m, {"w4v4"});
 	const auto z = runCommand(std::string(q(DYNSLAM_MONTECARLO_EXE)) + " --runs 0 -q");
 	expectCleanFailure(z, {"[MonteCarlo] runs"});

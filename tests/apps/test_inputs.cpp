@@ -1,13 +1,12 @@
 /** Input handling of the apps: the rawlog loader (good, missing, corrupt, truncated, empty
  * files), ground-truth specs and the step-count check, scenario noise, shipped-file lookup. */
+#include <apps_test_utils.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/rawlog_io.h>
 #include <dynslam/ground_truth.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
-
-#include <apps_test_utils.h>
 
 #include <filesystem>
 #include <fstream>
@@ -32,7 +31,10 @@ std::string loadError(const std::string& path)
 	}
 	return "";
 }
-bool contains(const std::string& s, const std::string& what) { return s.find(what) != std::string::npos; }
+bool contains(const std::string& s, const std::string& what)
+{
+	return s.find(what) != std::string::npos;
+}
 }  // namespace
 
 TEST(RawlogIO, ShippedHighwayHasOnePairPerGroundTruthStep)
@@ -55,7 +57,8 @@ TEST(RawlogIO, OdometryCovarianceSurvivesTheFile)
 	{
 		const auto a = r.actions[k]->getActionByClass<mrpt::obs::CActionRobotMovement2D>();
 		ASSERT_TRUE(a);
-		const auto g = std::dynamic_pointer_cast<mrpt::poses::CPosePDFGaussian>(a->poseChange.get_ptr());
+		const auto g =
+		    std::dynamic_pointer_cast<mrpt::poses::CPosePDFGaussian>(a->poseChange.get_ptr());
 		ASSERT_TRUE(g);
 		EXPECT_NEAR(g->cov(0, 0), 1e-5, 1e-12) << "step " << k;
 		EXPECT_NEAR(g->cov(1, 1), 1e-5, 1e-12) << "step " << k;

@@ -1,13 +1,12 @@
 /** The static baseline adapter around mrpt::slam::CRangeBearingKFSLAM2D: input modes,
  * results, strict R options. */
+#include <apps_test_utils.h>
 #include <dynslam/apps/CStaticBaselineBackend.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
 #include <dynslam/landmark_ids.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
-
-#include <apps_test_utils.h>
 
 #include <set>
 
@@ -31,7 +30,8 @@ TEST(StaticBaseline, StaticOnlyModeRemovesExactlyTheObjectFeatures)
 	size_t objectReadings = 0;
 	std::set<int32_t> staticIds, objectIds;
 	for (const auto& sf : r.frames)
-		for (const auto& m : sf->getObservationByClass<mrpt::obs::CObservationBearingRange>()->sensedData)
+		for (const auto& m :
+		     sf->getObservationByClass<mrpt::obs::CObservationBearingRange>()->sensedData)
 			if (ids::isStatic(m.landmarkID))
 				staticIds.insert(m.landmarkID);
 			else
@@ -60,12 +60,14 @@ TEST(StaticBaseline, StaticOnlyModeRemovesExactlyTheObjectFeatures)
 	EXPECT_EQ(ma, both);
 	// Joint covariance in the order of the landmarks, symmetric.
 	ASSERT_EQ(ro.est.landmarks_cov.rows(), Eigen::Index(2 * ro.est.landmarks.size()));
-	EXPECT_LT((ro.est.landmarks_cov - ro.est.landmarks_cov.transpose()).cwiseAbs().maxCoeff(), 1e-12);
+	EXPECT_LT((ro.est.landmarks_cov - ro.est.landmarks_cov.transpose()).cwiseAbs().maxCoeff(),
+	          1e-12);
 	EXPECT_DOUBLE_EQ(ro.est.landmarks_cov(0, 0), ro.est.landmarks[0].cov(0, 0));
 	// The caller's data are untouched by the static-only mode.
 	size_t after = 0;
 	for (const auto& sf : r.frames)
-		for (const auto& m : sf->getObservationByClass<mrpt::obs::CObservationBearingRange>()->sensedData)
+		for (const auto& m :
+		     sf->getObservationByClass<mrpt::obs::CObservationBearingRange>()->sensedData)
 			after += ids::isObjectFeature(m.landmarkID);
 	EXPECT_EQ(after, objectReadings);
 	EXPECT_EQ(ro.est.ego.size(), r.size());
@@ -73,7 +75,8 @@ TEST(StaticBaseline, StaticOnlyModeRemovesExactlyTheObjectFeatures)
 
 TEST(StaticBaseline, RValuesAreRequiredAndPositive)
 {
-	auto err = [](const std::string& text) {
+	auto err = [](const std::string& text)
+	{
 		mrpt::config::CConfigFileMemory ini(text);
 		CStaticBaselineBackend b(CStaticBaselineBackend::Mode::AllFeatures);
 		try
@@ -88,9 +91,11 @@ TEST(StaticBaseline, RValuesAreRequiredAndPositive)
 	};
 	const std::string noRange = err("[RangeBearingKFSLAM]\nstd_sensor_yaw_deg = 0.1\n");
 	EXPECT_NE(noRange.find("[RangeBearingKFSLAM] std_sensor_range"), std::string::npos) << noRange;
-	const std::string neg = err("[RangeBearingKFSLAM]\nstd_sensor_range = -1\nstd_sensor_yaw_deg = 0.1\n");
+	const std::string neg =
+	    err("[RangeBearingKFSLAM]\nstd_sensor_range = -1\nstd_sensor_yaw_deg = 0.1\n");
 	EXPECT_NE(neg.find("std_sensor_range = '-1'"), std::string::npos) << neg;
-	const std::string ikf = err(std::string(kIni) + "[RangeBearingKFSLAM_KalmanFilter]\nmethod = kfIKF\n");
+	const std::string ikf =
+	    err(std::string(kIni) + "[RangeBearingKFSLAM_KalmanFilter]\nmethod = kfIKF\n");
 	EXPECT_NE(ikf.find("method"), std::string::npos) << ikf;
 	EXPECT_EQ(err(kIni), "");
 }

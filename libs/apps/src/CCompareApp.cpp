@@ -1,5 +1,3 @@
-#include "cmdline.h"
-
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/config_utils.h>
@@ -10,6 +8,8 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+
+#include "cmdline.h"
 
 namespace dynslam::apps
 {
@@ -47,23 +47,28 @@ CCompareApp::CCompareApp() : mrpt::system::COutputLogger("dynslam-compare") {}
 bool CCompareApp::initialize(int argc, const char** argv)
 {
 	TCLAP::CmdLine cmd(
-		"dynslam-compare: MRPT's static EKF-SLAM (CRangeBearingKFSLAM2D) with all features, the same "
-		"filter with static landmarks only, and the dynamic EKF, side by side on one rawlog. Without "
-		"arguments: the shipped highway default. See doc/apps.md.",
-		' ', "0.1");
+	    "dynslam-compare: MRPT's static EKF-SLAM (CRangeBearingKFSLAM2D) with all features, the "
+	    "same "
+	    "filter with static landmarks only, and the dynamic EKF, side by side on one rawlog. "
+	    "Without "
+	    "arguments: the shipped highway default. See doc/apps.md.",
+	    ' ', "0.1");
 	TCLAP::ValueArg<std::string> argIni(
-		"c", "config", std::string("INI file ([Compare] and the filters' sections); default ") + kDefaultIni,
-		false, "", "file.ini", cmd);
-	TCLAP::ValueArg<std::string> argRawlog(
-		"r", "rawlog", "Rawlog (overrides [Compare] rawlog)", false, "", "file.rawlog", cmd);
-	TCLAP::ValueArg<std::string> argGt(
-		"", "gt", "Ground truth DIR/BASE (overrides [Compare] ground_truth)", false, "", "DIR/BASE", cmd);
+	    "c", "config",
+	    std::string("INI file ([Compare] and the filters' sections); default ") + kDefaultIni,
+	    false, "", "file.ini", cmd);
+	TCLAP::ValueArg<std::string> argRawlog("r", "rawlog", "Rawlog (overrides [Compare] rawlog)",
+	                                       false, "", "file.rawlog", cmd);
+	TCLAP::ValueArg<std::string> argGt("", "gt",
+	                                   "Ground truth DIR/BASE (overrides [Compare] ground_truth)",
+	                                   false, "", "DIR/BASE", cmd);
 	TCLAP::SwitchArg argNoGt("", "no-gt", "Do not use any ground truth", cmd);
 	TCLAP::ValueArg<std::string> argOut(
-		"o", "out", "Write metrics.csv, estimates and figures into this directory", false, "", "dir", cmd);
+	    "o", "out", "Write metrics.csv, estimates and figures into this directory", false, "",
+	    "dir", cmd);
 	TCLAP::ValueArg<std::string> argFilters(
-		"", "filters", "Comma-separated subset of static_all,static_landmarks_only,dynamic", false, "",
-		"list", cmd);
+	    "", "filters", "Comma-separated subset of static_all,static_landmarks_only,dynamic", false,
+	    "", "list", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the PNG figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "Only the table, warnings and errors", cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-compare")) return false;
@@ -72,9 +77,9 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
 	loadIniFile(iniFile, params);
 	using namespace dynslam::config;
-	rejectUnknownKeys(
-		params, kSection,
-		{"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters", "figures", "out_dir"});
+	rejectUnknownKeys(params, kSection,
+	                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
+	                   "figures", "out_dir"});
 	data = readDataSettings(params, kSection, folderOf(iniFile));
 	if (argRawlog.isSet())
 	{
@@ -85,17 +90,19 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	if (argGt.isSet()) data.groundTruth = argGt.getValue();
 	if (argNoGt.getValue()) data.groundTruth.clear();
 	if (data.rawlog.empty())
-		throw std::invalid_argument("dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
+		throw std::invalid_argument(
+		    "dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
 
-	const std::string fl = argFilters.isSet() ? argFilters.getValue()
-											  : readString(params, kSection, "filters", "");
+	const std::string fl =
+	    argFilters.isSet() ? argFilters.getValue() : readString(params, kSection, "filters", "");
 	if (!fl.empty())
 	{
 		filters = splitList(fl);
 		for (const auto& f : filters)
 			if (std::find(allFilters().begin(), allFilters().end(), f) == allFilters().end())
 				fail(kSection, "filters", fl,
-					"unknown filter '" + f + "' (known: static_all, static_landmarks_only, dynamic)");
+				     "unknown filter '" + f +
+				         "' (known: static_all, static_landmarks_only, dynamic)");
 		if (filters.empty()) fail(kSection, "filters", fl, "empty list");
 	}
 	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
@@ -117,8 +124,8 @@ void CCompareApp::run()
 	noiseUsed = d.noiseUsed;
 	m_rawlog = d.rawlog;
 	std::cout << "dynslam-compare: config " << iniFile << "\n  rawlog " << data.rawlog << " ("
-			  << d.rawlog.size() << " steps)\n  ground truth "
-			  << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
+	          << d.rawlog.size() << " steps)\n  ground truth "
+	          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
 	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
 
 	std::ostringstream dump;
@@ -147,8 +154,9 @@ void CCompareApp::run()
 
 	std::ostringstream table;
 	eval::writeMetricsTable(table, rows);
-	table << "RMSE against the ground truth (map: static landmarks only); ms/step: wall time of one "
-			 "filter step on this machine.\n";
+	table
+	    << "RMSE against the ground truth (map: static landmarks only); ms/step: wall time of one "
+	       "filter step on this machine.\n";
 	if (!hasGroundTruth) table << "(no ground truth: only timing)\n";
 	tableText = table.str();
 	std::cout << "\n" << tableText;
@@ -162,30 +170,36 @@ void CCompareApp::writeOutputs(const std::string& optionsDump)
 {
 	std::filesystem::create_directories(outDir);
 	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
-	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w) {
+	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w)
+	{
 		const std::string p = joinPath(outDir, name);
 		eval::writeFile(p, w);
 		writtenFiles.push_back(p);
 	};
 	out("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
-	out("metrics.txt", [&](std::ostream& os) {
-		os << tableText;
-		for (const auto& r : rows)
-			if (r.consistency)
-			{
-				os << "\n" << r.filter << ": ";
-				eval::writeConsistencySummary(os, *r.consistency);
-			}
-	});
+	out("metrics.txt",
+	    [&](std::ostream& os)
+	    {
+		    os << tableText;
+		    for (const auto& r : rows)
+			    if (r.consistency)
+			    {
+				    os << "\n" << r.filter << ": ";
+				    eval::writeConsistencySummary(os, *r.consistency);
+			    }
+	    });
 	for (const auto& r : runs) writeEstimateFiles(outDir, r.name + "_", r.est, g, writtenFiles);
-	out("effective_config.ini", [&](std::ostream& os) {
-		os << "# Effective configuration of dynslam-compare\n# config: " << iniFile
-		   << "\n# rawlog: " << data.rawlog << "\n# ground truth: " << (g ? groundTruthUsed : "none")
-		   << "\n";
-		if (!noiseUsed.empty()) os << "# " << noiseUsed << "\n";
-		os << "\n" << params.getContent() << "\n\n# ---- effective options of every filter ----\n"
-		   << optionsDump;
-	});
+	out("effective_config.ini",
+	    [&](std::ostream& os)
+	    {
+		    os << "# Effective configuration of dynslam-compare\n# config: " << iniFile
+		       << "\n# rawlog: " << data.rawlog
+		       << "\n# ground truth: " << (g ? groundTruthUsed : "none") << "\n";
+		    if (!noiseUsed.empty()) os << "# " << noiseUsed << "\n";
+		    os << "\n"
+		       << params.getContent() << "\n\n# ---- effective options of every filter ----\n"
+		       << optionsDump;
+	    });
 	if (figures) drawFigures();
 	std::cout << "wrote " << writtenFiles.size() << " files into " << outDir << "\n";
 }
@@ -202,7 +216,8 @@ void CCompareApp::drawFigures()
 		const size_t c = n == "static_all" ? 0 : n == "static_landmarks_only" ? 3 : 1;
 		series.push_back({n, eval::seriesColor(c), &runs[i].est});
 	}
-	auto png = [&](const std::string& name, const mrpt::img::CImage& img) {
+	auto png = [&](const std::string& name, const mrpt::img::CImage& img)
+	{
 		const std::string p = joinPath(outDir, name);
 		eval::savePng(img, p);
 		writtenFiles.push_back(p);
@@ -235,12 +250,13 @@ void CCompareApp::drawFigures()
 	// filter: every filter re-run on the first steps only, drawn with equal aspect.
 	const double snapSeconds = 4.0;
 	size_t K = 0;
-	while (K + 1 < gt.numSteps() && K + 1 < m_rawlog.size() && gt.t[K + 1] - gt.t.front() <= snapSeconds)
+	while (K + 1 < gt.numSteps() && K + 1 < m_rawlog.size() &&
+	       gt.t[K + 1] - gt.t.front() <= snapSeconds)
 		++K;
 	const std::vector<mrpt::obs::CActionCollection::Ptr> acts(
-		m_rawlog.actions.begin(), m_rawlog.actions.begin() + long(K + 1));
-	const std::vector<mrpt::obs::CSensoryFrame::Ptr> sfs(
-		m_rawlog.frames.begin(), m_rawlog.frames.begin() + long(K + 1));
+	    m_rawlog.actions.begin(), m_rawlog.actions.begin() + long(K + 1));
+	const std::vector<mrpt::obs::CSensoryFrame::Ptr> sfs(m_rawlog.frames.begin(),
+	                                                     m_rawlog.frames.begin() + long(K + 1));
 	std::vector<TFilterRun> snaps;
 	snaps.reserve(runs.size());
 	for (const auto& r : runs)

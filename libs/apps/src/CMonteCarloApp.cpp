@@ -1,5 +1,3 @@
-#include "cmdline.h"
-
 #include <dynslam/apps/CMonteCarloApp.h>
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
@@ -17,6 +15,8 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+
+#include "cmdline.h"
 
 namespace dynslam::apps
 {
@@ -40,7 +40,8 @@ std::vector<std::string> parseLevels(const std::string& s)
 	const auto& known = eval::paperNoiseLevels();
 	for (const auto& l : out)
 		if (std::find(known.begin(), known.end(), l) == known.end())
-			throw std::invalid_argument("unknown noise level '" + l + "' (known: w1v1..w3v3 or all)");
+			throw std::invalid_argument("unknown noise level '" + l +
+			                            "' (known: w1v1..w3v3 or all)");
 	if (out.empty()) throw std::invalid_argument("empty list of noise levels");
 	return out;
 }
@@ -65,22 +66,26 @@ uint64_t CMonteCarloApp::runSeed(const std::string& level, int r) const
 bool CMonteCarloApp::initialize(int argc, const char** argv)
 {
 	TCLAP::CmdLine cmd(
-		"dynslam-montecarlo: the Monte Carlo experiment of the paper (Table I): noise levels x runs of "
-		"the highway scenario, simulated in memory, on all cores. See doc/apps.md.",
-		' ', "0.1");
+	    "dynslam-montecarlo: the Monte Carlo experiment of the paper (Table I): noise levels x "
+	    "runs of "
+	    "the highway scenario, simulated in memory, on all cores. See doc/apps.md.",
+	    ' ', "0.1");
 	TCLAP::ValueArg<std::string> argIni(
-		"c", "config", "INI file ([MonteCarlo] and the back-end's sections); default config/montecarlo.ini",
-		false, "", "file.ini", cmd);
-	TCLAP::ValueArg<int> argRuns("", "runs", "Runs per noise level ([MonteCarlo] runs)", false, 0, "N", cmd);
+	    "c", "config",
+	    "INI file ([MonteCarlo] and the back-end's sections); default config/montecarlo.ini", false,
+	    "", "file.ini", cmd);
+	TCLAP::ValueArg<int> argRuns("", "runs", "Runs per noise level ([MonteCarlo] runs)", false, 0,
+	                             "N", cmd);
 	TCLAP::ValueArg<std::string> argLevels(
-		"", "levels", "Comma-separated noise levels w1v1..w3v3, or all ([MonteCarlo] levels)", false, "",
-		"list", cmd);
+	    "", "levels", "Comma-separated noise levels w1v1..w3v3, or all ([MonteCarlo] levels)",
+	    false, "", "list", cmd);
 	TCLAP::ValueArg<int> argThreads(
-		"", "threads", "Worker threads (0: all cores) ([MonteCarlo] threads)", false, -1, "T", cmd);
-	TCLAP::ValueArg<long long> argSeed(
-		"", "seed", "Base noise seed ([MonteCarlo] seed)", false, -1, "S", cmd);
+	    "", "threads", "Worker threads (0: all cores) ([MonteCarlo] threads)", false, -1, "T", cmd);
+	TCLAP::ValueArg<long long> argSeed("", "seed", "Base noise seed ([MonteCarlo] seed)", false, -1,
+	                                   "S", cmd);
 	TCLAP::ValueArg<std::string> argOut(
-		"o", "out", "Write table1.md/.csv, NEES summaries, runs.csv and figures here", false, "", "dir", cmd);
+	    "o", "out", "Write table1.md/.csv, NEES summaries, runs.csv and figures here", false, "",
+	    "dir", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the NEES figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "No progress bar; only the tables", cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-montecarlo")) return false;
@@ -88,16 +93,17 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile("config/montecarlo.ini");
 	loadIniFile(iniFile, params);
 	using namespace dynslam::config;
-	rejectUnknownKeys(
-		params, kSection,
-		{"scenario", "backend", "runs", "levels", "threads", "seed", "figures", "initial_covariance"});
+	rejectUnknownKeys(params, kSection,
+	                  {"scenario", "backend", "runs", "levels", "threads", "seed", "figures",
+	                   "initial_covariance"});
 	scenarioFile = resolvePath(requireString(params, kSection, "scenario"), folderOf(iniFile));
 	scenario = sim::loadScenario(scenarioFile);
 	backend = readString(params, kSection, "backend", "ekf");
 	runs = int(readInt(params, kSection, "runs", 25));
 	if (argRuns.isSet()) runs = argRuns.getValue();
 	if (runs < 1) fail(kSection, "runs", std::to_string(runs), "must be >= 1");
-	const std::string lv = argLevels.isSet() ? argLevels.getValue() : readString(params, kSection, "levels", "all");
+	const std::string lv =
+	    argLevels.isSet() ? argLevels.getValue() : readString(params, kSection, "levels", "all");
 	try
 	{
 		levels = parseLevels(lv);
@@ -111,10 +117,12 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	if (threads < 0) fail(kSection, "threads", std::to_string(threads), "must be >= 0");
 	const long long s = argSeed.isSet() ? argSeed.getValue() : readInt(params, kSection, "seed", 1);
 	if (s < 0 || s + 1000LL * 9 + runs > 4294967295LL)
-		fail(kSection, "seed", std::to_string(s), "seed + 1000 * 8 + runs must be in [0, 4294967295]");
+		fail(kSection, "seed", std::to_string(s),
+		     "seed + 1000 * 8 + runs must be in [0, 4294967295]");
 	seed = uint64_t(s);
 	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
-	sigma0FromLevel = readChoice(params, kSection, "initial_covariance", {"sigma_w", "ini"}, 0) == 0;
+	sigma0FromLevel =
+	    readChoice(params, kSection, "initial_covariance", {"sigma_w", "ini"}, 0) == 0;
 	outDir = argOut.getValue();
 	progress = !argQuiet.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
@@ -145,10 +153,11 @@ void CMonteCarloApp::run()
 		lv[i].opt = scenario;
 		lv[i].opt.setNoiseLevel(levels[i]);
 		// The paper: Sigma_0 = Sigma_w; initial_covariance = ini keeps the INI's Sigma_0.
-		lv[i].opt.Sigma_0 = sigma0FromLevel
-								? lv[i].opt.Sigma_w
-								: Eigen::Matrix3d(config::readCovariance(
-									  params, "DynamicKFSLAM", "Sigma_0", Eigen::Matrix3d::Zero(), 3, false, true));
+		lv[i].opt.Sigma_0 =
+		    sigma0FromLevel
+		        ? lv[i].opt.Sigma_w
+		        : Eigen::Matrix3d(config::readCovariance(params, "DynamicKFSLAM", "Sigma_0",
+		                                                 Eigen::Matrix3d::Zero(), 3, false, true));
 		lv[i].gt = sim::buildGroundTruth(lv[i].opt);
 		TScenarioNoise n;
 		n.file = "noise level " + levels[i];
@@ -159,7 +168,8 @@ void CMonteCarloApp::run()
 		n.std_range = lv[i].opt.std_range;
 		n.std_yaw_deg = lv[i].opt.std_yaw * 180.0 / M_PI;
 		mrpt::config::CConfigFileMemory ini(params.getContent());
-		applyScenarioNoise(ini, n, isStatic ? "" : "DynamicKFSLAM", isStatic ? "RangeBearingKFSLAM" : "");
+		applyScenarioNoise(ini, n, isStatic ? "" : "DynamicKFSLAM",
+		                   isStatic ? "RangeBearingKFSLAM" : "");
 		lv[i].ini = ini.getContent();
 	}
 
@@ -167,9 +177,9 @@ void CMonteCarloApp::run()
 	results.assign(total, TRunResult());
 	threadsUsed = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
 	threadsUsed = int(std::min<size_t>(size_t(threadsUsed), total));
-	MRPT_LOG_INFO_STREAM(
-		levels.size() << " noise level(s) x " << runs << " runs = " << total << " runs of '" << backend
-					  << "' on " << threadsUsed << " thread(s); scenario " << scenarioFile);
+	MRPT_LOG_INFO_STREAM(levels.size() << " noise level(s) x " << runs << " runs = " << total
+	                                   << " runs of '" << backend << "' on " << threadsUsed
+	                                   << " thread(s); scenario " << scenarioFile);
 
 	std::atomic<size_t> next{0};
 	std::atomic<bool> failed{false};
@@ -177,7 +187,8 @@ void CMonteCarloApp::run()
 	std::mutex errMtx;
 	std::vector<double> msPerStep(total, 0.0);
 	CProgressBar bar("runs", total, std::cerr, progress);
-	auto worker = [&]() {
+	auto worker = [&]()
+	{
 		for (;;)
 		{
 			const size_t j = next.fetch_add(1);
@@ -190,7 +201,8 @@ void CMonteCarloApp::run()
 				res.level = levels[li];
 				res.run = r;
 				res.seed = runSeed(levels[li], r);
-				const sim::TSimulatedRun simRun = sim::simulateMeasurements(lv[li].gt, lv[li].opt, res.seed);
+				const sim::TSimulatedRun simRun =
+				    sim::simulateMeasurements(lv[li].gt, lv[li].opt, res.seed);
 				mrpt::config::CConfigFileMemory ini(lv[li].ini);
 				auto filter = makeBackend(backend, ini);
 				if (auto* lg = dynamic_cast<mrpt::system::COutputLogger*>(filter.get()))
@@ -255,9 +267,10 @@ void CMonteCarloApp::run()
 	writeNeesMarkdown(std::cout, nees);
 	char buf[200];
 	std::snprintf(buf, sizeof(buf),
-		"\n%zu runs (%zu levels x %d) on %d thread(s): wall time %.2f s; filter %.3f ms/step, %.1f ms/run\n",
-		total, levels.size(), runs, threadsUsed, wallSeconds, meanMsPerStep,
-		meanMsPerStep * double(results.empty() ? 0 : results.front().steps));
+	              "\n%zu runs (%zu levels x %d) on %d thread(s): wall time %.2f s; filter %.3f "
+	              "ms/step, %.1f ms/run\n",
+	              total, levels.size(), runs, threadsUsed, wallSeconds, meanMsPerStep,
+	              meanMsPerStep * double(results.empty() ? 0 : results.front().steps));
 	std::cout << buf << std::flush;
 	if (!outDir.empty()) writeOutputs();
 }

@@ -1,5 +1,3 @@
-#include "cmdline.h"
-
 #include <dynslam/apps/CRunApp.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/config_utils.h>
@@ -9,6 +7,8 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+
+#include "cmdline.h"
 
 namespace dynslam::apps
 {
@@ -22,25 +22,27 @@ CRunApp::CRunApp() : mrpt::system::COutputLogger("dynslam-run") {}
 bool CRunApp::initialize(int argc, const char** argv)
 {
 	TCLAP::CmdLine cmd(
-		"dynslam-run: runs the dynamic EKF-SLAM (or another back-end) on an MRPT rawlog and writes "
-		"estimates, metrics against the ground truth, figures and the effective configuration. "
-		"See doc/apps.md.",
-		' ', "0.1");
+	    "dynslam-run: runs the dynamic EKF-SLAM (or another back-end) on an MRPT rawlog and writes "
+	    "estimates, metrics against the ground truth, figures and the effective configuration. "
+	    "See doc/apps.md.",
+	    ' ', "0.1");
 	TCLAP::ValueArg<std::string> argIni(
-		"c", "config", "INI file: [Run] and the back-end's sections (e.g. config/run_highway.ini)",
-		true, "", "file.ini", cmd);
-	TCLAP::ValueArg<std::string> argRawlog(
-		"r", "rawlog", "Rawlog (overrides [Run] rawlog)", false, "", "file.rawlog", cmd);
+	    "c", "config", "INI file: [Run] and the back-end's sections (e.g. config/run_highway.ini)",
+	    true, "", "file.ini", cmd);
+	TCLAP::ValueArg<std::string> argRawlog("r", "rawlog", "Rawlog (overrides [Run] rawlog)", false,
+	                                       "", "file.rawlog", cmd);
 	TCLAP::ValueArg<std::string> argGt(
-		"", "gt", "Ground truth DIR/BASE (files DIR/BASE_gt_*.csv); overrides [Run] ground_truth",
-		false, "", "DIR/BASE", cmd);
+	    "", "gt", "Ground truth DIR/BASE (files DIR/BASE_gt_*.csv); overrides [Run] ground_truth",
+	    false, "", "DIR/BASE", cmd);
 	TCLAP::SwitchArg argNoGt("", "no-gt", "Do not use any ground truth", cmd);
 	TCLAP::ValueArg<std::string> argOut(
-		"o", "out", "Output directory (created; default [Run] out_dir or dynslam-run-out)", false, "",
-		"dir", cmd);
+	    "o", "out", "Output directory (created; default [Run] out_dir or dynslam-run-out)", false,
+	    "", "dir", cmd);
 	TCLAP::ValueArg<std::string> argBackend(
-		"", "backend", "Back-end: ekf | static_all | static_landmarks_only | alg1 | vdo | dynaslam2 | cubeslam | clusterslam_decoupled | clusterslam_semidecoupled ([Run] backend)", false,
-		"", "kind", cmd);
+	    "", "backend",
+	    "Back-end: ekf | static_all | static_landmarks_only | alg1 | vdo | dynaslam2 | cubeslam | "
+	    "clusterslam_decoupled | clusterslam_semidecoupled ([Run] backend)",
+	    false, "", "kind", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the PNG figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "Only warnings and errors on the console", cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-run")) return false;
@@ -49,10 +51,9 @@ bool CRunApp::initialize(int argc, const char** argv)
 	iniFile = argIni.getValue();
 	loadIniFile(iniFile, params);
 	using namespace dynslam::config;
-	rejectUnknownKeys(
-		params, kSection,
-		{"rawlog", "ground_truth", "scenario", "noise_from_scenario", "backend", "out_dir", "figures",
-		 "progress_every"});
+	rejectUnknownKeys(params, kSection,
+	                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "backend",
+	                   "out_dir", "figures", "progress_every"});
 	const TDataSettings d = readDataSettings(params, kSection, folderOf(iniFile));
 	rawlogFile = argRawlog.isSet() ? argRawlog.getValue() : d.rawlog;
 	groundTruth = d.groundTruth;
@@ -67,9 +68,11 @@ bool CRunApp::initialize(int argc, const char** argv)
 	if (argOut.isSet()) outDir = argOut.getValue();
 	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
 	progressEvery = int(readInt(params, kSection, "progress_every", 0));
-	if (progressEvery < 0) fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
+	if (progressEvery < 0)
+		fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
 	if (rawlogFile.empty())
-		throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " + iniFile + ")");
+		throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " +
+		                            iniFile + ")");
 	// Fail early on bad back-end options (before reading a long rawlog).
 	makeBackend(backend, params);
 	return true;
@@ -85,46 +88,54 @@ void CRunApp::run()
 	ds.scenario = scenarioFile;
 	ds.noiseFromScenario = noiseFromScenario;
 	const bool isStatic = backend == "static_all" || backend == "static_landmarks_only";
-	TLoadedData data = loadData(ds, params, isStatic ? "" : "DynamicKFSLAM", isStatic ? "RangeBearingKFSLAM" : "");
+	TLoadedData data =
+	    loadData(ds, params, isStatic ? "" : "DynamicKFSLAM", isStatic ? "RangeBearingKFSLAM" : "");
 	hasGroundTruth = data.gt.has_value();
 	if (hasGroundTruth) gt = *data.gt;
 	groundTruthUsed = data.groundTruthUsed;
 	scenarioNoiseUsed = data.noiseUsed;
-	MRPT_LOG_INFO_STREAM(
-		"rawlog " << rawlogFile << " (" << data.rawlog.size() << " steps), ground truth "
-				  << (hasGroundTruth ? groundTruthUsed : std::string("none")) << ", config " << iniFile);
+	MRPT_LOG_INFO_STREAM("rawlog "
+	                     << rawlogFile << " (" << data.rawlog.size() << " steps), ground truth "
+	                     << (hasGroundTruth ? groundTruthUsed : std::string("none")) << ", config "
+	                     << iniFile);
 	if (!scenarioNoiseUsed.empty()) MRPT_LOG_INFO_STREAM(scenarioNoiseUsed);
 
 	std::ostringstream dump;
 	auto filter = makeBackend(backend, params, &dump);
 	const size_t n = data.rawlog.size();
 	const size_t every = progressEvery > 0 ? size_t(progressEvery) : std::max<size_t>(1, n / 10);
-	result = runFilter(*filter, data.rawlog.actions, data.rawlog.frames, [&](size_t done, size_t total) {
-		if (done % every != 0 && done != total) return;
-		MRPT_LOG_INFO_FMT(
-			"%s: step %zu/%zu (%3.0f%%)", filter->name().c_str(), done, total, 100.0 * double(done) / double(total));
-	});
+	result = runFilter(*filter, data.rawlog.actions, data.rawlog.frames,
+	                   [&](size_t done, size_t total)
+	                   {
+		                   if (done % every != 0 && done != total) return;
+		                   MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", filter->name().c_str(),
+		                                     done, total, 100.0 * double(done) / double(total));
+	                   });
 	setEgoTimes(result, hasGroundTruth);
-	MRPT_LOG_INFO_FMT(
-		"%s: %zu steps in %.1f ms (%.3f ms/step)", result.name.c_str(), result.steps, result.total_ms,
-		result.est.ms_per_step);
+	MRPT_LOG_INFO_FMT("%s: %zu steps in %.1f ms (%.3f ms/step)", result.name.c_str(), result.steps,
+	                  result.total_ms, result.est.ms_per_step);
 
 	std::filesystem::create_directories(outDir);
 	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	writeEstimateFiles(outDir, "", result.est, g, writtenFiles);
-	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w) {
+	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w)
+	{
 		const std::string p = joinPath(outDir, name);
 		eval::writeFile(p, w);
 		writtenFiles.push_back(p);
 	};
-	out("effective_config.ini", [&](std::ostream& os) {
-		os << "# Effective configuration of dynslam-run\n# config: " << iniFile << "\n# rawlog: "
-		   << rawlogFile << "\n# ground truth: " << (hasGroundTruth ? groundTruthUsed : "none") << "\n";
-		if (!scenarioNoiseUsed.empty()) os << "# " << scenarioNoiseUsed << "\n";
-		os << "\n" << params.getContent() << "\n\n# ---- effective options of the back-end '" << backend
-		   << "' (" << result.name << ") ----\n"
-		   << dump.str();
-	});
+	out("effective_config.ini",
+	    [&](std::ostream& os)
+	    {
+		    os << "# Effective configuration of dynslam-run\n# config: " << iniFile
+		       << "\n# rawlog: " << rawlogFile
+		       << "\n# ground truth: " << (hasGroundTruth ? groundTruthUsed : "none") << "\n";
+		    if (!scenarioNoiseUsed.empty()) os << "# " << scenarioNoiseUsed << "\n";
+		    os << "\n"
+		       << params.getContent() << "\n\n# ---- effective options of the back-end '" << backend
+		       << "' (" << result.name << ") ----\n"
+		       << dump.str();
+	    });
 
 	eval::TRunConsistency cons;
 	eval::TConsistencySummary summary;
@@ -147,15 +158,17 @@ void CRunApp::run()
 		cons = nisOnly(result.est);
 		summary = eval::summarizeConsistency({cons});
 		std::cout << result.name << ": " << result.steps << " steps, " << result.est.ms_per_step
-				  << " ms/step (no ground truth: no metrics)\n";
+		          << " ms/step (no ground truth: no metrics)\n";
 	}
 	if (!summary.nis.rows.empty())
 		out("nis.csv", [&](std::ostream& os) { eval::writeConsistencyCsv(os, summary.nis); });
 
 	if (figures)
 	{
-		const std::vector<eval::TFigureSeries> series{{result.name, eval::seriesColor(1), &result.est}};
-		auto png = [&](const std::string& name, const mrpt::img::CImage& img) {
+		const std::vector<eval::TFigureSeries> series{
+		    {result.name, eval::seriesColor(1), &result.est}};
+		auto png = [&](const std::string& name, const mrpt::img::CImage& img)
+		{
 			const std::string p = joinPath(outDir, name);
 			eval::savePng(img, p);
 			writtenFiles.push_back(p);
@@ -166,7 +179,8 @@ void CRunApp::run()
 		if (hasGroundTruth)
 		{
 			png("ego_errors.png", eval::drawEgoErrorFigure(gt, series));
-			if (!summary.ego.rows.empty()) png("nees_ego.png", eval::drawConsistencyFigure(summary.ego));
+			if (!summary.ego.rows.empty())
+				png("nees_ego.png", eval::drawConsistencyFigure(summary.ego));
 		}
 		if (!summary.nis.rows.empty()) png("nis.png", eval::drawConsistencyFigure(summary.nis));
 	}

@@ -11,7 +11,7 @@
 namespace dynslam::apps
 {
 CStaticBaselineBackend::CStaticBaselineBackend(Mode mode)
-	: m_mode(mode), m_filter(std::make_unique<mrpt::slam::CRangeBearingKFSLAM2D>())
+    : m_mode(mode), m_filter(std::make_unique<mrpt::slam::CRangeBearingKFSLAM2D>())
 {
 }
 CStaticBaselineBackend::~CStaticBaselineBackend() = default;
@@ -21,8 +21,8 @@ std::string CStaticBaselineBackend::name() const
 	return m_mode == Mode::AllFeatures ? "static_all" : "static_landmarks_only";
 }
 
-void CStaticBaselineBackend::loadOptions(
-	const mrpt::config::CConfigFileBase& ini, const std::string& section)
+void CStaticBaselineBackend::loadOptions(const mrpt::config::CConfigFileBase& ini,
+                                         const std::string& section)
 {
 	using namespace dynslam::config;
 	// MRPT reads these leniently; R must not silently fall back to MRPT's defaults.
@@ -49,17 +49,18 @@ void CStaticBaselineBackend::dumpOptions(std::ostream& out) const
 {
 	m_filter->options.dumpToTextStream(out);
 	m_filter->KF_options.dumpToTextStream(out);
-	out << "input_mode = " << (m_mode == Mode::AllFeatures ? "all features" : "static landmarks only")
-		<< "\n";
+	out << "input_mode = "
+	    << (m_mode == Mode::AllFeatures ? "all features" : "static landmarks only") << "\n";
 }
 
 void CStaticBaselineBackend::processActionObservation(
-	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
+    const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
 {
 	if (!action) throw std::runtime_error(name() + ": null action collection");
 	if (!SF) throw std::runtime_error(name() + ": null sensory frame");
 	auto obs = SF->getObservationByClass<mrpt::obs::CObservationBearingRange>();
-	if (!obs) throw std::runtime_error(name() + ": the sensory frame holds no CObservationBearingRange");
+	if (!obs)
+		throw std::runtime_error(name() + ": the sensory frame holds no CObservationBearingRange");
 
 	mrpt::obs::CActionCollection::Ptr act = action;
 	mrpt::obs::CSensoryFrame::Ptr sf = SF;

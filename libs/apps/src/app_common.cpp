@@ -35,12 +35,12 @@ void setEgoTimes(TFilterRun& run, bool haveGroundTruth)
 {
 	for (auto& e : run.est.ego)
 		e.t = (!haveGroundTruth && e.step >= 0 && size_t(e.step) < run.stamps.size())
-				  ? run.stamps[size_t(e.step)]
-				  : eval::kNaN;
+		          ? run.stamps[size_t(e.step)]
+		          : eval::kNaN;
 }
 
-TDataSettings readDataSettings(
-	const mrpt::config::CConfigFileBase& ini, const std::string& section, const std::string& iniDir)
+TDataSettings readDataSettings(const mrpt::config::CConfigFileBase& ini, const std::string& section,
+                               const std::string& iniDir)
 {
 	using namespace dynslam::config;
 	TDataSettings s;
@@ -53,14 +53,13 @@ TDataSettings readDataSettings(
 	if (s.scenario != "auto") s.scenario = resolvePath(s.scenario, iniDir);
 	const int nf = readChoice(ini, section, "noise_from_scenario", {"false", "true", "auto"}, 0);
 	s.noiseFromScenario = nf == 0   ? TDataSettings::ScenarioNoise::Off
-						  : nf == 1 ? TDataSettings::ScenarioNoise::On
-									: TDataSettings::ScenarioNoise::Auto;
+	                      : nf == 1 ? TDataSettings::ScenarioNoise::On
+	                                : TDataSettings::ScenarioNoise::Auto;
 	return s;
 }
 
-TLoadedData loadData(
-	const TDataSettings& s, mrpt::config::CConfigFileMemory& params, const std::string& dynSection,
-	const std::string& staticSection)
+TLoadedData loadData(const TDataSettings& s, mrpt::config::CConfigFileMemory& params,
+                     const std::string& dynSection, const std::string& staticSection)
 {
 	if (s.rawlog.empty())
 		throw std::runtime_error("no rawlog given (command line -r FILE or the INI key rawlog)");
@@ -78,10 +77,11 @@ TLoadedData loadData(
 		const std::string sc = s.scenario == "auto" ? scenarioBesideRawlog(s.rawlog) : s.scenario;
 		std::error_code ec;
 		if (s.noiseFromScenario == TDataSettings::ScenarioNoise::Auto &&
-			!std::filesystem::is_regular_file(sc, ec))
+		    !std::filesystem::is_regular_file(sc, ec))
 			d.noiseUsed = "no scenario file " + sc + ": noise values from the INI";
 		else
-			d.noiseUsed = applyScenarioNoise(params, readScenarioNoise(sc), dynSection, staticSection);
+			d.noiseUsed =
+			    applyScenarioNoise(params, readScenarioNoise(sc), dynSection, staticSection);
 	}
 	return d;
 }
@@ -99,11 +99,12 @@ std::string joinPath(const std::string& dir, const std::string& name)
 	return (std::filesystem::path(dir) / name).string();
 }
 
-void writeEstimateFiles(
-	const std::string& dir, const std::string& prefix, const eval::TRunEstimates& est,
-	const TGroundTruth* gt, std::vector<std::string>& written)
+void writeEstimateFiles(const std::string& dir, const std::string& prefix,
+                        const eval::TRunEstimates& est, const TGroundTruth* gt,
+                        std::vector<std::string>& written)
 {
-	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w) {
+	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w)
+	{
 		const std::string p = joinPath(dir, prefix + name);
 		eval::writeFile(p, w);
 		written.push_back(p);
@@ -112,7 +113,8 @@ void writeEstimateFiles(
 	out("trajectory.tum", [&](std::ostream& os) { eval::writeTum(os, est.ego, gt); });
 	out("landmarks.csv", [&](std::ostream& os) { eval::writeLandmarksCsv(os, est, gt); });
 	if (!est.object_features.empty())
-		out("object_features.csv", [&](std::ostream& os) { eval::writeObjectFeaturesCsv(os, est, gt); });
+		out("object_features.csv",
+		    [&](std::ostream& os) { eval::writeObjectFeaturesCsv(os, est, gt); });
 	if (!est.object_poses.empty())
 		out("object_poses.csv", [&](std::ostream& os) { eval::writeObjectPosesCsv(os, est, gt); });
 }

@@ -10,7 +10,8 @@ namespace dynslam::apps::detail
 {
 /** True: go on. False: --help or --version was shown. Throws std::invalid_argument on a bad
  * command line (TCLAP has printed the details). */
-inline bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, const char** argv, const std::string& app)
+inline bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, const char** argv,
+                             const std::string& app)
 {
 	if (cmd.parse(argc, argv)) return true;
 	for (int i = 1; i < argc; ++i)

@@ -26,7 +26,8 @@ bool isFile(const std::string& p)
 }
 bool endsWith(const std::string& s, const std::string& suffix)
 {
-	return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+	return s.size() >= suffix.size() &&
+	       s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 std::string stripRawlogExt(const std::string& rawlogPath)
 {
@@ -41,7 +42,8 @@ std::vector<std::string> shippedFileCandidates(const std::string& relPath)
 {
 	std::vector<std::string> c{relPath};
 	if (const std::string d = exeDir(); !d.empty())
-		c.push_back((fs::path(d) / ".." / "share" / "dynslam" / relPath).lexically_normal().string());
+		c.push_back(
+		    (fs::path(d) / ".." / "share" / "dynslam" / relPath).lexically_normal().string());
 #ifdef DYNSLAM_SOURCE_DIR
 	c.push_back((fs::path(DYNSLAM_SOURCE_DIR) / relPath).lexically_normal().string());
 #endif
@@ -77,7 +79,7 @@ TGroundTruthSpec parseGroundTruthSpec(const std::string& spec)
 	if (spec.empty()) throw std::runtime_error("empty ground-truth spec (expected DIR/BASE)");
 	std::string s = spec;
 	for (const char* suffix : {"_gt_ego.csv", "_gt_ego.tum", "_gt_landmarks.csv", "_gt_objects.csv",
-			 "_gt_object_features.csv"})
+	                           "_gt_object_features.csv"})
 		if (endsWith(s, suffix))
 		{
 			s.resize(s.size() - std::string(suffix).size());
@@ -88,7 +90,8 @@ TGroundTruthSpec parseGroundTruthSpec(const std::string& spec)
 	out.dir = p.parent_path().empty() ? "." : p.parent_path().string();
 	out.base = p.filename().string();
 	if (out.base.empty())
-		throw std::runtime_error("ground-truth spec '" + spec + "' has no base name (expected DIR/BASE)");
+		throw std::runtime_error("ground-truth spec '" + spec +
+		                         "' has no base name (expected DIR/BASE)");
 	return out;
 }
 
@@ -103,14 +106,15 @@ std::string scenarioBesideRawlog(const std::string& rawlogPath)
 	return stripRawlogExt(rawlogPath) + "_scenario.ini";
 }
 
-TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps, const std::string& rawlogPath)
+TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps,
+                                const std::string& rawlogPath)
 {
 	const TGroundTruthSpec s = parseGroundTruthSpec(spec);
 	const std::string egoFile = (fs::path(s.dir) / (s.base + "_gt_ego.csv")).string();
 	if (!isFile(egoFile))
 		throw std::runtime_error(
-			"ground truth '" + s.str() + "': " + egoFile +
-			" not found (expected the files DIR/BASE_gt_*.csv written by dynslam-simulate)");
+		    "ground truth '" + s.str() + "': " + egoFile +
+		    " not found (expected the files DIR/BASE_gt_*.csv written by dynslam-simulate)");
 	TGroundTruth gt;
 	try
 	{
@@ -124,9 +128,9 @@ TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps, con
 	if (gt.numSteps() != rawlogSteps)
 	{
 		std::ostringstream msg;
-		msg << "ground truth '" << s.str() << "' does not match rawlog '" << rawlogPath << "': it has "
-			<< gt.numSteps() << " steps, the rawlog has " << rawlogSteps
-			<< " action/observation pairs (one ground-truth step per pair expected)";
+		msg << "ground truth '" << s.str() << "' does not match rawlog '" << rawlogPath
+		    << "': it has " << gt.numSteps() << " steps, the rawlog has " << rawlogSteps
+		    << " action/observation pairs (one ground-truth step per pair expected)";
 		throw std::runtime_error(msg.str());
 	}
 	return gt;
@@ -156,9 +160,8 @@ TScenarioNoise readScenarioNoise(const std::string& path)
 	return n;
 }
 
-std::string applyScenarioNoise(
-	mrpt::config::CConfigFileMemory& ini, const TScenarioNoise& n, const std::string& dynSection,
-	const std::string& staticSection)
+std::string applyScenarioNoise(mrpt::config::CConfigFileMemory& ini, const TScenarioNoise& n,
+                               const std::string& dynSection, const std::string& staticSection)
 {
 	using dynslam::config::formatMatrix;
 	std::ostringstream what;
@@ -191,7 +194,7 @@ std::string applyScenarioNoise(
 		ini.write(staticSection, "std_sensor_range", r.str());
 		ini.write(staticSection, "std_sensor_yaw_deg", y.str());
 		what << " [" << staticSection << "] std_sensor_range = " << n.std_range
-			 << ", std_sensor_yaw_deg = " << n.std_yaw_deg;
+		     << ", std_sensor_yaw_deg = " << n.std_yaw_deg;
 	}
 	return what.str();
 }

@@ -16,7 +16,8 @@ namespace dynslam::apps
 {
 const std::vector<std::string>& backendKinds()
 {
-	static const std::vector<std::string> k = [] {
+	static const std::vector<std::string> k = []
+	{
 		std::vector<std::string> v{"ekf", "static_all", "static_landmarks_only"};
 		for (const auto& f : framework::backendKinds()) v.push_back(f);
 		return v;
@@ -24,8 +25,9 @@ const std::vector<std::string>& backendKinds()
 	return k;
 }
 
-std::unique_ptr<ISlamBackend> makeBackend(
-	const std::string& kind, const mrpt::config::CConfigFileBase& ini, std::ostream* optionsDump)
+std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
+                                          const mrpt::config::CConfigFileBase& ini,
+                                          std::ostream* optionsDump)
 {
 	if (kind == "ekf" || kind == "dynamic")
 	{
@@ -43,14 +45,14 @@ std::unique_ptr<ISlamBackend> makeBackend(
 	if (kind == "static_all" || kind == "static_landmarks_only")
 	{
 		auto f = std::make_unique<CStaticBaselineBackend>(
-			kind == "static_all" ? CStaticBaselineBackend::Mode::AllFeatures
-								 : CStaticBaselineBackend::Mode::StaticOnly);
+		    kind == "static_all" ? CStaticBaselineBackend::Mode::AllFeatures
+		                         : CStaticBaselineBackend::Mode::StaticOnly);
 		f->loadOptions(ini, "RangeBearingKFSLAM");
 		if (optionsDump)
 		{
 			*optionsDump << "# [RangeBearingKFSLAM] and [RangeBearingKFSLAM_KalmanFilter] "
-							"(mrpt::slam::CRangeBearingKFSLAM2D, "
-						 << f->name() << ")";
+			                "(mrpt::slam::CRangeBearingKFSLAM2D, "
+			             << f->name() << ")";
 			f->dumpOptions(*optionsDump);
 		}
 		return f;
@@ -63,8 +65,8 @@ std::unique_ptr<ISlamBackend> makeBackend(
 		framework::TBackendOptions o = framework::defaultBackendOptions(kind);
 		o.loadFromConfigFile(ini, "Backend");
 		if (o.backend != kind)
-			throw std::invalid_argument(
-				"[Backend] backend = " + o.backend + " differs from the requested back-end " + kind);
+			throw std::invalid_argument("[Backend] backend = " + o.backend +
+			                            " differs from the requested back-end " + kind);
 		if (optionsDump)
 		{
 			*optionsDump << "# [Backend] and its model section (framework::TBackendOptions)";
@@ -144,10 +146,10 @@ void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est
 		}
 }
 
-TFilterRun runFilter(
-	ISlamBackend& backend, const std::vector<mrpt::obs::CActionCollection::Ptr>& actions,
-	const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames,
-	const std::function<void(size_t, size_t)>& progress)
+TFilterRun runFilter(ISlamBackend& backend,
+                     const std::vector<mrpt::obs::CActionCollection::Ptr>& actions,
+                     const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames,
+                     const std::function<void(size_t, size_t)>& progress)
 {
 	if (actions.size() != frames.size())
 		throw std::invalid_argument("runFilter: different numbers of actions and sensory frames");
@@ -169,10 +171,11 @@ TFilterRun runFilter(
 		}
 		catch (const std::exception& e)
 		{
-			throw std::runtime_error(
-				r.name + ": step " + std::to_string(k) + ": " + mrpt::exception_to_str(e));
+			throw std::runtime_error(r.name + ": step " + std::to_string(k) + ": " +
+			                         mrpt::exception_to_str(e));
 		}
-		ns += double(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());
+		ns +=
+		    double(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());
 
 		const auto pose = backend.getEgoPose();
 		eval::TEgoEstimate e;

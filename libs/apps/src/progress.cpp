@@ -7,12 +7,12 @@
 namespace dynslam::apps
 {
 CProgressBar::CProgressBar(std::string unit, size_t total, std::ostream& os, bool enabled)
-	: m_unit(std::move(unit)),
-	  m_total(total),
-	  m_os(os),
-	  m_enabled(enabled),
-	  m_start(std::chrono::steady_clock::now()),
-	  m_lastDraw(m_start)
+    : m_unit(std::move(unit)),
+      m_total(total),
+      m_os(os),
+      m_enabled(enabled),
+      m_start(std::chrono::steady_clock::now()),
+      m_lastDraw(m_start)
 {
 	std::lock_guard<std::mutex> lk(m_mtx);
 	drawLocked(true);
@@ -42,20 +42,22 @@ void CProgressBar::finish()
 	m_finished = true;
 }
 
-std::string CProgressBar::format(
-	size_t done, size_t total, double elapsed_s, const std::string& unit, int width)
+std::string CProgressBar::format(size_t done, size_t total, double elapsed_s,
+                                 const std::string& unit, int width)
 {
 	const double frac = total ? double(done) / double(total) : 1.0;
 	const int filled = int(frac * width + 1e-9);
 	std::ostringstream os;
-	os << "[" << std::string(size_t(filled), '#') << std::string(size_t(width - filled), '.') << "] ";
+	os << "[" << std::string(size_t(filled), '#') << std::string(size_t(width - filled), '.')
+	   << "] ";
 	char buf[96];
 	std::snprintf(buf, sizeof(buf), "%*zu/%zu %s  %.1f s", int(std::to_string(total).size()), done,
-		total, unit.c_str(), elapsed_s);
+	              total, unit.c_str(), elapsed_s);
 	os << buf;
 	if (done > 0 && done < total)
 	{
-		std::snprintf(buf, sizeof(buf), ", ETA %.1f s", elapsed_s / double(done) * double(total - done));
+		std::snprintf(buf, sizeof(buf), ", ETA %.1f s",
+		              elapsed_s / double(done) * double(total - done));
 		os << buf;
 	}
 	return os.str();

@@ -69,7 +69,7 @@ TRawlog loadRawlog(const std::string& path)
 		{
 			std::ostringstream msg;
 			msg << what << ": corrupt or truncated at entry " << out.entries << " (after "
-				<< out.size() << " complete action/observation pairs): " << shortReason(e);
+			    << out.size() << " complete action/observation pairs): " << shortReason(e);
 			throw std::runtime_error(msg.str());
 		}
 		const size_t entry = out.entries++;
@@ -91,15 +91,14 @@ TRawlog loadRawlog(const std::string& path)
 		// anything else (comments, format-#2 observations) is skipped
 	}
 	if (pendingAction)
-		throw std::runtime_error(
-			what + ": truncated: the action at entry " + std::to_string(pendingEntry) +
-			" has no sensory frame after it (" + std::to_string(out.size()) +
-			" complete pairs before it)");
+		throw std::runtime_error(what + ": truncated: the action at entry " +
+		                         std::to_string(pendingEntry) + " has no sensory frame after it (" +
+		                         std::to_string(out.size()) + " complete pairs before it)");
 	if (out.size() == 0)
 		throw std::runtime_error(
-			what + ": no action/observation pair found (" + std::to_string(out.entries) +
-			" entries read); expected an MRPT rawlog in format #1 (CActionCollection, "
-			"CSensoryFrame, ...)");
+		    what + ": no action/observation pair found (" + std::to_string(out.entries) +
+		    " entries read); expected an MRPT rawlog in format #1 (CActionCollection, "
+		    "CSensoryFrame, ...)");
 	return out;
 }
 }  // namespace dynslam::apps

@@ -19,7 +19,8 @@ inline std::string freshDir(const std::string& tag)
 {
 	const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
 	const std::string name = std::string(info ? info->test_suite_name() : "x") + "_" +
-							 (info ? info->name() : "y") + "_" + tag + "_" + std::to_string(getpid());
+	                         (info ? info->name() : "y") + "_" + tag + "_" +
+	                         std::to_string(getpid());
 	const auto p = std::filesystem::temp_directory_path() / ("dynslam_apps_" + name);
 	std::filesystem::remove_all(p);
 	std::filesystem::create_directories(p);
@@ -82,8 +83,14 @@ inline bool isPng(const std::string& path)
 	return s.size() > 8 && s.compare(1, 3, "PNG") == 0;
 }
 
-inline std::string dataset(const std::string& name) { return std::string(DYNSLAM_DATASETS_DIR) + "/" + name; }
-inline std::string configFile(const std::string& name) { return std::string(DYNSLAM_CONFIG_DIR) + "/" + name; }
+inline std::string dataset(const std::string& name)
+{
+	return std::string(DYNSLAM_DATASETS_DIR) + "/" + name;
+}
+inline std::string configFile(const std::string& name)
+{
+	return std::string(DYNSLAM_CONFIG_DIR) + "/" + name;
+}
 
 /** Writes `text` to `path`. */
 inline void writeFile(const std::string& path, const std::string& text)

@@ -53,7 +53,7 @@ public:
 	bool figures = true;
 
 	// --- results of run() ---
-	std::vector<TFilterRun> runs;  ///< one per filter, in `filters` order
+	std::vector<TFilterRun> runs;         ///< one per filter, in `filters` order
 	std::vector<eval::TMetricsRow> rows;  ///< metrics per filter (only with ground truth)
 	bool hasGroundTruth = false;
 	TGroundTruth gt;

@@ -49,7 +49,7 @@ public:
 	std::string backend = "ekf";
 	int runs = 25;
 	std::vector<std::string> levels;  ///< default: all 9
-	int threads = 0;  ///< 0: std::thread::hardware_concurrency()
+	int threads = 0;                  ///< 0: std::thread::hardware_concurrency()
 	uint64_t seed = 1;
 	std::string outDir;  ///< empty: print only
 	bool figures = true, progress = true;
@@ -70,7 +70,7 @@ public:
 	std::vector<TRunResult> results;  ///< level-major, then run
 	eval::TTable1 table;
 	std::vector<std::pair<std::string, eval::TConsistencySummary>> nees;  ///< per level
-	double wallSeconds = 0;  ///< the whole sweep (simulation + filtering + scoring)
+	double wallSeconds = 0;    ///< the whole sweep (simulation + filtering + scoring)
 	double meanMsPerStep = 0;  ///< filter time per step, mean over runs
 	int threadsUsed = 0;
 	std::vector<std::string> writtenFiles;
@@ -81,6 +81,6 @@ private:
 
 /** The NEES summary per level as a Markdown table (ego, static map, landmarks, object poses,
  * NIS: ANEES with its two-sided 95% bounds and the share of steps inside their bounds). */
-void writeNeesMarkdown(
-	std::ostream& os, const std::vector<std::pair<std::string, eval::TConsistencySummary>>& nees);
+void writeNeesMarkdown(std::ostream& os,
+                       const std::vector<std::pair<std::string, eval::TConsistencySummary>>& nees);
 }  // namespace dynslam::apps

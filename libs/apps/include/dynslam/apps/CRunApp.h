@@ -37,8 +37,8 @@ public:
 	// --- settings (filled by initialize(); may be edited before run()) ---
 	mrpt::config::CConfigFileMemory params;  ///< the INI (noise overrides are written into it)
 	std::string iniFile;
-	std::string rawlogFile;  ///< [Run] rawlog or -r
-	std::string groundTruth;  ///< "DIR/BASE", "auto" (beside the rawlog) or empty (none)
+	std::string rawlogFile;    ///< [Run] rawlog or -r
+	std::string groundTruth;   ///< "DIR/BASE", "auto" (beside the rawlog) or empty (none)
 	std::string scenarioFile;  ///< [Run] scenario ("auto": beside the rawlog)
 	TDataSettings::ScenarioNoise noiseFromScenario = TDataSettings::ScenarioNoise::Off;
 	std::string backend = "ekf";

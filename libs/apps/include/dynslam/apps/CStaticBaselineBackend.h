@@ -38,17 +38,18 @@ public:
 
 	/** Loads [section] and [section_KalmanFilter] (MRPT's keys) and resets the filter. Throws
 	 * std::invalid_argument naming section and key on missing or invalid R values. */
-	void loadOptions(const mrpt::config::CConfigFileBase& ini, const std::string& section = "RangeBearingKFSLAM");
+	void loadOptions(const mrpt::config::CConfigFileBase& ini,
+	                 const std::string& section = "RangeBearingKFSLAM");
 	/** The effective options of the wrapped filter (both sections). */
 	void dumpOptions(std::ostream& out) const;
 
 	std::string name() const override;
-	void processActionObservation(
-		const mrpt::obs::CActionCollection::Ptr& action,
-		const mrpt::obs::CSensoryFrame::Ptr& SF) override;
+	void processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
+	                              const mrpt::obs::CSensoryFrame::Ptr& SF) override;
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
 	/** Every landmark of the filter's map, moving features included (mode AllFeatures). */
-	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(bool includeDropped = true) const override;
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
+	    bool includeDropped = true) const override;
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override { return {}; }
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override { return {}; }
 	const TStepReport& getLastStepReport() const override { return m_report; }

@@ -35,15 +35,15 @@ void setEgoTimes(TFilterRun& run, bool haveGroundTruth);
 
 /** Writes <dir>/<prefix>ego.csv, trajectory.tum, landmarks.csv, object_features.csv,
  * object_poses.csv (writers.h); appends the paths to `written`. */
-void writeEstimateFiles(
-	const std::string& dir, const std::string& prefix, const eval::TRunEstimates& est,
-	const TGroundTruth* gt, std::vector<std::string>& written);
+void writeEstimateFiles(const std::string& dir, const std::string& prefix,
+                        const eval::TRunEstimates& est, const TGroundTruth* gt,
+                        std::vector<std::string>& written);
 
 /** The data keys shared by [Run] and [Compare] (paths already resolved). */
 struct TDataSettings
 {
 	std::string rawlog;
-	std::string groundTruth;  ///< "DIR/BASE", "auto" (beside the rawlog, if there) or empty
+	std::string groundTruth;        ///< "DIR/BASE", "auto" (beside the rawlog, if there) or empty
 	std::string scenario = "auto";  ///< scenario INI for the noise, "auto": beside the rawlog
 	/** noise_from_scenario = false | true | auto: write the scenario's noise into the filter
 	 * sections; auto: only if the scenario file exists (else the INI's values are used). */
@@ -56,8 +56,8 @@ struct TDataSettings
 };
 /** Reads rawlog, ground_truth, scenario and noise_from_scenario from [section]; paths are
  * resolved relative to iniDir. */
-TDataSettings readDataSettings(
-	const mrpt::config::CConfigFileBase& ini, const std::string& section, const std::string& iniDir);
+TDataSettings readDataSettings(const mrpt::config::CConfigFileBase& ini, const std::string& section,
+                               const std::string& iniDir);
 
 struct TLoadedData
 {
@@ -69,9 +69,8 @@ struct TLoadedData
 /** Loads the rawlog, the ground truth (checked against the rawlog) and, with
  * noiseFromScenario, writes the scenario noise into the filter sections of `params`
  * (applyScenarioNoise). Throws std::runtime_error with clear messages. */
-TLoadedData loadData(
-	const TDataSettings& s, mrpt::config::CConfigFileMemory& params, const std::string& dynSection,
-	const std::string& staticSection);
+TLoadedData loadData(const TDataSettings& s, mrpt::config::CConfigFileMemory& params,
+                     const std::string& dynSection, const std::string& staticSection);
 
 /** NIS samples of a run without ground truth (for the NIS figure). */
 eval::TRunConsistency nisOnly(const eval::TRunEstimates& est);

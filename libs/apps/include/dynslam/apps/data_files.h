@@ -40,7 +40,8 @@ std::string groundTruthBesideRawlog(const std::string& rawlogPath);
 
 /** Reads the ground truth and checks that it has one step per rawlog pair. Throws
  * std::runtime_error naming the files on a missing/malformed file or a step-count mismatch. */
-TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps, const std::string& rawlogPath);
+TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps,
+                                const std::string& rawlogPath);
 
 /** Noise of a simulated scenario ([Noise] section of <base>_scenario.ini). */
 struct TScenarioNoise
@@ -64,7 +65,6 @@ std::string scenarioBesideRawlog(const std::string& rawlogPath);
  *    std_yaw^2)), Sigma_0 = sigma_0, and Sigma_w when motion_noise = config;
  *  - [staticSection] std_sensor_range, std_sensor_yaw_deg (MRPT's CRangeBearingKFSLAM2D).
  * Empty section names are skipped. Returns a one-line description of what was set. */
-std::string applyScenarioNoise(
-	mrpt::config::CConfigFileMemory& ini, const TScenarioNoise& n, const std::string& dynSection,
-	const std::string& staticSection);
+std::string applyScenarioNoise(mrpt::config::CConfigFileMemory& ini, const TScenarioNoise& n,
+                               const std::string& dynSection, const std::string& staticSection);
 }  // namespace dynslam::apps

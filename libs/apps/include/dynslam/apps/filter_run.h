@@ -26,16 +26,17 @@ const std::vector<std::string>& backendKinds();
 /** Builds and configures a back-end of the given kind. If `optionsDump` is given, the
  * effective options of every options struct of the back-end are written to it. Throws
  * std::invalid_argument for an unknown kind or a bad option (message names section and key). */
-std::unique_ptr<ISlamBackend> makeBackend(
-	const std::string& kind, const mrpt::config::CConfigFileBase& ini, std::ostream* optionsDump = nullptr);
+std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
+                                          const mrpt::config::CConfigFileBase& ini,
+                                          std::ostream* optionsDump = nullptr);
 
 /** What one pass of a back-end over a rawlog produced. */
 struct TFilterRun
 {
-	std::string name;  ///< back-end name (tables, file names)
-	eval::TRunEstimates est;  ///< ego per step (t = NaN), final map, objects, NIS, ms_per_step
+	std::string name;            ///< back-end name (tables, file names)
+	eval::TRunEstimates est;     ///< ego per step (t = NaN), final map, objects, NIS, ms_per_step
 	std::vector<double> stamps;  ///< per step: time stamp of the observation [s], NaN if none
-	double total_ms = 0;  ///< wall time inside processActionObservation(), all steps
+	double total_ms = 0;         ///< wall time inside processActionObservation(), all steps
 	size_t steps = 0;
 };
 
@@ -43,10 +44,10 @@ struct TFilterRun
  * then the final map and object estimates. Only the back-end's own processing is timed.
  * progress(done, total) is called after each step (if set). Errors of the back-end are
  * rethrown as std::runtime_error naming the back-end and the step. */
-TFilterRun runFilter(
-	ISlamBackend& backend, const std::vector<mrpt::obs::CActionCollection::Ptr>& actions,
-	const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames,
-	const std::function<void(size_t, size_t)>& progress = {});
+TFilterRun runFilter(ISlamBackend& backend,
+                     const std::vector<mrpt::obs::CActionCollection::Ptr>& actions,
+                     const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames,
+                     const std::function<void(size_t, size_t)>& progress = {});
 
 /** The final map and object estimates of a back-end (landmarks with their joint covariance
  * when the back-end exposes it, time-0 object features, every recorded object pose). */

@@ -21,7 +21,8 @@ public:
 	void finish();
 	size_t done() const;
 	/** The bar text for a given state (no '\r'), e.g. for tests. */
-	static std::string format(size_t done, size_t total, double elapsed_s, const std::string& unit, int width = 30);
+	static std::string format(size_t done, size_t total, double elapsed_s, const std::string& unit,
+	                          int width = 30);
 
 private:
 	void drawLocked(bool force);
