@@ -38,6 +38,7 @@ struct TWorst
 {
 	double mean = 0, cov = 0;
 	int steps = 0;
+	size_t poses = 0, smoothing = 0, dropped_static = 0, dropped_time_t = 0;
 };
 
 /** Runs both on the scenario and compares at every step. */
@@ -81,6 +82,13 @@ TWorst runBoth(const sim::TScenarioOptions& so, uint64_t seed, const std::string
 		w.mean = std::max(w.mean, em);
 		w.cov = std::max(w.cov, ec);
 		++w.steps;
+		const TStepReport& ra = alg.getLastStepReport();
+		w.poses += ra.object_poses_added;
+		w.smoothing += ra.smoothing_updates;
+		w.dropped_static += ra.dropped_static;
+		w.dropped_time_t += ra.dropped_time_t;
+		EXPECT_EQ(ra.smoothing_updates, ekf.getLastStepReport().smoothing_updates);
+		EXPECT_EQ(ra.dropped_static, ekf.getLastStepReport().dropped_static);
 		EXPECT_EQ(alg.getLastStepReport().object_poses_added, ekf.getLastStepReport().object_poses_added);
 		EXPECT_EQ(alg.getLastStepReport().dropped_poses, ekf.getLastStepReport().dropped_poses);
 		EXPECT_NEAR(alg.getLastStepReport().nis_static, ekf.getLastStepReport().nis_static,
@@ -96,13 +104,15 @@ sim::TScenarioOptions scenario(const std::string& file, int steps)
 	return so;
 }
 
-void report(const char* what, const TWorst& w)
+TWorst report(const char* what, const TWorst& w)
 {
 	std::cout << "[alg1 vs EKF] " << what << ": " << w.steps << " steps, worst mean rel. error "
 			  << w.mean << ", worst covariance rel. error " << w.cov << "\n";
 	EXPECT_GT(w.steps, 0);
 	EXPECT_LT(w.mean, 1e-9) << what;
 	EXPECT_LT(w.cov, 1e-9) << what;
+	EXPECT_GT(w.poses, 0u) << what;
+	return w;
 }
 }  // namespace
 
@@ -113,18 +123,22 @@ TEST(Alg1, WholeRunEquivalenceHighway)
 
 TEST(Alg1, WholeRunEquivalenceGeneratedScenarios)
 {
-	const auto so = scenario("generated_small_scenario.ini", 25);
+	const auto so = scenario("generated_small_scenario.ini", 18);
 	report("generated, defaults", runBoth(so, 2, ""));
-	report("generated, keep time-t features", runBoth(so, 3, "drop_time_t_features = false\n"));
-	report("generated, smoothing, K = 3",
+	const TWorst keep =
+		report("generated, keep time-t features", runBoth(so, 3, "drop_time_t_features = false\n"));
+	EXPECT_GT(keep.dropped_time_t, 0u);  // stale f_t replaced (marginalized) when seen again
+	const TWorst sm = report("generated, smoothing, K = 3",
 		runBoth(so, 4, "smoothing = true\nSigma_s = [1e-2 1e-2 1e-3]\nkeep_last_poses = 3\n"));
-	report("generated, static drop after 4 unseen steps",
-		runBoth(so, 5, "drop_static_after_unseen_steps = 4\n"));
+	EXPECT_GT(sm.smoothing, 0u);
+	const TWorst dr = report("generated, static drop after 2 unseen steps",
+		runBoth(so, 5, "drop_static_after_unseen_steps = 2\n"));
+	EXPECT_GT(dr.dropped_static, 0u);
 }
 
 TEST(Alg1, WholeRunEquivalenceRangeBearingAndConfigNoise)
 {
-	auto so = scenario("generated_small_scenario.ini", 25);
+	auto so = scenario("generated_small_scenario.ini", 18);
 	report("generated, range-bearing, Sigma_w from config",
 		runBoth(so, 6,
 			"measurement_model = range_bearing\nSigma_v = [1e-4 1e-6]\nmotion_noise = config\n"

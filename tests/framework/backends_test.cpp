@@ -58,6 +58,12 @@ TErrors run(const std::string& kind, int steps)
 			EXPECT_TRUE(p.cov.allFinite());
 			++e.poses;
 		}
+	if (const auto* w = dynamic_cast<const CWindowBackend*>(be.get()))
+	{
+		std::cout << "[backend] " << kind << ": " << w->lastIterations()
+				  << " GN iterations at the last step, " << w->cost().totalDim() << " unknowns\n";
+		EXPECT_LT(w->lastIterations(), 10) << kind << ": GN did not converge in max_iterations";
+	}
 	std::cout << "[backend] " << kind << ": max ego error " << e.ego << " m, max landmark error "
 			  << e.map << " m, max object translation error " << e.pose << " m over " << e.poses
 			  << " poses\n";
