@@ -32,13 +32,13 @@ struct TErrors
 	size_t poses = 0;
 };
 
-TErrors run(const std::string& kind, int steps)
+TErrors run(const std::string& kind, int steps, const std::string& extra = "")
 {
 	sim::TScenarioOptions so = sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/highway.ini");
 	so.steps = steps;
 	const TGroundTruth gt = sim::buildGroundTruth(so);
 	const auto r = sim::simulateMeasurements(gt, so, 7);
-	mrpt::config::CConfigFileMemory ini(kIni);
+	mrpt::config::CConfigFileMemory ini(std::string(kIni) + extra);
 	auto be = makeBackend(kind, ini, "Framework");
 	TErrors e;
 	for (size_t k = 0; k < r.actions.size(); ++k)
@@ -83,6 +83,21 @@ TEST(Backends, EveryKindRunsOnTheHighway)
 	}
 }
 
+TEST(Backends, OptionVariantsRun)
+{
+	// pose-space residual with the dense solver, the sparse solver, a window of one pose
+	for (const auto& [kind, extra] : std::vector<std::pair<std::string, std::string>>{
+			 {"dynaslam2", "pose_residual = pose_space\nsolver = dense\n"},
+			 {"vdo", "solver = sparse\n"},
+			 {"cubeslam", "window_size = 1\n"}})
+	{
+		const TErrors e = run(kind, 20, extra);
+		EXPECT_LT(e.ego, 0.5) << kind << " " << extra;
+		EXPECT_LT(e.pose, 1.0) << kind << " " << extra;
+		EXPECT_GT(e.poses, 5u) << kind << " " << extra;
+	}
+}
+
 TEST(Backends, BadOptions)
 {
 	mrpt::config::CConfigFileMemory ini(std::string(kIni) + "backend = vdo\n");
@@ -91,6 +106,9 @@ TEST(Backends, BadOptions)
 	o.window_size = 0;
 	EXPECT_THROW(makeBackend(o), std::invalid_argument);
 	EXPECT_THROW(defaultBackendOptions("orb"), std::invalid_argument);
+	// drop would leave the object poses unobservable: rejected with a reason.
+	mrpt::config::CConfigFileMemory drop(std::string(kIni) + "object_features = drop\n");
+	EXPECT_THROW(makeBackend("dynaslam2", drop, "Framework"), std::invalid_argument);
 	mrpt::config::CConfigFileMemory bad(std::string(kIni) + "pose_residual = both\n");
 	EXPECT_THROW(makeBackend("vdo", bad, "Framework"), std::invalid_argument);
 }

@@ -97,6 +97,11 @@ void TBackendOptions::validate() const
 		throw std::invalid_argument(
 			"window_size = " + std::to_string(window_size) + ": must be >= 1 (or 'all')");
 	if (max_iterations < 1) throw std::invalid_argument("max_iterations must be >= 1");
+	if (object_features == FeaturePolicy::Drop)
+		throw std::invalid_argument(
+			"object_features = drop: dropping f_t removes every term touching it, including the "
+			"only residual on the object pose xi_t, which would be left unobservable; use "
+			"marginalize (keeps its information) or keep");
 	if (!(tolerance > 0)) throw std::invalid_argument("tolerance must be > 0");
 	if (model.Sigma_0.determinant() <= 0)
 		throw std::invalid_argument(

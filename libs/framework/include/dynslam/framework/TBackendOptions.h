@@ -42,7 +42,8 @@ struct TBackendOptions : public mrpt::config::CLoadableOptions
 	double tolerance = 1e-9;  ///< stop when max |delta| < tolerance
 	PoseResidual pose_residual = PoseResidual::PoseSpace;
 	/** What happens to a time-t object feature once its pose is in the window:
-	 * keep (vdo), marginalize or drop (dynaslam2). */
+	 * keep (vdo) or marginalize (dynaslam2). `drop` is rejected by validate(): dropping f_t
+	 * removes every term touching it, including the only residual on xi_t. */
 	enum class FeaturePolicy
 	{
 		Keep,
