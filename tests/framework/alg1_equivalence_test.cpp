@@ -143,6 +143,8 @@ TEST(Alg1, WholeRunEquivalenceRangeBearingAndConfigNoise)
 		runBoth(so, 6,
 			"measurement_model = range_bearing\nSigma_v = [1e-4 1e-6]\nmotion_noise = config\n"
 			"Sigma_w = [1e-5 1e-5 1e-7]\n"));
+	report("generated, MRPT's skip of the prediction on an empty map",
+		runBoth(so, 7, "skip_prediction_on_empty_map = true\n"));
 }
 
 TEST(Alg1, BadInputWindowSizeZeroAndSingularPrior)
