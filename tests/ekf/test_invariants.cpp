@@ -35,6 +35,7 @@ void checkInvariants(const CDynamicKFSLAM2D& f, size_t step)
 
 TEST(DynamicInvariants, CovarianceSymmetricPsdAndPadsClean)
 {
+	for (bool sparse : {true, false})
 	for (bool smoothing : {false, true})
 		for (bool dropT : {true, false})
 		{
@@ -51,6 +52,7 @@ TEST(DynamicInvariants, CovarianceSymmetricPsdAndPadsClean)
 			f.options.smoothing = smoothing;
 			f.options.keep_last_poses = smoothing ? 3 : 1;
 			f.options.drop_time_t_features = dropT;
+			f.options.sparse_static_update = sparse;
 			f.reset();
 			size_t poses = 0, smooth = 0;
 			for (size_t k = 0; k < sc.actions.size(); ++k)

@@ -12,7 +12,8 @@ using namespace dynslam;
 
 namespace
 {
-void runBoth(mrpt::bayes::TKFMethod method, unsigned seed, double* worstX, double* worstP)
+void runBoth(
+	mrpt::bayes::TKFMethod method, unsigned seed, double* worstX, double* worstP, bool sparse = false)
 {
 	dynslam_test::TinyScenarioOptions o;
 	o.steps = 40;
@@ -35,6 +36,7 @@ void runBoth(mrpt::bayes::TKFMethod method, unsigned seed, double* worstX, doubl
 	dyn.options.Sigma_0.setZero();
 	dyn.options.skip_prediction_on_empty_map = true;
 	dyn.KF_options.method = method;
+	dyn.options.sparse_static_update = sparse;
 	dyn.reset();
 
 	*worstX = *worstP = 0;
@@ -74,6 +76,15 @@ TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_Naive)
 	}
 }
 
+TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_SparseUpdate)
+{
+	double ex, ep;
+	runBoth(mrpt::bayes::kfEKFNaive, 5, &ex, &ep, true);
+	std::cout << "sparse update vs MRPT: worst relative |dx| " << ex << ", |dP| " << ep << "\n";
+	EXPECT_LT(ex, 1e-9);
+	EXPECT_LT(ep, 1e-9);
+}
+
 TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_Davison)
 {
 	double ex, ep;
@@ -102,6 +113,7 @@ TEST(DynamicVsMrpt, SparseStaticUpdateEqualsMrptUpdate)
 			f->options.Sigma_0 = o.Sigma_w;
 			f->KF_options.method = mrpt::bayes::kfEKFNaive;
 		}
+		a.options.sparse_static_update = false;
 		b.options.sparse_static_update = true;
 		a.reset();
 		b.reset();

@@ -105,11 +105,13 @@ public:
 		 * while the map is empty. Off by default: it ignores the motion before the first
 		 * landmark. Only for comparisons with MRPT's filter. */
 		bool skip_prediction_on_empty_map = false;
-		/** static_update = mrpt: MRPT's update (KF_options.method; kfEKFNaive is a dense
-		 * O(n^3) product). sparse: the same EKF update as a rank-2k correction using only the
-		 * non-zero columns of H (ekf::sparseUpdate, O(n^2 k)); equal to kfEKFNaive within
-		 * rounding (tested to 1e-9). */
-		bool sparse_static_update = false;
+		/** static_update = sparse (default): the EKF update as a rank-2k correction using only
+		 * the non-zero columns of H (ekf::sparseUpdate, O(n^2 k)), run inside MRPT's iteration
+		 * between its prediction and its augmentation; equal to MRPT's kfEKFNaive within
+		 * rounding (tested), and numerically stable where MRPT's dense P <- (I - K H) P is not
+		 * (it lost positive definiteness in 3 of 25 highway runs at noise level w3v1,
+		 * doc/results.md). static_update = mrpt: MRPT's own update (KF_options.method). */
+		bool sparse_static_update = true;
 		/** Innovation gate for static-landmark updates: a measurement whose squared
 		 * Mahalanobis distance (with its own 2x2 innovation covariance) exceeds the chi-square
 		 * quantile of this probability (2 dof) is not used, and counted
