@@ -1,4 +1,5 @@
 #include <dynslam/framework/CAlg1Backend.h>
+#include <dynslam/framework/object_pose_step.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
@@ -192,45 +193,15 @@ void CAlg1Backend::objectPoseAugmentation(const TStepInput&)
 	for (const auto& [obj, o] : m_objects)
 	{
 		TObjectPoseKeys k;
-		for (const auto& key : m_newTimeT)
-			if (key.id == obj)
-			{
-				k.ft.push_back(key);
-				const int32_t id = ids::objectFeatureId(obj, key.feature);
-				k.seen.push_back(int(
-					std::find(o.feature_ids.begin(), o.feature_ids.end(), id) - o.feature_ids.begin()));
-			}
-		if (k.ft.empty()) continue;
-		const size_t n = o.feature_ids.size(), m = k.ft.size();
-		if (n >= 2 && m < 2)
+		const PoseStep r = addObjectPose(
+			m_cost, obj, o.first_step, o.feature_ids, m_newTimeT, m_step,
+			m_opts.pose_residual == PoseResidual::PoseSpace, m_opts.model.Sigma_xi, k);
+		if (r == PoseStep::NotSeen) continue;
+		if (r == PoseStep::Degenerate)
 		{
 			++m_report.skipped_pose_degenerate;
 			continue;
 		}
-		Eigen::Matrix2Xd f0(2, n), ft(2, m);
-		for (size_t j = 0; j < n; ++j)
-		{
-			k.f0.push_back(TVarKey::objectFeature(obj, ids::featureOf(o.feature_ids[j]), o.first_step));
-			f0.col(j) = m_cost.value(k.f0.back());
-		}
-		for (size_t i = 0; i < m; ++i) ft.col(i) = m_cost.value(k.ft[i]);
-		Eigen::VectorXd xi;
-		try
-		{
-			xi = n == 1 ? Eigen::VectorXd(models::objectTranslationInverse(f0.col(0), ft.col(0)))
-						: Eigen::VectorXd(models::objectPoseInverse(f0, ft, k.seen));
-		}
-		catch (const std::domain_error&)
-		{
-			++m_report.skipped_pose_degenerate;
-			continue;
-		}
-		k.pose = TVarKey::objectPose(obj, m_step);
-		m_cost.addVariable(k.pose, xi);
-		if (m_opts.pose_residual == PoseResidual::PoseSpace)
-			m_cost.addTerm(std::make_shared<CObjectPosePoseTerm>(k, m_opts.model.Sigma_xi));
-		else
-			m_cost.addTerm(std::make_shared<CObjectPoseFeatureTerm>(k, m_opts.model.Sigma_xi));
 		gnAndCollapse();
 		++m_report.object_poses_added;
 	}

@@ -1,4 +1,5 @@
 #include <dynslam/framework/CWindowBackend.h>
+#include <dynslam/framework/object_pose_step.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
@@ -202,51 +203,22 @@ void CWindowBackend::addObjects(const TStepInput& in, const TVarKey& ego)
 	for (const auto& [obj, o] : m_objects)
 	{
 		TObjectPoseKeys k;
-		for (const auto& key : newT)
-			if (key.id == obj)
-			{
-				k.ft.push_back(key);
-				const int32_t id = ids::objectFeatureId(obj, key.feature);
-				k.seen.push_back(int(
-					std::find(o.feature_ids.begin(), o.feature_ids.end(), id) - o.feature_ids.begin()));
-			}
-		const size_t n = o.feature_ids.size(), m = k.ft.size();
-		if (m == 0) continue;
-		if (n >= 2 && m < 2)
+		const PoseStep r = addObjectPose(
+			c, obj, o.first_step, o.feature_ids, newT, m_step,
+			m_opts.pose_residual == PoseResidual::PoseSpace, mo.Sigma_xi, k);
+		if (r == PoseStep::NotSeen) continue;
+		if (r == PoseStep::Degenerate)
 		{
 			++m_report.skipped_pose_degenerate;
 			continue;
 		}
-		Eigen::Matrix2Xd f0(2, n), ft(2, m);
-		for (size_t j = 0; j < n; ++j)
-		{
-			k.f0.push_back(TVarKey::objectFeature(obj, ids::featureOf(o.feature_ids[j]), o.first_step));
-			f0.col(j) = c.value(k.f0.back());
-		}
-		for (size_t i = 0; i < m; ++i) ft.col(i) = c.value(k.ft[i]);
-		Eigen::VectorXd xi;
-		try
-		{
-			xi = n == 1 ? Eigen::VectorXd(models::objectTranslationInverse(f0.col(0), ft.col(0)))
-						: Eigen::VectorXd(models::objectPoseInverse(f0, ft, k.seen));
-		}
-		catch (const std::domain_error&)
-		{
-			++m_report.skipped_pose_degenerate;
-			continue;
-		}
-		k.pose = TVarKey::objectPose(obj, m_step);
-		c.addVariable(k.pose, xi);
-		if (m_opts.pose_residual == PoseResidual::PoseSpace)
-			c.addTerm(std::make_shared<CObjectPosePoseTerm>(k, mo.Sigma_xi));
-		else
-			c.addTerm(std::make_shared<CObjectPoseFeatureTerm>(k, mo.Sigma_xi));
+		const int d = c.dim(k.pose);
 		++m_report.object_poses_added;
 		const TVarKey a = TVarKey::objectPose(obj, m_step - 2), b = TVarKey::objectPose(obj, m_step - 1);
 		if (mo.smoothing && c.has(a) && c.has(b))
 		{
 			c.addTerm(std::make_shared<CSmoothingTerm>(
-				a, b, k.pose, mo.Sigma_s.topLeftCorner(xi.size(), xi.size())));
+				a, b, k.pose, mo.Sigma_s.topLeftCorner(d, d)));
 			++m_report.smoothing_updates;
 		}
 	}
