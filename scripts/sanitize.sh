@@ -13,7 +13,7 @@ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDYNSLAM_SANITIZ
 cmake --build "$BUILD" -j"$JOBS"
 # detect_leaks: MRPT's class registry keeps singletons alive at exit; leaks are reported but
 # only the errors below fail the run. halt_on_error: the first ASan/UBSan report fails the test.
-export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:halt_on_error=1:abort_on_error=1:detect_stack_use_after_return=1}"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:halt_on_error=1:abort_on_error=1:detect_stack_use_after_return=1:max_allocation_size_mb=3072}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 # The soak test runs its short version here (ASan is ~3x slower).
 export DYNSLAM_SOAK_STEPS="${DYNSLAM_SOAK_STEPS:-5000}"

@@ -1,0 +1,11 @@
+/** libFuzzer target: bytes -> CConfigFileMemory -> CDynamicKFSLAM2D::TOptions (fuzz_entries.h). */
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_entries.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
+{
+	dynslam_fuzz::iniBytes(data, size);
+	return 0;
+}
