@@ -144,9 +144,16 @@ int mrptParseInChild(const uint8_t* data, size_t size)
 		_exit(mrptParseOnly(data, size));
 	}
 	int status = 0;
-	while (waitpid(pid, &status, 0) < 0)
+	rusage ru{};
+	while (wait4(pid, &status, 0, &ru) < 0)
 		;
 	if (!WIFEXITED(status)) return kParseCrash;
+	// Under ASan there is no address-space cap: judge by the child's peak RSS instead.
+	rusage self{};
+	getrusage(RUSAGE_SELF, &self);
+	if (WEXITSTATUS(status) == kParseOk &&
+		(ru.ru_maxrss - self.ru_maxrss) * 1024L > long(kChildExtraBytes))
+		return kParseTooLarge;
 	if (WEXITSTATUS(status) == kParseOk || WEXITSTATUS(status) == kParseTooLarge)
 		return WEXITSTATUS(status);
 	return kParseCrash;  // e.g. a sanitizer report inside MRPT's deserializer

@@ -80,7 +80,7 @@ TEST(FuzzReplay, RawlogMutations)
 {
 	const auto seeds = dynslam_fuzz::rawlogSeeds();
 	std::mt19937 g(20261121);
-	const int N = 60;  // each input also runs in a forked child (~0.5 s each)
+	const int N = 200;  // each input also runs in a forked child
 	int parseErrors = 0, withSteps = 0, rejected = 0, mrptCrashes = 0, tooLarge = 0;
 	for (int i = 0; i < N; ++i)
 	{
