@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <new>
 #include <sstream>
 #include <stdexcept>
@@ -222,7 +223,18 @@ TOutcome iniBytes(const uint8_t* data, size_t size)
 {
 	TOutcome out;
 	const std::string text(reinterpret_cast<const char*>(data), size);
-	mrpt::config::CConfigFileMemory ini(text);
+	// MRPT's INI preprocessor ($eval{}, ${}, @define) throws from the constructor on bad
+	// syntax (found by the fuzzer): anything reading INI text must catch it there too.
+	std::unique_ptr<mrpt::config::CConfigFileMemory> cfg;
+	try
+	{
+		cfg = std::make_unique<mrpt::config::CConfigFileMemory>(text);
+	}
+	catch (const std::exception&)
+	{
+		return out;
+	}
+	const mrpt::config::CConfigFileMemory& ini = *cfg;
 	dynslam::CDynamicKFSLAM2D::TOptions o;
 	try
 	{

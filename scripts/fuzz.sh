@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (fuzz/) with clang, ASan and UBSan in build-fuzz/ and runs each
 # for a fixed time from the seed corpus. Usage: scripts/fuzz.sh [seconds per target, default 300]
-# Environment: DYNSLAM_FUZZ_BUILD_DIR (default build-fuzz), JOBS (default 2).
+# Environment: DYNSLAM_FUZZ_BUILD_DIR (default build-fuzz), JOBS (default 2), FUZZ_TARGETS
+# (default "rawlog ini").
 # A crash leaves crash-*/oom-*/leak-* reproducers in build-fuzz/artifacts/ and fails the script.
 # The same entry points run for a fixed count in ctest (tests/hardening, fuzz_replay).
 set -euo pipefail
@@ -20,7 +21,7 @@ mkdir -p "$BUILD/corpus/rawlog" "$BUILD/corpus/ini" "$BUILD/artifacts"
 # asks for > 2 GB is reported as an OOM finding rather than swapping the machine.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-for t in rawlog ini; do
+for t in ${FUZZ_TARGETS:-rawlog ini}; do
   echo "== dynslam-fuzz-$t for ${SECONDS_PER_TARGET} s"
   rc=0
   "$BUILD/fuzz/dynslam-fuzz-$t" "$BUILD/corpus/$t" -max_total_time="$SECONDS_PER_TARGET" \

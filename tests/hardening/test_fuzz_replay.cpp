@@ -80,7 +80,7 @@ TEST(FuzzReplay, RawlogMutations)
 {
 	const auto seeds = dynslam_fuzz::rawlogSeeds();
 	std::mt19937 g(20261121);
-	const int N = 200;  // each input also runs in a forked child
+	const int N = 80;  // each input also runs in a forked child
 	int parseErrors = 0, withSteps = 0, rejected = 0, mrptCrashes = 0, tooLarge = 0;
 	for (int i = 0; i < N; ++i)
 	{
@@ -131,4 +131,17 @@ TEST(FuzzReplay, IniSeedsAcceptedAndMutations)
 			  << " ran filter steps\n";
 	EXPECT_GT(accepted, N / 20);
 	EXPECT_LT(accepted, N - N / 20);
+}
+
+TEST(FuzzReplay, IniPreprocessorErrorsAreCaught)
+{
+	// Found by libFuzzer: MRPT's INI preprocessor throws from CConfigFileMemory's constructor.
+	for (const std::string s : {"[DynamicKFSLAM]\nSigma_v = $eval{ve\n", "[A]\nx = ${undefined_var}\n",
+							   "@define\n", "[DynamicKFSLAM]\nmeasurement_model = $env{\n"})
+	{
+		TOutcome r;
+		ASSERT_NO_THROW(r = dynslam_fuzz::iniBytes(reinterpret_cast<const uint8_t*>(s.data()), s.size()))
+			<< s;
+		EXPECT_FALSE(r.accepted) << s;
+	}
 }
