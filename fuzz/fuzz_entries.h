@@ -17,6 +17,8 @@ struct TOutcome
 	int objects = 0;  ///< serialized objects read
 	int steps = 0;  ///< filter steps run
 	int rejected_steps = 0;  ///< steps the filter rejected (std::runtime_error)
+	/** Steps that threw another std::exception type than documented (see fuzz_entries.cpp). */
+	int unexpected_exceptions = 0;
 	bool parse_error = false;  ///< the byte stream stopped with a deserialization error
 	bool accepted = false;  ///< INI: options accepted
 	/** The bytes crash MRPT's own deserializer (checked in a forked child, nothing else run).

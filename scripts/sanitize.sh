@@ -3,14 +3,18 @@
 # (-DDYNSLAM_SANITIZE=ON, RelWithDebInfo) in build-sanitize/ and runs ctest there.
 # Not part of ctest (too slow for CI); the clean result is recorded in doc/robustness.md.
 # Usage: scripts/sanitize.sh [extra cmake args, e.g. -DDYNSLAM_TEST_AREAS="core;ekf;hardening"]
-# Environment: DYNSLAM_SANITIZE_BUILD_DIR (default build-sanitize), JOBS (default 2).
+# Environment: DYNSLAM_SANITIZE_BUILD_DIR (default build-sanitize), JOBS (default 2),
+# SANITIZE_TARGETS (default all).
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 BUILD="${DYNSLAM_SANITIZE_BUILD_DIR:-$ROOT/build-sanitize}"
 JOBS="${JOBS:-2}"
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDYNSLAM_SANITIZE=ON \
   -DDYNSLAM_BUILD_BENCH=OFF -DDYNSLAM_BUILD_APPS=ON "$@" >/dev/null
-cmake --build "$BUILD" -j"$JOBS"
+# SANITIZE_TARGETS: build only these (e.g. "core_tests ekf_tests hardening_tests" together with
+# -DDYNSLAM_TEST_AREAS="core;ekf;hardening"); default: everything.
+# shellcheck disable=SC2086
+cmake --build "$BUILD" -j"$JOBS" --target ${SANITIZE_TARGETS:-all}
 # detect_leaks: MRPT's class registry keeps singletons alive at exit; leaks are reported but
 # only the errors below fail the run. halt_on_error: the first ASan/UBSan report fails the test.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0:halt_on_error=1:abort_on_error=1:detect_stack_use_after_return=1:max_allocation_size_mb=3072}"
