@@ -60,11 +60,11 @@ void BM_StaticRun(benchmark::State& state)
 		benchmark::DoNotOptimize(pose.mean.x());
 	}
 	state.counters["steps"] = double(run.actions.size());
-	state.SetLabel(filter == 0 ? "CRangeBearingKFSLAM2D" : filter == 1 ? "dynamic/mrpt" : "dynamic/sparse");
+	state.SetLabel(filter == 0   ? "CRangeBearingKFSLAM2D"
+	               : filter == 1 ? "dynamic/mrpt"
+	                             : "dynamic/sparse");
 }
-BENCHMARK(BM_StaticRun)
-	->ArgsProduct({{0, 1, 2}, {80, 400}})
-	->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StaticRun)->ArgsProduct({{0, 1, 2}, {80, 400}})->Unit(benchmark::kMillisecond);
 
 /** The Monte Carlo of the paper: 9 noise levels x 25 noise seeds = 225 highway runs, each
  * simulated in memory and filtered (dynamic EKF, sparse update), on Arg(0) threads. Wall time. */
@@ -87,16 +87,19 @@ void BM_MonteCarlo225(benchmark::State& state)
 	std::vector<dynslam::sim::TSimulatedRun> pre;
 	if (!includeSim)
 		for (int r = 0; r < 225; ++r)
-			pre.push_back(dynslam::sim::simulateMeasurements(gts[r / 25], opts[r / 25], 1 + r % 25));
+			pre.push_back(
+			    dynslam::sim::simulateMeasurements(gts[r / 25], opts[r / 25], 1 + r % 25));
 	for (auto _ : state)
 	{
 		std::atomic<int> next{0};
-		auto worker = [&] {
+		auto worker = [&]
+		{
 			for (int r; (r = next++) < 225;)
 			{
 				const auto& o = opts[r / 25];
 				dynslam::sim::TSimulatedRun sim =
-					includeSim ? dynslam::sim::simulateMeasurements(gts[r / 25], o, 1 + r % 25) : pre[r];
+				    includeSim ? dynslam::sim::simulateMeasurements(gts[r / 25], o, 1 + r % 25)
+				               : pre[r];
 				dynslam::CDynamicKFSLAM2D f;
 				configureDynamic(f, o.Sigma_v, o.Sigma_0, true);
 				for (size_t k = 0; k < sim.actions.size(); ++k)
@@ -109,11 +112,11 @@ void BM_MonteCarlo225(benchmark::State& state)
 		for (auto& t : pool) t.join();
 	}
 	state.SetLabel(std::string(includeSim ? "simulate+filter" : "filter only") + ", " +
-				   std::to_string(threads) + " thread(s)");
+	               std::to_string(threads) + " thread(s)");
 }
 BENCHMARK(BM_MonteCarlo225)
-	->ArgsProduct({{1, 2}, {0, 1}})
-	->Unit(benchmark::kMillisecond)
-	->UseRealTime()
-	->Iterations(1);
+    ->ArgsProduct({{1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 }  // namespace

@@ -22,8 +22,8 @@ int main(int argc, char** argv)
 			for (size_t k = 0; k < run.actions.size(); ++k)
 				f.processActionObservation(run.actions[k], run.frames[k]);
 			std::cout << "peak_rss_kB_at_start " << before << "\npeak_rss_kB_after_loading_rawlog "
-					  << loaded << "\npeak_rss_kB_after_highway_run " << peakRssKb()
-					  << "\nstate_dim " << f.fullMean().size() << "\n";
+			          << loaded << "\npeak_rss_kB_after_highway_run " << peakRssKb()
+			          << "\nstate_dim " << f.fullMean().size() << "\n";
 			return 0;
 		}
 	benchmark::Initialize(&argc, argv);

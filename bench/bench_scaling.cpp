@@ -71,10 +71,10 @@ void BM_StepVsLandmarks(benchmark::State& state)
 	state.SetLabel(sparse ? "sparse" : "mrpt");
 }
 BENCHMARK(BM_StepVsLandmarks)
-	->ArgsProduct({{10, 30, 100, 300, 1000, 2000}, {1}})
-	->ArgsProduct({{10, 30, 100, 300}, {0}})
-	->UseManualTime()
-	->Unit(benchmark::kMicrosecond);
+    ->ArgsProduct({{10, 30, 100, 300, 1000, 2000}, {1}})
+    ->ArgsProduct({{10, 30, 100, 300}, {0}})
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
 
 /** Per step against the number of moving objects (3 features each, all seen every step, 50
  * static landmarks). Args: objects, update. */
@@ -85,9 +85,9 @@ void BM_StepVsObjects(benchmark::State& state)
 	state.SetLabel(sparse ? "sparse" : "mrpt");
 }
 BENCHMARK(BM_StepVsObjects)
-	->ArgsProduct({{1, 3, 10, 30, 100}, {0, 1}})
-	->UseManualTime()
-	->Unit(benchmark::kMicrosecond);
+    ->ArgsProduct({{1, 3, 10, 30, 100}, {0, 1}})
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
 
 /** Mean per-step time of a whole run of Arg(0) steps on the endless straight track (2 objects),
  * with old object poses dropped (K = 1) and static landmarks unseen for 5 steps dropped.
@@ -132,8 +132,8 @@ void BM_StepVsSteps(benchmark::State& state)
 	state.SetLabel(sparse ? "sparse, time = mean per step" : "mrpt, time = mean per step");
 }
 BENCHMARK(BM_StepVsSteps)
-	->ArgsProduct({{100, 1000, 10000, 100000}, {0, 1}})
-	->UseManualTime()
-	->Iterations(1)
-	->Unit(benchmark::kMicrosecond);
+    ->ArgsProduct({{100, 1000, 10000, 100000}, {0, 1}})
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kMicrosecond);
 }  // namespace

@@ -4,6 +4,7 @@
 #include <dynslam/sim/scenario.h>
 #include <mrpt/obs/CRawlog.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -12,7 +13,6 @@
 #include <mutex>
 #include <stdexcept>
 #include <tuple>
-#include <unistd.h>
 
 namespace dynslam_bench
 {
@@ -31,21 +31,23 @@ const TRun& highwayRun()
 {
 	static std::once_flag once;
 	static TRun run;
-	std::call_once(once, [] {
-		const std::string dir = DYNSLAM_SOURCE_DIR "/datasets/";
-		fillNoise(run, dynslam::sim::loadScenario(dir + "highway_scenario.ini"));
-		mrpt::obs::CRawlog log;
-		if (!log.loadFromRawLogFile(dir + "highway.rawlog"))
-			throw std::runtime_error("cannot read " + dir + "highway.rawlog");
-		for (size_t i = 0; i + 1 < log.size(); ++i)
-		{
-			if (log.getType(i) != mrpt::obs::CRawlog::etActionCollection) continue;
-			if (log.getType(i + 1) != mrpt::obs::CRawlog::etSensoryFrame) continue;
-			run.actions.push_back(log.getAsAction(i));
-			run.frames.push_back(log.getAsObservations(i + 1));
-			++i;
-		}
-	});
+	std::call_once(once,
+	               []
+	               {
+		               const std::string dir = DYNSLAM_SOURCE_DIR "/datasets/";
+		               fillNoise(run, dynslam::sim::loadScenario(dir + "highway_scenario.ini"));
+		               mrpt::obs::CRawlog log;
+		               if (!log.loadFromRawLogFile(dir + "highway.rawlog"))
+			               throw std::runtime_error("cannot read " + dir + "highway.rawlog");
+		               for (size_t i = 0; i + 1 < log.size(); ++i)
+		               {
+			               if (log.getType(i) != mrpt::obs::CRawlog::etActionCollection) continue;
+			               if (log.getType(i + 1) != mrpt::obs::CRawlog::etSensoryFrame) continue;
+			               run.actions.push_back(log.getAsAction(i));
+			               run.frames.push_back(log.getAsObservations(i + 1));
+			               ++i;
+		               }
+	               });
 	return run;
 }
 
@@ -74,7 +76,7 @@ const TRun& simulatedRun(const std::string& configFile, int landmarks, unsigned 
 }
 
 void configureDynamic(dynslam::CDynamicKFSLAM2D& f, const Eigen::Matrix2d& Sigma_v,
-	const Eigen::Matrix3d& Sigma_0, bool sparse)
+                      const Eigen::Matrix3d& Sigma_0, bool sparse)
 {
 	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);
 	f.options.measurement_model = dynslam::models::MeasurementModel::Cartesian;
@@ -90,7 +92,7 @@ void configureDynamic(dynslam::CDynamicKFSLAM2D& f, const Eigen::Matrix2d& Sigma
 }
 
 void configureAlike(mrpt::slam::CRangeBearingKFSLAM2D& rb, dynslam::CDynamicKFSLAM2D& dyn,
-	double std_range, double std_yaw, bool sparse)
+                    double std_range, double std_yaw, bool sparse)
 {
 	rb.setMinLoggingLevel(mrpt::system::LVL_ERROR);
 	rb.options.std_sensor_range = float(std_range);

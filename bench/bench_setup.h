@@ -30,12 +30,12 @@ const TRun& simulatedRun(const std::string& configFile, int landmarks, unsigned 
 /** The dynamic EKF as the apps run it on the highway: Cartesian model, Sigma_v of the run,
  * Sigma_0, motion noise from the action, no smoothing, K = 1, kfEKFNaive. */
 void configureDynamic(dynslam::CDynamicKFSLAM2D& f, const Eigen::Matrix2d& Sigma_v,
-	const Eigen::Matrix3d& Sigma_0, bool sparse);
+                      const Eigen::Matrix3d& Sigma_0, bool sparse);
 /** MRPT's static EKF and the dynamic EKF set up to do the same computation (as in
  * tests/ekf/test_vs_mrpt.cpp): range-bearing model with MRPT's float stds, Sigma_0 = 0, the
  * prediction skipped while the map is empty, kfEKFNaive. */
 void configureAlike(mrpt::slam::CRangeBearingKFSLAM2D& rb, dynslam::CDynamicKFSLAM2D& dyn,
-	double std_range, double std_yaw, bool sparse);
+                    double std_range, double std_yaw, bool sparse);
 
 /** Peak resident set size of this process [kB] (getrusage ru_maxrss). */
 long peakRssKb();

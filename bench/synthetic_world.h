@@ -38,11 +38,11 @@ struct TSyntheticOptions
 		Ring,
 		Straight
 	} track = Track::Ring;
-	int landmarks = 100;  ///< ring: number of landmarks (straight: unbounded)
-	double spacing = 4.0;  ///< metres of track per landmark
+	int landmarks = 100;       ///< ring: number of landmarks (straight: unbounded)
+	double spacing = 4.0;      ///< metres of track per landmark
 	double step_length = 2.0;  ///< metres driven per step
-	double range = 30.0;  ///< sensor range for static landmarks [m]
-	int max_visible = 20;  ///< at most this many static landmarks per step (nearest first)
+	double range = 30.0;       ///< sensor range for static landmarks [m]
+	int max_visible = 20;      ///< at most this many static landmarks per step (nearest first)
 	bool first_step_sees_all = false;  ///< ring: step 0 reports all landmarks
 	int objects = 0;
 	int features_per_object = 3;
@@ -64,8 +64,9 @@ public:
 		if (o.track == TSyntheticOptions::Track::Ring)
 			for (int i = 0; i < o.landmarks; ++i) m_ring.push_back(ringLandmark(i));
 		const double dth = o.track == TSyntheticOptions::Track::Ring ? o.step_length / m_radius : 0;
-		m_u = dth == 0 ? Eigen::Vector3d(o.step_length, 0, 0)
-					   : Eigen::Vector3d(m_radius * std::sin(dth), m_radius * (1 - std::cos(dth)), dth);
+		m_u = dth == 0
+		          ? Eigen::Vector3d(o.step_length, 0, 0)
+		          : Eigen::Vector3d(m_radius * std::sin(dth), m_radius * (1 - std::cos(dth)), dth);
 		// Ring: start on the circle centred at (0, R), heading +x.
 	}
 
@@ -97,7 +98,8 @@ public:
 			for (int i = 0; i < int(m_ring.size()); ++i)
 			{
 				const double d = (m_ring[i] - p).norm();
-				if (d <= m_o.range || (m_k == 0 && m_o.first_step_sees_all)) m_cand.push_back({d, i});
+				if (d <= m_o.range || (m_k == 0 && m_o.first_step_sees_all))
+					m_cand.push_back({d, i});
 			}
 		}
 		else
@@ -113,25 +115,28 @@ public:
 			}
 		}
 		std::sort(m_cand.begin(), m_cand.end());
-		size_t nmax = (m_k == 0 && m_o.first_step_sees_all) ? m_cand.size() : size_t(m_o.max_visible);
+		size_t nmax =
+		    (m_k == 0 && m_o.first_step_sees_all) ? m_cand.size() : size_t(m_o.max_visible);
 		for (size_t j = 0; j < m_cand.size() && j < nmax; ++j)
 		{
 			const int i = m_cand[j].second;
-			add(*obs, i, m_o.track == TSyntheticOptions::Track::Ring ? m_ring[i] : straightLandmark(i));
+			add(*obs, i,
+			    m_o.track == TSyntheticOptions::Track::Ring ? m_ring[i] : straightLandmark(i));
 		}
 		// Objects in convoy: body pose = ego pose (+) offset, rotating slowly in place.
 		for (int a = 0; a < m_o.objects; ++a)
 		{
 			const double side = (a % 2 == 0) ? 1.0 : -1.0;
 			const Eigen::Vector3d off(6.0 + 4.0 * (a / 2 % 5), side * (4.0 + 3.0 * (a / 10)),
-									  0.02 * m_k * (1 + a % 3));
+			                          0.02 * m_k * (1 + a % 3));
 			const Eigen::Vector3d body = dynslam::models::composePose(m_x, off);
 			for (int f = 0; f < m_o.features_per_object; ++f)
 			{
 				const double ang = 2.1 * f + a;
-				const Eigen::Vector2d local = Eigen::Vector2d(std::cos(ang), std::sin(ang)) * (0.8 + 0.3 * f);
+				const Eigen::Vector2d local =
+				    Eigen::Vector2d(std::cos(ang), std::sin(ang)) * (0.8 + 0.3 * f);
 				add(*obs, dynslam::ids::objectFeatureId(a, f),
-					body.head<2>() + dynslam::models::rot2(body[2]) * local);
+				    body.head<2>() + dynslam::models::rot2(body[2]) * local);
 			}
 		}
 		sf = mrpt::obs::CSensoryFrame::Create();
@@ -171,14 +176,15 @@ private:
 		m.landmarkID = id;
 		obs.sensedData.push_back(m);
 	}
-	static mrpt::obs::CActionCollection::Ptr makeAction(const Eigen::Vector3d& u, const Eigen::Matrix3d& C)
+	static mrpt::obs::CActionCollection::Ptr makeAction(const Eigen::Vector3d& u,
+	                                                    const Eigen::Matrix3d& C)
 	{
 		mrpt::obs::CActionRobotMovement2D mov;
 		mrpt::math::CMatrixDouble33 cov;
 		for (int i = 0; i < 3; ++i)
 			for (int j = 0; j < 3; ++j) cov(i, j) = C(i, j);
 		mov.poseChange =
-			mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(u[0], u[1], u[2]), cov);
+		    mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(u[0], u[1], u[2]), cov);
 		mov.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
 		auto acts = mrpt::obs::CActionCollection::Create();
 		acts->insert(mov);

@@ -8,17 +8,17 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/serialization/CArchive.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <new>
 #include <sstream>
 #include <stdexcept>
-#include <csignal>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace dynslam_fuzz
 {
@@ -26,7 +26,7 @@ namespace
 {
 /** A few deterministic (action, frame) pairs: 6 static landmarks and one 3-feature object. */
 void tinyRun(std::vector<mrpt::obs::CActionCollection::Ptr>& acts,
-	std::vector<mrpt::obs::CSensoryFrame::Ptr>& sfs, int steps)
+             std::vector<mrpt::obs::CSensoryFrame::Ptr>& sfs, int steps)
 {
 	for (int k = 0; k < steps; ++k)
 	{
@@ -36,7 +36,8 @@ void tinyRun(std::vector<mrpt::obs::CActionCollection::Ptr>& acts,
 		if (k > 0)
 			for (int i = 0; i < 3; ++i) cov(i, i) = i < 2 ? 1e-4 : 1e-6;
 		const double ux = k > 0 ? 1.0 : 0.0, uth = k > 0 ? 0.02 : 0.0;
-		mov.poseChange = mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(ux, 0, uth), cov);
+		mov.poseChange =
+		    mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(ux, 0, uth), cov);
 		mov.rawOdometryIncrementReading = mrpt::poses::CPose2D(ux, 0, uth);
 		auto a = mrpt::obs::CActionCollection::Create();
 		a->insert(mov);
@@ -45,7 +46,8 @@ void tinyRun(std::vector<mrpt::obs::CActionCollection::Ptr>& acts,
 		obs->maxSensorDistance = 50;
 		obs->fieldOfView_yaw = float(2 * M_PI);
 		const double ex = k * 1.0, eth = k * 0.02;
-		auto add = [&](int32_t id, double fx, double fy) {
+		auto add = [&](int32_t id, double fx, double fy)
+		{
 			const double dx = fx - ex, dy = fy;
 			mrpt::obs::CObservationBearingRange::TMeasurement m;
 			m.range = float(std::hypot(dx, dy));
@@ -57,7 +59,7 @@ void tinyRun(std::vector<mrpt::obs::CActionCollection::Ptr>& acts,
 		for (int i = 0; i < 6; ++i) add(i, 3.0 * i, (i % 2 ? 5.0 : -5.0));
 		for (int f = 0; f < 3; ++f)
 			add(dynslam::ids::objectFeatureId(0, f), ex + 8 + 0.5 * k + std::cos(2.1 * f),
-				2 + std::sin(2.1 * f));
+			    2 + std::sin(2.1 * f));
 		auto sf = mrpt::obs::CSensoryFrame::Create();
 		sf->insert(obs);
 		acts.push_back(a);
@@ -75,7 +77,7 @@ void configure(dynslam::CDynamicKFSLAM2D& f)
 
 /** Runs one step, counting documented rejections; other exception types propagate. */
 void step(dynslam::CDynamicKFSLAM2D& f, const mrpt::obs::CActionCollection::Ptr& a,
-	const mrpt::obs::CSensoryFrame::Ptr& sf, TOutcome& out)
+          const mrpt::obs::CSensoryFrame::Ptr& sf, TOutcome& out)
 {
 	try
 	{
@@ -161,7 +163,7 @@ int mrptParseInChild(const uint8_t* data, size_t size)
 	rusage self{};
 	getrusage(RUSAGE_SELF, &self);
 	if (WEXITSTATUS(status) == kParseOk &&
-		(ru.ru_maxrss - self.ru_maxrss) * 1024L > long(kChildExtraBytes))
+	    (ru.ru_maxrss - self.ru_maxrss) * 1024L > long(kChildExtraBytes))
 		return kParseTooLarge;
 	if (WEXITSTATUS(status) == kParseOk || WEXITSTATUS(status) == kParseTooLarge)
 		return WEXITSTATUS(status);

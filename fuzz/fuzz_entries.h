@@ -14,13 +14,13 @@ namespace dynslam_fuzz
 /** What one input did (for the tests' statistics). */
 struct TOutcome
 {
-	int objects = 0;  ///< serialized objects read
-	int steps = 0;  ///< filter steps run
+	int objects = 0;         ///< serialized objects read
+	int steps = 0;           ///< filter steps run
 	int rejected_steps = 0;  ///< steps the filter rejected (std::runtime_error)
 	/** Steps that threw another std::exception type than documented (see fuzz_entries.cpp). */
 	int unexpected_exceptions = 0;
 	bool parse_error = false;  ///< the byte stream stopped with a deserialization error
-	bool accepted = false;  ///< INI: options accepted
+	bool accepted = false;     ///< INI: options accepted
 	/** The bytes crash MRPT's own deserializer (checked in a forked child, nothing else run).
 	 * Known MRPT 2.5.8 issue, see doc/robustness.md; not a finding in dynslam's code. */
 	bool mrpt_deserializer_crash = false;
@@ -41,10 +41,11 @@ int mrptParseOnly(const uint8_t* data, size_t size);
 int mrptParseInChild(const uint8_t* data, size_t size);
 
 /** Bytes = an uncompressed MRPT rawlog stream (format #1). Inputs that crash MRPT's own
- * deserializer (mrptParsesWithoutCrash, in a child process) are skipped and flagged. Objects are read one at a time from
- * a memory archive with the pairing rule of dynslam::apps::loadRawlog (an action, then the next
- * sensory frame); each pair goes through CDynamicKFSLAM2D::processActionObservation (at most
- * maxSteps, state size capped so a fuzzer cannot ask for a huge covariance). */
+ * deserializer (mrptParsesWithoutCrash, in a child process) are skipped and flagged. Objects are
+ * read one at a time from a memory archive with the pairing rule of dynslam::apps::loadRawlog (an
+ * action, then the next sensory frame); each pair goes through
+ * CDynamicKFSLAM2D::processActionObservation (at most maxSteps, state size capped so a fuzzer
+ * cannot ask for a huge covariance). */
 TOutcome rawlogBytes(const uint8_t* data, size_t size, int maxSteps = 32);
 
 /** Bytes = INI text -> CConfigFileMemory -> CDynamicKFSLAM2D::TOptions::loadFromConfigFile,

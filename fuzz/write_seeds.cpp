@@ -14,7 +14,7 @@ int main(int argc, char** argv)
 	int i = 0;
 	for (const auto& s : dynslam_fuzz::rawlogSeeds())
 		std::ofstream(std::string(argv[1]) + "/seed" + std::to_string(i++), std::ios::binary)
-			.write(reinterpret_cast<const char*>(s.data()), std::streamsize(s.size()));
+		    .write(reinterpret_cast<const char*>(s.data()), std::streamsize(s.size()));
 	i = 0;
 	for (const auto& s : dynslam_fuzz::iniSeeds())
 		std::ofstream(std::string(argv[2]) + "/seed" + std::to_string(i++) + ".ini") << s;

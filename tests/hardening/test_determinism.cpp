@@ -31,7 +31,8 @@ struct TResult
 };
 
 TResult runFilter(const std::vector<mrpt::obs::CActionCollection::Ptr>& acts,
-	const std::vector<mrpt::obs::CSensoryFrame::Ptr>& sfs, const sim::TScenarioOptions& o, bool sparse)
+                  const std::vector<mrpt::obs::CSensoryFrame::Ptr>& sfs,
+                  const sim::TScenarioOptions& o, bool sparse)
 {
 	CDynamicKFSLAM2D f;
 	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);
@@ -49,7 +50,7 @@ TResult runFilter(const std::vector<mrpt::obs::CActionCollection::Ptr>& acts,
 bool bitIdentical(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b)
 {
 	return a.rows() == b.rows() && a.cols() == b.cols() &&
-		   std::memcmp(a.data(), b.data(), sizeof(double) * size_t(a.size())) == 0;
+	       std::memcmp(a.data(), b.data(), sizeof(double) * size_t(a.size())) == 0;
 }
 
 const char* kHighway = DYNSLAM_CONFIG_DIR "/highway.ini";
@@ -62,8 +63,10 @@ TEST(Determinism, SimulatorSameSeedSameBytes)
 	const auto a = serialize(sim::simulateMeasurements(gt1, o, 5));
 	// Something else in between (another seed, another scenario) must not change the result.
 	(void)sim::simulateMeasurements(gt1, o, 6);
-	(void)sim::simulateMeasurements(sim::buildGroundTruth(sim::loadScenario(DYNSLAM_CONFIG_DIR "/generated_small_scenario.ini")),
-		sim::loadScenario(DYNSLAM_CONFIG_DIR "/generated_small_scenario.ini"), 5);
+	(void)sim::simulateMeasurements(
+	    sim::buildGroundTruth(
+	        sim::loadScenario(DYNSLAM_CONFIG_DIR "/generated_small_scenario.ini")),
+	    sim::loadScenario(DYNSLAM_CONFIG_DIR "/generated_small_scenario.ini"), 5);
 	const auto gt2 = sim::buildGroundTruth(o);
 	const auto b = serialize(sim::simulateMeasurements(gt2, o, 5));
 	ASSERT_GT(a.size(), 10000u);
@@ -80,7 +83,7 @@ TEST(Determinism, FilterSameRawlogSameState)
 	std::vector<mrpt::obs::CSensoryFrame::Ptr> sfs;
 	for (size_t i = 0; i + 1 < log.size(); ++i)
 		if (log.getType(i) == mrpt::obs::CRawlog::etActionCollection &&
-			log.getType(i + 1) == mrpt::obs::CRawlog::etSensoryFrame)
+		    log.getType(i + 1) == mrpt::obs::CRawlog::etSensoryFrame)
 		{
 			acts.push_back(log.getAsAction(i));
 			sfs.push_back(log.getAsObservations(i + 1));

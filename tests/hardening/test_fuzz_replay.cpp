@@ -43,7 +43,8 @@ std::vector<uint8_t> mutate(std::vector<uint8_t> s, std::mt19937& g)
 				s.insert(s.begin() + long(p), size_t(1 + g() % 8), uint8_t(g()));
 				break;
 			case 4:
-				s.erase(s.begin() + long(p), s.begin() + long(std::min(s.size(), p + 1 + g() % 16)));
+				s.erase(s.begin() + long(p),
+				        s.begin() + long(std::min(s.size(), p + 1 + g() % 16)));
 				break;
 			case 5:
 			{
@@ -89,17 +90,18 @@ TEST(FuzzReplay, RawlogMutations)
 		ASSERT_NO_THROW(r = dynslam_fuzz::rawlogBytes(in.data(), in.size())) << "input " << i;
 		if (r.mrpt_deserializer_crash && mrptCrashes++ == 0)
 			std::ofstream(DYNSLAM_BINARY_DIR "/mrpt_deserializer_crash.bin", std::ios::binary)
-				.write(reinterpret_cast<const char*>(in.data()), std::streamsize(in.size()));
+			    .write(reinterpret_cast<const char*>(in.data()), std::streamsize(in.size()));
 		parseErrors += r.parse_error;
 		tooLarge += r.too_large;
 		withSteps += r.steps > 0;
 		rejected += r.rejected_steps;
 	}
-	std::cout << "rawlog mutations: " << N << " inputs, " << parseErrors << " deserialization errors, "
-			  << withSteps << " ran filter steps, " << rejected << " steps rejected, " << mrptCrashes
-			  << " crash MRPT's deserializer alone (skipped; first one in " DYNSLAM_BINARY_DIR
-				 "/mrpt_deserializer_crash.bin), "
-			  << tooLarge << " ask MRPT for > 64 MB (skipped)\n";
+	std::cout << "rawlog mutations: " << N << " inputs, " << parseErrors
+	          << " deserialization errors, " << withSteps << " ran filter steps, " << rejected
+	          << " steps rejected, " << mrptCrashes
+	          << " crash MRPT's deserializer alone (skipped; first one in " DYNSLAM_BINARY_DIR
+	             "/mrpt_deserializer_crash.bin), "
+	          << tooLarge << " ask MRPT for > 64 MB (skipped)\n";
 	// The mutations reach both the parser's error paths and the filter.
 	EXPECT_GT(parseErrors, N / 20);
 	EXPECT_GT(withSteps, N / 20);
@@ -111,7 +113,7 @@ TEST(FuzzReplay, IniSeedsAcceptedAndMutations)
 	for (const auto& s : seeds)
 	{
 		const TOutcome r =
-			dynslam_fuzz::iniBytes(reinterpret_cast<const uint8_t*>(s.data()), s.size());
+		    dynslam_fuzz::iniBytes(reinterpret_cast<const uint8_t*>(s.data()), s.size());
 		EXPECT_TRUE(r.accepted) << s;
 		EXPECT_EQ(r.steps, 4) << s;
 	}
@@ -128,7 +130,7 @@ TEST(FuzzReplay, IniSeedsAcceptedAndMutations)
 		stepped += r.steps > 0;
 	}
 	std::cout << "INI mutations: " << N << " inputs, " << accepted << " accepted, " << stepped
-			  << " ran filter steps\n";
+	          << " ran filter steps\n";
 	EXPECT_GT(accepted, N / 20);
 	EXPECT_LT(accepted, N - N / 20);
 }
@@ -136,12 +138,14 @@ TEST(FuzzReplay, IniSeedsAcceptedAndMutations)
 TEST(FuzzReplay, IniPreprocessorErrorsAreCaught)
 {
 	// Found by libFuzzer: MRPT's INI preprocessor throws from CConfigFileMemory's constructor.
-	for (const std::string s : {"[DynamicKFSLAM]\nSigma_v = $eval{ve\n", "[A]\nx = ${undefined_var}\n",
-							   "@define\n", "[DynamicKFSLAM]\nmeasurement_model = $env{\n"})
+	for (const std::string s :
+	     {"[DynamicKFSLAM]\nSigma_v = $eval{ve\n", "[A]\nx = ${undefined_var}\n", "@define\n",
+	      "[DynamicKFSLAM]\nmeasurement_model = $env{\n"})
 	{
 		TOutcome r;
-		ASSERT_NO_THROW(r = dynslam_fuzz::iniBytes(reinterpret_cast<const uint8_t*>(s.data()), s.size()))
-			<< s;
+		ASSERT_NO_THROW(
+		    r = dynslam_fuzz::iniBytes(reinterpret_cast<const uint8_t*>(s.data()), s.size()))
+		    << s;
 		EXPECT_FALSE(r.accepted) << s;
 	}
 }

@@ -5,13 +5,13 @@
  * doc/robustness.md is DYNSLAM_SOAK_STEPS=100000 hardening_tests --gtest_filter=Soak.*). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
+#include <malloc.h>
+#include <unistd.h>
 
 #include <Eigen/Eigenvalues>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <malloc.h>
-#include <unistd.h>
 
 #include "synthetic_world.h"
 
@@ -78,8 +78,8 @@ TEST(Soak, LongRunStaysSymmetricPsdAndBounded)
 			const long before = rssKb();
 			malloc_trim(0);
 			std::cout << "step " << k << ": RSS " << before << " kB, after malloc_trim " << rssKb()
-					  << " kB, heap in use " << mallinfo2().uordblks / 1024 << " kB, free in heap "
-					  << mallinfo2().fordblks / 1024 << " kB, state dim " << dim << "\n";
+			          << " kB, heap in use " << mallinfo2().uordblks / 1024 << " kB, free in heap "
+			          << mallinfo2().fordblks / 1024 << " kB, state dim " << dim << "\n";
 		}
 		if (k % 500 == 0 || k == steps - 1)
 		{
@@ -87,10 +87,10 @@ TEST(Soak, LongRunStaysSymmetricPsdAndBounded)
 			ASSERT_TRUE(P.allFinite()) << "step " << k;
 			const double scale = P.cwiseAbs().maxCoeff();
 			const double asym = (P - P.transpose()).cwiseAbs().maxCoeff() / scale;
-			const double minEig =
-				Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (P + P.transpose()), Eigen::EigenvaluesOnly)
-					.eigenvalues()
-					.minCoeff();
+			const double minEig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(
+			                          0.5 * (P + P.transpose()), Eigen::EigenvaluesOnly)
+			                          .eigenvalues()
+			                          .minCoeff();
 			worstAsym = std::max(worstAsym, asym);
 			worstNeg = std::max(worstNeg, -minEig / scale);
 			ASSERT_LE(asym, 1e-12) << "step " << k;
@@ -106,8 +106,8 @@ TEST(Soak, LongRunStaysSymmetricPsdAndBounded)
 	malloc_trim(0);
 	rssEnd = rssKb();
 	std::cout << "heap in use at step 1000 " << heapAt1000 << " kB, at the end " << heapEnd
-			  << " kB; RSS after malloc_trim at step 1000 " << rssAt1000 << " kB, at the end "
-			  << rssEnd << " kB\n";
+	          << " kB; RSS after malloc_trim at step 1000 " << rssAt1000 << " kB, at the end "
+	          << rssEnd << " kB\n";
 	EXPECT_LT(heapEnd - heapAt1000, (steps - 1000) + 1024);
 
 	// The ego follows the truth (no divergence over the long run): within 1% of the distance.
@@ -115,10 +115,10 @@ TEST(Soak, LongRunStaysSymmetricPsdAndBounded)
 	const auto est = f.getEgoPose();
 	const double dist = o.step_length * (steps - 1);
 	EXPECT_LT(std::hypot(est.mean.x() - truth.x(), est.mean.y() - truth.y()), 0.01 * dist);
-	std::cout << "soak: " << steps << " steps, state dim at 1000 " << dimAt1000 << ", max " << maxDim
-			  << ", final " << f.fullMean().size() << "; worst asymmetry " << worstAsym
-			  << ", worst negative eigenvalue / max|P| " << worstNeg << "; dropped static "
-			  << f.getStaticLandmarks(true).size() - f.getStaticLandmarks(false).size() << "\n";
+	std::cout << "soak: " << steps << " steps, state dim at 1000 " << dimAt1000 << ", max "
+	          << maxDim << ", final " << f.fullMean().size() << "; worst asymmetry " << worstAsym
+	          << ", worst negative eigenvalue / max|P| " << worstNeg << "; dropped static "
+	          << f.getStaticLandmarks(true).size() - f.getStaticLandmarks(false).size() << "\n";
 	// Bounded state: what is in range (~12 landmarks, 3 objects with 3 poses) plus the drop window.
 	EXPECT_LE(maxDim, 3 + 2 * (40 + 3 * (3 + 2 * 3)));
 }
