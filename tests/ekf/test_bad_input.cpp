@@ -207,3 +207,43 @@ TEST(DynamicBadInput, IdAboveLastObjectIsInvalid)
 	Fixture t;
 	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(INT32_MAX, 5, 0.1f)}), "no known ID range");
 }
+
+TEST(DynamicBadInput, NumericalFailureMidStepIsReportedAndBlocksUntilReset)
+{
+	// Noise settings that validate() accepts but that break the update numerically (found by
+	// fuzzing): S = H P H^T + R is not positive definite in floating point.
+	dynslam_test::TinyScenarioOptions o;
+	o.steps = 8;
+	const auto sc = dynslam_test::makeTinyScenario(o);
+	CDynamicKFSLAM2D f;
+	f.options.measurement_model = models::MeasurementModel::RangeBearing;
+	f.options.Sigma_v = Eigen::Vector2d(1e65, 1e-5).asDiagonal();
+	f.reset();
+	bool failed = false;
+	for (size_t k = 0; k < sc.actions.size() && !failed; ++k)
+	{
+		try
+		{
+			f.processActionObservation(sc.actions[k], sc.frames[k]);
+		}
+		catch (const std::runtime_error& e)
+		{
+			failed = true;
+			EXPECT_NE(std::string(e.what()).find("must be reset"), std::string::npos) << e.what();
+		}
+	}
+	ASSERT_TRUE(failed) << "the extreme setting no longer fails: pick another trigger";
+	try
+	{
+		f.processActionObservation(sc.actions[0], sc.frames[0]);
+		ADD_FAILURE() << "a failed filter must refuse further steps";
+	}
+	catch (const std::runtime_error& e)
+	{
+		EXPECT_NE(std::string(e.what()).find("call reset()"), std::string::npos) << e.what();
+	}
+	f.options.Sigma_v = o.Sigma_rb;
+	f.reset();
+	for (size_t k = 0; k < sc.actions.size(); ++k) f.processActionObservation(sc.actions[k], sc.frames[k]);
+	EXPECT_TRUE(f.fullCov().asEigen().allFinite());
+}

@@ -57,6 +57,7 @@ void CDynamicKFSLAM2D::reset()
 	m_objectMeas.clear();
 	m_step = -1;
 	m_report = TStepReport();
+	m_failed = false;
 }
 
 void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini, const std::string& section)
@@ -152,20 +153,35 @@ void CDynamicKFSLAM2D::validateAndParse(
 void CDynamicKFSLAM2D::processActionObservation(
 	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
 {
+	if (m_failed)
+		throw std::runtime_error(
+			"CDynamicKFSLAM2D: an earlier step failed numerically; call reset() before going on");
 	validateAndParse(action, SF);
 	++m_step;
 	m_report = TStepReport();
 	m_report.step = m_step;
+	try
+	{
+		// 1. MRPT: prediction (Alg. 7), static update (Alg. 5), static augmentation (Alg. 3)
+		runOneKalmanIteration();
+		for (const auto& m : m_static) m_staticLastSeen[m.id] = m_step;
 
-	// 1. MRPT: prediction (Alg. 7), static update (Alg. 5), static augmentation (Alg. 3)
-	runOneKalmanIteration();
-	for (const auto& m : m_static) m_staticLastSeen[m.id] = m_step;
-
-	// 2-5. Object steps and drops
-	augmentObjectFeatures();  // Alg. 3 (objects)
-	augmentObjectPoses();  // Alg. 4
-	applySmoothing();  // Alg. 6 (optional)
-	applyDropPolicies();
+		// 2-5. Object steps and drops
+		augmentObjectFeatures();  // Alg. 3 (objects)
+		augmentObjectPoses();  // Alg. 4
+		applySmoothing();  // Alg. 6 (optional)
+		applyDropPolicies();
+	}
+	catch (const std::exception& e)
+	{
+		// A numerical failure inside a step (e.g. an innovation covariance that is not positive
+		// definite with extreme noise settings) leaves the state half-updated: never go on
+		// silently from there.
+		m_failed = true;
+		throw std::runtime_error(
+			"CDynamicKFSLAM2D: step " + std::to_string(m_step) +
+			" failed, the filter must be reset(): " + std::string(e.what()));
+	}
 }
 
 // ------------------------------------------------------------------------------------------

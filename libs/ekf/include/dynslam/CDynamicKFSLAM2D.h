@@ -236,5 +236,6 @@ private:
 	std::map<int32_t, TObjectInfo> m_objects;
 	int m_step = -1;
 	TStepReport m_report;
+	bool m_failed = false;  ///< a step threw midway: refuse to go on until reset()
 };
 }  // namespace dynslam
