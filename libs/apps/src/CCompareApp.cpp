@@ -1,4 +1,5 @@
 #include <dynslam/apps/CCompareApp.h>
+#include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/eval/figures.h>
@@ -20,20 +21,6 @@ const char* kDefaultIni = "config/compare_highway.ini";
 
 std::string backendOf(const std::string& filter) { return filter == "dynamic" ? "ekf" : filter; }
 
-std::vector<std::string> splitList(const std::string& s)
-{
-	std::vector<std::string> out;
-	std::string cur;
-	for (char c : s + ",")
-		if (c == ',' || c == ' ' || c == '\t')
-		{
-			if (!cur.empty()) out.push_back(cur);
-			cur.clear();
-		}
-		else
-			cur += c;
-	return out;
-}
 }  // namespace
 
 const std::vector<std::string>& CCompareApp::allFilters()

@@ -26,16 +26,9 @@ const char* kSection = "MonteCarlo";
 
 std::vector<std::string> parseLevels(const std::string& s)
 {
-	std::vector<std::string> out;
-	std::string cur;
-	for (char c : s + ",")
-		if (c == ',' || c == ' ' || c == '\t')
-		{
-			if (!cur.empty()) out.push_back(cur);
-			cur.clear();
-		}
-		else
-			cur += char(std::tolower(static_cast<unsigned char>(c)));
+	std::vector<std::string> out = splitList(s);
+	for (auto& item : out)
+		for (char& c : item) c = char(std::tolower(static_cast<unsigned char>(c)));
 	if (out.size() == 1 && out[0] == "all") return eval::paperNoiseLevels();
 	const auto& known = eval::paperNoiseLevels();
 	for (const auto& l : out)

@@ -10,6 +10,21 @@
 
 namespace dynslam::apps
 {
+std::vector<std::string> splitList(const std::string& s)
+{
+	std::vector<std::string> out;
+	std::string cur;
+	for (char c : s + ",")
+		if (c == ',' || c == ' ' || c == '\t')
+		{
+			if (!cur.empty()) out.push_back(cur);
+			cur.clear();
+		}
+		else
+			cur += c;
+	return out;
+}
+
 void loadIniFile(const std::string& path, mrpt::config::CConfigFileMemory& out)
 {
 	std::error_code ec;

@@ -63,6 +63,17 @@ std::vector<double> parseNumbers(
 }
 }  // namespace
 
+/** False if the key is missing and optional; throws if it is missing and required. */
+static bool present(
+	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
+	bool required)
+{
+	if (c.keyExists(section, key)) return true;
+	if (required)
+		throw std::invalid_argument("[" + section + "] " + key + ": required key is missing");
+	return false;
+}
+
 void fail(
 	const std::string& section, const std::string& key, const std::string& value,
 	const std::string& what)
@@ -78,8 +89,7 @@ bool has(const mrpt::config::CConfigFileBase& c, const std::string& section, con
 std::string requireString(
 	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key)
 {
-	if (!has(c, section, key))
-		throw std::invalid_argument("[" + section + "] " + key + ": required key is missing");
+	present(c, section, key, true);
 	const std::string v = raw(c, section, key);
 	if (v.empty()) fail(section, key, v, "required key is empty");
 	return v;
@@ -89,12 +99,7 @@ double readDouble(
 	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
 	double def, bool required)
 {
-	if (!has(c, section, key))
-	{
-		if (required)
-			throw std::invalid_argument("[" + section + "] " + key + ": required key is missing");
-		return def;
-	}
+	if (!present(c, section, key, required)) return def;
 	const std::string v = raw(c, section, key);
 	double d;
 	if (!parseDouble(v, d)) fail(section, key, v, "not a number");
@@ -116,12 +121,7 @@ bool readBool(
 	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
 	bool def, bool required)
 {
-	if (!has(c, section, key))
-	{
-		if (required)
-			throw std::invalid_argument("[" + section + "] " + key + ": required key is missing");
-		return def;
-	}
+	if (!present(c, section, key, required)) return def;
 	const std::string v = lower(raw(c, section, key));
 	if (v == "true" || v == "1" || v == "yes" || v == "on") return true;
 	if (v == "false" || v == "0" || v == "no" || v == "off") return false;
@@ -132,12 +132,7 @@ std::string readString(
 	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
 	const std::string& def, bool required)
 {
-	if (!has(c, section, key))
-	{
-		if (required)
-			throw std::invalid_argument("[" + section + "] " + key + ": required key is missing");
-		return def;
-	}
+	if (!present(c, section, key, required)) return def;
 	return raw(c, section, key);
 }
 
@@ -163,12 +158,7 @@ Eigen::VectorXd readVector(
 	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
 	const Eigen::VectorXd& def, int n, bool required)
 {
-	if (!has(c, section, key))
-	{
-		if (required)
-			throw std::invalid_argument("[" + section + "] " + key + ": required key is missing");
-		return def;
-	}
+	if (!present(c, section, key, required)) return def;
 	const std::string v = raw(c, section, key);
 	const auto nums = parseNumbers(section, key, v);
 	if (int(nums.size()) != n)
@@ -187,12 +177,7 @@ Eigen::MatrixXd readCovariance(
 	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
 	const Eigen::MatrixXd& def, int dim, bool required, bool allowSingular)
 {
-	if (!has(c, section, key))
-	{
-		if (required)
-			throw std::invalid_argument("[" + section + "] " + key + ": required key is missing");
-		return def;
-	}
+	if (!present(c, section, key, required)) return def;
 	const std::string v = raw(c, section, key);
 	const auto nums = parseNumbers(section, key, v);
 	Eigen::MatrixXd M = Eigen::MatrixXd::Zero(dim, dim);
@@ -221,12 +206,7 @@ int readChoice(
 	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
 	const std::vector<std::string>& choices, int def, bool required)
 {
-	if (!has(c, section, key))
-	{
-		if (required)
-			throw std::invalid_argument("[" + section + "] " + key + ": required key is missing");
-		return def;
-	}
+	if (!present(c, section, key, required)) return def;
 	const std::string v = raw(c, section, key);
 	for (size_t i = 0; i < choices.size(); ++i)
 		if (lower(v) == lower(choices[i])) return int(i);

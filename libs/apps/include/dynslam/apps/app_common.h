@@ -19,6 +19,9 @@ namespace dynslam::apps
  * or unreadable. */
 void loadIniFile(const std::string& path, mrpt::config::CConfigFileMemory& out);
 
+/** Splits a command-line list at commas, spaces and tabs, dropping empty items. */
+std::vector<std::string> splitList(const std::string& s);
+
 /** Metrics and consistency of one run (only with ground truth). */
 struct TEvaluation
 {
