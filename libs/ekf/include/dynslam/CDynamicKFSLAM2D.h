@@ -247,6 +247,6 @@ private:
 	int m_step = -1;
 	TStepReport m_report;
 	bool m_failed = false;  ///< a step threw midway: refuse to go on until reset()
-	std::vector<double> m_scratch;  ///< the new covariance of commit(), reused across steps
+	KFMatrix m_pkkSpare;  ///< commit() writes the new covariance here, then swaps it with m_pkk
 };
 }  // namespace dynslam
