@@ -1,5 +1,5 @@
 /** The batched augmentation of ekf_steps.h (extendedRows, objectPoseAugmentations,
- * chainAugmentations, withPads, assembleExtended), which lets CDynamicKFSLAM2D rewrite the
+ * assembleExtended), which lets CDynamicKFSLAM2D rewrite the
  * covariance once per step, vs the same step done one augmentation at a time on dense
  * matrices: new features (Alg. 3), then the poses of two objects (Alg. 4, one rigid with a
  * pad, one translation-only) each appended before the next is computed, then drops. */
@@ -58,7 +58,8 @@ TEST(BatchedAugmentation, EqualsSequentialDenseAugmentation)
 {
 	dynslam_test::rng(913);
 	double worst = 0;
-	for (const MeasurementModel model : {MeasurementModel::Cartesian, MeasurementModel::RangeBearing})
+	for (const MeasurementModel model :
+	     {MeasurementModel::Cartesian, MeasurementModel::RangeBearing})
 		for (int trial = 0; trial < 20; ++trial)
 		{
 			const Eigen::Vector3d ego = core_test::randomPose();
@@ -76,7 +77,8 @@ TEST(BatchedAugmentation, EqualsSequentialDenseAugmentation)
 			for (const auto& p : pts) z.push_back(models::observe(model, ego, p));
 			const Eigen::Matrix2d R = core_test::randomSPD(2, 1e-3);
 			const Eigen::Matrix2d Sxi = core_test::randomSPD(2, 1e-2);
-			const ekf::Augmentation feats = ekf::featureAugmentation(model, ego, P.topRows(3), z, R);
+			const ekf::Augmentation feats =
+			    ekf::featureAugmentation(model, ego, P.topRows(3), z, R);
 			// new entries: landmark kN, A's features kN + 2, kN + 4, B's kN + 6
 			const std::vector<int> f0A{5, 7, 9}, ftA{kN + 2, kN + 4}, seenA{2, 0}, f0B{11},
 			    ftB{kN + 6};
@@ -92,19 +94,17 @@ TEST(BatchedAugmentation, EqualsSequentialDenseAugmentation)
 			const std::vector<int> keep = ekf::keptIndices(
 			    int(xd.size()), {3, 4, kN + 2, kN + 3, kN + 4, kN + 5, kN + 6, kN + 7});
 
-			// Batched: poses on the extended state, chained, padded, assembled once.
+			// Batched: poses on the extended state (padded), assembled once.
 			VectorXd xe(kN + feats.mean.size());
 			xe << x, feats.mean;
 			const std::vector<ekf::ObjectPoseLinearization> lins = {
 			    ekf::linearizeObjectPose(xe, f0A, ftA, seenA, Sxi),
 			    ekf::linearizeObjectPose(xe, f0B, ftB, {}, Sxi)};
-			const ekf::Augmentation poses =
-			    ekf::withPads(ekf::objectPoseAugmentations(P, feats, lins), {0, 1, 2, 4, 5}, 6);
-			const ekf::Augmentation all = ekf::chainAugmentations(feats, poses);
+			const ekf::Augmentation poses = ekf::objectPoseAugmentations(P, feats, lins, {0, 4}, 6);
 			RowMatrixXd out(keep.size(), keep.size());
-			ekf::assembleExtended(P, all, keep, out);
-			VectorXd xb(kN + all.mean.size());
-			xb << x, all.mean;
+			ekf::assembleExtended(P, feats, poses, keep, out);
+			VectorXd xb(kN + feats.mean.size() + poses.mean.size());
+			xb << x, feats.mean, poses.mean;
 
 			ASSERT_EQ(xb.size(), xd.size());
 			const double e = std::max(relErr(xb(keep), xd(keep)), relErr(out, Pd(keep, keep)));
@@ -119,42 +119,70 @@ TEST(BatchedAugmentation, ExtendedRowsAndAssembleAreExactCopies)
 {
 	dynslam_test::rng(914);
 	const RowMatrixXd P = core_test::randomSPD(7);
-	ekf::Augmentation a;
+	ekf::Augmentation a, b;
 	a.mean = core_test::randomVector(3, -1, 1);
 	a.cross = MatrixXd::Random(3, 7);
 	a.cov = core_test::randomSPD(3);
-	RowMatrixXd dense(10, 10);
-	dense << P, a.cross.transpose(), a.cross, a.cov;
+	b.mean = core_test::randomVector(2, -1, 1);
+	b.cross = MatrixXd::Random(2, 10);
+	b.cov = core_test::randomSPD(2);
+	RowMatrixXd dense(12, 12);
+	dense << P, a.cross.transpose(), b.cross.leftCols(7).transpose(), a.cross, a.cov,
+	    b.cross.rightCols(3).transpose(), b.cross, b.cov;
 	const std::vector<int> idx{8, 0, 6, 7, 2};
-	EXPECT_EQ(ekf::extendedRows(P, a, idx), MatrixXd(dense(idx, Eigen::all)));
+	EXPECT_EQ(ekf::extendedRows(P, a, idx), MatrixXd(dense(idx, Eigen::seqN(0, 10))));
 	for (const std::vector<int>& keep :
-	     {std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, std::vector<int>{0, 2, 3, 5, 9},
-	      std::vector<int>{1, 2, 3}, std::vector<int>{7, 8}})
+	     {std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11},
+	      std::vector<int>{0, 2, 3, 5, 9, 11}, std::vector<int>{1, 2, 3}, std::vector<int>{7, 8},
+	      std::vector<int>{4, 10, 11}})
 	{
 		RowMatrixXd out(keep.size(), keep.size());
-		ekf::assembleExtended(P, a, keep, out);
+		ekf::assembleExtended(P, a, b, keep, out);
 		EXPECT_EQ(out, RowMatrixXd(dense(keep, keep)));
 	}
+	// b without entries: the state extended by a only
+	const std::vector<int> keep{0, 3, 8, 9};
+	RowMatrixXd out(4, 4);
+	ekf::assembleExtended(P, a, ekf::Augmentation(), keep, out);
+	EXPECT_EQ(out, RowMatrixXd(dense(keep, keep)));
 }
 
-TEST(BatchedAugmentation, WithPadsPlacesEntriesAndIndependentPads)
+TEST(BatchedAugmentation, PosesArePlacedBetweenIndependentPads)
 {
 	dynslam_test::rng(915);
-	ekf::Augmentation a;
-	a.mean = core_test::randomVector(3, -1, 1);
-	a.cross = MatrixXd::Random(3, 5);
-	a.cov = core_test::randomSPD(3);
-	const ekf::Augmentation p = ekf::withPads(a, {0, 2, 3}, 5);
-	EXPECT_EQ(p.mean(std::vector<int>{0, 2, 3}), a.mean);
-	EXPECT_EQ(MatrixXd(p.cross(std::vector<int>{0, 2, 3}, Eigen::all)), a.cross);
-	EXPECT_EQ(MatrixXd(p.cov(std::vector<int>{0, 2, 3}, std::vector<int>{0, 2, 3})), a.cov);
-	for (int pad : {1, 4})
+	const RowMatrixXd P = core_test::randomSPD(13, 0.1);
+	VectorXd x(13);
+	x << core_test::randomPose(), core_test::randomVector(10, -20, 20);
+	ekf::Augmentation a;  // nothing pending
+	a.mean.resize(0);
+	a.cross.resize(0, 13);
+	a.cov.resize(0, 0);
+	// a rigid object (features 3, 5 at time 0; 7, 9 at time t) and a translation-only one
+	const std::vector<ekf::ObjectPoseLinearization> lins = {
+	    ekf::linearizeObjectPose(x, {3, 5}, {7, 9}, {}, Eigen::Matrix2d::Identity() * 0.1),
+	    ekf::linearizeObjectPose(x, {11}, {1}, {}, Eigen::Matrix2d::Identity() * 0.1)};
+	const ekf::Augmentation p = ekf::objectPoseAugmentations(P, a, lins, {0, 4}, 7);
+	const std::vector<int> entries{0, 1, 2, 4, 5};
+	for (int pad : {3, 6})
 	{
 		EXPECT_EQ(p.mean[pad], 0.0);
 		EXPECT_EQ(p.cross.row(pad).cwiseAbs().maxCoeff(), 0.0);
 		EXPECT_EQ(p.cov(pad, pad), 1.0);
 		EXPECT_EQ(p.cov.row(pad).cwiseAbs().sum(), 1.0);
 		EXPECT_EQ(p.cov.col(pad).cwiseAbs().sum(), 1.0);
+	}
+	// the poses equal the single-object augmentation
+	for (size_t o = 0; o < 2; ++o)
+	{
+		const ekf::Augmentation one =
+		    o == 0 ? ekf::objectPoseAugmentation(x, P, {3, 5}, {7, 9}, {},
+		                                         Eigen::Matrix2d::Identity() * 0.1)
+		           : ekf::objectPoseAugmentation(x, P, {11}, {1}, {},
+		                                         Eigen::Matrix2d::Identity() * 0.1);
+		const Eigen::Index r = o == 0 ? 0 : 4, d = one.mean.size();
+		EXPECT_LE((p.mean.segment(r, d) - one.mean).cwiseAbs().maxCoeff(), 1e-14);
+		EXPECT_LE((p.cross.middleRows(r, d) - one.cross).cwiseAbs().maxCoeff(), 1e-14);
+		EXPECT_LE((p.cov.block(r, r, d, d) - one.cov).cwiseAbs().maxCoeff(), 1e-14);
 	}
 }
 
@@ -165,14 +193,23 @@ TEST(BatchedAugmentation, RejectsInconsistentInput)
 	a.mean = VectorXd::Zero(2);
 	a.cross = MatrixXd::Zero(2, 4);
 	a.cov = MatrixXd::Identity(2, 2);
+	const ekf::Augmentation none;
 	RowMatrixXd out(3, 3);
-	EXPECT_THROW(ekf::assembleExtended(P, a, {0, 2, 1}, out), std::invalid_argument);
-	EXPECT_THROW(ekf::assembleExtended(P, a, {0, 1, 6}, out), std::out_of_range);
+	EXPECT_THROW(ekf::assembleExtended(P, a, none, {0, 2, 1}, out), std::invalid_argument);
+	EXPECT_THROW(ekf::assembleExtended(P, a, none, {0, 1, 6}, out), std::out_of_range);
 	RowMatrixXd wrong(2, 2);
-	EXPECT_THROW(ekf::assembleExtended(P, a, {0, 1, 5}, wrong), std::invalid_argument);
+	EXPECT_THROW(ekf::assembleExtended(P, a, none, {0, 1, 5}, wrong), std::invalid_argument);
+	ekf::Augmentation b = a;  // b.cross must have 4 + 2 columns
+	EXPECT_THROW(ekf::assembleExtended(P, a, b, {0, 1, 5}, out), std::invalid_argument);
 	EXPECT_THROW(ekf::extendedRows(P, a, {6}), std::out_of_range);
-	EXPECT_THROW(ekf::withPads(a, {1, 0}, 3), std::invalid_argument);
-	EXPECT_THROW(ekf::withPads(a, {0, 3}, 3), std::invalid_argument);
-	ekf::Augmentation b = a;  // b.cross has 4 columns, but must have 4 + 2
-	EXPECT_THROW(ekf::chainAugmentations(a, b), std::invalid_argument);
+	VectorXd x(4);
+	x << 0, 0, 0, 1;
+	const RowMatrixXd P3 = RowMatrixXd::Identity(4, 4);
+	ekf::Augmentation empty;
+	empty.cross.resize(0, 4);
+	const auto lin = ekf::linearizeObjectPose(x, {2}, {2}, {}, Eigen::Matrix2d::Identity());
+	EXPECT_THROW(ekf::objectPoseAugmentations(P3, empty, {lin}, {1}, 2), std::invalid_argument);
+	EXPECT_THROW(ekf::objectPoseAugmentations(P3, empty, {lin, lin}, {0, 1}, 4),
+	             std::invalid_argument);
+	EXPECT_THROW(ekf::objectPoseAugmentations(P3, empty, {lin}, {}, 2), std::invalid_argument);
 }

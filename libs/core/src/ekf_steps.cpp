@@ -137,21 +137,25 @@ Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augme
 }
 
 Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
-                                     const std::vector<ObjectPoseLinearization>& poses)
+                                     const std::vector<ObjectPoseLinearization>& poses,
+                                     const std::vector<Eigen::Index>& at, Eigen::Index size)
 {
 	const Eigen::Index N = P.rows() + a.mean.size();
-	Eigen::Index p = 0;
-	for (const auto& lin : poses) p += lin.xi.size();
+	if (at.size() != poses.size())
+		throw std::invalid_argument("objectPoseAugmentations: one position per pose");
+	for (size_t o = 0; o < poses.size(); ++o)
+		if (at[o] < (o == 0 ? 0 : at[o - 1] + poses[o - 1].xi.size()) ||
+		    at[o] + poses[o].xi.size() > size)
+			throw std::invalid_argument(
+			    "objectPoseAugmentations: positions must be ascending, disjoint and in range");
 	Augmentation out;
-	out.mean.resize(p);
-	out.cross.resize(p, N);
-	out.cov.resize(p, p);
-	std::vector<Eigen::Index> start;
-	Eigen::Index r = 0;
+	out.mean = Eigen::VectorXd::Zero(size);
+	out.cross = Eigen::MatrixXd::Zero(size, N);
+	out.cov = Eigen::MatrixXd::Identity(size, size);  // pads: unit variance
 	for (size_t o = 0; o < poses.size(); ++o)
 	{
 		const auto& lin = poses[o];
-		const Eigen::Index d = lin.xi.size();
+		const Eigen::Index d = lin.xi.size(), r = at[o];
 		if (lin.Gamma.rows() != d || lin.Gamma.cols() != Eigen::Index(lin.idx.size()))
 			throw std::invalid_argument("objectPoseAugmentations: inconsistent linearization");
 		const Eigen::MatrixXd rows = extendedRows(P, a, lin.idx);
@@ -164,87 +168,78 @@ Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, con
 		for (size_t q = 0; q < o; ++q)
 		{
 			const Eigen::Index dq = poses[q].xi.size();
-			out.cov.block(r, start[q], d, dq).noalias() =
+			out.cov.block(r, at[q], d, dq).noalias() =
 			    out.cross.middleRows(r, d)(Eigen::all, poses[q].idx) * poses[q].Gamma.transpose();
-			out.cov.block(start[q], r, dq, d) = out.cov.block(r, start[q], d, dq).transpose();
+			out.cov.block(at[q], r, dq, d) = out.cov.block(r, at[q], d, dq).transpose();
 		}
-		start.push_back(r);
-		r += d;
 	}
 	return out;
 }
 
-Augmentation chainAugmentations(const Augmentation& a, const Augmentation& b)
+namespace
 {
-	const Eigen::Index ma = a.mean.size(), mb = b.mean.size(), n = a.cross.cols();
-	if (b.cross.rows() != mb || b.cross.cols() != n + ma || b.cov.rows() != mb ||
-	    b.cov.cols() != mb || a.cov.rows() != ma || a.cross.rows() != ma)
-		throw std::invalid_argument("chainAugmentations: inconsistent sizes");
-	Augmentation c;
-	c.mean.resize(ma + mb);
-	c.mean << a.mean, b.mean;
-	c.cross.resize(ma + mb, n);
-	c.cross << a.cross, b.cross.leftCols(n);
-	c.cov.resize(ma + mb, ma + mb);
-	c.cov.topLeftCorner(ma, ma) = a.cov;
-	c.cov.bottomLeftCorner(mb, ma) = b.cross.rightCols(ma);
-	c.cov.topRightCorner(ma, mb) = b.cross.rightCols(ma).transpose();
-	c.cov.bottomRightCorner(mb, mb) = b.cov;
-	return c;
-}
-
-Augmentation withPads(const Augmentation& a, const std::vector<int>& at, Eigen::Index size)
+/** Maximal runs of consecutive values in idx: (position in idx, length). */
+std::vector<std::pair<Eigen::Index, Eigen::Index>> runsOf(const std::vector<int>& idx)
 {
-	const Eigen::Index m = a.mean.size(), n = a.cross.cols();
-	if (Eigen::Index(at.size()) != m || size < m)
-		throw std::invalid_argument("withPads: inconsistent sizes");
-	for (size_t i = 0; i < at.size(); ++i)
-		if (at[i] < 0 || at[i] >= size || (i > 0 && at[i] <= at[i - 1]))
-			throw std::invalid_argument("withPads: positions must be ascending and in range");
-	Augmentation p;
-	p.mean = Eigen::VectorXd::Zero(size);
-	p.cross = Eigen::MatrixXd::Zero(size, n);
-	p.cov = Eigen::MatrixXd::Identity(size, size);
-	p.mean(at) = a.mean;
-	p.cross(at, Eigen::all) = a.cross;
-	p.cov(at, at) = a.cov;
-	return p;
+	std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;
+	for (size_t i = 0; i < idx.size();)
+	{
+		size_t j = i + 1;
+		while (j < idx.size() && idx[j] == idx[j - 1] + 1) ++j;
+		runs.emplace_back(Eigen::Index(i), Eigen::Index(j - i));
+		i = j;
+	}
+	return runs;
 }
+}  // namespace
 
 void assembleExtended(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
-                      const std::vector<int>& keep, Eigen::Ref<RowMatrixXd> out)
+                      const Augmentation& b, const std::vector<int>& keep,
+                      Eigen::Ref<RowMatrixXd> out)
 {
-	const Eigen::Index n = P.rows(), m = a.mean.size(), k = Eigen::Index(keep.size());
-	if (P.cols() != n || a.cross.rows() != m || a.cross.cols() != n || a.cov.rows() != m ||
-	    a.cov.cols() != m || out.rows() != k || out.cols() != k)
+	const Eigen::Index n = P.rows(), ma = a.mean.size(), mb = b.mean.size(),
+	                   k = Eigen::Index(keep.size());
+	if (P.cols() != n || a.cross.rows() != ma || a.cross.cols() != n || a.cov.rows() != ma ||
+	    a.cov.cols() != ma || b.cross.rows() != mb || (mb > 0 && b.cross.cols() != n + ma) ||
+	    b.cov.rows() != mb || b.cov.cols() != mb || out.rows() != k || out.cols() != k)
 		throw std::invalid_argument("assembleExtended: inconsistent sizes");
-	checkIndices("assembleExtended", keep, n + m);
+	checkIndices("assembleExtended", keep, n + ma + mb);
 	for (Eigen::Index i = 1; i < k; ++i)
 		if (keep[i] <= keep[i - 1])
 			throw std::invalid_argument("assembleExtended: keep must be ascending");
-	// keep = [old entries (< n) ; new entries (>= n)]
-	const Eigen::Index k0 =
-	    Eigen::Index(std::lower_bound(keep.begin(), keep.end(), int(n)) - keep.begin());
-	std::vector<int> keepOld(keep.begin(), keep.begin() + k0), keepNew;
-	for (Eigen::Index i = k0; i < k; ++i) keepNew.push_back(keep[i] - int(n));
+	// keep = [old (< n) ; a's (n .. n + ma) ; b's], each relative to its group
+	std::vector<int> kOld, kA, kB;
+	for (const int i : keep)
+		(i < n        ? kOld
+		 : i < n + ma ? kA
+		              : kB)
+		    .push_back(i < n        ? i
+		               : i < n + ma ? i - int(n)
+		                            : i - int(n + ma));
+	const Eigen::Index k0 = Eigen::Index(kOld.size()), ka = Eigen::Index(kA.size()),
+	                   kb = Eigen::Index(kB.size());
 	// Old block by runs of consecutive indices (row-major: contiguous copies).
-	std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // (start in keepOld, length)
-	for (Eigen::Index i = 0; i < k0;)
-	{
-		Eigen::Index j = i + 1;
-		while (j < k0 && keepOld[j] == keepOld[j - 1] + 1) ++j;
-		runs.emplace_back(i, j - i);
-		i = j;
-	}
+	const auto runs = runsOf(kOld);
 	for (Eigen::Index i = 0; i < k0; ++i)
 		for (const auto& [c, len] : runs)
-			out.row(i).segment(c, len) = P.row(keepOld[i]).segment(keepOld[c], len);
-	if (k0 < k)
+			out.row(i).segment(c, len) = P.row(kOld[i]).segment(kOld[c], len);
+	if (ka > 0)
 	{
-		out.bottomLeftCorner(k - k0, k0) = a.cross(keepNew, keepOld);
-		out.topRightCorner(k0, k - k0) = out.bottomLeftCorner(k - k0, k0).transpose();
-		out.bottomRightCorner(k - k0, k - k0) = a.cov(keepNew, keepNew);
+		out.block(k0, 0, ka, k0) = a.cross(kA, kOld);
+		out.block(k0, k0, ka, ka) = a.cov(kA, kA);
 	}
+	if (kb > 0)
+	{
+		out.block(k0 + ka, 0, kb, k0) = b.cross(kB, kOld);
+		std::vector<int> kAinB(kA);
+		for (int& i : kAinB) i += int(n);
+		out.block(k0 + ka, k0, kb, ka) = b.cross(kB, kAinB);
+		out.block(k0 + ka, k0 + ka, kb, kb) = b.cov(kB, kB);
+	}
+	// upper blocks: transposes of the lower ones
+	out.topRightCorner(k0, k - k0) = out.bottomLeftCorner(k - k0, k0).transpose();
+	if (ka > 0 && kb > 0)
+		out.block(k0, k0 + ka, ka, kb) = out.block(k0 + ka, k0, kb, ka).transpose();
 }
 
 double sparseUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,

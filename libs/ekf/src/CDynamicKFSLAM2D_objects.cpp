@@ -125,7 +125,7 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 
 	std::vector<ekf::ObjectPoseLinearization> lins;
 	std::vector<TSlot> slots;
-	std::vector<int> at;  // position of each pose entry among the new entries (pads between)
+	std::vector<Eigen::Index> at;  // first entry of each pose among the new entries
 	for (const auto& [obj, os] : indexObjects(ext, m_step))
 	{
 		if (os.ft.empty()) continue;
@@ -160,23 +160,19 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 		sa.kind = SlotKind::ObjectPoseA;
 		sa.object = obj;
 		sa.step = m_step;
-		const int base = 2 * int(slots.size());
+		at.push_back(Eigen::Index(2 * slots.size()));
 		slots.push_back(sa);
-		at.insert(at.end(), {base, base + 1});
 		if (lins.back().xi.size() == 3)
 		{
-			TSlot sb = sa;
+			TSlot sb = sa;  // [dtheta, pad]
 			sb.kind = SlotKind::ObjectPoseB;
 			slots.push_back(sb);
-			at.push_back(base + 2);  // base + 3 is the pad
 		}
 		++m_report.object_poses_added;
 	}
 	if (lins.empty()) return;
-	const ekf::Augmentation poses =
-	    ekf::withPads(ekf::objectPoseAugmentations(m_pkk.asEigen(), plan.a, lins), at,
-	                  Eigen::Index(2 * slots.size()));
-	plan.a = plan.slots.empty() ? poses : ekf::chainAugmentations(plan.a, poses);
+	plan.b = ekf::objectPoseAugmentations(m_pkk.asEigen(), plan.a, lins, at,
+	                                      Eigen::Index(2 * slots.size()));
 	plan.slots.insert(plan.slots.end(), slots.begin(), slots.end());
 }
 
@@ -267,18 +263,12 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 
 void CDynamicKFSLAM2D::commit(TPending& plan)
 {
-	const Eigen::Index n = m_xkk.size(), m = plan.a.mean.size();
+	const Eigen::Index n = m_xkk.size(), ma = plan.a.mean.size(), mb = plan.b.mean.size(),
+	                   m = ma + mb;
 	if (m == 0 && plan.remove.empty()) return;
-	if (m != Eigen::Index(2 * plan.slots.size()) ||
-	    (m > 0 && (plan.a.cross.rows() != m || plan.a.cross.cols() != n || plan.a.cov.rows() != m ||
-	               plan.a.cov.cols() != m)))
+	if (m != Eigen::Index(2 * plan.slots.size()))
 		throw std::logic_error("CDynamicKFSLAM2D::commit: inconsistent block sizes");
-	if (m == 0)
-	{
-		plan.a.mean.resize(0);
-		plan.a.cross.resize(0, n);
-		plan.a.cov.resize(0, 0);
-	}
+	if (ma == 0) plan.a.cross.resize(0, n);
 	const size_t S = m_slots.size() + plan.slots.size();
 	std::vector<bool> dropSlot(S, false);
 	std::vector<int> rem;
@@ -300,10 +290,10 @@ void CDynamicKFSLAM2D::commit(TPending& plan)
 		m_pkkSpare.swap(fresh);
 	}
 	auto Pn = m_pkkSpare.asEigen();
-	ekf::assembleExtended(m_pkk.asEigen(), plan.a, keep, Pn);
+	ekf::assembleExtended(m_pkk.asEigen(), plan.a, plan.b, keep, Pn);
 	m_pkk.swap(m_pkkSpare);
 	Eigen::VectorXd x(n + m);
-	x << m_xkk.asEigen(), plan.a.mean;
+	x << m_xkk.asEigen(), plan.a.mean, plan.b.mean;
 	const Eigen::VectorXd xn = x(keep);
 	m_xkk.resize(size_t(N));
 	m_xkk.asEigen() = xn;

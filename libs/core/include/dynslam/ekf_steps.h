@@ -79,22 +79,20 @@ Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augme
                              const std::vector<int>& idx);
 
 /** Alg. 4 for several objects at once, on the extended state: returns their poses as one
- * augmentation of the extended state (cross is p x (n + m)). Equal to augmenting the poses one
- * after the other: cov(xi_a, xi_b) = Gamma_a P_ext[idx_a, idx_b] Gamma_b^T. */
+ * augmentation of the extended state (cross is size x (n + m)), pose o in the entries
+ * at[o] .. at[o] + dim - 1 (at ascending, no overlap), every other entry a pad (mean 0,
+ * variance 1, uncorrelated). Equal to augmenting the poses one after the other:
+ * cov(xi_a, xi_b) = Gamma_a P_ext[idx_a, idx_b] Gamma_b^T. */
 Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
-                                     const std::vector<ObjectPoseLinearization>& poses);
+                                     const std::vector<ObjectPoseLinearization>& poses,
+                                     const std::vector<Eigen::Index>& at, Eigen::Index size);
 
-/** b augments the state extended by a (b.cross has n + m_a columns): returns the single
- * augmentation of the original state that adds a's entries, then b's. */
-Augmentation chainAugmentations(const Augmentation& a, const Augmentation& b);
-
-/** Inserts independent pads: entry i of a goes to position at[i] (ascending) of a result with
- * `size` entries; every other entry is a pad (mean 0, variance 1, uncorrelated). */
-Augmentation withPads(const Augmentation& a, const std::vector<int>& at, Eigen::Index size);
-
-/** P_ext[keep, keep] (keep ascending, in [0, n + m)) written to out, which must have that size. */
+/** The covariance of the state extended by a, then by b (b.cross has n + m_a columns; b may
+ * have no entries), restricted to keep (ascending, in [0, n + m_a + m_b)), written to out,
+ * which must have that size. */
 void assembleExtended(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
-                      const std::vector<int>& keep, Eigen::Ref<RowMatrixXd> out);
+                      const Augmentation& b, const std::vector<int>& keep,
+                      Eigen::Ref<RowMatrixXd> out);
 
 /** EKF update by a measurement that depends only on the entries idx of the state (Alg. 5 and
  * Alg. 6 are both of this form):

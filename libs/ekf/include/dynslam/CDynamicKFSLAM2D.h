@@ -211,12 +211,13 @@ private:
 
 	void validateAndParse(
 		const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF);
-	/** What a step adds and drops, before it is written to the state: the new entries as one
-	 * augmentation of the current state (2 entries per new slot, pads included), and the
-	 * slots to remove, indexed in m_slots followed by `slots`. */
+	/** What a step adds and drops, before it is written to the state: the new features as an
+	 * augmentation a of the current state, the object poses as an augmentation b of the state
+	 * extended by a (pads included; 2 entries per new slot in all), and the slots to remove,
+	 * indexed in m_slots followed by `slots`. */
 	struct TPending
 	{
-		ekf::Augmentation a;
+		ekf::Augmentation a, b;
 		std::vector<TSlot> slots;
 		std::vector<size_t> remove;
 	};
