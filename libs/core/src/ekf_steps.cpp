@@ -4,6 +4,7 @@
 #include <dynslam/models/smoothing.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -18,16 +19,15 @@ void checkIndices(const char* fn, const std::vector<int>& idx, Eigen::Index n, i
 {
 	for (int i : idx)
 		if (i < 0 || Eigen::Index(i) + width > n)
-			throw std::out_of_range(
-				std::string(fn) + ": state index " + std::to_string(i) + " out of range for " +
-				std::to_string(width) + " entries in a state of size " + std::to_string(n));
+			throw std::out_of_range(std::string(fn) + ": state index " + std::to_string(i) +
+			                        " out of range for " + std::to_string(width) +
+			                        " entries in a state of size " + std::to_string(n));
 }
 }  // namespace
 
-Augmentation featureAugmentation(
-	models::MeasurementModel model, const Eigen::Vector3d& ego,
-	const Eigen::Ref<const RowMatrixXd>& P_ego_rows, const std::vector<Eigen::Vector2d>& z,
-	const Eigen::Matrix2d& R)
+Augmentation featureAugmentation(models::MeasurementModel model, const Eigen::Vector3d& ego,
+                                 const Eigen::Ref<const RowMatrixXd>& P_ego_rows,
+                                 const std::vector<Eigen::Vector2d>& z, const Eigen::Matrix2d& R)
 {
 	if (P_ego_rows.rows() != 3) throw std::invalid_argument("featureAugmentation: need 3 ego rows");
 	const Eigen::Index n = P_ego_rows.cols(), k = Eigen::Index(z.size());
@@ -52,57 +52,204 @@ Augmentation featureAugmentation(
 	return a;
 }
 
-Augmentation objectPoseAugmentation(
-	const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const RowMatrixXd>& P,
-	const std::vector<int>& f0_idx, const std::vector<int>& ft_idx, const std::vector<int>& seen,
-	const Eigen::Matrix2d& Sigma_xi)
+ObjectPoseLinearization linearizeObjectPose(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                            const std::vector<int>& f0_idx,
+                                            const std::vector<int>& ft_idx,
+                                            const std::vector<int>& seen,
+                                            const Eigen::Matrix2d& Sigma_xi)
 {
 	const int n = int(f0_idx.size()), m = int(ft_idx.size());
 	if (n < 1 || m < 1) throw std::invalid_argument("objectPoseAugmentation: no features");
-	if (P.rows() != x.size() || P.cols() != x.size())
-		throw std::invalid_argument("objectPoseAugmentation: P does not match x");
 	checkIndices("objectPoseAugmentation", f0_idx, x.size(), 2);
 	checkIndices("objectPoseAugmentation", ft_idx, x.size(), 2);
 	if (n == 1 && (m != 1 || (!seen.empty() && (seen.size() != 1 || seen[0] != 0))))
 		throw std::invalid_argument(
-			"objectPoseAugmentation: a one-feature object needs exactly that feature at time t");
+		    "objectPoseAugmentation: a one-feature object needs exactly that feature at time t");
 	Eigen::Matrix2Xd f0(2, n), ft(2, m);
 	for (int k = 0; k < n; ++k) f0.col(k) = x.segment<2>(f0_idx[k]);
 	for (int i = 0; i < m; ++i) ft.col(i) = x.segment<2>(ft_idx[i]);
 
+	ObjectPoseLinearization lin;
 	Eigen::MatrixXd G1, G2;
-	Eigen::VectorXd xi;
 	if (n == 1)
 	{
 		Eigen::Matrix2d g1, g2;
-		xi = models::objectTranslationInverse(f0.col(0), ft.col(0), &g1, &g2);
+		lin.xi = models::objectTranslationInverse(f0.col(0), ft.col(0), &g1, &g2);
 		G1 = g1;
 		G2 = g2;
 	}
 	else
-		xi = models::objectPoseInverse(f0, ft, seen, &G1, &G2);
+		lin.xi = models::objectPoseInverse(f0, ft, seen, &G1, &G2);
 
-	// Gamma = [Gamma1 Gamma2] over the stacked indices [f0 ; ft]
-	std::vector<int> idx;
-	idx.reserve(2 * (n + m));
-	for (int k : f0_idx) idx.insert(idx.end(), {k, k + 1});
-	for (int k : ft_idx) idx.insert(idx.end(), {k, k + 1});
-	Eigen::MatrixXd Gamma(xi.size(), 2 * (n + m));
-	Gamma << G1, G2;
-
-	Augmentation a;
-	a.mean = xi;
-	a.cross.noalias() = Gamma * P(idx, Eigen::all);
-	a.cov.noalias() = Gamma * P(idx, idx) * Gamma.transpose();
+	lin.idx.reserve(2 * (n + m));
+	for (int k : f0_idx) lin.idx.insert(lin.idx.end(), {k, k + 1});
+	for (int k : ft_idx) lin.idx.insert(lin.idx.end(), {k, k + 1});
+	lin.Gamma.resize(lin.xi.size(), 2 * (n + m));
+	lin.Gamma << G1, G2;
+	lin.noise = Eigen::MatrixXd::Zero(lin.xi.size(), lin.xi.size());
 	for (int i = 0; i < m; ++i)
-		a.cov.noalias() += G2.middleCols<2>(2 * i) * Sigma_xi * G2.middleCols<2>(2 * i).transpose();
+		lin.noise.noalias() +=
+		    G2.middleCols<2>(2 * i) * Sigma_xi * G2.middleCols<2>(2 * i).transpose();
+	return lin;
+}
+
+Augmentation objectPoseAugmentation(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                    const Eigen::Ref<const RowMatrixXd>& P,
+                                    const std::vector<int>& f0_idx, const std::vector<int>& ft_idx,
+                                    const std::vector<int>& seen, const Eigen::Matrix2d& Sigma_xi)
+{
+	if (P.rows() != x.size() || P.cols() != x.size())
+		throw std::invalid_argument("objectPoseAugmentation: P does not match x");
+	const ObjectPoseLinearization lin = linearizeObjectPose(x, f0_idx, ft_idx, seen, Sigma_xi);
+	Augmentation a;
+	a.mean = lin.xi;
+	a.cross.noalias() = lin.Gamma * P(lin.idx, Eigen::all);
+	a.cov.noalias() = lin.Gamma * P(lin.idx, lin.idx) * lin.Gamma.transpose();
+	a.cov += lin.noise;
 	a.cov = 0.5 * (a.cov + a.cov.transpose()).eval();
 	return a;
 }
 
-double sparseUpdate(
-	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const std::vector<int>& idx,
-	const Eigen::MatrixXd& H, const Eigen::VectorXd& nu, const Eigen::MatrixXd& R)
+Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                             const std::vector<int>& idx)
+{
+	const Eigen::Index n = P.rows(), m = a.mean.size();
+	if (P.cols() != n || a.cross.rows() != m || a.cross.cols() != n || a.cov.rows() != m ||
+	    a.cov.cols() != m)
+		throw std::invalid_argument("extendedRows: inconsistent sizes");
+	checkIndices("extendedRows", idx, n + m);
+	Eigen::MatrixXd rows(idx.size(), n + m);
+	for (size_t r = 0; r < idx.size(); ++r)
+	{
+		const Eigen::Index i = idx[r];
+		if (i < n)
+		{
+			rows.row(r).head(n) = P.row(i);
+			rows.row(r).tail(m) = a.cross.col(i).transpose();
+		}
+		else
+		{
+			rows.row(r).head(n) = a.cross.row(i - n);
+			rows.row(r).tail(m) = a.cov.row(i - n);
+		}
+	}
+	return rows;
+}
+
+Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                                     const std::vector<ObjectPoseLinearization>& poses)
+{
+	const Eigen::Index N = P.rows() + a.mean.size();
+	Eigen::Index p = 0;
+	for (const auto& lin : poses) p += lin.xi.size();
+	Augmentation out;
+	out.mean.resize(p);
+	out.cross.resize(p, N);
+	out.cov.resize(p, p);
+	std::vector<Eigen::Index> start;
+	Eigen::Index r = 0;
+	for (size_t o = 0; o < poses.size(); ++o)
+	{
+		const auto& lin = poses[o];
+		const Eigen::Index d = lin.xi.size();
+		if (lin.Gamma.rows() != d || lin.Gamma.cols() != Eigen::Index(lin.idx.size()))
+			throw std::invalid_argument("objectPoseAugmentations: inconsistent linearization");
+		const Eigen::MatrixXd rows = extendedRows(P, a, lin.idx);
+		out.mean.segment(r, d) = lin.xi;
+		out.cross.middleRows(r, d).noalias() = lin.Gamma * rows;
+		Eigen::MatrixXd c = lin.Gamma * rows(Eigen::all, lin.idx) * lin.Gamma.transpose();
+		c += lin.noise;
+		out.cov.block(r, r, d, d) = 0.5 * (c + c.transpose());
+		// with the poses before it: cov(xi_o, xi_q) = cov(xi_o, x_ext)[:, idx_q] Gamma_q^T
+		for (size_t q = 0; q < o; ++q)
+		{
+			const Eigen::Index dq = poses[q].xi.size();
+			out.cov.block(r, start[q], d, dq).noalias() =
+			    out.cross.middleRows(r, d)(Eigen::all, poses[q].idx) * poses[q].Gamma.transpose();
+			out.cov.block(start[q], r, dq, d) = out.cov.block(r, start[q], d, dq).transpose();
+		}
+		start.push_back(r);
+		r += d;
+	}
+	return out;
+}
+
+Augmentation chainAugmentations(const Augmentation& a, const Augmentation& b)
+{
+	const Eigen::Index ma = a.mean.size(), mb = b.mean.size(), n = a.cross.cols();
+	if (b.cross.rows() != mb || b.cross.cols() != n + ma || b.cov.rows() != mb ||
+	    b.cov.cols() != mb || a.cov.rows() != ma || a.cross.rows() != ma)
+		throw std::invalid_argument("chainAugmentations: inconsistent sizes");
+	Augmentation c;
+	c.mean.resize(ma + mb);
+	c.mean << a.mean, b.mean;
+	c.cross.resize(ma + mb, n);
+	c.cross << a.cross, b.cross.leftCols(n);
+	c.cov.resize(ma + mb, ma + mb);
+	c.cov.topLeftCorner(ma, ma) = a.cov;
+	c.cov.bottomLeftCorner(mb, ma) = b.cross.rightCols(ma);
+	c.cov.topRightCorner(ma, mb) = b.cross.rightCols(ma).transpose();
+	c.cov.bottomRightCorner(mb, mb) = b.cov;
+	return c;
+}
+
+Augmentation withPads(const Augmentation& a, const std::vector<int>& at, Eigen::Index size)
+{
+	const Eigen::Index m = a.mean.size(), n = a.cross.cols();
+	if (Eigen::Index(at.size()) != m || size < m)
+		throw std::invalid_argument("withPads: inconsistent sizes");
+	for (size_t i = 0; i < at.size(); ++i)
+		if (at[i] < 0 || at[i] >= size || (i > 0 && at[i] <= at[i - 1]))
+			throw std::invalid_argument("withPads: positions must be ascending and in range");
+	Augmentation p;
+	p.mean = Eigen::VectorXd::Zero(size);
+	p.cross = Eigen::MatrixXd::Zero(size, n);
+	p.cov = Eigen::MatrixXd::Identity(size, size);
+	p.mean(at) = a.mean;
+	p.cross(at, Eigen::all) = a.cross;
+	p.cov(at, at) = a.cov;
+	return p;
+}
+
+void assembleExtended(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                      const std::vector<int>& keep, Eigen::Ref<RowMatrixXd> out)
+{
+	const Eigen::Index n = P.rows(), m = a.mean.size(), k = Eigen::Index(keep.size());
+	if (P.cols() != n || a.cross.rows() != m || a.cross.cols() != n || a.cov.rows() != m ||
+	    a.cov.cols() != m || out.rows() != k || out.cols() != k)
+		throw std::invalid_argument("assembleExtended: inconsistent sizes");
+	checkIndices("assembleExtended", keep, n + m);
+	for (Eigen::Index i = 1; i < k; ++i)
+		if (keep[i] <= keep[i - 1])
+			throw std::invalid_argument("assembleExtended: keep must be ascending");
+	// keep = [old entries (< n) ; new entries (>= n)]
+	const Eigen::Index k0 =
+	    Eigen::Index(std::lower_bound(keep.begin(), keep.end(), int(n)) - keep.begin());
+	std::vector<int> keepOld(keep.begin(), keep.begin() + k0), keepNew;
+	for (Eigen::Index i = k0; i < k; ++i) keepNew.push_back(keep[i] - int(n));
+	// Old block by runs of consecutive indices (row-major: contiguous copies).
+	std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;  // (start in keepOld, length)
+	for (Eigen::Index i = 0; i < k0;)
+	{
+		Eigen::Index j = i + 1;
+		while (j < k0 && keepOld[j] == keepOld[j - 1] + 1) ++j;
+		runs.emplace_back(i, j - i);
+		i = j;
+	}
+	for (Eigen::Index i = 0; i < k0; ++i)
+		for (const auto& [c, len] : runs)
+			out.row(i).segment(c, len) = P.row(keepOld[i]).segment(keepOld[c], len);
+	if (k0 < k)
+	{
+		out.bottomLeftCorner(k - k0, k0) = a.cross(keepNew, keepOld);
+		out.topRightCorner(k0, k - k0) = out.bottomLeftCorner(k - k0, k0).transpose();
+		out.bottomRightCorner(k - k0, k - k0) = a.cov(keepNew, keepNew);
+	}
+}
+
+double sparseUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
+                    const std::vector<int>& idx, const Eigen::MatrixXd& H,
+                    const Eigen::VectorXd& nu, const Eigen::MatrixXd& R)
 {
 	const Eigen::Index m = H.rows();
 	if (H.cols() != Eigen::Index(idx.size()) || nu.size() != m || R.rows() != m || R.cols() != m)
@@ -117,24 +264,26 @@ double sparseUpdate(
 	const Eigen::LLT<Eigen::MatrixXd> llt(S);
 	if (llt.info() != Eigen::Success)
 		throw std::runtime_error("sparseUpdate: innovation covariance not positive definite");
-	const Eigen::MatrixXd K = llt.solve(PHt.transpose()).transpose();  // n x m
-	x.noalias() += K * nu;
-	P.noalias() -= K * PHt.transpose();  // = K S K^T
-	P = 0.5 * (P + P.transpose()).eval();
-	return nu.dot(llt.solve(nu));
+	// W = PHt L^-T: K = W L^-1, K nu = W (L^-1 nu), K S K^T = W W^T.
+	const Eigen::MatrixXd W = llt.matrixL().solve(PHt.transpose()).transpose();  // n x m
+	const Eigen::VectorXd v = llt.matrixL().solve(nu);
+	x.noalias() += W * v;
+	P.selfadjointView<Eigen::Lower>().rankUpdate(W, -1.0);
+	for (Eigen::Index i = 0; i + 1 < P.rows(); ++i)
+		P.row(i).tail(P.rows() - 1 - i) = P.col(i).tail(P.rows() - 1 - i).transpose();
+	return v.squaredNorm();
 }
 
-double smoothingUpdate(
-	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, int a, int b, int c,
-	const Eigen::MatrixXd& Sigma_s)
+double smoothingUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, int a, int b,
+                       int c, const Eigen::MatrixXd& Sigma_s)
 {
 	const int d = int(Sigma_s.rows());
 	if ((d != 2 && d != 3) || Sigma_s.cols() != d)
 		throw std::invalid_argument("smoothingUpdate: Sigma_s must be 2x2 or 3x3");
 	checkIndices("smoothingUpdate", {a, b, c}, x.size(), d);
 	Eigen::MatrixXd Ja, Jb, Jc;
-	const Eigen::VectorXd s = models::smoothingResidual(
-		x.segment(a, d), x.segment(b, d), x.segment(c, d), &Ja, &Jb, &Jc);
+	const Eigen::VectorXd s =
+	    models::smoothingResidual(x.segment(a, d), x.segment(b, d), x.segment(c, d), &Ja, &Jb, &Jc);
 	std::vector<int> idx;
 	for (int base : {a, b, c})
 		for (int i = 0; i < d; ++i) idx.push_back(base + i);
@@ -146,9 +295,8 @@ double smoothingUpdate(
 	return nis;
 }
 
-void propagate(
-	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const Eigen::Vector3d& u,
-	const Eigen::Matrix3d& Sigma_u)
+void propagate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const Eigen::Vector3d& u,
+               const Eigen::Matrix3d& Sigma_u)
 {
 	Eigen::Matrix3d F, G;
 	x.head<3>() = models::composePose(x.head<3>(), u, &F, &G);

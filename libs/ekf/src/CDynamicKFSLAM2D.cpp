@@ -1,5 +1,6 @@
 /** CDynamicKFSLAM2D: input parsing, the MRPT Kalman-filter hooks (prediction, static update,
- * static augmentation) and the step driver. Object steps: CDynamicKFSLAM2D_objects.cpp. */
+ * static augmentation in MRPT's path) and the step driver. Augmentations, drops and object
+ * steps: CDynamicKFSLAM2D_objects.cpp. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/ekf_steps.h>
 #include <dynslam/landmark_ids.h>
@@ -168,12 +169,19 @@ void CDynamicKFSLAM2D::processActionObservation(
 		runOneKalmanIteration();
 		for (const auto& m : m_static) m_staticLastSeen[m.id] = m_step;
 
-		// 2-5. Object steps and drops
-		augmentObjectFeatures();  // Alg. 3 (objects)
-		augmentObjectPoses();  // Alg. 4
-		applySmoothing();  // Alg. 6 (optional)
-		applyDropPolicies();
-		recordFirstEstimates();
+		// 2-5. New entries, object steps and drops, committed together (one covariance rewrite;
+		// two with smoothing, which needs the new poses in the state before the drops).
+		TPending plan;
+		planFeatures(plan);  // Alg. 3 (new static landmarks in the sparse path; objects)
+		planObjectPoses(plan);  // Alg. 4
+		if (options.smoothing)
+		{
+			commit(plan);
+			applySmoothing();  // Alg. 6
+		}
+		planDrops(plan);
+		commit(plan);
+		recordFirstEstimates();  // first-estimate Jacobians (optional)
 	}
 	catch (const std::exception& e)
 	{
@@ -338,12 +346,10 @@ void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 	};
 	if (options.sparse_static_update)
 	{
-		// Called between MRPT's prediction and update: update here, hand MRPT only the new
-		// landmarks (da = -1), which it then augments from the updated state, as it would.
+		// Called between MRPT's prediction and update: update here and hand MRPT nothing; the
+		// new landmarks are augmented from the updated state with the step's other new
+		// entries, in one rewrite of the covariance (planFeatures, commit).
 		sparseStaticUpdate();
-		for (size_t i = 0; i < m_static.size(); ++i)
-			if (!m_staticSlot.count(m_static[i].id)) emit(i, -1);
-		m_report.static_new = Z.size();
 		return;
 	}
 	recordPredictedEgo();  // MRPT's path: called after its prediction, before its update

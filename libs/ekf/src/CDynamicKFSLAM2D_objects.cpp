@@ -1,5 +1,7 @@
-/** CDynamicKFSLAM2D: the steps for moving objects (Alg. 3 for object features, Alg. 4, Alg. 6)
- * and the drop policies, all through the dense step functions of dynslam/ekf_steps.h. */
+/** CDynamicKFSLAM2D: the steps that add and drop state entries (Alg. 3 for new static landmarks
+ * and object features, Alg. 4, the drop policies) and Alg. 6. A step plans its augmentations
+ * on the state extended by the pending entries (dynslam/ekf_steps.h, "batched augmentation")
+ * and commits them with its drops in one rewrite of the covariance. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/ekf_steps.h>
 #include <dynslam/landmark_ids.h>
@@ -16,8 +18,8 @@ namespace
 struct TObjectSlots
 {
 	std::map<int32_t, size_t> f0;  ///< feature index -> slot
-	std::vector<size_t> ft;  ///< time-t feature slots of the current step
-	std::vector<size_t> poseA;  ///< pose part-A slots, ascending step
+	std::vector<size_t> ft;        ///< time-t feature slots of the current step
+	std::vector<size_t> poseA;     ///< pose part-A slots, ascending step
 };
 std::map<int32_t, TObjectSlots> indexObjects(const std::vector<TSlot>& slots, int step)
 {
@@ -44,25 +46,34 @@ std::map<int32_t, TObjectSlots> indexObjects(const std::vector<TSlot>& slots, in
 }
 }  // namespace
 
-void CDynamicKFSLAM2D::augmentObjectFeatures()
+void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 {
-	if (m_objectMeas.empty()) return;
+	std::vector<Eigen::Vector2d> z;
+	std::vector<TSlot> slots;
+	// New static landmarks (Alg. 3), unless MRPT's iteration added them (static_update = mrpt).
+	if (options.sparse_static_update)
+		for (const auto& m : m_static)
+		{
+			if (m_staticSlot.count(m.id)) continue;
+			TSlot s;
+			s.kind = SlotKind::StaticLandmark;
+			s.id = m.id;
+			s.step = m_step;
+			z.push_back(m.z);
+			slots.push_back(s);
+			++m_report.static_new;
+		}
 	// Time-t features left from an earlier step (drop_time_t_features = false) are replaced
 	// by this step's for the objects seen now.
 	std::set<int32_t> seenObjects;
 	for (const auto& m : m_objectMeas) seenObjects.insert(ids::objectOf(m.id));
-	std::vector<size_t> stale;
 	for (size_t s = 0; s < m_slots.size(); ++s)
 		if (m_slots[s].kind == SlotKind::ObjectFeatureT && seenObjects.count(m_slots[s].object))
-			stale.push_back(s);
-	if (!stale.empty())
-	{
-		m_report.dropped_time_t += stale.size();
-		removeSlots(stale);
-	}
-
-	std::vector<Eigen::Vector2d> z;
-	std::vector<TSlot> slots;
+		{
+			plan.remove.push_back(s);
+			++m_report.dropped_time_t;
+		}
+	// Object features (Alg. 3): time 0 for new objects, time t for known ones.
 	for (const auto& m : m_objectMeas)
 	{
 		const int32_t obj = ids::objectOf(m.id), k = ids::featureOf(m.id);
@@ -82,7 +93,7 @@ void CDynamicKFSLAM2D::augmentObjectFeatures()
 			++m_report.object_features_new;
 		}
 		else if (std::find(it->second.feature_ids.begin(), it->second.feature_ids.end(), m.id) !=
-				 it->second.feature_ids.end())
+		         it->second.feature_ids.end())
 		{
 			s.kind = SlotKind::ObjectFeatureT;
 			++m_report.object_features_t;
@@ -97,22 +108,30 @@ void CDynamicKFSLAM2D::augmentObjectFeatures()
 		slots.push_back(s);
 	}
 	if (z.empty()) return;
-	const auto P = m_pkk.asEigen();
-	const ekf::Augmentation a = ekf::featureAugmentation(
-		options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]), P.topRows(3), z,
-		options.Sigma_v);
-	appendSlots(a.mean, a.cross, a.cov, slots, false);
+	plan.a = ekf::featureAugmentation(options.measurement_model,
+	                                  Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
+	                                  m_pkk.asEigen().topRows(3), z, options.Sigma_v);
+	plan.slots = std::move(slots);
 }
 
-void CDynamicKFSLAM2D::augmentObjectPoses()
+void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 {
-	const auto index = indexObjects(m_slots, m_step);
-	for (const auto& [obj, os] : index)
+	// Slots and mean of the state extended by the pending features.
+	std::vector<TSlot> ext(m_slots);
+	ext.insert(ext.end(), plan.slots.begin(), plan.slots.end());
+	const Eigen::Index n = m_xkk.size();
+	Eigen::VectorXd x(n + plan.a.mean.size());
+	x << m_xkk.asEigen(), plan.a.mean;
+
+	std::vector<ekf::ObjectPoseLinearization> lins;
+	std::vector<TSlot> slots;
+	std::vector<int> at;  // position of each pose entry among the new entries (pads between)
+	for (const auto& [obj, os] : indexObjects(ext, m_step))
 	{
 		if (os.ft.empty()) continue;
 		const TObjectInfo& info = m_objects.at(obj);
-		const int n = int(info.feature_ids.size()), m = int(os.ft.size());
-		if (n >= 2 && m < 2)
+		const int nf = int(info.feature_ids.size()), m = int(os.ft.size());
+		if (nf >= 2 && m < 2)
 		{
 			++m_report.skipped_pose_degenerate;  // rotation undetermined from one feature
 			continue;
@@ -123,15 +142,12 @@ void CDynamicKFSLAM2D::augmentObjectPoses()
 		for (const size_t s : os.ft)
 		{
 			ft_idx.push_back(int(slotStateIndex(s)));
-			const auto pos =
-				std::find(info.feature_ids.begin(), info.feature_ids.end(), m_slots[s].id);
+			const auto pos = std::find(info.feature_ids.begin(), info.feature_ids.end(), ext[s].id);
 			seen.push_back(int(pos - info.feature_ids.begin()));
 		}
-		ekf::Augmentation a;
 		try
 		{
-			a = ekf::objectPoseAugmentation(
-				m_xkk.asEigen(), m_pkk.asEigen(), f0_idx, ft_idx, seen, options.Sigma_xi);
+			lins.push_back(ekf::linearizeObjectPose(x, f0_idx, ft_idx, seen, options.Sigma_xi));
 		}
 		catch (const std::domain_error& e)
 		{
@@ -144,16 +160,24 @@ void CDynamicKFSLAM2D::augmentObjectPoses()
 		sa.kind = SlotKind::ObjectPoseA;
 		sa.object = obj;
 		sa.step = m_step;
-		std::vector<TSlot> slots{sa};
-		if (a.mean.size() == 3)
+		const int base = 2 * int(slots.size());
+		slots.push_back(sa);
+		at.insert(at.end(), {base, base + 1});
+		if (lins.back().xi.size() == 3)
 		{
 			TSlot sb = sa;
 			sb.kind = SlotKind::ObjectPoseB;
 			slots.push_back(sb);
+			at.push_back(base + 2);  // base + 3 is the pad
 		}
-		appendSlots(a.mean, a.cross, a.cov, slots, a.mean.size() == 3);
 		++m_report.object_poses_added;
 	}
+	if (lins.empty()) return;
+	const ekf::Augmentation poses =
+	    ekf::withPads(ekf::objectPoseAugmentations(m_pkk.asEigen(), plan.a, lins), at,
+	                  Eigen::Index(2 * slots.size()));
+	plan.a = plan.slots.empty() ? poses : ekf::chainAugmentations(plan.a, poses);
+	plan.slots.insert(plan.slots.end(), slots.begin(), slots.end());
 }
 
 void CDynamicKFSLAM2D::applySmoothing()
@@ -172,34 +196,40 @@ void CDynamicKFSLAM2D::applySmoothing()
 		auto x = m_xkk.asEigen();
 		auto P = m_pkk.asEigen();
 		ekf::smoothingUpdate(
-			x, P, int(slotStateIndex(os.poseA[np - 3])), int(slotStateIndex(os.poseA[np - 2])),
-			int(slotStateIndex(os.poseA[np - 1])), options.Sigma_s.topLeftCorner(d, d));
+		    x, P, int(slotStateIndex(os.poseA[np - 3])), int(slotStateIndex(os.poseA[np - 2])),
+		    int(slotStateIndex(os.poseA[np - 1])), options.Sigma_s.topLeftCorner(d, d));
 		++m_report.smoothing_updates;
 	}
 }
 
-void CDynamicKFSLAM2D::applyDropPolicies()
+void CDynamicKFSLAM2D::planDrops(TPending& plan)
 {
-	std::vector<size_t> remove;
+	// Over the slots extended by the pending ones; only existing entries can be old enough to
+	// be recorded (a pending pose is the newest of its object, K >= 1), so marginals come from P.
+	std::vector<TSlot> ext(m_slots);
+	ext.insert(ext.end(), plan.slots.begin(), plan.slots.end());
+	std::vector<size_t>& remove = plan.remove;
 	// Time-t features, once they have served the pose augmentation.
 	if (options.drop_time_t_features)
-		for (size_t s = 0; s < m_slots.size(); ++s)
-			if (m_slots[s].kind == SlotKind::ObjectFeatureT)
+		for (size_t s = 0; s < ext.size(); ++s)
+			if (ext[s].kind == SlotKind::ObjectFeatureT &&
+			    std::find(remove.begin(), remove.end(), s) == remove.end())
 			{
 				remove.push_back(s);
 				++m_report.dropped_time_t;
 			}
 	// Object poses beyond the last K: recorded with their marginal covariance.
-	const auto index = indexObjects(m_slots, m_step);
-	for (const auto& [obj, os] : index)
+	for (const auto& [obj, os] : indexObjects(ext, m_step))
 	{
 		const size_t np = os.poseA.size(), K = size_t(options.keep_last_poses);
 		for (size_t i = 0; np > K && i < np - K; ++i)
 		{
 			const size_t sA = os.poseA[i];
+			if (sA >= m_slots.size())
+				throw std::logic_error("CDynamicKFSLAM2D: a pose added in this step is dropped");
 			const bool rigid = sA + 1 < m_slots.size() &&
-							   m_slots[sA + 1].kind == SlotKind::ObjectPoseB &&
-							   m_slots[sA + 1].object == obj;
+			                   m_slots[sA + 1].kind == SlotKind::ObjectPoseB &&
+			                   m_slots[sA + 1].object == obj;
 			const size_t k = slotStateIndex(sA);
 			std::vector<int> idx{int(k), int(k + 1)};
 			if (rigid) idx.push_back(int(k + 2));
@@ -214,7 +244,7 @@ void CDynamicKFSLAM2D::applyDropPolicies()
 			++m_report.dropped_poses;
 		}
 	}
-	// Static landmarks unseen for too long (optional).
+	// Static landmarks unseen for too long (optional; never one added in this step).
 	if (options.drop_static_after_unseen_steps > 0)
 		for (size_t s = 0; s < m_slots.size(); ++s)
 		{
@@ -233,64 +263,61 @@ void CDynamicKFSLAM2D::applyDropPolicies()
 			remove.push_back(s);
 			++m_report.dropped_static;
 		}
-	if (!remove.empty()) removeSlots(remove);
 }
 
-void CDynamicKFSLAM2D::appendSlots(
-	const Eigen::VectorXd& mean, const Eigen::MatrixXd& cross, const Eigen::MatrixXd& cov,
-	const std::vector<TSlot>& slots, bool lastEntryIsPad)
+void CDynamicKFSLAM2D::commit(TPending& plan)
 {
-	const Eigen::Index n = m_xkk.size(), m0 = mean.size(), m = m0 + (lastEntryIsPad ? 1 : 0);
-	if (m != Eigen::Index(2 * slots.size()) || cross.rows() != m0 || cross.cols() != n ||
-		cov.rows() != m0 || cov.cols() != m0)
-		throw std::logic_error("CDynamicKFSLAM2D::appendSlots: inconsistent block sizes");
-	m_xkk.resize(n + m);
-	m_pkk.setSize(n + m, n + m);  // keeps the old block; new entries are zero
-	auto x = m_xkk.asEigen();
-	auto P = m_pkk.asEigen();
-	x.segment(n, m0) = mean;
-	P.block(n, 0, m0, n) = cross;
-	P.block(0, n, n, m0) = cross.transpose();
-	P.block(n, n, m0, m0) = cov;
-	if (lastEntryIsPad)
+	const Eigen::Index n = m_xkk.size(), m = plan.a.mean.size();
+	if (m == 0 && plan.remove.empty()) return;
+	if (m != Eigen::Index(2 * plan.slots.size()) ||
+	    (m > 0 && (plan.a.cross.rows() != m || plan.a.cross.cols() != n || plan.a.cov.rows() != m ||
+	               plan.a.cov.cols() != m)))
+		throw std::logic_error("CDynamicKFSLAM2D::commit: inconsistent block sizes");
+	if (m == 0)
 	{
-		// The pad: independent, unit variance, zero mean; no model ever touches it.
-		x[n + m0] = 0;
-		P.row(n + m0).setZero();
-		P.col(n + m0).setZero();
-		P(n + m0, n + m0) = 1.0;
+		plan.a.mean.resize(0);
+		plan.a.cross.resize(0, n);
+		plan.a.cov.resize(0, 0);
 	}
-	m_slots.insert(m_slots.end(), slots.begin(), slots.end());
-}
-
-void CDynamicKFSLAM2D::removeSlots(const std::vector<size_t>& slotIdx)
-{
-	if (slotIdx.empty()) return;
-	const int n = int(m_xkk.size());
+	const size_t S = m_slots.size() + plan.slots.size();
+	std::vector<bool> dropSlot(S, false);
 	std::vector<int> rem;
-	std::vector<bool> dropSlot(m_slots.size(), false);
-	for (const size_t s : slotIdx)
+	for (const size_t s : plan.remove)
 	{
-		if (s >= m_slots.size()) throw std::out_of_range("CDynamicKFSLAM2D::removeSlots");
+		if (s >= S) throw std::out_of_range("CDynamicKFSLAM2D::commit: slot index");
 		dropSlot[s] = true;
 		rem.push_back(int(slotStateIndex(s)));
 		rem.push_back(int(slotStateIndex(s)) + 1);
 	}
-	const std::vector<int> keep = ekf::keptIndices(n, rem);
-	const Eigen::VectorXd x = m_xkk.asEigen()(keep);
-	const ekf::RowMatrixXd P = m_pkk.asEigen()(keep, keep);
-	m_xkk.resize(keep.size());
-	m_xkk.asEigen() = x;
-	m_pkk.setSize(keep.size(), keep.size());
-	m_pkk.asEigen() = P;
+	const std::vector<int> keep = ekf::keptIndices(int(n + m), rem);
+	const Eigen::Index N = Eigen::Index(keep.size());
+
+	// The new covariance is written once; the storage is reallocated only if its size changes.
+	m_scratch.resize(size_t(N * N));
+	Eigen::Map<ekf::RowMatrixXd> Pn(m_scratch.data(), N, N);
+	ekf::assembleExtended(m_pkk.asEigen(), plan.a, keep, Pn);
+	Eigen::VectorXd x(n + m);
+	x << m_xkk.asEigen(), plan.a.mean;
+	const Eigen::VectorXd xn = x(keep);
+	m_xkk.resize(size_t(N));
+	m_xkk.asEigen() = xn;
+	if (m_pkk.rows() != N)
+	{
+		KFMatrix fresh(static_cast<size_t>(N), static_cast<size_t>(N));
+		m_pkk.swap(fresh);
+	}
+	m_pkk.asEigen() = Pn;
 
 	std::vector<TSlot> slots;
-	slots.reserve(m_slots.size());
-	for (size_t s = 0; s < m_slots.size(); ++s)
-		if (!dropSlot[s]) slots.push_back(m_slots[s]);
+	slots.reserve(S);
+	for (size_t s = 0; s < S; ++s)
+		if (!dropSlot[s])
+			slots.push_back(s < m_slots.size() ? m_slots[s] : plan.slots[s - m_slots.size()]);
 	m_slots.swap(slots);
 	m_staticSlot.clear();
 	for (size_t s = 0; s < m_slots.size(); ++s)
 		if (m_slots[s].kind == SlotKind::StaticLandmark) m_staticSlot[m_slots[s].id] = s;
+	plan = TPending();
 }
+
 }  // namespace dynslam

@@ -24,19 +24,18 @@ using RowMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 /** New state entries and their covariance with the existing state, to be appended. */
 struct Augmentation
 {
-	Eigen::VectorXd mean;  ///< m new entries
+	Eigen::VectorXd mean;   ///< m new entries
 	Eigen::MatrixXd cross;  ///< m x n: cov(new, existing), existing in state order
-	Eigen::MatrixXd cov;  ///< m x m
+	Eigen::MatrixXd cov;    ///< m x m
 };
 
 /** Alg. 3: augment new point features from measurements z_k (in the model's measurement
  * space) taken at the ego pose x[0..2]:
  *   mean_k = l(x, z_k), cross = L_x P[0:3, :], cov = L_x P_xx L_x^T + L_z R L_z^T (blockwise).
  * @param P_ego_rows the first 3 rows of P (3 x n). */
-Augmentation featureAugmentation(
-	models::MeasurementModel model, const Eigen::Vector3d& ego,
-	const Eigen::Ref<const RowMatrixXd>& P_ego_rows, const std::vector<Eigen::Vector2d>& z,
-	const Eigen::Matrix2d& R);
+Augmentation featureAugmentation(models::MeasurementModel model, const Eigen::Vector3d& ego,
+                                 const Eigen::Ref<const RowMatrixXd>& P_ego_rows,
+                                 const std::vector<Eigen::Vector2d>& z, const Eigen::Matrix2d& R);
 
 /** Alg. 4: augment the pose xi_t of one object from its features at time 0 and time t:
  *   mean = gamma(f0, ft), cross = Gamma1 P[f0, :] + Gamma2 P[ft, :],
@@ -46,35 +45,81 @@ Augmentation featureAugmentation(
  * @param seen seen[i] = which time-0 feature ft_idx[i] is (see models::objectPoseInverse).
  * For n == 1 the pose is translation-only (2 entries); otherwise it has 3 (dx, dy, dtheta).
  * @throws std::domain_error where gamma is undetermined (see objectPoseInverse). */
-Augmentation objectPoseAugmentation(
-	const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const RowMatrixXd>& P,
-	const std::vector<int>& f0_idx, const std::vector<int>& ft_idx, const std::vector<int>& seen,
-	const Eigen::Matrix2d& Sigma_xi);
+Augmentation objectPoseAugmentation(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                    const Eigen::Ref<const RowMatrixXd>& P,
+                                    const std::vector<int>& f0_idx, const std::vector<int>& ft_idx,
+                                    const std::vector<int>& seen, const Eigen::Matrix2d& Sigma_xi);
+
+/** Alg. 4 linearized for one object: xi = gamma(f0, ft), its Jacobian Gamma = [Gamma1 Gamma2]
+ * over the stacked state indices idx = [f0 ; ft] (two per feature), and noise = the fit
+ * residual's covariance mapped to xi, sum_i Gamma2_i Sigma_xi Gamma2_i^T. Arguments and
+ * exceptions as objectPoseAugmentation; x is only read at idx. */
+struct ObjectPoseLinearization
+{
+	Eigen::VectorXd xi;
+	Eigen::MatrixXd Gamma;
+	std::vector<int> idx;
+	Eigen::MatrixXd noise;
+};
+ObjectPoseLinearization linearizeObjectPose(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                            const std::vector<int>& f0_idx,
+                                            const std::vector<int>& ft_idx,
+                                            const std::vector<int>& seen,
+                                            const Eigen::Matrix2d& Sigma_xi);
+
+// --- Batched augmentation -----------------------------------------------------------------
+// A step adds several groups of entries (new features, then object poses computed from them)
+// and drops others. Resizing the covariance once per group costs a full copy each; these
+// functions work on the state (x, P) "extended" by a pending Augmentation a, i.e. on
+//   x_ext = [x; a.mean],  P_ext = [[P, a.cross^T], [a.cross, a.cov]],
+// without forming P_ext, so that the owner resizes once per step.
+
+/** Rows idx of P_ext (|idx| x (n + m)). */
+Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                             const std::vector<int>& idx);
+
+/** Alg. 4 for several objects at once, on the extended state: returns their poses as one
+ * augmentation of the extended state (cross is p x (n + m)). Equal to augmenting the poses one
+ * after the other: cov(xi_a, xi_b) = Gamma_a P_ext[idx_a, idx_b] Gamma_b^T. */
+Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                                     const std::vector<ObjectPoseLinearization>& poses);
+
+/** b augments the state extended by a (b.cross has n + m_a columns): returns the single
+ * augmentation of the original state that adds a's entries, then b's. */
+Augmentation chainAugmentations(const Augmentation& a, const Augmentation& b);
+
+/** Inserts independent pads: entry i of a goes to position at[i] (ascending) of a result with
+ * `size` entries; every other entry is a pad (mean 0, variance 1, uncorrelated). */
+Augmentation withPads(const Augmentation& a, const std::vector<int>& at, Eigen::Index size);
+
+/** P_ext[keep, keep] (keep ascending, in [0, n + m)) written to out, which must have that size. */
+void assembleExtended(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                      const std::vector<int>& keep, Eigen::Ref<RowMatrixXd> out);
 
 /** EKF update by a measurement that depends only on the entries idx of the state (Alg. 5 and
  * Alg. 6 are both of this form):
  *   S = H P[idx,idx] H^T + R, K = P[:,idx] H^T S^-1, x += K nu, P -= K S K^T.
  * H is m x |idx| (the Jacobian's non-zero columns), nu the innovation (m), R m x m.
- * Cost O(n^2 m + n m^2) instead of the dense O(n^3). P stays exactly symmetric.
+ * Cost O(n^2 m + n m^2) instead of the dense O(n^3): with W = P[:,idx] H^T L^-T (S = L L^T),
+ * P -= W W^T as a symmetric rank-m update of one triangle, mirrored to the other, so P stays
+ * exactly symmetric.
  * @return the NIS nu^T S^-1 nu.
  * @throws std::runtime_error if S is not positive definite. */
-double sparseUpdate(
-	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const std::vector<int>& idx,
-	const Eigen::MatrixXd& H, const Eigen::VectorXd& nu, const Eigen::MatrixXd& R);
+double sparseUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
+                    const std::vector<int>& idx, const Eigen::MatrixXd& H,
+                    const Eigen::VectorXd& nu, const Eigen::MatrixXd& R);
 
 /** Alg. 6 for one object: smoothing pseudo-measurement 0 = s(xi_{t-2}, xi_{t-1}, xi_t) + n_s,
  * n_s ~ N(0, Sigma_s), applied by sparseUpdate. Each *_idx is the index of the pose's first
  * entry; the pose occupies d consecutive entries (d = 2 or 3, Sigma_s is d x d).
  * @return the NIS. */
-double smoothingUpdate(
-	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, int xi_tm2_idx, int xi_tm1_idx,
-	int xi_t_idx, const Eigen::MatrixXd& Sigma_s);
+double smoothingUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, int xi_tm2_idx,
+                       int xi_tm1_idx, int xi_t_idx, const Eigen::MatrixXd& Sigma_s);
 
 /** Alg. 7: propagate the ego pose x[0..2] by the odometry increment u (x <- x (+) u) with
  * noise Sigma_u on the increment: P_xx <- F P_xx F^T + G Sigma_u G^T, P_xe <- F P_xe. */
-void propagate(
-	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const Eigen::Vector3d& u,
-	const Eigen::Matrix3d& Sigma_u);
+void propagate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const Eigen::Vector3d& u,
+               const Eigen::Matrix3d& Sigma_u);
 
 /** The indices 0..n-1 that are not in `remove` (any order, duplicates allowed), ascending. */
 std::vector<int> keptIndices(int n, const std::vector<int>& remove);

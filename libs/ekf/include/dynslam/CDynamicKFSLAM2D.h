@@ -11,15 +11,18 @@
  * it and no output shows it. A one-feature object has a translation-only pose (part A only).
  *
  * One step (processActionObservation):
- *  1. MRPT's runOneKalmanIteration(): prediction with the odometry (Alg. 7), update with the
- *     tracked static landmarks (Alg. 5), augmentation of new static landmarks (Alg. 3).
- *  2. Object-feature augmentation (Alg. 3): time-0 features of new objects, time-t features
- *     of known objects.
+ *  1. MRPT's runOneKalmanIteration(): prediction with the odometry (Alg. 7) and update with
+ *     the tracked static landmarks (Alg. 5; with static_update = mrpt MRPT also augments the
+ *     new static landmarks, Alg. 3).
+ *  2. Feature augmentation (Alg. 3): new static landmarks (sparse path), time-0 features of
+ *     new objects, time-t features of known objects.
  *  3. Object-pose augmentation (Alg. 4) with Sigma_xi, for every object seen this step.
- *  4. Drops: time-t features (optional, default on), object poses older than the last K,
+ *  4. Smoothing update (Alg. 6, optional) for objects with poses at t-2, t-1, t.
+ *  5. Drops: time-t features (optional, default on), object poses older than the last K,
  *     static landmarks out of range for too long (optional, default off). Dropped poses and
  *     landmarks are recorded with their last mean and marginal covariance.
- *  5. Smoothing update (Alg. 6, optional) for objects with poses at t-2, t-1, t.
+ * Steps 2, 3 and 5 are planned on the state extended by the pending entries and written to
+ * the covariance in one rewrite per step (two with smoothing), equal to doing them one by one.
  * Every measurement is used once: a new feature's measurement initializes it, only features
  * tracked before this step update the state.
  *
@@ -28,6 +31,7 @@
  * (dynslam/landmark_ids.h). Bad input throws std::runtime_error (nothing is changed) or is
  * skipped and counted, as documented per case in getLastStepReport(). */
 #include <dynslam/ISlamBackend.h>
+#include <dynslam/ekf_steps.h>
 #include <dynslam/models/measurement.h>
 
 #include <mrpt/bayes/CKalmanFilterCapable.h>
@@ -224,16 +228,22 @@ private:
 
 	void validateAndParse(
 		const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF);
-	void augmentObjectFeatures();  // Alg. 3 for objects
-	void augmentObjectPoses();  // Alg. 4
-	void applyDropPolicies();
+	/** What a step adds and drops, before it is written to the state: the new entries as one
+	 * augmentation of the current state (2 entries per new slot, pads included), and the
+	 * slots to remove, indexed in m_slots followed by `slots`. */
+	struct TPending
+	{
+		ekf::Augmentation a;
+		std::vector<TSlot> slots;
+		std::vector<size_t> remove;
+	};
+	void planFeatures(TPending& plan);  // Alg. 3: new static landmarks (sparse path), objects
+	void planObjectPoses(TPending& plan);  // Alg. 4, on the state extended by plan
+	void planDrops(TPending& plan);  // drop policies, recording what they drop
+	/** Writes plan to the state: x, P (one rewrite; reallocated only if the size changes) and
+	 * the slot tables; clears plan. */
+	void commit(TPending& plan);
 	void applySmoothing();  // Alg. 6
-	/** Appends an augmentation (mean, cross, cov), padding as described by `kinds`. */
-	void appendSlots(
-		const Eigen::VectorXd& mean, const Eigen::MatrixXd& cross, const Eigen::MatrixXd& cov,
-		const std::vector<TSlot>& slots, bool lastEntryIsPad);
-	/** Removes the given slots (indices into m_slots), keeping x, P and tables in step. */
-	void removeSlots(const std::vector<size_t>& slotIdx);
 	size_t slotStateIndex(size_t slot) const { return 3 + 2 * slot; }
 
 	// inputs of the current step
@@ -254,6 +264,7 @@ private:
 	int m_step = -1;
 	TStepReport m_report;
 	bool m_failed = false;  ///< a step threw midway: refuse to go on until reset()
+	std::vector<double> m_scratch;  ///< the new covariance of commit(), reused across steps
 
 	// first-estimate Jacobians (options.first_estimate_jacobians)
 	/** Records the ego pose x_{k|k-1} (called after the prediction, before the update). */
