@@ -292,21 +292,21 @@ void CDynamicKFSLAM2D::commit(TPending& plan)
 	const std::vector<int> keep = ekf::keptIndices(int(n + m), rem);
 	const Eigen::Index N = Eigen::Index(keep.size());
 
-	// The new covariance is written once; the storage is reallocated only if its size changes.
-	m_scratch.resize(size_t(N * N));
-	Eigen::Map<ekf::RowMatrixXd> Pn(m_scratch.data(), N, N);
+	// The new covariance is written once, into the spare matrix, which then becomes m_pkk (the
+	// old one becomes the spare): no allocation while the state size stays the same.
+	if (m_pkkSpare.rows() != N)
+	{
+		KFMatrix fresh(static_cast<size_t>(N), static_cast<size_t>(N));
+		m_pkkSpare.swap(fresh);
+	}
+	auto Pn = m_pkkSpare.asEigen();
 	ekf::assembleExtended(m_pkk.asEigen(), plan.a, keep, Pn);
+	m_pkk.swap(m_pkkSpare);
 	Eigen::VectorXd x(n + m);
 	x << m_xkk.asEigen(), plan.a.mean;
 	const Eigen::VectorXd xn = x(keep);
 	m_xkk.resize(size_t(N));
 	m_xkk.asEigen() = xn;
-	if (m_pkk.rows() != N)
-	{
-		KFMatrix fresh(static_cast<size_t>(N), static_cast<size_t>(N));
-		m_pkk.swap(fresh);
-	}
-	m_pkk.asEigen() = Pn;
 
 	std::vector<TSlot> slots;
 	slots.reserve(S);

@@ -212,6 +212,20 @@ protected:
 	void OnNormalizeStateVector() override;
 
 private:
+	// first-estimate Jacobians (options.first_estimate_jacobians)
+	/** Records the ego pose x_{k|k-1} (called after the prediction, before the update). */
+	void recordPredictedEgo();
+	/** Records the mean of static landmarks without a first estimate, forgets the first
+	 * estimates of landmarks no longer in the state (called at the end of every step). */
+	void recordFirstEstimates();
+	/** Replaces J_z_x, J_z_f of static landmark `id` by those at (ego, its first estimate);
+	 * unchanged if it has none. */
+	void firstEstimateJacobians(
+		int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x,
+		Eigen::Matrix2d& J_z_f) const;
+	std::map<int32_t, Eigen::Vector2d> m_firstEstimate;  ///< landmark ID -> first estimate
+	std::optional<Eigen::Vector3d> m_predictedEgo;  ///< x_{k|k-1} of the last step
+
 	/** One parsed measurement of this step, in the model's measurement space. */
 	struct TMeas
 	{
@@ -264,20 +278,6 @@ private:
 	int m_step = -1;
 	TStepReport m_report;
 	bool m_failed = false;  ///< a step threw midway: refuse to go on until reset()
-	std::vector<double> m_scratch;  ///< the new covariance of commit(), reused across steps
-
-	// first-estimate Jacobians (options.first_estimate_jacobians)
-	/** Records the ego pose x_{k|k-1} (called after the prediction, before the update). */
-	void recordPredictedEgo();
-	/** Records the mean of static landmarks without a first estimate, forgets the first
-	 * estimates of landmarks no longer in the state (called at the end of every step). */
-	void recordFirstEstimates();
-	/** Replaces J_z_x, J_z_f of static landmark `id` by those at (ego, its first estimate);
-	 * unchanged if it has none. */
-	void firstEstimateJacobians(
-		int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x,
-		Eigen::Matrix2d& J_z_f) const;
-	std::map<int32_t, Eigen::Vector2d> m_firstEstimate;  ///< landmark ID -> first estimate
-	std::optional<Eigen::Vector3d> m_predictedEgo;  ///< x_{k|k-1} of the last step
+	KFMatrix m_pkkSpare;  ///< commit() writes the new covariance here, then swaps it with m_pkk
 };
 }  // namespace dynslam
