@@ -59,6 +59,8 @@ void CDynamicKFSLAM2D::reset()
 	m_step = -1;
 	m_report = TStepReport();
 	m_failed = false;
+	m_firstEstimate.clear();
+	m_predictedEgo.reset();
 }
 
 void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini, const std::string& section)
@@ -179,6 +181,7 @@ void CDynamicKFSLAM2D::processActionObservation(
 		}
 		planDrops(plan);
 		commit(plan);
+		recordFirstEstimates();  // first-estimate Jacobians (optional)
 	}
 	catch (const std::exception& e)
 	{
@@ -218,9 +221,17 @@ void CDynamicKFSLAM2D::OnTransitionModel(
 void CDynamicKFSLAM2D::OnTransitionJacobian(KFMatrix_VxV& F) const
 {
 	Eigen::Matrix3d J_out_x;
-	models::composePose(
+	const Eigen::Vector3d next = models::composePose(
 		Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
 		Eigen::Vector3d(m_odoIncrement.x(), m_odoIncrement.y(), m_odoIncrement.phi()), &J_out_x);
+	if (options.first_estimate_jacobians && m_predictedEgo)
+	{
+		// FEJ: the heading column from the first estimates of the ego positions,
+		// p_{k+1|k} - p_{k|k-1}, instead of p_{k+1|k} - p_{k|k} = R(theta_{k|k}) u. First step:
+		// no earlier prediction, the standard Jacobian (then p_{k|k} is the prior).
+		J_out_x(0, 2) = -(next[1] - (*m_predictedEgo)[1]);
+		J_out_x(1, 2) = next[0] - (*m_predictedEgo)[0];
+	}
 	F = J_out_x;
 }
 
@@ -295,9 +306,10 @@ void CDynamicKFSLAM2D::OnObservationJacobians(size_t s, KFMatrix_OxV& Hx, KFMatr
 	const size_t k = slotStateIndex(s);
 	models::Matrix23d J_z_x;
 	Eigen::Matrix2d J_z_f;
+	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
 	models::observe(
-		options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
-		Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]), &J_z_x, &J_z_f);
+		options.measurement_model, ego, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]), &J_z_x, &J_z_f);
+	if (options.first_estimate_jacobians) firstEstimateJacobians(m_slots[s].id, ego, J_z_x, J_z_f);
 	Hx = J_z_x;
 	Hy = J_z_f;
 }
@@ -340,6 +352,7 @@ void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 		sparseStaticUpdate();
 		return;
 	}
+	recordPredictedEgo();  // MRPT's path: called after its prediction, before its update
 	const double thr = gateThreshold();
 	std::vector<int> sIdx;  // accepted rows of S
 	std::vector<Eigen::Vector2d> nus;
@@ -384,6 +397,7 @@ void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 
 void CDynamicKFSLAM2D::sparseStaticUpdate()
 {
+	recordPredictedEgo();  // called right after MRPT's prediction
 	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
 	const double thr = gateThreshold();
 	const auto P = m_pkk.asEigen();
@@ -401,6 +415,8 @@ void CDynamicKFSLAM2D::sparseStaticUpdate()
 		const Eigen::Vector2d zhat = models::observe(
 			options.measurement_model, ego, Eigen::Vector2d(m_xkk[si], m_xkk[si + 1]), &J_z_x, &J_z_f);
 		const Eigen::Vector2d nu = models::innovation(options.measurement_model, m_static[i].z, zhat);
+		if (options.first_estimate_jacobians)
+			firstEstimateJacobians(m_static[i].id, ego, J_z_x, J_z_f);  // nu stays at x_hat
 		if (std::isfinite(thr))
 		{
 			const std::vector<int> loc{0, 1, 2, si, si + 1};
@@ -438,6 +454,50 @@ void CDynamicKFSLAM2D::sparseStaticUpdate()
 	m_report.nis_static = ekf::sparseUpdate(x, Pm, idx, H, nu, R);
 	OnNormalizeStateVector();
 }
+
+// ------------------------------------------------------------------------------------------
+// First-estimate Jacobians
+// ------------------------------------------------------------------------------------------
+void CDynamicKFSLAM2D::recordPredictedEgo()
+{
+	if (options.first_estimate_jacobians)
+		m_predictedEgo = Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]);
+}
+
+void CDynamicKFSLAM2D::recordFirstEstimates()
+{
+	if (!options.first_estimate_jacobians) return;
+	// A landmark's first estimate is its mean at the end of the step that initialized it (the
+	// object steps and the smoothing may move it after its augmentation in that step). A
+	// dropped landmark is forgotten: if seen again, it is a new state entry with a new one.
+	std::set<int32_t> inState;
+	for (size_t s = 0; s < m_slots.size(); ++s)
+	{
+		if (m_slots[s].kind != SlotKind::StaticLandmark) continue;
+		inState.insert(m_slots[s].id);
+		const size_t k = slotStateIndex(s);
+		m_firstEstimate.emplace(m_slots[s].id, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
+	}
+	for (auto it = m_firstEstimate.begin(); it != m_firstEstimate.end();)
+		it = inState.count(it->first) ? std::next(it) : m_firstEstimate.erase(it);
+}
+
+void CDynamicKFSLAM2D::firstEstimateJacobians(
+	int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x, Eigen::Matrix2d& J_z_f) const
+{
+	const auto it = m_firstEstimate.find(id);
+	if (it == m_firstEstimate.end()) return;
+	models::observe(options.measurement_model, ego, it->second, &J_z_x, &J_z_f);
+}
+
+std::optional<Eigen::Vector2d> CDynamicKFSLAM2D::firstEstimate(int32_t id) const
+{
+	const auto it = m_firstEstimate.find(id);
+	if (it == m_firstEstimate.end()) return std::nullopt;
+	return it->second;
+}
+
+std::optional<Eigen::Vector3d> CDynamicKFSLAM2D::lastPredictedEgo() const { return m_predictedEgo; }
 
 void CDynamicKFSLAM2D::OnInverseObservationModel(
 	const KFArray_OBS& in_z, KFArray_FEAT& yn, KFMatrix_FxV& dyn_dxv, KFMatrix_FxO& dyn_dhn) const

@@ -43,6 +43,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -121,6 +122,16 @@ public:
 		 * quantile of this probability (2 dof) is not used, and counted
 		 * (TStepReport::gated_out). 0 = no gate (default; MRPT's filter has none). */
 		double innovation_gate = 0;
+		/** First-estimate Jacobians (Huang, Mourikis, Roumeliotis, ICRA/ISER 2008), default
+		 * off. On: the ego propagation Jacobian uses the ego position difference
+		 * p_{k+1|k} - p_{k|k-1} of the predicted (first) estimates instead of R(theta_{k|k}) u,
+		 * and the static-landmark measurement Jacobians (update and innovation gate, both
+		 * update paths) are evaluated at the predicted ego pose and the landmark's first
+		 * estimate (its mean at the end of the step in which it was initialized); the
+		 * innovation still uses the current estimates. Object steps are unchanged. The
+		 * linearized system then keeps the 3-dof unobservable subspace (global translation
+		 * and rotation) of the true one. See doc/results.md. */
+		bool first_estimate_jacobians = false;
 	};
 
 	TOptions options;
@@ -165,6 +176,12 @@ public:
 	/** Full mean / covariance including pads (MRPT's storage). */
 	const KFVector& fullMean() const { return m_xkk; }
 	const KFMatrix& fullCov() const { return m_pkk; }
+	/** First-estimate Jacobians only (empty otherwise): the first estimate of static landmark
+	 * `id`, i.e. its mean at the end of the step in which it was initialized. */
+	std::optional<Eigen::Vector2d> firstEstimate(int32_t id) const;
+	/** First-estimate Jacobians only (empty otherwise): the predicted ego pose x_{k|k-1} of the
+	 * last step, recorded after the prediction and before the update. */
+	std::optional<Eigen::Vector3d> lastPredictedEgo() const;
 
 protected:
 	// --- CKalmanFilterCapable hooks ------------------------------------------------
@@ -195,6 +212,20 @@ protected:
 	void OnNormalizeStateVector() override;
 
 private:
+	// first-estimate Jacobians (options.first_estimate_jacobians)
+	/** Records the ego pose x_{k|k-1} (called after the prediction, before the update). */
+	void recordPredictedEgo();
+	/** Records the mean of static landmarks without a first estimate, forgets the first
+	 * estimates of landmarks no longer in the state (called at the end of every step). */
+	void recordFirstEstimates();
+	/** Replaces J_z_x, J_z_f of static landmark `id` by those at (ego, its first estimate);
+	 * unchanged if it has none. */
+	void firstEstimateJacobians(
+		int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x,
+		Eigen::Matrix2d& J_z_f) const;
+	std::map<int32_t, Eigen::Vector2d> m_firstEstimate;  ///< landmark ID -> first estimate
+	std::optional<Eigen::Vector3d> m_predictedEgo;  ///< x_{k|k-1} of the last step
+
 	/** One parsed measurement of this step, in the model's measurement space. */
 	struct TMeas
 	{
