@@ -229,11 +229,15 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 			const size_t k = slotStateIndex(sA);
 			std::vector<int> idx{int(k), int(k + 1)};
 			if (rigid) idx.push_back(int(k + 2));
-			TObjectPoseEstimate e;
+			TObjectInfo::TPoseRecord e;
 			e.step = m_slots[sA].step;
-			e.mean = m_xkk.asEigen()(idx);
-			e.cov = ekf::marginal(m_pkk.asEigen(), idx);
-			e.in_state = false;
+			e.dim = int(idx.size());
+			const auto P = m_pkk.asEigen();
+			for (int i = 0; i < e.dim; ++i)
+			{
+				e.mean[i] = m_xkk[idx[i]];
+				for (int j = 0; j < e.dim; ++j) e.cov(i, j) = P(idx[i], idx[j]);
+			}
 			m_objects.at(obj).dropped_poses.push_back(e);
 			remove.push_back(sA);
 			if (rigid) remove.push_back(sA + 1);

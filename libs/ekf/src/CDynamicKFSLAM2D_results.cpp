@@ -158,7 +158,16 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 		tr.object = obj;
 		tr.first_step = info.first_step;
 		tr.num_features = int(info.feature_ids.size());
-		tr.poses = info.dropped_poses;
+		tr.poses.reserve(info.dropped_poses.size());
+		for (const auto& r : info.dropped_poses)
+		{
+			TObjectPoseEstimate e;
+			e.step = r.step;
+			e.mean = r.mean.head(r.dim);
+			e.cov = r.cov.topLeftCorner(r.dim, r.dim);
+			e.in_state = false;
+			tr.poses.push_back(e);
+		}
 	}
 	for (size_t s = 0; s < m_slots.size(); ++s)
 	{

@@ -237,7 +237,15 @@ private:
 	{
 		int first_step = -1;
 		std::vector<int32_t> feature_ids;  ///< features seen at time 0, in slot order
-		std::vector<TObjectPoseEstimate> dropped_poses;
+		/** A dropped pose, stored without heap members: millions of them in a long run must
+		 * not interleave small allocations with the step's temporaries (heap fragmentation). */
+		struct TPoseRecord
+		{
+			int step = -1, dim = 0;  ///< dim 3 (dx, dy, dtheta) or 2 (dx, dy)
+			Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+			Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+		};
+		std::vector<TPoseRecord> dropped_poses;
 	};
 
 	void validateAndParse(
