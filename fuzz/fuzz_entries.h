@@ -24,8 +24,9 @@ struct TOutcome
 	/** The bytes crash MRPT's own deserializer (checked in a forked child, nothing else run).
 	 * Known MRPT 2.5.8 issue, see doc/robustness.md; not a finding in dynslam's code. */
 	bool mrpt_deserializer_crash = false;
-	/** MRPT's deserializer asks for more than kChildExtraBytes (a corrupt length field);
-	 * skipped so the test cannot exhaust the machine's memory. */
+	/** MRPT's deserializer asks for more than kChildExtraBytes (8x that under ASan) or runs
+	 * for more than 20 s (a corrupt length or count field); skipped so the test cannot exhaust
+	 * the machine's memory. */
 	bool too_large = false;
 };
 
@@ -37,7 +38,8 @@ constexpr unsigned long kChildExtraBytes = 64ul << 20;  ///< 64 MB beyond what i
  * Run it in a child process: it may crash inside MRPT. */
 int mrptParseOnly(const uint8_t* data, size_t size);
 /** mrptParseOnly in a forked child (default signal handlers, address space capped unless
- * under ASan): kParseOk, kParseTooLarge, or kParseCrash if the child died. */
+ * under ASan; the parent kills it when its resident set or run time gets too large):
+ * kParseOk, kParseTooLarge, or kParseCrash if the child died. */
 int mrptParseInChild(const uint8_t* data, size_t size);
 
 /** Bytes = an uncompressed MRPT rawlog stream (format #1). Inputs that crash MRPT's own

@@ -95,6 +95,7 @@ TEST(FuzzReplay, RawlogMutations)
 		tooLarge += r.too_large;
 		withSteps += r.steps > 0;
 		rejected += r.rejected_steps;
+		EXPECT_EQ(r.unexpected_exceptions, 0) << "input " << i;
 	}
 	std::cout << "rawlog mutations: " << N << " inputs, " << parseErrors
 	          << " deserialization errors, " << withSteps << " ran filter steps, " << rejected
@@ -128,6 +129,7 @@ TEST(FuzzReplay, IniSeedsAcceptedAndMutations)
 		ASSERT_NO_THROW(r = dynslam_fuzz::iniBytes(in.data(), in.size())) << "input " << i;
 		accepted += r.accepted;
 		stepped += r.steps > 0;
+		EXPECT_EQ(r.unexpected_exceptions, 0) << "input " << i;
 	}
 	std::cout << "INI mutations: " << N << " inputs, " << accepted << " accepted, " << stepped
 	          << " ran filter steps\n";
@@ -148,4 +150,55 @@ TEST(FuzzReplay, IniPreprocessorErrorsAreCaught)
 		    << s;
 		EXPECT_FALSE(r.accepted) << s;
 	}
+}
+
+TEST(FuzzReplay, ExtremeNoiseFailsAsDocumented)
+{
+	// Found by libFuzzer: options that pass validate() but make the innovation covariance
+	// numerically not positive definite. The step must fail with the documented
+	// std::runtime_error (not MRPT's wrapper type), and every later step must be refused too.
+	const std::string ini = R"([DynamicKFSLAM]
+measurement_model = cartesian
+Sigma_v = [1e65 1e-5]
+motion_noise = config
+Sigma_w = [1e-5 1e-5 1e-7]
+Sigma_0 = [1e-6 1e-6 1e-8]
+Sigma_xi = [0.1 0.1]
+smoothing = false
+keep_last_poses = 1
+[DynamicKFSLAM_KalmanFilter]
+method = kfEKFAlaDavison
+)";
+	const TOutcome r =
+	    dynslam_fuzz::iniBytes(reinterpret_cast<const uint8_t*>(ini.data()), ini.size());
+	ASSERT_TRUE(r.accepted);
+	EXPECT_EQ(r.unexpected_exceptions, 0);
+	EXPECT_GE(r.rejected_steps, 1);
+	EXPECT_EQ(r.steps + r.rejected_steps, 4);
+}
+
+TEST(FuzzReplay, NumericKalmanMethodOutOfRangeIsRejected)
+{
+	// Found by libFuzzer (UBSan, "method = 5kfEKFAlaDavison"): MRPT's read_enum turns a value
+	// that starts with a digit into static_cast<TKFMethod>(atoi(value)) without a range check,
+	// so 5 (TKFMethod's range is 0..3) is undefined behaviour as soon as it is loaded. Every
+	// such value must be rejected with an exception; under -DDYNSLAM_SANITIZE=ON an
+	// out-of-range load fails this test with a UBSan report.
+	const std::string seed = dynslam_fuzz::iniSeeds().at(1);  // method = kfEKFAlaDavison
+	const std::string key = "method = kfEKFAlaDavison";
+	const size_t at = seed.find(key);
+	ASSERT_NE(at, std::string::npos);
+	auto run = [&](const std::string& method)
+	{
+		const std::string ini =
+		    seed.substr(0, at) + "method = " + method + seed.substr(at + key.size());
+		TOutcome r;
+		EXPECT_NO_THROW(
+		    r = dynslam_fuzz::iniBytes(reinterpret_cast<const uint8_t*>(ini.data()), ini.size()))
+		    << method;
+		return r.accepted;
+	};
+	EXPECT_TRUE(run("kfEKFAlaDavison"));
+	for (const std::string method : {"5kfEKFAlaDavison", "5", "2", "3", "kfIKF", "x"})
+		EXPECT_FALSE(run(method)) << method;
 }
