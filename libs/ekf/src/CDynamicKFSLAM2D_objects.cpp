@@ -238,7 +238,7 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 				e.mean[i] = m_xkk[idx[i]];
 				for (int j = 0; j < e.dim; ++j) e.cov(i, j) = P(idx[i], idx[j]);
 			}
-			m_objects.at(obj).dropped_poses.push_back(e);
+			if (options.record_dropped) m_objects.at(obj).dropped_poses.push_back(e);
 			remove.push_back(sA);
 			if (rigid) remove.push_back(sA + 1);
 			++m_report.dropped_poses;
@@ -259,7 +259,8 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 			e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
 			e.cov = ekf::marginal(m_pkk.asEigen(), {int(k), int(k + 1)});
 			e.in_state = false;
-			m_droppedStatic.push_back(e);
+			if (options.record_dropped) m_droppedStatic.push_back(e);
+			m_staticLastSeen.erase(t.id);  // only landmarks in the state are tracked
 			remove.push_back(s);
 			++m_report.dropped_static;
 		}

@@ -21,7 +21,7 @@ void CDynamicKFSLAM2D::TOptions::loadFromConfigFile(
 		{"measurement_model", "Sigma_v", "motion_noise", "Sigma_w", "initial_pose", "Sigma_0",
 		 "Sigma_xi", "smoothing", "Sigma_s", "drop_time_t_features", "keep_last_poses",
 		 "drop_static_after_unseen_steps", "skip_prediction_on_empty_map", "static_update",
-		 "innovation_gate", "first_estimate_jacobians"});
+		 "innovation_gate", "first_estimate_jacobians", "record_dropped"});
 	measurement_model = readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 							? models::MeasurementModel::Cartesian
 							: models::MeasurementModel::RangeBearing;
@@ -43,6 +43,7 @@ void CDynamicKFSLAM2D::TOptions::loadFromConfigFile(
 		readChoice(c, s, "static_update", {"mrpt", "sparse"}, sparse_static_update ? 1 : 0) == 1;
 	innovation_gate = readNonNegative(c, s, "innovation_gate", innovation_gate);
 	first_estimate_jacobians = readBool(c, s, "first_estimate_jacobians", first_estimate_jacobians);
+	record_dropped = readBool(c, s, "record_dropped", record_dropped);
 	try
 	{
 		validate();
@@ -96,6 +97,7 @@ void CDynamicKFSLAM2D::TOptions::dumpToTextStream(std::ostream& out) const
 	out << "innovation_gate                = " << innovation_gate << "\n";
 	out << "first_estimate_jacobians       = " << (first_estimate_jacobians ? "true" : "false")
 		<< "\n";
+	out << "record_dropped                 = " << (record_dropped ? "true" : "false") << "\n";
 }
 
 // ------------------------------------------------------------------------------------------

@@ -122,6 +122,10 @@ public:
 		 * quantile of this probability (2 dof) is not used, and counted
 		 * (TStepReport::gated_out). 0 = no gate (default; MRPT's filter has none). */
 		double innovation_gate = 0;
+		/** record_dropped: keep the last estimate of every dropped object pose and static
+		 * landmark (getObjectTracks, getStaticLandmarks(true)); default true. false: dropped
+		 * entries are forgotten, so memory stays bounded in endless runs. */
+		bool record_dropped = true;
 		/** First-estimate Jacobians (Huang, Mourikis, Roumeliotis, ICRA/ISER 2008), default
 		 * off. On: the ego propagation Jacobian uses the ego position difference
 		 * p_{k+1|k} - p_{k|k-1} of the predicted (first) estimates instead of R(theta_{k|k}) u,
