@@ -8,6 +8,7 @@
 
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/system/string_utils.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -66,13 +67,17 @@ void CDynamicKFSLAM2D::reset()
 void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini, const std::string& section)
 {
 	options.loadFromConfigFile(ini, section);
-	KF_options.loadFromConfigFile(ini, section + "_KalmanFilter");
-	if (KF_options.method != mrpt::bayes::kfEKFNaive &&
-		KF_options.method != mrpt::bayes::kfEKFAlaDavison)
+	// Check `method` before MRPT parses it: MRPT's read_enum casts any value that starts with a
+	// digit to TKFMethod without a range check (undefined behaviour for e.g. "5"; found by
+	// fuzzing under UBSan).
+	const std::string kf = section + "_KalmanFilter";
+	const std::string method = mrpt::system::trim(ini.read_string(kf, "method", "kfEKFNaive"));
+	if (method != "kfEKFNaive" && method != "kfEKFAlaDavison" && method != "0" && method != "1")
 		throw std::invalid_argument(
-			"[" + section +
-			"_KalmanFilter] method: only kfEKFNaive and kfEKFAlaDavison are supported (MRPT's "
-			"kfIKF is not implemented and kfIKFFull does not re-linearise)");
+			"[" + kf + "] method = " + method +
+			": only kfEKFNaive and kfEKFAlaDavison are supported (MRPT's kfIKF is not "
+			"implemented and kfIKFFull does not re-linearise)");
+	KF_options.loadFromConfigFile(ini, kf);
 	reset();
 }
 
