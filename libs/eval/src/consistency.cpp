@@ -2,6 +2,7 @@
 
 #include <dynslam/models/se2.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,12 @@ std::optional<double> mahalanobis2(const Eigen::VectorXd& e, const Eigen::Matrix
 	if (P.rows() != e.size() || P.cols() != e.size() || e.size() == 0) return std::nullopt;
 	if (!P.allFinite() || !e.allFinite()) return std::nullopt;
 	const Eigen::MatrixXd S = 0.5 * (P + P.transpose());
+	// Fast path (Cholesky, ~20x cheaper than the eigen-decomposition for the 160-dof joint
+	// map): taken only when S is clearly well conditioned (estimated reciprocal condition
+	// number > 1e-8, four orders above the 1e-12 cut); otherwise the eigenvalues decide.
+	const Eigen::LLT<Eigen::MatrixXd> llt(S);
+	if (llt.info() == Eigen::Success && llt.rcond() > 1e-8)
+		return llt.matrixL().solve(e).squaredNorm();
 	const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(S);
 	if (es.info() != Eigen::Success) return std::nullopt;
 	const Eigen::VectorXd& lambda = es.eigenvalues();  // ascending

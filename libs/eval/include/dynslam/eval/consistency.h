@@ -7,7 +7,9 @@
  * NEES of a block: eps = e^T P^-1 e, e = est - truth (angle wrapped), P the block's marginal
  * covariance. A block whose P is not positive definite (non-finite, or smallest eigenvalue
  * <= 1e-12 times the largest, e.g. the exactly known initial pose) is skipped and counted in
- * skipped_singular; no pseudo-inverse is used, so every kept sample has its full dof. */
+ * skipped_singular; no pseudo-inverse is used, so every kept sample has its full dof. (A
+ * Cholesky factor whose estimated reciprocal condition number exceeds 1e-8 is used directly;
+ * only less well conditioned blocks go through the eigenvalues.) */
 #include <dynslam/eval/chi2.h>
 #include <dynslam/eval/estimates.h>
 #include <dynslam/ground_truth.h>
