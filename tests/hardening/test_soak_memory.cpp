@@ -5,21 +5,16 @@
  * Soak.* (bench/synthetic_world.h). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
-#include <malloc.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include "alloc_stats.h"
 #include "synthetic_world.h"
 
 using namespace dynslam;
 
 namespace
 {
-/** Bytes allocated through malloc: in use in the heap plus mmapped blocks. */
-long allocatedBytes()
-{
-	const struct mallinfo2 m = mallinfo2();
-	return long(m.uordblks + m.hblkhd);
-}
+using dynslam_test::allocatedBytes;
 
 struct TMemoryRun
 {
