@@ -157,18 +157,12 @@ TEST(FuzzReplay, ExtremeNoiseFailsAsDocumented)
 	// Found by libFuzzer: options that pass validate() but make the innovation covariance
 	// numerically not positive definite. The step must fail with the documented
 	// std::runtime_error (not MRPT's wrapper type), and every later step must be refused too.
-	const std::string ini = R"([DynamicKFSLAM]
-measurement_model = cartesian
-Sigma_v = [1e65 1e-5]
-motion_noise = config
-Sigma_w = [1e-5 1e-5 1e-7]
-Sigma_0 = [1e-6 1e-6 1e-8]
-Sigma_xi = [0.1 0.1]
-smoothing = false
-keep_last_poses = 1
-[DynamicKFSLAM_KalmanFilter]
-method = kfEKFAlaDavison
-)";
+	// The Cartesian seed with Sigma_v's first entry set to 1e65.
+	std::string ini = dynslam_fuzz::iniSeeds().at(1);
+	const std::string key = "Sigma_v = [1e-5 1e-5]";
+	const size_t at = ini.find(key);
+	ASSERT_NE(at, std::string::npos);
+	ini.replace(at, key.size(), "Sigma_v = [1e65 1e-5]");
 	const TOutcome r =
 	    dynslam_fuzz::iniBytes(reinterpret_cast<const uint8_t*>(ini.data()), ini.size());
 	ASSERT_TRUE(r.accepted);

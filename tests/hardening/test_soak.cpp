@@ -14,7 +14,7 @@
 #include <iostream>
 
 #include "alloc_stats.h"
-#include "synthetic_world.h"
+#include "straight_track.h"
 
 using namespace dynslam;
 
@@ -38,22 +38,12 @@ int soakSteps()
 TEST(Soak, LongRunStaysSymmetricPsdAndBounded)
 {
 	const int steps = soakSteps();
-	dynslam_bench::TSyntheticOptions o;
-	o.track = dynslam_bench::TSyntheticOptions::Track::Straight;
-	o.spacing = 10;
-	o.step_length = 5;
-	o.objects = 3;
-	o.seed = 7;
+	const dynslam_bench::TSyntheticOptions o = dynslam_test::straightTrack(7);
 	dynslam_bench::CSyntheticWorld world(o);
 	CDynamicKFSLAM2D f;
-	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	f.options.measurement_model = models::MeasurementModel::Cartesian;
-	f.options.Sigma_v = o.Sigma_v;
-	f.options.Sigma_0 = o.Sigma_w;
+	dynslam_test::configureForStraightTrack(f, o);
 	f.options.smoothing = true;
 	f.options.keep_last_poses = 3;
-	f.options.drop_static_after_unseen_steps = 5;
-	f.options.sparse_static_update = true;
 	f.reset();
 
 	long rssAt1000 = -1, rssEnd = -1, heapAt1000 = -1;

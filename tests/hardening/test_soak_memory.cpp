@@ -8,7 +8,7 @@
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include "alloc_stats.h"
-#include "synthetic_world.h"
+#include "straight_track.h"
 
 using namespace dynslam;
 
@@ -24,20 +24,11 @@ struct TMemoryRun
 
 TMemoryRun runStraight(bool recordDropped, int steps, int from)
 {
-	dynslam_bench::TSyntheticOptions o;
-	o.track = dynslam_bench::TSyntheticOptions::Track::Straight;
-	o.spacing = 10;
-	o.step_length = 5;
-	o.objects = 3;
-	o.seed = 11;
+	const dynslam_bench::TSyntheticOptions o = dynslam_test::straightTrack(11);
 	dynslam_bench::CSyntheticWorld world(o);
 	CDynamicKFSLAM2D f;
-	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	f.options.measurement_model = models::MeasurementModel::Cartesian;
-	f.options.Sigma_v = o.Sigma_v;
-	f.options.Sigma_0 = o.Sigma_w;
+	dynslam_test::configureForStraightTrack(f, o);
 	f.options.keep_last_poses = 1;
-	f.options.drop_static_after_unseen_steps = 5;
 	f.options.record_dropped = recordDropped;
 	f.reset();
 	TMemoryRun r;

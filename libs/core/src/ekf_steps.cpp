@@ -100,14 +100,11 @@ Augmentation objectPoseAugmentation(const Eigen::Ref<const Eigen::VectorXd>& x,
 {
 	if (P.rows() != x.size() || P.cols() != x.size())
 		throw std::invalid_argument("objectPoseAugmentation: P does not match x");
+	// The batched form for one object, on the state extended by nothing.
 	const ObjectPoseLinearization lin = linearizeObjectPose(x, f0_idx, ft_idx, seen, Sigma_xi);
-	Augmentation a;
-	a.mean = lin.xi;
-	a.cross.noalias() = lin.Gamma * P(lin.idx, Eigen::all);
-	a.cov.noalias() = lin.Gamma * P(lin.idx, lin.idx) * lin.Gamma.transpose();
-	a.cov += lin.noise;
-	a.cov = 0.5 * (a.cov + a.cov.transpose()).eval();
-	return a;
+	Augmentation none;
+	none.cross.resize(0, x.size());
+	return objectPoseAugmentations(P, none, {lin}, {0}, lin.xi.size());
 }
 
 Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,

@@ -46,6 +46,15 @@ std::map<int32_t, TObjectSlots> indexObjects(const std::vector<TSlot>& slots, in
 }
 }  // namespace
 
+std::vector<TSlot> CDynamicKFSLAM2D::extendedSlots(const TPending& plan) const
+{
+	std::vector<TSlot> ext;
+	ext.reserve(m_slots.size() + plan.slots.size());
+	ext.insert(ext.end(), m_slots.begin(), m_slots.end());
+	ext.insert(ext.end(), plan.slots.begin(), plan.slots.end());
+	return ext;
+}
+
 void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 {
 	std::vector<Eigen::Vector2d> z;
@@ -117,8 +126,7 @@ void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 {
 	// Slots and mean of the state extended by the pending features.
-	std::vector<TSlot> ext(m_slots);
-	ext.insert(ext.end(), plan.slots.begin(), plan.slots.end());
+	const std::vector<TSlot> ext = extendedSlots(plan);
 	const Eigen::Index n = m_xkk.size();
 	Eigen::VectorXd x(n + plan.a.mean.size());
 	x << m_xkk.asEigen(), plan.a.mean;
@@ -202,18 +210,21 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 {
 	// Over the slots extended by the pending ones; only existing entries can be old enough to
 	// be recorded (a pending pose is the newest of its object, K >= 1), so marginals come from P.
-	std::vector<TSlot> ext(m_slots);
-	ext.insert(ext.end(), plan.slots.begin(), plan.slots.end());
+	const std::vector<TSlot> ext = extendedSlots(plan);
 	std::vector<size_t>& remove = plan.remove;
-	// Time-t features, once they have served the pose augmentation.
+	// Time-t features, once they have served the pose augmentation (stale ones from earlier
+	// steps may already be listed by planFeatures).
 	if (options.drop_time_t_features)
+	{
+		std::vector<bool> listed(ext.size(), false);
+		for (const size_t s : remove) listed[s] = true;
 		for (size_t s = 0; s < ext.size(); ++s)
-			if (ext[s].kind == SlotKind::ObjectFeatureT &&
-			    std::find(remove.begin(), remove.end(), s) == remove.end())
+			if (ext[s].kind == SlotKind::ObjectFeatureT && !listed[s])
 			{
 				remove.push_back(s);
 				++m_report.dropped_time_t;
 			}
+	}
 	// Object poses beyond the last K: recorded with their marginal covariance.
 	for (const auto& [obj, os] : indexObjects(ext, m_step))
 	{

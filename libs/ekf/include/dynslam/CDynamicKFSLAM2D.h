@@ -264,6 +264,8 @@ private:
 		std::vector<TSlot> slots;
 		std::vector<size_t> remove;
 	};
+	/** m_slots followed by plan.slots: the slots of the state extended by the plan. */
+	std::vector<TSlot> extendedSlots(const TPending& plan) const;
 	void planFeatures(TPending& plan);  // Alg. 3: new static landmarks (sparse path), objects
 	void planObjectPoses(TPending& plan);  // Alg. 4, on the state extended by plan
 	void planDrops(TPending& plan);  // drop policies, recording what they drop
