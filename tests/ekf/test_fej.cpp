@@ -32,7 +32,8 @@ std::string withKeys(const std::string& extra)
 	return std::string(kIni) + extra + "\n[DynamicKFSLAM_KalmanFilter]\nmethod = kfEKFNaive\n";
 }
 
-/** Records the Jacobians MRPT's iteration asks for (static_update = mrpt calls both hooks). */
+/** Records the observation Jacobians MRPT's iteration asks for (static_update = mrpt); the
+ * transition Jacobian of the prediction (ekf::propagate) is lastTransitionJacobian(). */
 class CRecordingFilter : public CDynamicKFSLAM2D
 {
 public:
@@ -42,20 +43,10 @@ public:
 		Eigen::Vector3d ego;            ///< ego mean when the Jacobian was asked for
 		Eigen::Matrix<double, 2, 5> H;  ///< [Hx Hy]
 	};
-	mutable std::vector<Eigen::Matrix3d> F;  ///< this step's transition Jacobians
-	mutable std::vector<TH> H;               ///< this step's observation Jacobians
-	void clearRecords()
-	{
-		F.clear();
-		H.clear();
-	}
+	mutable std::vector<TH> H;  ///< this step's observation Jacobians
+	void clearRecords() { H.clear(); }
 
 protected:
-	void OnTransitionJacobian(KFMatrix_VxV& out_F) const override
-	{
-		CDynamicKFSLAM2D::OnTransitionJacobian(out_F);
-		F.push_back(out_F.asEigen());
-	}
 	void OnObservationJacobians(size_t s, KFMatrix_OxV& Hx, KFMatrix_OxF& Hy) const override
 	{
 		CDynamicKFSLAM2D::OnObservationJacobians(s, Hx, Hy);
@@ -162,13 +153,14 @@ TEST(Fej, JacobiansAreModelDerivativesAtFirstEstimates)
 			ASSERT_TRUE(f.lastPredictedEgo().has_value());
 			const Eigen::Vector3d pred = *f.lastPredictedEgo();
 			// Transition: heading column from the predicted positions p_{k|k-1} - p_{k-1|k-2}.
-			ASSERT_EQ(f.F.size(), 1u);
+			ASSERT_TRUE(f.lastTransitionJacobian().has_value());
+			const Eigen::Matrix3d F = *f.lastTransitionJacobian();
 			if (prevPred)
 			{
 				Eigen::Matrix3d Fexp = Eigen::Matrix3d::Identity();
 				Fexp(0, 2) = -(pred[1] - (*prevPred)[1]);
 				Fexp(1, 2) = pred[0] - (*prevPred)[0];
-				EXPECT_LT((f.F[0] - Fexp).cwiseAbs().maxCoeff(), 1e-12) << "step " << k;
+				EXPECT_LT((F - Fexp).cwiseAbs().maxCoeff(), 1e-12) << "step " << k;
 				// The standard column, from p_{k|k-1} - p_{k-1|k-1}, differs by the last update.
 				if ((prevPred->head<2>() - xPrev.head<2>()).norm() > 1e-6) ++nFdiffer;
 			}
@@ -270,9 +262,9 @@ TEST(Fej, KeepsTheThreeDofUnobservableSubspace)
 			{
 				f.clearRecords();
 				f.processActionObservation(sc.actions[k], sc.frames[k]);
-				ASSERT_EQ(f.F.size(), 1u);
+				ASSERT_TRUE(f.lastTransitionJacobian().has_value());
 				ASSERT_EQ(int(f.fullMean().size()), n);
-				Phi.topRows<3>() = f.F[0] * Phi.topRows<3>();
+				Phi.topRows<3>() = *f.lastTransitionJacobian() * Phi.topRows<3>();
 				ASSERT_EQ(int(f.H.size()), o.landmarks);
 				for (const auto& h : f.H)
 				{

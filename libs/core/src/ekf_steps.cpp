@@ -266,32 +266,58 @@ double sparseUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
 	return v.squaredNorm();
 }
 
+double pseudoMeasurementUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
+                               const std::vector<int>& base, int d, const PoseResidualFn& residual,
+                               const Eigen::MatrixXd& R)
+{
+	if (d != 2 && d != 3) throw std::invalid_argument("pseudoMeasurementUpdate: d must be 2 or 3");
+	checkIndices("pseudoMeasurementUpdate", base, x.size(), d);
+	std::vector<Eigen::VectorXd> values;
+	std::vector<int> idx;
+	for (const int b : base)
+	{
+		values.push_back(x.segment(b, d));
+		for (int i = 0; i < d; ++i) idx.push_back(b + i);
+	}
+	std::vector<Eigen::MatrixXd> J;
+	const Eigen::VectorXd r = residual(values, &J);
+	if (J.size() != base.size())
+		throw std::invalid_argument("pseudoMeasurementUpdate: one Jacobian per pose needed");
+	Eigen::MatrixXd H(r.size(), Eigen::Index(idx.size()));
+	for (size_t i = 0; i < J.size(); ++i) H.middleCols(Eigen::Index(i) * d, d) = J[i];
+	const double nis = sparseUpdate(x, P, idx, H, -r, R);
+	if (d == 3)
+		for (const int b : base) x[b + 2] = models::wrapToPi(x[b + 2]);
+	return nis;
+}
+
 double smoothingUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, int a, int b,
                        int c, const Eigen::MatrixXd& Sigma_s)
 {
 	const int d = int(Sigma_s.rows());
 	if ((d != 2 && d != 3) || Sigma_s.cols() != d)
 		throw std::invalid_argument("smoothingUpdate: Sigma_s must be 2x2 or 3x3");
-	checkIndices("smoothingUpdate", {a, b, c}, x.size(), d);
-	Eigen::MatrixXd Ja, Jb, Jc;
-	const Eigen::VectorXd s =
-	    models::smoothingResidual(x.segment(a, d), x.segment(b, d), x.segment(c, d), &Ja, &Jb, &Jc);
-	std::vector<int> idx;
-	for (int base : {a, b, c})
-		for (int i = 0; i < d; ++i) idx.push_back(base + i);
-	Eigen::MatrixXd H(d, 3 * d);
-	H << Ja, Jb, Jc;
-	const double nis = sparseUpdate(x, P, idx, H, -s, Sigma_s);
-	if (d == 3)
-		for (int base : {a, b, c}) x[base + 2] = models::wrapToPi(x[base + 2]);
-	return nis;
+	return pseudoMeasurementUpdate(
+	    x, P, {a, b, c}, d,
+	    [](const std::vector<Eigen::VectorXd>& v, std::vector<Eigen::MatrixXd>* J) {
+		    J->resize(3);
+		    return models::smoothingResidual(v[0], v[1], v[2], &(*J)[0], &(*J)[1], &(*J)[2]);
+	    },
+	    Sigma_s);
 }
 
 void propagate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const Eigen::Vector3d& u,
-               const Eigen::Matrix3d& Sigma_u)
+               const Eigen::Matrix3d& Sigma_u, const Eigen::Vector3d* fej_previous_prediction,
+               Eigen::Matrix3d* J_out_x_used)
 {
 	Eigen::Matrix3d F, G;
 	x.head<3>() = models::composePose(x.head<3>(), u, &F, &G);
+	if (fej_previous_prediction)
+	{
+		F(0, 2) = -(x[1] - (*fej_previous_prediction)[1]);
+		F(1, 2) = x[0] - (*fej_previous_prediction)[0];
+	}
+	if (J_out_x_used) *J_out_x_used = F;
 	const Eigen::Index n = P.rows();
 	const Eigen::Matrix3d Pxx = P.topLeftCorner<3, 3>();
 	P.topLeftCorner<3, 3>() = F * Pxx * F.transpose() + G * Sigma_u * G.transpose();

@@ -17,7 +17,7 @@ namespace
 /** Where each object's slots are, from one scan of the slot table. */
 struct TObjectSlots
 {
-	std::map<int32_t, size_t> f0;  ///< feature index -> slot
+	std::map<int32_t, size_t> f0;  ///< feature ID -> slot
 	std::vector<size_t> ft;        ///< time-t feature slots of the current step
 	std::vector<size_t> poseA;     ///< pose part-A slots, ascending step
 };
@@ -30,7 +30,7 @@ std::map<int32_t, TObjectSlots> indexObjects(const std::vector<TSlot>& slots, in
 		switch (t.kind)
 		{
 			case SlotKind::ObjectFeature0:
-				out[t.object].f0[t.feature] = s;
+				out[t.object].f0[t.id] = s;
 				break;
 			case SlotKind::ObjectFeatureT:
 				if (t.step == step) out[t.object].ft.push_back(s);
@@ -57,63 +57,43 @@ std::vector<TSlot> CDynamicKFSLAM2D::extendedSlots(const TPending& plan) const
 
 void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 {
+	using estimator::Route;
 	std::vector<Eigen::Vector2d> z;
 	std::vector<TSlot> slots;
-	// New static landmarks (Alg. 3), unless MRPT's iteration added them (static_update = mrpt).
-	if (options.sparse_static_update)
-		for (const auto& m : m_static)
-		{
-			if (m_staticSlot.count(m.id)) continue;
-			TSlot s;
-			s.kind = SlotKind::StaticLandmark;
-			s.id = m.id;
-			s.step = m_step;
-			z.push_back(m.z);
-			slots.push_back(s);
-			++m_report.static_new;
-		}
 	// Time-t features left from an earlier step (drop_time_t_features = false) are replaced
 	// by this step's for the objects seen now.
-	std::set<int32_t> seenObjects;
-	for (const auto& m : m_objectMeas) seenObjects.insert(ids::objectOf(m.id));
+	std::set<int32_t> seenObjects;  // objects read now (unknown features included)
+	for (const auto& m : m_routed.readings)
+		if (m.object >= 0) seenObjects.insert(m.object);
 	for (size_t s = 0; s < m_slots.size(); ++s)
 		if (m_slots[s].kind == SlotKind::ObjectFeatureT && seenObjects.count(m_slots[s].object))
 		{
 			plan.remove.push_back(s);
 			++m_report.dropped_time_t;
 		}
-	// Object features (Alg. 3): time 0 for new objects, time t for known ones.
-	for (const auto& m : m_objectMeas)
+	// New static landmarks first, then object features (time 0 of new objects, time t of
+	// known ones), each in observation order (Alg. 3).
+	for (const auto& m : m_routed.with(Route::StaticNew))
 	{
-		const int32_t obj = ids::objectOf(m.id), k = ids::featureOf(m.id);
-		auto it = m_objects.find(obj);
 		TSlot s;
-		s.id = m.id;
-		s.object = obj;
-		s.feature = k;
+		s.kind = SlotKind::StaticLandmark;
+		s.id = m.reading.id;
 		s.step = m_step;
-		if (it == m_objects.end() || it->second.first_step == m_step)
-		{
-			// First sighting (time 0 of this object): the features seen now define it.
-			TObjectInfo& info = m_objects[obj];
-			info.first_step = m_step;
-			info.feature_ids.push_back(m.id);
-			s.kind = SlotKind::ObjectFeature0;
-			++m_report.object_features_new;
-		}
-		else if (std::find(it->second.feature_ids.begin(), it->second.feature_ids.end(), m.id) !=
-		         it->second.feature_ids.end())
-		{
-			s.kind = SlotKind::ObjectFeatureT;
-			++m_report.object_features_t;
-		}
-		else
-		{
-			// Documented skip: a feature not seen at the object's time 0 has no f_0.
-			++m_report.skipped_unknown_object_feature;
-			continue;
-		}
-		z.push_back(m.z);
+		z.push_back(m.reading.z);
+		slots.push_back(s);
+		++m_report.static_new;
+	}
+	for (const auto& m : m_routed.objects())
+	{
+		TSlot s;
+		s.id = m.reading.id;
+		s.object = m.object;
+		s.feature = m.feature;
+		s.step = m_step;
+		const bool first = m.route == Route::ObjectFirstSighting;
+		s.kind = first ? SlotKind::ObjectFeature0 : SlotKind::ObjectFeatureT;
+		++(first ? m_report.object_features_new : m_report.object_features_t);
+		z.push_back(m.reading.z);
 		slots.push_back(s);
 	}
 	if (z.empty()) return;
@@ -137,7 +117,7 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 	for (const auto& [obj, os] : indexObjects(ext, m_step))
 	{
 		if (os.ft.empty()) continue;
-		const TObjectInfo& info = m_objects.at(obj);
+		const estimator::TObjectEntry& info = m_router->registry().at(obj);
 		const int nf = int(info.feature_ids.size()), m = int(os.ft.size());
 		if (nf >= 2 && m < 2)
 		{
@@ -146,7 +126,7 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 		}
 		std::vector<int> f0_idx, ft_idx, seen;
 		for (const int32_t id : info.feature_ids)
-			f0_idx.push_back(int(slotStateIndex(os.f0.at(ids::featureOf(id)))));
+			f0_idx.push_back(int(slotStateIndex(os.f0.at(id))));
 		for (const size_t s : os.ft)
 		{
 			ft_idx.push_back(int(slotStateIndex(s)));
@@ -184,25 +164,30 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 	plan.slots.insert(plan.slots.end(), slots.begin(), slots.end());
 }
 
-void CDynamicKFSLAM2D::applySmoothing()
+void CDynamicKFSLAM2D::applyObjectMotion()
 {
-	if (!options.smoothing) return;
 	const auto index = indexObjects(m_slots, m_step);
 	for (const auto& [obj, os] : index)
 	{
-		const size_t np = os.poseA.size();
-		if (np < 3) continue;
-		const TSlot& c = m_slots[os.poseA[np - 1]];
-		const TSlot& b = m_slots[os.poseA[np - 2]];
-		const TSlot& a = m_slots[os.poseA[np - 3]];
-		if (c.step != m_step || b.step != m_step - 1 || a.step != m_step - 2) continue;
-		const int d = m_objects.at(obj).feature_ids.size() == 1 ? 2 : 3;
-		auto x = m_xkk.asEigen();
-		auto P = m_pkk.asEigen();
-		ekf::smoothingUpdate(
-		    x, P, int(slotStateIndex(os.poseA[np - 3])), int(slotStateIndex(os.poseA[np - 2])),
-		    int(slotStateIndex(os.poseA[np - 1])), options.Sigma_s.topLeftCorner(d, d));
-		++m_report.smoothing_updates;
+		const int d = m_router->registry().at(obj).poseDim();
+		std::vector<int> steps;
+		for (const size_t s : os.poseA) steps.push_back(m_slots[s].step);
+		for (const auto& pm : m_motion->select(obj, m_step, steps, d))
+		{
+			std::vector<int> base;
+			for (const int st : pm.steps)
+			{
+				const auto it = std::find(steps.begin(), steps.end(), st);
+				base.push_back(int(slotStateIndex(os.poseA[size_t(it - steps.begin())])));
+			}
+			auto x = m_xkk.asEigen();
+			auto P = m_pkk.asEigen();
+			ekf::pseudoMeasurementUpdate(
+			    x, P, base, d, [&](const std::vector<Eigen::VectorXd>& v, std::vector<Eigen::MatrixXd>* J) {
+				    return m_motion->residual(pm, v, J);
+			    }, pm.R);
+			++m_report.smoothing_updates;
+		}
 	}
 }
 
@@ -214,7 +199,7 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 	std::vector<size_t>& remove = plan.remove;
 	// Time-t features, once they have served the pose augmentation (stale ones from earlier
 	// steps may already be listed by planFeatures).
-	if (options.drop_time_t_features)
+	if (m_drop.dropTimeT())
 	{
 		std::vector<bool> listed(ext.size(), false);
 		for (const size_t s : remove) listed[s] = true;
@@ -228,8 +213,8 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 	// Object poses beyond the last K: recorded with their marginal covariance.
 	for (const auto& [obj, os] : indexObjects(ext, m_step))
 	{
-		const size_t np = os.poseA.size(), K = size_t(options.keep_last_poses);
-		for (size_t i = 0; np > K && i < np - K; ++i)
+		const size_t nd = m_drop.posesToDrop(os.poseA.size());
+		for (size_t i = 0; i < nd; ++i)
 		{
 			const size_t sA = os.poseA[i];
 			if (sA >= m_slots.size())
@@ -240,7 +225,7 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 			const size_t k = slotStateIndex(sA);
 			std::vector<int> idx{int(k), int(k + 1)};
 			if (rigid) idx.push_back(int(k + 2));
-			TObjectInfo::TPoseRecord e;
+			estimator::TPoseRecord e;
 			e.step = m_slots[sA].step;
 			e.dim = int(idx.size());
 			const auto P = m_pkk.asEigen();
@@ -249,29 +234,26 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 				e.mean[i] = m_xkk[idx[i]];
 				for (int j = 0; j < e.dim; ++j) e.cov(i, j) = P(idx[i], idx[j]);
 			}
-			if (options.record_dropped) m_objects.at(obj).dropped_poses.push_back(e);
+			m_router->registry().recordDroppedPose(obj, e, m_drop.record());
 			remove.push_back(sA);
 			if (rigid) remove.push_back(sA + 1);
 			++m_report.dropped_poses;
 		}
 	}
 	// Static landmarks unseen for too long (optional; never one added in this step).
-	if (options.drop_static_after_unseen_steps > 0)
-		for (size_t s = 0; s < m_slots.size(); ++s)
+	for (size_t s = 0; s < m_slots.size(); ++s)
 		{
 			const TSlot& t = m_slots[s];
-			if (t.kind != SlotKind::StaticLandmark) continue;
-			const auto it = m_staticLastSeen.find(t.id);
-			const int last = it == m_staticLastSeen.end() ? t.step : it->second;
-			if (m_step - last < options.drop_static_after_unseen_steps) continue;
+			if (t.kind != SlotKind::StaticLandmark || !m_drop.staticDue(t.id, m_step, t.step))
+				continue;
 			const size_t k = slotStateIndex(s);
 			TStaticLandmarkEstimate e;
 			e.id = t.id;
 			e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
 			e.cov = ekf::marginal(m_pkk.asEigen(), {int(k), int(k + 1)});
 			e.in_state = false;
-			if (options.record_dropped) m_droppedStatic.push_back(e);
-			m_staticLastSeen.erase(t.id);  // only landmarks in the state are tracked
+			if (m_drop.record()) m_droppedStatic.push_back(e);
+			m_drop.forget(t.id);  // only landmarks in the state are tracked
 			remove.push_back(s);
 			++m_report.dropped_static;
 		}

@@ -1,5 +1,6 @@
 /** CDynamicKFSLAM2D: options (TOptions) and result getters. */
 #include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/backend_results.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/ekf_steps.h>
 
@@ -9,6 +10,21 @@
 
 namespace dynslam
 {
+TParseOptions CDynamicKFSLAM2D::TOptions::parseOptions() const
+{
+	return {measurement_model, motion_noise_from_action};
+}
+
+estimator::TDropOptions CDynamicKFSLAM2D::TOptions::dropOptions() const
+{
+	estimator::TDropOptions d;
+	d.drop_time_t_features = drop_time_t_features;
+	d.keep_last_poses = keep_last_poses;
+	d.drop_static_after_unseen_steps = drop_static_after_unseen_steps;
+	d.record_dropped = record_dropped;
+	return d;
+}
+
 // ------------------------------------------------------------------------------------------
 // Options
 // ------------------------------------------------------------------------------------------
@@ -153,24 +169,7 @@ std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 
 std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 {
-	std::map<int32_t, TObjectTrack> out;
-	for (const auto& [obj, info] : m_objects)
-	{
-		TObjectTrack& tr = out[obj];
-		tr.object = obj;
-		tr.first_step = info.first_step;
-		tr.num_features = int(info.feature_ids.size());
-		tr.poses.reserve(info.dropped_poses.size());
-		for (const auto& r : info.dropped_poses)
-		{
-			TObjectPoseEstimate e;
-			e.step = r.step;
-			e.mean = r.mean.head(r.dim);
-			e.cov = r.cov.topLeftCorner(r.dim, r.dim);
-			e.in_state = false;
-			tr.poses.push_back(e);
-		}
-	}
+	std::map<int32_t, TObjectTrack> out = tracksFromRegistry(m_router->registry());
 	for (size_t s = 0; s < m_slots.size(); ++s)
 	{
 		const TSlot& t = m_slots[s];
@@ -186,10 +185,7 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 		e.in_state = true;
 		out[t.object].poses.push_back(e);
 	}
-	for (auto& [obj, tr] : out)
-		std::stable_sort(tr.poses.begin(), tr.poses.end(), [](const auto& a, const auto& b) {
-			return a.step < b.step;
-		});
+	sortTrackPoses(out);
 	return out;
 }
 

@@ -1,6 +1,7 @@
+#include <dynslam/backend_results.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/framework/object_pose_step.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/step_input.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
 
@@ -25,10 +26,27 @@ void CAlg1Backend::reset()
 	m_cost.addTerm(
 		CPriorTerm::fromCovariance({m_ego}, {3}, m_opts.model.initial_pose, m_opts.model.Sigma_0));
 	m_step = -1;
-	m_lastSeen.clear();
+	if (!m_userRouter) m_router = estimator::makeRouter("ids");
+	m_router->reset();
+	if (!m_userMotion)
+		m_motion = estimator::makeObjectMotionModel(m_opts.model.smoothing, m_opts.model.Sigma_s);
+	m_drop = estimator::CDropPolicy(m_opts.model.dropOptions());
 	m_droppedStatic.clear();
-	m_objects.clear();
 	m_report = TStepReport();
+}
+
+void CAlg1Backend::setRouter(std::unique_ptr<estimator::IMeasurementRouter> r)
+{
+	if (!r) throw std::invalid_argument("CAlg1Backend::setRouter: null");
+	m_router = std::move(r);
+	m_userRouter = true;
+}
+
+void CAlg1Backend::setObjectMotionModel(std::shared_ptr<const estimator::IObjectMotionModel> m)
+{
+	if (!m) throw std::invalid_argument("CAlg1Backend::setObjectMotionModel: null");
+	m_motion = std::move(m);
+	m_userMotion = true;
 }
 
 TGaussNewtonResult CAlg1Backend::gnAndCollapse()
@@ -50,27 +68,31 @@ Eigen::MatrixXd CAlg1Backend::marginalCov(const TVarKey& k) const
 
 bool CAlg1Backend::isTimeT(const TVarKey& k) const
 {
-	return k.kind == VarKind::ObjectFeature && m_objects.count(k.id) &&
-		   m_objects.at(k.id).first_step != k.step;
+	return k.kind == VarKind::ObjectFeature && m_router->registry().isTimeT(k.id, k.step);
 }
 
 void CAlg1Backend::processActionObservation(
 	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
 {
-	const TStepInput in = parseStepInput(action, SF, m_opts.model.measurement_model, "CAlg1Backend");
+	static const std::string who = "CAlg1Backend";
+	const estimator::TStepInput in = parseStepInput(action, SF, m_opts.model.parseOptions(), who);
+	m_router->validate(in.readings, who);
 	++m_step;
 	m_report = TStepReport();
 	m_report.step = m_step;
+	const estimator::TRoutedStep routed = m_router->route(
+		m_step, in.readings, [this](int32_t id) { return m_cost.has(TVarKey::landmark(id)); });
+	m_report.skipped_unknown_object_feature = routed.skipped_unknown_object_feature;
 	propagate(in);  // Alg. 7 / Theorem A.5
-	staticSteps(in);  // Alg. 5 / A.3, then Alg. 3 / A.1
-	objectFeatureAugmentation(in);  // Alg. 3 / A.1 (objects)
-	objectPoseAugmentation(in);  // Alg. 4 / Theorem 4.1
-	smoothing();  // Alg. 6 / Theorem 4.2 (optional)
+	staticSteps(routed);  // Alg. 5 / A.3, then Alg. 3 / A.1
+	objectFeatureAugmentation(routed);  // Alg. 3 / A.1 (objects)
+	objectPoseAugmentation();  // Alg. 4 / Theorem 4.1
+	objectMotion();  // Alg. 6 / Theorem 4.2 (optional)
 	drops();
 }
 
 // Alg. 7 as a marginalization (Theorem A.5).
-void CAlg1Backend::propagate(const TStepInput& in)
+void CAlg1Backend::propagate(const estimator::TStepInput& in)
 {
 	if (m_opts.model.skip_prediction_on_empty_map && m_cost.numVariables() == 1) return;
 	const Eigen::Matrix3d Su = m_opts.model.motion_noise_from_action ? in.U : m_opts.model.Sigma_w;
@@ -107,11 +129,11 @@ void CAlg1Backend::propagate(const TStepInput& in)
 }
 
 // Alg. 5 (tracked landmarks), then Alg. 3 (new ones): GN steps (Theorems A.3, A.1).
-void CAlg1Backend::staticSteps(const TStepInput& in)
+void CAlg1Backend::staticSteps(const estimator::TRoutedStep& in)
 {
 	const auto& mo = m_opts.model;
-	std::vector<TMeasurement> tracked, fresh;
-	for (const auto& m : in.statics) (m_cost.has(TVarKey::landmark(m.id)) ? tracked : fresh).push_back(m);
+	const auto tracked = estimator::readingsOf(in.with(estimator::Route::StaticKnown));
+	const auto fresh = estimator::readingsOf(in.with(estimator::Route::StaticNew));
 	if (!tracked.empty())
 	{
 		for (const auto& m : tracked)
@@ -135,17 +157,19 @@ void CAlg1Backend::staticSteps(const TStepInput& in)
 		gnAndCollapse();
 		m_report.static_new = fresh.size();
 	}
-	for (const auto& m : in.statics) m_lastSeen[m.id] = m_step;
+	for (const auto& m : in.statics()) m_drop.noteSeen(m.reading.id, m_step);
 }
 
 // Alg. 3 for object features (time 0 of new objects, time t of known ones).
-void CAlg1Backend::objectFeatureAugmentation(const TStepInput& in)
+void CAlg1Backend::objectFeatureAugmentation(const estimator::TRoutedStep& in)
 {
 	m_newTimeT.clear();
-	if (in.objects.empty()) return;
 	const auto& mo = m_opts.model;
-	std::set<int32_t> seenObjects;
-	for (const auto& m : in.objects) seenObjects.insert(ids::objectOf(m.id));
+	std::set<int32_t> seenObjects;  // objects read now (unknown features included)
+	for (const auto& m : in.readings)
+		if (m.object >= 0) seenObjects.insert(m.object);
+	if (seenObjects.empty()) return;
+	const auto objects = in.objects();
 	std::vector<TVarKey> stale;
 	for (const auto& k : m_cost.keys())
 		if (isTimeT(k) && seenObjects.count(k.id)) stale.push_back(k);
@@ -155,46 +179,31 @@ void CAlg1Backend::objectFeatureAugmentation(const TStepInput& in)
 		m_cost.marginalize(stale);
 	}
 	const Eigen::Vector3d x = m_cost.value(m_ego);
-	bool any = false;
-	for (const auto& m : in.objects)
+	for (const auto& m : objects)
 	{
-		const int32_t obj = ids::objectOf(m.id), f = ids::featureOf(m.id);
-		auto it = m_objects.find(obj);
-		if (it == m_objects.end() || it->second.first_step == m_step)
-		{
-			TObject& o = m_objects[obj];
-			o.first_step = m_step;
-			o.feature_ids.push_back(m.id);
+		const TVarKey k = TVarKey::objectFeature(m.object, m.feature, m_step);
+		if (m.route == estimator::Route::ObjectFirstSighting)
 			++m_report.object_features_new;
-		}
-		else if (std::find(it->second.feature_ids.begin(), it->second.feature_ids.end(), m.id) !=
-				 it->second.feature_ids.end())
-		{
-			++m_report.object_features_t;
-			m_newTimeT.push_back(TVarKey::objectFeature(obj, f, m_step));
-		}
 		else
 		{
-			++m_report.skipped_unknown_object_feature;
-			continue;
+			++m_report.object_features_t;
+			m_newTimeT.push_back(k);
 		}
-		const TVarKey k = TVarKey::objectFeature(obj, f, m_step);
-		m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.z));
-		m_cost.addTerm(
-			std::make_shared<CMeasurementTerm>(m_ego.step, k, m.z, mo.measurement_model, mo.Sigma_v));
-		any = true;
+		m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.reading.z));
+		m_cost.addTerm(std::make_shared<CMeasurementTerm>(
+			m_ego.step, k, m.reading.z, mo.measurement_model, mo.Sigma_v));
 	}
-	if (any) gnAndCollapse();
+	if (!objects.empty()) gnAndCollapse();
 }
 
 // Alg. 4 per object as a GN step (Theorem 4.1).
-void CAlg1Backend::objectPoseAugmentation(const TStepInput&)
+void CAlg1Backend::objectPoseAugmentation()
 {
-	for (const auto& [obj, o] : m_objects)
+	for (const auto& [obj, o] : m_router->registry().objects())
 	{
 		TObjectPoseKeys k;
 		const PoseStep r = addObjectPose(
-			m_cost, obj, o.first_step, o.feature_ids, m_newTimeT, m_step,
+			m_cost, obj, o.first_step, o.feature_index, m_newTimeT, m_step,
 			m_opts.pose_residual == PoseResidual::PoseSpace, m_opts.model.Sigma_xi, k);
 		if (r == PoseStep::NotSeen) continue;
 		if (r == PoseStep::Degenerate)
@@ -207,65 +216,63 @@ void CAlg1Backend::objectPoseAugmentation(const TStepInput&)
 	}
 }
 
-// Alg. 6 per object as a GN step (Theorem 4.2).
-void CAlg1Backend::smoothing()
+// The object motion model (Alg. 6: smoothing) per object as a GN step (Theorem 4.2).
+void CAlg1Backend::objectMotion()
 {
-	if (!m_opts.model.smoothing) return;
-	for (const auto& [obj, o] : m_objects)
+	for (const auto& [obj, o] : m_router->registry().objects())
 	{
-		const TVarKey a = TVarKey::objectPose(obj, m_step - 2), b = TVarKey::objectPose(obj, m_step - 1),
-					  c = TVarKey::objectPose(obj, m_step);
-		if (!m_cost.has(a) || !m_cost.has(b) || !m_cost.has(c)) continue;
-		const int d = m_cost.dim(c);
-		m_cost.addTerm(
-			std::make_shared<CSmoothingTerm>(a, b, c, m_opts.model.Sigma_s.topLeftCorner(d, d)));
-		gnAndCollapse();
-		++m_report.smoothing_updates;
+		std::vector<int> steps;
+		for (const auto& k : m_cost.keys())
+			if (k.kind == VarKind::ObjectPose && k.id == obj) steps.push_back(k.step);
+		std::sort(steps.begin(), steps.end());
+		for (const auto& pm : m_motion->select(obj, m_step, steps, o.poseDim()))
+		{
+			m_cost.addTerm(std::make_shared<CMotionModelTerm>(m_motion, pm));
+			gnAndCollapse();
+			++m_report.smoothing_updates;
+		}
 	}
 }
 
 // The drop policies: removing blocks from (mu, Sigma) is marginalization.
 void CAlg1Backend::drops()
 {
-	const auto& mo = m_opts.model;
 	std::vector<TVarKey> M;
-	if (mo.drop_time_t_features)
+	if (m_drop.dropTimeT())
 		for (const auto& k : m_cost.keys())
 			if (isTimeT(k))
 			{
 				M.push_back(k);
 				++m_report.dropped_time_t;
 			}
-	for (auto& [obj, o] : m_objects)
+	for (const auto& [obj, o] : m_router->registry().objects())
 	{
 		std::vector<TVarKey> poses;
 		for (const auto& k : m_cost.keys())
 			if (k.kind == VarKind::ObjectPose && k.id == obj) poses.push_back(k);
 		std::sort(poses.begin(), poses.end());
-		const size_t K = size_t(mo.keep_last_poses);
-		for (size_t i = 0; poses.size() > K && i < poses.size() - K; ++i)
+		const size_t nd = m_drop.posesToDrop(poses.size());
+		for (size_t i = 0; i < nd; ++i)
 		{
 			TObjectPoseEstimate e;
 			e.step = poses[i].step;
 			e.mean = m_cost.value(poses[i]);
 			e.cov = marginalCov(poses[i]);
-			e.in_state = false;
-			o.dropped.push_back(e);
+			m_router->registry().recordDroppedPose(obj, toRecord(e), m_drop.record());
 			M.push_back(poses[i]);
 			++m_report.dropped_poses;
 		}
 	}
-	if (mo.drop_static_after_unseen_steps > 0)
-		for (const auto& k : m_cost.keys())
+	for (const auto& k : m_cost.keys())
 		{
-			if (k.kind != VarKind::StaticLandmark) continue;
-			if (m_step - m_lastSeen.at(k.id) < mo.drop_static_after_unseen_steps) continue;
+			if (k.kind != VarKind::StaticLandmark || !m_drop.staticDue(k.id, m_step, k.step)) continue;
 			TStaticLandmarkEstimate e;
 			e.id = k.id;
 			e.mean = m_cost.value(k);
 			e.cov = marginalCov(k);
 			e.in_state = false;
-			m_droppedStatic.push_back(e);
+			if (m_drop.record()) m_droppedStatic.push_back(e);
+			m_drop.forget(k.id);
 			M.push_back(k);
 			++m_report.dropped_static;
 		}
@@ -309,7 +316,7 @@ std::vector<TObjectFeatureEstimate> CAlg1Backend::getObjectFeatures() const
 			TObjectFeatureEstimate e;
 			e.object = k.id;
 			e.feature = k.feature;
-			e.id = ids::objectFeatureId(k.id, k.feature);
+			e.id = m_router->featureId(k.id, k.feature);
 			e.at_time0 = !isTimeT(k);
 			e.step = k.step;
 			e.mean = m_cost.value(k);
@@ -321,15 +328,7 @@ std::vector<TObjectFeatureEstimate> CAlg1Backend::getObjectFeatures() const
 
 std::map<int32_t, TObjectTrack> CAlg1Backend::getObjectTracks() const
 {
-	std::map<int32_t, TObjectTrack> out;
-	for (const auto& [obj, o] : m_objects)
-	{
-		TObjectTrack& tr = out[obj];
-		tr.object = obj;
-		tr.first_step = o.first_step;
-		tr.num_features = int(o.feature_ids.size());
-		tr.poses = o.dropped;
-	}
+	std::map<int32_t, TObjectTrack> out = tracksFromRegistry(m_router->registry());
 	for (const auto& k : m_cost.keys())
 		if (k.kind == VarKind::ObjectPose)
 		{
@@ -340,10 +339,7 @@ std::map<int32_t, TObjectTrack> CAlg1Backend::getObjectTracks() const
 			e.in_state = true;
 			out[k.id].poses.push_back(e);
 		}
-	for (auto& [obj, tr] : out)
-		std::stable_sort(tr.poses.begin(), tr.poses.end(), [](const auto& a, const auto& b) {
-			return a.step < b.step;
-		});
+	sortTrackPoses(out);
 	return out;
 }
 

@@ -1,6 +1,7 @@
+#include <dynslam/backend_results.h>
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/object_pose_step.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/step_input.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
 
@@ -29,9 +30,11 @@ void CWindowBackend::reset()
 	m_objCost = CRunningCost();
 	m_egoLink.reset();
 	m_step = -1;
-	m_objects.clear();
+	m_router = estimator::makeRouter("ids");
+	m_motion = estimator::makeObjectMotionModel(m_opts.model.smoothing, m_opts.model.Sigma_s);
+	m_drop = estimator::CDropPolicy(m_opts.model.dropOptions());
+	m_body.clear();
 	m_droppedStatic.clear();
-	m_lastSeen.clear();
 	m_egoRecorded.clear();
 	m_report = TStepReport();
 }
@@ -65,10 +68,15 @@ void CWindowBackend::processActionObservation(
 	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
 {
 	const auto& mo = m_opts.model;
-	const TStepInput in = parseStepInput(action, SF, mo.measurement_model, "CWindowBackend");
+	static const std::string who = "CWindowBackend";
+	const estimator::TStepInput in = parseStepInput(action, SF, mo.parseOptions(), who);
+	m_router->validate(in.readings, who);
 	++m_step;
 	m_report = TStepReport();
 	m_report.step = m_step;
+	const estimator::TRoutedStep routed = m_router->route(
+		m_step, in.readings, [this](int32_t id) { return m_cost.has(TVarKey::landmark(id)); });
+	m_report.skipped_unknown_object_feature = routed.skipped_unknown_object_feature;
 	const TVarKey ego = TVarKey::ego(m_step);
 	const Eigen::Matrix3d Su = mo.motion_noise_from_action ? in.U : mo.Sigma_w;
 	// 1. ego pose: prior (first step) or odometry residual
@@ -86,10 +94,11 @@ void CWindowBackend::processActionObservation(
 		m_cost.addTerm(std::make_shared<COdometryTerm>(m_step - 1, m_step, in.u, Su));
 	}
 	// 2. static landmarks
-	for (const auto& m : in.statics)
+	for (const auto& r : routed.statics())
 	{
+		const estimator::TReading& m = r.reading;
 		const TVarKey k = TVarKey::landmark(m.id);
-		if (!m_cost.has(k))
+		if (r.route == estimator::Route::StaticNew)
 		{
 			m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, m_cost.value(ego), m.z));
 			++m_report.static_new;
@@ -97,7 +106,7 @@ void CWindowBackend::processActionObservation(
 		else
 			++m_report.static_updates;
 		m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_step, k, m.z, mo.measurement_model, mo.Sigma_v));
-		m_lastSeen[m.id] = m_step;
+		m_drop.noteSeen(m.id, m_step);
 	}
 	// 3. objects
 	if (!coupled())
@@ -107,9 +116,9 @@ void CWindowBackend::processActionObservation(
 		linkEgoToObjectCost();
 	}
 	if (cube())
-		addCubeObjects(in, ego);
+		addCubeObjects(routed, ego);
 	else
-		addObjects(in, ego);
+		addObjects(routed, ego);
 	if (!coupled()) linkEgoToObjectCost();
 	optimize(objectCost());
 	// 4. time-t features (dynaslam2, clusterslam): marginalize or drop right away
@@ -118,7 +127,7 @@ void CWindowBackend::processActionObservation(
 		std::vector<TVarKey> ft;
 		for (const auto& k : objectCost().keys())
 			if (k.kind == VarKind::ObjectFeature && k.step == m_step &&
-				m_objects.at(k.id).first_step != m_step)
+				m_router->registry().isTimeT(k.id, m_step))
 				ft.push_back(k);
 		if (!ft.empty())
 		{
@@ -168,43 +177,31 @@ void CWindowBackend::linkEgoToObjectCost()
 	m_egoLink = p;
 }
 
-void CWindowBackend::addObjects(const TStepInput& in, const TVarKey& ego)
+void CWindowBackend::addObjects(const estimator::TRoutedStep& in, const TVarKey& ego)
 {
 	const auto& mo = m_opts.model;
 	CRunningCost& c = objectCost();
 	const Eigen::Vector3d x = c.value(ego);
 	std::vector<TVarKey> newT;
-	for (const auto& m : in.objects)
+	for (const auto& r : in.objects())
 	{
-		const int32_t obj = ids::objectOf(m.id), f = ids::featureOf(m.id);
-		auto it = m_objects.find(obj);
-		if (it == m_objects.end() || it->second.first_step == m_step)
-		{
-			TObject& o = m_objects[obj];
-			o.first_step = m_step;
-			o.feature_ids.push_back(m.id);
+		const TVarKey k = TVarKey::objectFeature(r.object, r.feature, m_step);
+		if (r.route == estimator::Route::ObjectFirstSighting)
 			++m_report.object_features_new;
-		}
-		else if (std::find(it->second.feature_ids.begin(), it->second.feature_ids.end(), m.id) !=
-				 it->second.feature_ids.end())
-		{
-			newT.push_back(TVarKey::objectFeature(obj, f, m_step));
-			++m_report.object_features_t;
-		}
 		else
 		{
-			++m_report.skipped_unknown_object_feature;
-			continue;
+			newT.push_back(k);
+			++m_report.object_features_t;
 		}
-		const TVarKey k = TVarKey::objectFeature(obj, f, m_step);
-		c.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.z));
-		c.addTerm(std::make_shared<CMeasurementTerm>(m_step, k, m.z, mo.measurement_model, mo.Sigma_v));
+		c.addVariable(k, models::inverseObserve(mo.measurement_model, x, r.reading.z));
+		c.addTerm(std::make_shared<CMeasurementTerm>(
+			m_step, k, r.reading.z, mo.measurement_model, mo.Sigma_v));
 	}
-	for (const auto& [obj, o] : m_objects)
+	for (const auto& [obj, o] : m_router->registry().objects())
 	{
 		TObjectPoseKeys k;
 		const PoseStep r = addObjectPose(
-			c, obj, o.first_step, o.feature_ids, newT, m_step,
+			c, obj, o.first_step, o.feature_index, newT, m_step,
 			m_opts.pose_residual == PoseResidual::PoseSpace, mo.Sigma_xi, k);
 		if (r == PoseStep::NotSeen) continue;
 		if (r == PoseStep::Degenerate)
@@ -212,59 +209,53 @@ void CWindowBackend::addObjects(const TStepInput& in, const TVarKey& ego)
 			++m_report.skipped_pose_degenerate;
 			continue;
 		}
-		const int d = c.dim(k.pose);
 		++m_report.object_poses_added;
-		const TVarKey a = TVarKey::objectPose(obj, m_step - 2), b = TVarKey::objectPose(obj, m_step - 1);
-		if (mo.smoothing && c.has(a) && c.has(b))
+		// The object motion model (Alg. 6: smoothing) on the poses in the window.
+		std::vector<int> steps;
+		for (const auto& key : c.keys())
+			if (key.kind == VarKind::ObjectPose && key.id == obj) steps.push_back(key.step);
+		std::sort(steps.begin(), steps.end());
+		for (const auto& pm : m_motion->select(obj, m_step, steps, c.dim(k.pose)))
 		{
-			c.addTerm(std::make_shared<CSmoothingTerm>(
-				a, b, k.pose, mo.Sigma_s.topLeftCorner(d, d)));
+			c.addTerm(std::make_shared<CMotionModelTerm>(m_motion, pm));
 			++m_report.smoothing_updates;
 		}
 	}
 }
 
-void CWindowBackend::addCubeObjects(const TStepInput& in, const TVarKey& ego)
+void CWindowBackend::addCubeObjects(const estimator::TRoutedStep& in, const TVarKey& ego)
 {
 	CRunningCost& c = objectCost();
 	const Eigen::Vector3d x = c.value(ego);
-	// Group this step's measurements per object, as sensor-frame points.
+	// Group this step's used measurements per object, as sensor-frame points.
 	std::map<int32_t, std::vector<std::pair<int32_t, Eigen::Vector2d>>> per;
-	for (const auto& m : in.objects)
+	for (const auto& r : in.objects())
 	{
 		const Eigen::Vector2d p =
 			m_opts.model.measurement_model == models::MeasurementModel::Cartesian
-				? m.z
-				: models::rangeBearingToCartesian(m.z);
-		per[ids::objectOf(m.id)].push_back({m.id, p});
+				? r.reading.z
+				: models::rangeBearingToCartesian(r.reading.z);
+		per[r.object].push_back({r.reading.id, p});
 	}
 	for (const auto& [obj, meas] : per)
 	{
-		const bool first = !m_objects.count(obj);
-		TObject& o = m_objects[obj];
+		const estimator::TObjectEntry& o = m_router->registry().at(obj);
+		const bool first = o.first_step == m_step;
 		std::vector<int> seen;
 		std::vector<Eigen::Vector2d> pts;
 		std::vector<Eigen::Matrix2d> covs;
 		if (first)
 		{
-			o.first_step = m_step;
-			o.body.resize(2, Eigen::Index(meas.size()));
-			for (size_t i = 0; i < meas.size(); ++i)
-			{
-				o.feature_ids.push_back(meas[i].first);
-				o.body.col(Eigen::Index(i)) = meas[i].second;
-			}
+			// The time-0 features, in the registry's (observation) order.
+			Eigen::Matrix2Xd& body = m_body[obj];
+			body.resize(2, Eigen::Index(meas.size()));
+			for (size_t i = 0; i < meas.size(); ++i) body.col(Eigen::Index(i)) = meas[i].second;
 			m_report.object_features_new += meas.size();
 		}
+		const Eigen::Matrix2Xd& body = m_body.at(obj);
 		for (const auto& [id, p] : meas)
 		{
-			const auto pos = std::find(o.feature_ids.begin(), o.feature_ids.end(), id);
-			if (pos == o.feature_ids.end())
-			{
-				++m_report.skipped_unknown_object_feature;
-				continue;
-			}
-			seen.push_back(int(pos - o.feature_ids.begin()));
+			seen.push_back(o.indexOf(id));
 			pts.push_back(p);
 			covs.push_back(pointCov(Eigen::Vector2d(
 				m_opts.model.measurement_model == models::MeasurementModel::Cartesian ? p
@@ -292,14 +283,14 @@ void CWindowBackend::addCubeObjects(const TStepInput& in, const TVarKey& ego)
 			Eigen::Vector3d xi;
 			try
 			{
-				xi = models::objectPoseInverse(o.body, zt, seen, &G1, &G2);
+				xi = models::objectPoseInverse(body, zt, seen, &G1, &G2);
 			}
 			catch (const std::domain_error&)
 			{
 				++m_report.skipped_pose_degenerate;
 				continue;
 			}
-			const Eigen::Vector2d c0 = o.body.rowwise().mean();
+			const Eigen::Vector2d c0 = body.rowwise().mean();
 			T = Eigen::Vector3d(c0[0] + xi[0], c0[1] + xi[1], xi[2]);
 			ST = Eigen::MatrixXd::Zero(3, 3);
 			for (size_t i = 0; i < m; ++i)
@@ -328,7 +319,7 @@ TObjectPoseEstimate CWindowBackend::poseEstimate(int32_t obj, int step) const
 		e.cov = c.covariance({k}, gnOptions());
 		return e;
 	}
-	const TObject& o = m_objects.at(obj);
+	const estimator::TObjectEntry& o = m_router->registry().at(obj);
 	const TVarKey k0 = TVarKey::objectBodyPose(obj, o.first_step), kt = TVarKey::objectBodyPose(obj, step);
 	const Eigen::VectorXd a = c.value(k0), b = c.value(kt);
 	const Eigen::Index d = a.size();
@@ -350,14 +341,13 @@ void CWindowBackend::slideWindow()
 	// Object poses of that step leave with it (recorded with their last estimate).
 	CRunningCost& oc = objectCost();
 	std::vector<TVarKey> M;
-	for (auto& [obj, o] : m_objects)
+	for (const auto& [obj, o] : m_router->registry().objects())
 	{
 		const TVarKey pk = cube() ? TVarKey::objectBodyPose(obj, oldest - 1)
 								  : TVarKey::objectPose(obj, oldest - 1);
 		if (!oc.has(pk) || (cube() && oldest - 1 == o.first_step)) continue;
-		TObjectPoseEstimate e = poseEstimate(obj, oldest - 1);
-		e.in_state = false;
-		o.recorded.push_back(e);
+		m_router->registry().recordDroppedPose(
+			obj, toRecord(poseEstimate(obj, oldest - 1)), m_drop.record());
 		M.push_back(pk);
 		++m_report.dropped_poses;
 	}

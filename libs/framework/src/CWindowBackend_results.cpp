@@ -1,6 +1,6 @@
 /** CWindowBackend: result getters (estimates and marginal covariances). */
+#include <dynslam/backend_results.h>
 #include <dynslam/framework/CWindowBackend.h>
-#include <dynslam/landmark_ids.h>
 #include <dynslam/models/se2.h>
 
 #include <algorithm>
@@ -48,19 +48,20 @@ std::vector<TObjectFeatureEstimate> CWindowBackend::getObjectFeatures() const
 	if (cube())
 	{
 		// f_0 = O_0 (+) (body_k - c0), the time-0 features implied by the body model.
-		for (const auto& [obj, o] : m_objects)
+		for (const auto& [obj, o] : m_router->registry().objects())
 		{
 			const TVarKey k0 = TVarKey::objectBodyPose(obj, o.first_step);
 			if (!c.has(k0)) continue;
 			const Eigen::VectorXd O = c.value(k0);
 			const Eigen::MatrixXd C = c.covariance({k0}, gnOptions());
-			const Eigen::Vector2d c0 = o.body.rowwise().mean();
+			const Eigen::Matrix2Xd& body = m_body.at(obj);
+			const Eigen::Vector2d c0 = body.rowwise().mean();
 			for (size_t j = 0; j < o.feature_ids.size(); ++j)
 			{
-				const Eigen::Vector2d mb = o.body.col(Eigen::Index(j)) - c0;
+				const Eigen::Vector2d mb = body.col(Eigen::Index(j)) - c0;
 				TObjectFeatureEstimate e;
 				e.object = obj;
-				e.feature = ids::featureOf(o.feature_ids[j]);
+				e.feature = o.feature_index[j];
 				e.id = o.feature_ids[j];
 				e.at_time0 = true;
 				e.step = o.first_step;
@@ -85,8 +86,8 @@ std::vector<TObjectFeatureEstimate> CWindowBackend::getObjectFeatures() const
 		TObjectFeatureEstimate e;
 		e.object = k.id;
 		e.feature = k.feature;
-		e.id = ids::objectFeatureId(k.id, k.feature);
-		e.at_time0 = m_objects.at(k.id).first_step == k.step;
+		e.id = m_router->featureId(k.id, k.feature);
+		e.at_time0 = !m_router->registry().isTimeT(k.id, k.step);
 		e.step = k.step;
 		e.mean = c.value(k);
 		e.cov = C.block<2, 2>(2 * i, 2 * i);
@@ -97,23 +98,17 @@ std::vector<TObjectFeatureEstimate> CWindowBackend::getObjectFeatures() const
 
 std::map<int32_t, TObjectTrack> CWindowBackend::getObjectTracks() const
 {
-	std::map<int32_t, TObjectTrack> out;
+	std::map<int32_t, TObjectTrack> out = tracksFromRegistry(m_router->registry());
 	const CRunningCost& c = objectCost();
-	for (const auto& [obj, o] : m_objects)
+	for (const auto& [obj, o] : m_router->registry().objects())
 	{
 		TObjectTrack& tr = out[obj];
-		tr.object = obj;
-		tr.first_step = o.first_step;
-		tr.num_features = int(o.feature_ids.size());
-		tr.poses = o.recorded;
 		for (const auto& k : c.keys())
 			if (k.id == obj && (cube() ? k.kind == VarKind::ObjectBodyPose && k.step != o.first_step
 									   : k.kind == VarKind::ObjectPose))
 				tr.poses.push_back(poseEstimate(obj, k.step));
-		std::stable_sort(tr.poses.begin(), tr.poses.end(), [](const auto& a, const auto& b) {
-			return a.step < b.step;
-		});
 	}
+	sortTrackPoses(out);
 	return out;
 }
 }  // namespace dynslam::framework

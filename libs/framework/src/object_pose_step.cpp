@@ -1,5 +1,4 @@
 #include <dynslam/framework/object_pose_step.h>
-#include <dynslam/landmark_ids.h>
 #include <dynslam/models/object_pose.h>
 
 #include <algorithm>
@@ -9,7 +8,7 @@
 namespace dynslam::framework
 {
 PoseStep addObjectPose(
-	CRunningCost& c, int32_t obj, int first_step, const std::vector<int32_t>& feature_ids,
+	CRunningCost& c, int32_t obj, int first_step, const std::vector<int32_t>& features,
 	const std::vector<TVarKey>& newT, int step, bool poseSpace, const Eigen::Matrix2d& Sigma_xi,
 	TObjectPoseKeys& k)
 {
@@ -18,17 +17,16 @@ PoseStep addObjectPose(
 		if (key.id == obj)
 		{
 			k.ft.push_back(key);
-			const int32_t id = ids::objectFeatureId(obj, key.feature);
 			k.seen.push_back(
-				int(std::find(feature_ids.begin(), feature_ids.end(), id) - feature_ids.begin()));
+				int(std::find(features.begin(), features.end(), key.feature) - features.begin()));
 		}
-	const size_t n = feature_ids.size(), m = k.ft.size();
+	const size_t n = features.size(), m = k.ft.size();
 	if (m == 0) return PoseStep::NotSeen;
 	if (n >= 2 && m < 2) return PoseStep::Degenerate;
 	Eigen::Matrix2Xd f0(2, n), ft(2, m);
 	for (size_t j = 0; j < n; ++j)
 	{
-		k.f0.push_back(TVarKey::objectFeature(obj, ids::featureOf(feature_ids[j]), first_step));
+		k.f0.push_back(TVarKey::objectFeature(obj, features[j], first_step));
 		f0.col(j) = c.value(k.f0.back());
 	}
 	for (size_t i = 0; i < m; ++i) ft.col(i) = c.value(k.ft[i]);

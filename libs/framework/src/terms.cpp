@@ -228,6 +228,37 @@ TLinearization CSmoothingTerm::linearize(const std::vector<Eigen::VectorXd>& x) 
 }
 
 // ---------------------------------------------------------------------------------------
+namespace
+{
+std::vector<TVarKey> poseKeys(const estimator::TPseudoMeasurement& m)
+{
+	std::vector<TVarKey> keys;
+	for (const int t : m.steps) keys.push_back(TVarKey::objectPose(m.object, t));
+	return keys;
+}
+}  // namespace
+
+CMotionModelTerm::CMotionModelTerm(
+	std::shared_ptr<const estimator::IObjectMotionModel> model,
+	const estimator::TPseudoMeasurement& m)
+	: CTerm(poseKeys(m)), m_model(std::move(model)), m_meas(m),
+	  m_info(spdInverse(m.R, "CMotionModelTerm: R"))
+{
+	if (!m_model) throw std::invalid_argument("CMotionModelTerm: null model");
+}
+
+TLinearization CMotionModelTerm::linearize(const std::vector<Eigen::VectorXd>& x) const
+{
+	for (const auto& v : x)
+		if (v.size() != m_meas.dim)
+			throw std::invalid_argument("CMotionModelTerm: pose size differs from the model's");
+	TLinearization L;
+	L.r = m_model->residual(m_meas, x, &L.J);
+	L.W = m_info;
+	return L;
+}
+
+// ---------------------------------------------------------------------------------------
 CBodyPoseMeasurementTerm::CBodyPoseMeasurementTerm(
 	int t, const TVarKey& body, const Eigen::VectorXd& T, const Eigen::MatrixXd& Sigma_T)
 	: CTerm({TVarKey::ego(t), body}), m_T(T),

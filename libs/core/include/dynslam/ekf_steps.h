@@ -15,6 +15,7 @@
 #include <dynslam/models/measurement.h>
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace dynslam::ekf
@@ -114,10 +115,26 @@ double sparseUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
 double smoothingUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, int xi_tm2_idx,
                        int xi_tm1_idx, int xi_t_idx, const Eigen::MatrixXd& Sigma_s);
 
+/** A pseudo-measurement 0 = r(poses) + n, n ~ N(0, R), on poses of d entries each whose
+ * first entries are at `base` (an object motion model, dynslam/estimator/object_motion_model.h;
+ * Alg. 6 is one): residual(values, &J) returns r and J_r_pose per pose. Applied by
+ * sparseUpdate with nu = -r; angles (entry 2 of 3-dof poses) wrapped afterwards.
+ * @return the NIS. */
+using PoseResidualFn = std::function<Eigen::VectorXd(const std::vector<Eigen::VectorXd>&,
+                                                     std::vector<Eigen::MatrixXd>*)>;
+double pseudoMeasurementUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
+                               const std::vector<int>& base, int d, const PoseResidualFn& residual,
+                               const Eigen::MatrixXd& R);
 /** Alg. 7: propagate the ego pose x[0..2] by the odometry increment u (x <- x (+) u) with
- * noise Sigma_u on the increment: P_xx <- F P_xx F^T + G Sigma_u G^T, P_xe <- F P_xe. */
+ * noise Sigma_u on the increment: P_xx <- F P_xx F^T + G Sigma_u G^T, P_xe <- F P_xe.
+ * fej_previous_prediction (first-estimate Jacobians, Huang et al. 2008): if given, the heading
+ * column of F uses the ego position difference of the predicted estimates,
+ * p_{k+1|k} - p_{k|k-1} with p_{k|k-1} = *fej_previous_prediction, instead of R(theta) u. The
+ * product's Alg. 7 (CDynamicKFSLAM2D) is this function. J_out_x_used: the F that was used. */
 void propagate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const Eigen::Vector3d& u,
-               const Eigen::Matrix3d& Sigma_u);
+               const Eigen::Matrix3d& Sigma_u,
+               const Eigen::Vector3d* fej_previous_prediction = nullptr,
+               Eigen::Matrix3d* J_out_x_used = nullptr);
 
 /** The indices 0..n-1 that are not in `remove` (any order, duplicates allowed), ascending. */
 std::vector<int> keptIndices(int n, const std::vector<int>& remove);

@@ -10,14 +10,19 @@
  * The pad is an independent unit-variance dummy with zero cross-covariance; no model touches
  * it and no output shows it. A one-feature object has a translation-only pose (part A only).
  *
- * One step (processActionObservation):
- *  1. MRPT's runOneKalmanIteration(): prediction with the odometry (Alg. 7) and update with
- *     the tracked static landmarks (Alg. 5; with static_update = mrpt MRPT also augments the
- *     new static landmarks, Alg. 3).
- *  2. Feature augmentation (Alg. 3): new static landmarks (sparse path), time-0 features of
- *     new objects, time-t features of known objects.
+ * One step (processActionObservation), built on the estimator core (libs/estimator,
+ * doc/architecture.md): parse -> route -> propagate -> update -> augment -> motion model ->
+ * drop -> commit.
+ *  1. Parse (dynslam/step_input.h) and route the readings (IMeasurementRouter: static known /
+ *     new, object first sighting / time t, skip).
+ *  2. Prediction with the odometry (Alg. 7, ekf::propagate) and update with the tracked static
+ *     landmarks (Alg. 5) by the update engine (IUpdateEngine: the sparse update, or MRPT's
+ *     runOneKalmanIteration with its prediction skipped).
+ *  2b. Feature augmentation (Alg. 3): new static landmarks, time-0 features of new objects,
+ *     time-t features of known objects.
  *  3. Object-pose augmentation (Alg. 4) with Sigma_xi, for every object seen this step.
- *  4. Smoothing update (Alg. 6, optional) for objects with poses at t-2, t-1, t.
+ *  4. Object motion model (IObjectMotionModel): none, or the smoothing update (Alg. 6) for
+ *     objects with poses at t-2, t-1, t.
  *  5. Drops: time-t features (optional, default on), object poses older than the last K,
  *     static landmarks out of range for too long (optional, default off). Dropped poses and
  *     landmarks are recorded with their last mean and marginal covariance.
@@ -32,7 +37,12 @@
  * skipped and counted, as documented per case in getLastStepReport(). */
 #include <dynslam/ISlamBackend.h>
 #include <dynslam/ekf_steps.h>
+#include <dynslam/estimator/drop_policy.h>
+#include <dynslam/estimator/measurement_router.h>
+#include <dynslam/estimator/object_motion_model.h>
+#include <dynslam/estimator/update_engine.h>
 #include <dynslam/models/measurement.h>
+#include <dynslam/step_input.h>
 
 #include <mrpt/bayes/CKalmanFilterCapable.h>
 #include <mrpt/config/CLoadableOptions.h>
@@ -43,6 +53,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -84,6 +95,9 @@ public:
 		void dumpToTextStream(std::ostream& out) const override;
 		/** Throws std::invalid_argument naming the offending option. */
 		void validate() const;
+		/** What the step-input parser and the drop policy of every back-end take from these. */
+		TParseOptions parseOptions() const;
+		estimator::TDropOptions dropOptions() const;
 
 		/** measurement_model (required): cartesian (paper, Sigma_v on the sensor-frame
 		 * point) or range_bearing (MRPT's; Sigma_v = diag(std_range^2, std_bearing^2)). */
@@ -160,6 +174,15 @@ public:
 		const mrpt::obs::CActionCollection::Ptr& action,
 		const mrpt::obs::CSensoryFrame::Ptr& SF) override;
 	std::string name() const override { return "dynamic_ekf"; }
+	/** The seams of the step (doc/architecture.md): by default the options' implementations
+	 * (made by reset()); one set here is kept by reset() and loadOptions(). Call reset() after
+	 * setting one. */
+	void setRouter(std::unique_ptr<estimator::IMeasurementRouter> r);
+	void setUpdateEngine(std::unique_ptr<estimator::IUpdateEngine> e);
+	void setObjectMotionModel(std::unique_ptr<estimator::IObjectMotionModel> m);
+	const estimator::IMeasurementRouter& router() const { return *m_router; }
+	const estimator::IUpdateEngine& updateEngine() const { return *m_engine; }
+	const estimator::IObjectMotionModel& objectMotionModel() const { return *m_motion; }
 
 	// --- results --------------------------------------------------------------
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
@@ -186,6 +209,9 @@ public:
 	/** First-estimate Jacobians only (empty otherwise): the predicted ego pose x_{k|k-1} of the
 	 * last step, recorded after the prediction and before the update. */
 	std::optional<Eigen::Vector3d> lastPredictedEgo() const;
+	/** The transition Jacobian F of the last step's prediction (Alg. 7; with first-estimate
+	 * Jacobians, the modified one); empty if the prediction was skipped. */
+	const std::optional<Eigen::Matrix3d>& lastTransitionJacobian() const { return m_lastF; }
 
 protected:
 	// --- CKalmanFilterCapable hooks ------------------------------------------------
@@ -217,8 +243,6 @@ protected:
 
 private:
 	// first-estimate Jacobians (options.first_estimate_jacobians)
-	/** Records the ego pose x_{k|k-1} (called after the prediction, before the update). */
-	void recordPredictedEgo();
 	/** Records the mean of static landmarks without a first estimate, forgets the first
 	 * estimates of landmarks no longer in the state (called at the end of every step). */
 	void recordFirstEstimates();
@@ -229,31 +253,18 @@ private:
 		Eigen::Matrix2d& J_z_f) const;
 	std::map<int32_t, Eigen::Vector2d> m_firstEstimate;  ///< landmark ID -> first estimate
 	std::optional<Eigen::Vector3d> m_predictedEgo;  ///< x_{k|k-1} of the last step
+	std::optional<Eigen::Matrix3d> m_lastF;  ///< F of the last prediction
 
-	/** One parsed measurement of this step, in the model's measurement space. */
-	struct TMeas
-	{
-		int32_t id;
-		Eigen::Vector2d z;
-	};
-	/** Per-object bookkeeping. */
-	struct TObjectInfo
-	{
-		int first_step = -1;
-		std::vector<int32_t> feature_ids;  ///< features seen at time 0, in slot order
-		/** A dropped pose, stored without heap members: millions of them in a long run must
-		 * not interleave small allocations with the step's temporaries (heap fragmentation). */
-		struct TPoseRecord
-		{
-			int step = -1, dim = 0;  ///< dim 3 (dx, dy, dtheta) or 2 (dx, dy)
-			Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-			Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-		};
-		std::vector<TPoseRecord> dropped_poses;
-	};
-
-	void validateAndParse(
-		const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF);
+	friend class CMrptUpdateEngine;
+	/** Alg. 7: the ego prediction by ekf::propagate (skipped on an empty map if
+	 * skip_prediction_on_empty_map), then the first-estimate record. */
+	void propagateEgo();
+	/** Alg. 5 by the update engine, with the tracked static readings of the step. */
+	void staticUpdate();
+	/** MRPT's update (CMrptUpdateEngine): runOneKalmanIteration with the prediction skipped. */
+	estimator::TUpdateResult runMrptUpdate(
+		const std::vector<estimator::TStaticObservation>& obs, const estimator::TUpdateContext& ctx);
+	estimator::TUpdateContext updateContext() const;
 	/** What a step adds and drops, before it is written to the state: the new features as an
 	 * augmentation a of the current state, the object poses as an augmentation b of the state
 	 * extended by a (pads included; 2 entries per new slot in all), and the slots to remove,
@@ -266,30 +277,34 @@ private:
 	};
 	/** m_slots followed by plan.slots: the slots of the state extended by the plan. */
 	std::vector<TSlot> extendedSlots(const TPending& plan) const;
-	void planFeatures(TPending& plan);  // Alg. 3: new static landmarks (sparse path), objects
+	void planFeatures(TPending& plan);  // Alg. 3: new static landmarks, objects
 	void planObjectPoses(TPending& plan);  // Alg. 4, on the state extended by plan
 	void planDrops(TPending& plan);  // drop policies, recording what they drop
 	/** Writes plan to the state: x, P (one rewrite; reallocated only if the size changes) and
 	 * the slot tables; clears plan. */
 	void commit(TPending& plan);
-	void applySmoothing();  // Alg. 6
+	void applyObjectMotion();  // the object motion model's pseudo-measurements (Alg. 6)
 	size_t slotStateIndex(size_t slot) const { return 3 + 2 * slot; }
 
+	// the seams (doc/architecture.md)
+	std::unique_ptr<estimator::IMeasurementRouter> m_router;
+	std::unique_ptr<estimator::IUpdateEngine> m_engine;
+	std::unique_ptr<estimator::IObjectMotionModel> m_motion;
+	bool m_userRouter = false, m_userEngine = false, m_userMotion = false;  ///< set by setX()
+	estimator::CDropPolicy m_drop;
+
 	// inputs of the current step
-	mrpt::poses::CPose2D m_odoIncrement;
-	Eigen::Matrix3d m_odoCov = Eigen::Matrix3d::Zero();
-	std::vector<TMeas> m_static, m_objectMeas;
-	std::vector<size_t> m_zToStatic;  ///< row of MRPT's Z -> index in m_static
-	void sparseStaticUpdate();
-	double gateThreshold() const;
-	double m_maxRange = 0;
+	estimator::TStepInput m_in;
+	estimator::TRoutedStep m_routed;
+	/** MRPT's update only: the readings handed to it, and the context. */
+	std::vector<estimator::TStaticObservation> m_mrptObs;
+	estimator::TUpdateContext m_mrptCtx;
+	estimator::TUpdateResult m_mrptResult;
 
 	// slot table and indices
 	std::vector<TSlot> m_slots;
 	std::map<int32_t, size_t> m_staticSlot;  ///< landmark ID -> slot
-	std::map<int32_t, int> m_staticLastSeen;  ///< landmark ID -> last step seen
 	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
-	std::map<int32_t, TObjectInfo> m_objects;
 	int m_step = -1;
 	TStepReport m_report;
 	bool m_failed = false;  ///< a step threw midway: refuse to go on until reset()

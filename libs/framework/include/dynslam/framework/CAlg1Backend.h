@@ -21,9 +21,12 @@
 #include <dynslam/ISlamBackend.h>
 #include <dynslam/framework/TBackendOptions.h>
 #include <dynslam/framework/running_cost.h>
-#include <dynslam/framework/step_input.h>
+#include <dynslam/estimator/drop_policy.h>
+#include <dynslam/estimator/measurement_router.h>
+#include <dynslam/estimator/object_motion_model.h>
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -52,21 +55,20 @@ public:
 		Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>& labels) const;
 	const CRunningCost& cost() const { return m_cost; }
 	const TBackendOptions& options() const { return m_opts; }
+	const estimator::IMeasurementRouter& router() const { return *m_router; }
+	/** The seams (doc/architecture.md): another router or object motion model than the
+	 * options'; kept by reset(). Call reset() after setting one. */
+	void setRouter(std::unique_ptr<estimator::IMeasurementRouter> r);
+	void setObjectMotionModel(std::shared_ptr<const estimator::IObjectMotionModel> m);
 	int stepCount() const { return m_step + 1; }
 
 private:
-	struct TObject
-	{
-		int first_step = -1;
-		std::vector<int32_t> feature_ids;  ///< features seen at time 0, in observation order
-		std::vector<TObjectPoseEstimate> dropped;
-	};
 	TGaussNewtonResult gnAndCollapse();
-	void propagate(const TStepInput& in);
-	void staticSteps(const TStepInput& in);
-	void objectFeatureAugmentation(const TStepInput& in);
-	void objectPoseAugmentation(const TStepInput& in);
-	void smoothing();
+	void propagate(const estimator::TStepInput& in);
+	void staticSteps(const estimator::TRoutedStep& in);
+	void objectFeatureAugmentation(const estimator::TRoutedStep& in);
+	void objectPoseAugmentation();
+	void objectMotion();  // the object motion model's pseudo-measurements (Alg. 6)
 	void drops();
 	Eigen::MatrixXd marginalCov(const TVarKey& k) const;
 	bool isTimeT(const TVarKey& k) const;
@@ -75,9 +77,11 @@ private:
 	CRunningCost m_cost;
 	TVarKey m_ego;
 	int m_step = -1;
-	std::map<int32_t, int> m_lastSeen;
+	std::unique_ptr<estimator::IMeasurementRouter> m_router;
+	std::shared_ptr<const estimator::IObjectMotionModel> m_motion;
+	bool m_userRouter = false, m_userMotion = false;
+	estimator::CDropPolicy m_drop;
 	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
-	std::map<int32_t, TObject> m_objects;
 	std::vector<TVarKey> m_newTimeT;  ///< time-t features added this step, observation order
 	TStepReport m_report;
 };

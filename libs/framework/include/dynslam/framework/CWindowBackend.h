@@ -18,9 +18,12 @@
 #include <dynslam/ISlamBackend.h>
 #include <dynslam/framework/TBackendOptions.h>
 #include <dynslam/framework/running_cost.h>
-#include <dynslam/framework/step_input.h>
+#include <dynslam/estimator/drop_policy.h>
+#include <dynslam/estimator/measurement_router.h>
+#include <dynslam/estimator/object_motion_model.h>
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,19 +50,13 @@ public:
 	std::map<int, Eigen::Vector3d> finalTrajectory() const;
 
 private:
-	struct TObject
-	{
-		int first_step = -1;
-		std::vector<int32_t> feature_ids;
-		Eigen::Matrix2Xd body;  ///< cubeslam: time-0 features in the sensor frame (2 x n)
-		std::vector<TObjectPoseEstimate> recorded;
-	};
+
 	bool coupled() const;
 	bool cube() const { return m_opts.backend == "cubeslam"; }
 	CRunningCost& objectCost() { return coupled() ? m_cost : m_objCost; }
 	const CRunningCost& objectCost() const { return coupled() ? m_cost : m_objCost; }
-	void addObjects(const TStepInput& in, const TVarKey& ego);
-	void addCubeObjects(const TStepInput& in, const TVarKey& ego);
+	void addObjects(const estimator::TRoutedStep& in, const TVarKey& ego);
+	void addCubeObjects(const estimator::TRoutedStep& in, const TVarKey& ego);
 	void linkEgoToObjectCost();
 	void optimize(CRunningCost& c);
 	void slideWindow();
@@ -71,9 +68,11 @@ private:
 	CRunningCost m_cost, m_objCost;
 	CTermPtr m_egoLink;  ///< clusterslam: the current prior on the ego copies in m_objCost
 	int m_step = -1;
-	std::map<int32_t, TObject> m_objects;
+	std::unique_ptr<estimator::IMeasurementRouter> m_router;
+	std::shared_ptr<const estimator::IObjectMotionModel> m_motion;
+	estimator::CDropPolicy m_drop;
+	std::map<int32_t, Eigen::Matrix2Xd> m_body;  ///< cubeslam: time-0 features, sensor frame
 	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
-	std::map<int32_t, int> m_lastSeen;
 	std::map<int, Eigen::Vector3d> m_egoRecorded;
 	TStepReport m_report;
 	int m_lastIterations = 0;

@@ -16,10 +16,12 @@
  * | CObjectPoseFeatureTerm  | f_t - g^o(xi_t, f_0)  (paper, 2m rows) | diag(Sigma_xi^-1)      |
  * | CObjectPosePoseTerm     | xi_t (-) gamma(f_0, f_t)  (d rows)     | (Gamma2 diag(Sigma_xi) Gamma2^T)^-1 |
  * | CSmoothingTerm          | s(xi_{t-2}, xi_{t-1}, xi_t)            | Sigma_s^-1             |
+ * | CMotionModelTerm        | r of an object motion model's pseudo-measurement | R^-1         |
  * | CBodyPoseMeasurementTerm| (x_t^-1 (+) O_t) (-) T  (CubeSLAM-like) | Sigma_T^-1            |
  *
  * State-dependent informations (odometry, pose-space object pose) are evaluated at the
  * linearization point (as the EKF does with its Jacobians). */
+#include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/framework/variables.h>
 #include <dynslam/models/measurement.h>
 
@@ -163,6 +165,24 @@ public:
 	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
 
 private:
+	Eigen::MatrixXd m_info;
+};
+
+/** A pseudo-measurement 0 = r(poses) + n of an object motion model
+ * (dynslam/estimator/object_motion_model.h) on the object poses it names: the same object the
+ * EKF applies as an update (ekf::pseudoMeasurementUpdate). */
+class CMotionModelTerm : public CTerm
+{
+public:
+	CMotionModelTerm(
+		std::shared_ptr<const estimator::IObjectMotionModel> model,
+		const estimator::TPseudoMeasurement& m);
+	std::string name() const override { return "motion_model:" + m_model->name(); }
+	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
+
+private:
+	std::shared_ptr<const estimator::IObjectMotionModel> m_model;
+	estimator::TPseudoMeasurement m_meas;
 	Eigen::MatrixXd m_info;
 };
 

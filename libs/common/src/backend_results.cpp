@@ -1,0 +1,53 @@
+#include <dynslam/backend_results.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace dynslam
+{
+TObjectPoseEstimate toEstimate(const estimator::TPoseRecord& r)
+{
+	TObjectPoseEstimate e;
+	e.step = r.step;
+	e.mean = r.mean.head(r.dim);
+	e.cov = r.cov.topLeftCorner(r.dim, r.dim);
+	e.in_state = false;
+	return e;
+}
+
+estimator::TPoseRecord toRecord(const TObjectPoseEstimate& e)
+{
+	const auto d = e.mean.size();
+	if ((d != 2 && d != 3) || e.cov.rows() != d || e.cov.cols() != d)
+		throw std::invalid_argument("toRecord: a pose has 2 or 3 entries and a matching covariance");
+	estimator::TPoseRecord r;
+	r.step = e.step;
+	r.dim = int(d);
+	r.mean.head(d) = e.mean;
+	r.cov.topLeftCorner(d, d) = e.cov;
+	return r;
+}
+
+std::map<int32_t, TObjectTrack> tracksFromRegistry(const estimator::CObjectRegistry& reg)
+{
+	std::map<int32_t, TObjectTrack> out;
+	for (const auto& [obj, o] : reg.objects())
+	{
+		TObjectTrack& tr = out[obj];
+		tr.object = obj;
+		tr.first_step = o.first_step;
+		tr.num_features = int(o.feature_ids.size());
+		tr.poses.reserve(o.dropped_poses.size());
+		for (const auto& r : o.dropped_poses) tr.poses.push_back(toEstimate(r));
+	}
+	return out;
+}
+
+void sortTrackPoses(std::map<int32_t, TObjectTrack>& tracks)
+{
+	for (auto& [obj, tr] : tracks)
+		std::stable_sort(tr.poses.begin(), tr.poses.end(), [](const auto& a, const auto& b) {
+			return a.step < b.step;
+		});
+}
+}  // namespace dynslam

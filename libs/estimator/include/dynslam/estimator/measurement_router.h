@@ -1,0 +1,94 @@
+#pragma once
+/** @file measurement_router.h
+ * Seam 1 of the estimator core (doc/architecture.md): what each reading of a step is.
+ * A router says, for every reading, static-known / static-new / object-first-sighting /
+ * object-time-t / skip, and owns the object registry. One router serves the EKF and every
+ * framework back-end. The first implementation, CIdRangeRouter, is the ID-range rule of
+ * dynslam/landmark_ids.h (the oracle the paper assumes). */
+#include <dynslam/estimator/object_registry.h>
+#include <dynslam/estimator/readings.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dynslam::estimator
+{
+enum class Route : uint8_t
+{
+	StaticKnown,  ///< a static landmark in the state: updates it (Alg. 5)
+	StaticNew,  ///< a static landmark not in the state: initialises it (Alg. 3)
+	ObjectFirstSighting,  ///< a feature of an object whose time 0 is this step: its f_0
+	ObjectTimeT,  ///< a known feature of an object first seen earlier: its f_t
+	Skip  ///< not used (counted in TRoutedStep)
+};
+const char* toString(Route r);
+
+struct TRoutedReading
+{
+	TReading reading;
+	Route route = Route::Skip;
+	int32_t object = -1;  ///< object readings: the object
+	int32_t feature = -1;  ///< object readings: the feature index within the object
+};
+
+/** The routed readings of one step, in observation order, and what was skipped. */
+struct TRoutedStep
+{
+	std::vector<TRoutedReading> readings;
+	size_t skipped_unknown_object_feature = 0;  ///< object feature without an f_0
+	/** The readings with route r, in observation order. */
+	std::vector<TRoutedReading> with(Route r) const;
+	/** The readings of static landmarks (known and new), in observation order. */
+	std::vector<TRoutedReading> statics() const;
+	/** The object readings used this step (first sightings and time t), observation order. */
+	std::vector<TRoutedReading> objects() const;
+};
+
+/** The readings of routed readings, in their order. */
+std::vector<TReading> readingsOf(const std::vector<TRoutedReading>& r);
+
+class IMeasurementRouter
+{
+public:
+	virtual ~IMeasurementRouter() = default;
+	virtual std::string name() const = 0;
+	/** Checks every reading of a step before the filter changes anything: throws
+	 * std::runtime_error naming the reading, prefixed by `who`. */
+	virtual void validate(const std::vector<TReading>& readings, const std::string& who) const = 0;
+	/** Routes the readings of `step` (validated). isKnownStatic(id) says whether static
+	 * landmark `id` is in the state. Registers new objects and first-sighting features. */
+	virtual TRoutedStep route(
+		int step, const std::vector<TReading>& readings,
+		const std::function<bool(int32_t)>& isKnownStatic) = 0;
+	virtual const CObjectRegistry& registry() const = 0;
+	virtual CObjectRegistry& registry() = 0;
+	/** The ID of feature `feature` of object `object` in this router's convention. */
+	virtual int32_t featureId(int32_t object, int32_t feature) const = 0;
+	virtual void reset() = 0;
+};
+
+/** The ID-range rule (dynslam/landmark_ids.h): 0..99,999 static, 100,000 + 1000 object + k
+ * feature k of object `object`; any other ID (MRPT's -1 included) is rejected. */
+class CIdRangeRouter : public IMeasurementRouter
+{
+public:
+	std::string name() const override { return "ids"; }
+	void validate(const std::vector<TReading>& readings, const std::string& who) const override;
+	TRoutedStep route(
+		int step, const std::vector<TReading>& readings,
+		const std::function<bool(int32_t)>& isKnownStatic) override;
+	const CObjectRegistry& registry() const override { return m_registry; }
+	CObjectRegistry& registry() override { return m_registry; }
+	int32_t featureId(int32_t object, int32_t feature) const override;
+	void reset() override { m_registry.clear(); }
+
+private:
+	CObjectRegistry m_registry;
+};
+
+/** The router of the INI option feature_labels (today only "ids"). */
+std::unique_ptr<IMeasurementRouter> makeRouter(const std::string& feature_labels);
+}  // namespace dynslam::estimator

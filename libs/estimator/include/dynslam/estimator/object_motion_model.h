@@ -1,0 +1,82 @@
+#pragma once
+/** @file object_motion_model.h
+ * Seam 2 of the estimator core (doc/architecture.md): what happens to moving objects between
+ * and within steps, as pseudo-measurements 0 = r(poses) + n, n ~ N(0, R), on an object's
+ * poses. The EKF applies one as an update of the poses' state entries
+ * (ekf::pseudoMeasurementUpdate); the framework adds the same object as a residual term
+ * (framework::CMotionModelTerm). Implementations: "none" (the paper's default: objects only
+ * follow their features) and the paper's smoothing (Alg. 6). */
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dynslam::estimator
+{
+/** One pseudo-measurement on the poses of object `object` at `steps` (each of `dim`
+ * entries), with noise covariance R. */
+struct TPseudoMeasurement
+{
+	int32_t object = -1;
+	std::vector<int> steps;
+	int dim = 0;
+	Eigen::MatrixXd R;
+};
+
+class IObjectMotionModel
+{
+public:
+	virtual ~IObjectMotionModel() = default;
+	virtual std::string name() const = 0;
+	/** The fewest poses per object the model needs kept in the state (K). */
+	virtual int posesNeeded() const = 0;
+	/** This step's pseudo-measurements on object `object`, whose poses in the state are at
+	 * `poseSteps` (ascending), each of `dim` entries. */
+	virtual std::vector<TPseudoMeasurement> select(
+		int32_t object, int step, const std::vector<int>& poseSteps, int dim) const = 0;
+	/** r at the poses (one vector per entry of m.steps) and, if J is given, J_r_pose for each. */
+	virtual Eigen::VectorXd residual(
+		const TPseudoMeasurement& m, const std::vector<Eigen::VectorXd>& poses,
+		std::vector<Eigen::MatrixXd>* J) const = 0;
+};
+
+/** No motion model (the paper's default). */
+class CNoObjectMotion : public IObjectMotionModel
+{
+public:
+	std::string name() const override { return "none"; }
+	int posesNeeded() const override { return 1; }
+	std::vector<TPseudoMeasurement> select(
+		int32_t, int, const std::vector<int>&, int) const override
+	{
+		return {};
+	}
+	Eigen::VectorXd residual(
+		const TPseudoMeasurement&, const std::vector<Eigen::VectorXd>&,
+		std::vector<Eigen::MatrixXd>*) const override;
+};
+
+/** The paper's smoothing (Alg. 6): s(xi_{t-2}, xi_{t-1}, xi_t) = 0 + n_s, n_s ~ N(0, Sigma_s),
+ * on the poses of three consecutive steps ending now (models/smoothing.h). */
+class CPaperSmoothing : public IObjectMotionModel
+{
+public:
+	/** Sigma_s: 3x3 (its top-left 2x2 is used for translation-only poses). */
+	explicit CPaperSmoothing(const Eigen::Matrix3d& Sigma_s) : m_Sigma_s(Sigma_s) {}
+	std::string name() const override { return "paper_smoothing"; }
+	int posesNeeded() const override { return 3; }
+	std::vector<TPseudoMeasurement> select(
+		int32_t object, int step, const std::vector<int>& poseSteps, int dim) const override;
+	Eigen::VectorXd residual(
+		const TPseudoMeasurement& m, const std::vector<Eigen::VectorXd>& poses,
+		std::vector<Eigen::MatrixXd>* J) const override;
+
+private:
+	Eigen::Matrix3d m_Sigma_s;
+};
+
+/** The model of the options: smoothing on -> CPaperSmoothing(Sigma_s), off -> none. */
+std::unique_ptr<IObjectMotionModel> makeObjectMotionModel(
+	bool smoothing, const Eigen::Matrix3d& Sigma_s);
+}  // namespace dynslam::estimator

@@ -1,0 +1,64 @@
+#pragma once
+/** @file object_registry.h
+ * The one object registry of every back-end: for each moving object, the step of its first
+ * sighting (its time 0) and its feature set (the features seen then, in observation order),
+ * and the poses recorded when they were dropped from the state. A feature is "time 0" in the
+ * step of the first sighting, "time t" afterwards if it belongs to the feature set, and
+ * unknown otherwise (it has no f_0: skipped and counted, doc/state-layout.md). */
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace dynslam::estimator
+{
+/** A dropped object pose, stored without heap members: millions of them in a long run must not
+ * interleave small allocations with the step's temporaries (heap fragmentation). */
+struct TPoseRecord
+{
+	int step = -1, dim = 0;  ///< dim 3 (dx, dy, dtheta) or 2 (dx, dy)
+	Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+};
+
+struct TObjectEntry
+{
+	int first_step = -1;
+	std::vector<int32_t> feature_ids;  ///< features seen at time 0, in observation order
+	std::vector<int32_t> feature_index;  ///< their feature index within the object
+	std::vector<TPoseRecord> dropped_poses;  ///< ascending step
+	/** Index of feature `id` in feature_ids, or -1 if it is not in the feature set. */
+	int indexOf(int32_t id) const;
+	/** 1 feature: translation-only pose (2 entries); otherwise (dx, dy, dtheta). */
+	int poseDim() const { return feature_ids.size() == 1 ? 2 : 3; }
+};
+
+/** How a reading of an object feature relates to the registry (see the file comment). */
+enum class FeatureRole
+{
+	FirstSighting,  ///< the object's time 0 is this step: the reading defines f_0
+	TimeT,  ///< a known feature of an object first seen earlier: f_t
+	Unknown  ///< not in the object's feature set: no f_0, skipped
+};
+
+class CObjectRegistry
+{
+public:
+	void clear() { m_objects.clear(); }
+	/** Registers the reading of feature `id` (index `feature` within the object) of object
+	 * `obj` at `step` and says its role. A first sighting adds it to the object's feature set. */
+	FeatureRole registerReading(int32_t obj, int32_t id, int32_t feature, int step);
+	bool has(int32_t obj) const { return m_objects.count(obj) != 0; }
+	const TObjectEntry& at(int32_t obj) const { return m_objects.at(obj); }
+	TObjectEntry& at(int32_t obj) { return m_objects.at(obj); }
+	const std::map<int32_t, TObjectEntry>& objects() const { return m_objects; }
+	/** Records a dropped pose (ignored if `record` is false: memory stays bounded). */
+	void recordDroppedPose(int32_t obj, const TPoseRecord& r, bool record);
+	/** True if `step` is a time-t step of object obj (the object exists and was first seen
+	 * earlier). */
+	bool isTimeT(int32_t obj, int step) const;
+
+private:
+	std::map<int32_t, TObjectEntry> m_objects;
+};
+}  // namespace dynslam::estimator

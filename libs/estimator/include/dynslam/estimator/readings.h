@@ -1,0 +1,27 @@
+#pragma once
+/** @file readings.h
+ * One step's input after parsing, independent of MRPT: the odometry increment and the
+ * readings of the step in the measurement model's space. Produced by the one step-input
+ * parser (dynslam/step_input.h, libs/common), consumed by every back-end through an
+ * IMeasurementRouter. */
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace dynslam::estimator
+{
+/** One reading: the landmark / track ID it carries and z in the model's measurement space. */
+struct TReading
+{
+	int32_t id;
+	Eigen::Vector2d z;
+};
+
+struct TStepInput
+{
+	Eigen::Vector3d u = Eigen::Vector3d::Zero();  ///< odometry increment (robot frame)
+	Eigen::Matrix3d U = Eigen::Matrix3d::Zero();  ///< its covariance (from the action)
+	std::vector<TReading> readings;  ///< in observation order, IDs unique
+	double max_range = 0;  ///< the sensor's range [m] (0: unknown)
+};
+}  // namespace dynslam::estimator

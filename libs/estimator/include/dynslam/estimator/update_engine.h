@@ -1,0 +1,72 @@
+#pragma once
+/** @file update_engine.h
+ * Seam 3 of the estimator core (doc/architecture.md): the static update (Alg. 5) with the
+ * tracked static landmarks read in a step. Implementations: CSparseUpdateEngine (the EKF
+ * update as a symmetric rank-2k correction on the non-zero columns of H, default) here, and
+ * MRPT's own update (CKalmanFilterCapable's kfEKFNaive / kfEKFAlaDavison) in libs/ekf. */
+#include <dynslam/ekf_steps.h>
+#include <dynslam/models/measurement.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace dynslam::estimator
+{
+/** A reading of a tracked static landmark whose x-coordinate is at state index `index`. */
+struct TStaticObservation
+{
+	int32_t id;
+	Eigen::Vector2d z;
+	int index;
+};
+
+struct TUpdateContext
+{
+	models::MeasurementModel model = models::MeasurementModel::Cartesian;
+	Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+	/** A reading whose squared Mahalanobis distance (its own 2x2 innovation covariance)
+	 * exceeds this is not used, and counted. Infinity: no gate. */
+	double gate_threshold = std::numeric_limits<double>::infinity();
+	/** Optional: replaces the Jacobians J_z_x, J_z_f of landmark `id` at ego pose `ego`
+	 * (first-estimate Jacobians); the innovation stays at the current estimate. */
+	std::function<void(int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x,
+					   Eigen::Matrix2d& J_z_f)>
+		jacobians;
+};
+
+struct TUpdateResult
+{
+	size_t updates = 0, gated_out = 0;
+	double nis = 0;  ///< NIS of the readings used (0 if none)
+	size_t nis_dof = 0;
+};
+
+class IUpdateEngine
+{
+public:
+	virtual ~IUpdateEngine() = default;
+	virtual std::string name() const = 0;
+	/** Updates (x, P) in place with the readings; the ego pose is x[0..2]. */
+	virtual TUpdateResult update(
+		Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
+		const std::vector<TStaticObservation>& obs, const TUpdateContext& ctx) = 0;
+};
+
+/** The sparse symmetric update (ekf::sparseUpdate): O(n^2 k) for k readings. */
+class CSparseUpdateEngine : public IUpdateEngine
+{
+public:
+	std::string name() const override { return "sparse"; }
+	TUpdateResult update(
+		Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
+		const std::vector<TStaticObservation>& obs, const TUpdateContext& ctx) override;
+};
+
+/** Chi-square quantile with 2 dof in closed form (F(x) = 1 - exp(-x/2)) of probability p;
+ * infinity for p = 0 (no gate). */
+double gateThreshold2Dof(double p);
+}  // namespace dynslam::estimator

@@ -1,0 +1,37 @@
+#include <dynslam/estimator/object_registry.h>
+
+#include <algorithm>
+
+namespace dynslam::estimator
+{
+int TObjectEntry::indexOf(int32_t id) const
+{
+	const auto it = std::find(feature_ids.begin(), feature_ids.end(), id);
+	return it == feature_ids.end() ? -1 : int(it - feature_ids.begin());
+}
+
+FeatureRole CObjectRegistry::registerReading(int32_t obj, int32_t id, int32_t feature, int step)
+{
+	auto it = m_objects.find(obj);
+	if (it == m_objects.end() || it->second.first_step == step)
+	{
+		TObjectEntry& o = m_objects[obj];
+		o.first_step = step;
+		o.feature_ids.push_back(id);
+		o.feature_index.push_back(feature);
+		return FeatureRole::FirstSighting;
+	}
+	return it->second.indexOf(id) >= 0 ? FeatureRole::TimeT : FeatureRole::Unknown;
+}
+
+void CObjectRegistry::recordDroppedPose(int32_t obj, const TPoseRecord& r, bool record)
+{
+	if (record) m_objects.at(obj).dropped_poses.push_back(r);
+}
+
+bool CObjectRegistry::isTimeT(int32_t obj, int step) const
+{
+	const auto it = m_objects.find(obj);
+	return it != m_objects.end() && it->second.first_step != step;
+}
+}  // namespace dynslam::estimator
