@@ -1,0 +1,87 @@
+/** End to end on the shipped excerpt (datasets/kitti: frames 0-99 of KITTI tracking sequence
+ * 0000): dynslam-kitti's conversion with config/kitti.ini, then the three filters of
+ * config/compare_kitti.ini on it. Thresholds: a few times the values measured on this excerpt
+ * (doc/kitti.md, section 6). */
+#include <dynslam/apps/data_files.h>
+#include <dynslam/kitti/CKittiApp.h>
+#include <dynslam/kitti/rawlog_writer.h>
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
+
+#include <filesystem>
+
+#include "kitti_run.h"
+
+using namespace dynslam;
+
+namespace
+{
+struct TExcerpt
+{
+	std::string rawlog;
+	kitti::TImportSummary summary;
+	apps::TRawlog raw;
+	TGroundTruth gt;
+};
+
+const TExcerpt& excerpt()
+{
+	static const TExcerpt e = []
+	{
+		TExcerpt x;
+		const std::string data = std::string(DYNSLAM_DATASETS_DIR) + "/kitti";
+		kitti::TKittiOptions o;
+		mrpt::config::CConfigFile ini(std::string(DYNSLAM_CONFIG_DIR) + "/kitti.ini");
+		o.loadFromConfigFile(ini, "KITTI_Import");
+		const auto res = kitti::importFromFiles(data + "/label_02", data + "/poses", "0000", o.import);
+		const std::string dir =
+		    (std::filesystem::temp_directory_path() / "dynslam_kitti_excerpt").string();
+		std::filesystem::remove_all(dir);
+		kitti::writeImport(res, o, dir, "kitti_0000");
+		x.rawlog = dir + "/kitti_0000.rawlog";
+		x.summary = res.summary;
+		x.raw = apps::loadRawlog(x.rawlog);
+		x.gt = apps::loadGroundTruthFor(apps::groundTruthBesideRawlog(x.rawlog), x.raw.size(), x.rawlog);
+		return x;
+	}();
+	return e;
+}
+
+kitti_eval::TKittiRunResult run(const std::string& filter)
+{
+	mrpt::config::CConfigFileMemory ini;
+	apps::loadIniFile(std::string(DYNSLAM_CONFIG_DIR) + "/compare_kitti.ini", ini);
+	return kitti_eval::runKitti(excerpt().raw, excerpt().gt, ini, filter);
+}
+}  // namespace
+
+TEST(KittiExcerpt, ConversionCounts)
+{
+	const auto& s = excerpt().summary;
+	EXPECT_EQ(s.steps, 100u);
+	EXPECT_EQ(excerpt().raw.size(), 100u);
+	EXPECT_EQ(s.moving_tracks, 2u);  // the van and the cyclist ahead
+	EXPECT_GT(s.static_tracks, 5u);
+	EXPECT_GT(s.readings, 1000u);
+	EXPECT_EQ(excerpt().gt.objects.size(), 2u);
+}
+
+TEST(KittiExcerpt, FiltersEndToEnd)
+{
+	const auto all = run("static_all");
+	const auto only = run("static_landmarks_only");
+	const auto dyn = run("dynamic");
+	for (const auto* r : {&all, &only, &dyn})
+		std::cout << r->filter << ": ATE " << r->ate << " m, RPE10 " << r->rpe.trans_rmse << " m, map "
+		          << r->map_rmse << " m, objects " << r->objects.position_rmse << " m, motion "
+		          << r->objects.motion.trans_rmse << " m / " << r->objects.motion.rot_rmse << " rad\n";
+	EXPECT_LT(dyn.ate, DYN_ATE_MAX);
+	EXPECT_LT(only.ate, ONLY_ATE_MAX);
+	EXPECT_LT(all.ate, ALL_ATE_MAX);
+	EXPECT_LT(dyn.map_rmse, DYN_MAP_MAX);
+	EXPECT_LT(dyn.rpe.trans_rmse, DYN_RPE_MAX);
+	EXPECT_GT(dyn.objects.motion.n, 100u);
+	EXPECT_LT(dyn.objects.position_rmse, DYN_OBJ_MAX);
+	EXPECT_LT(dyn.objects.motion.trans_rmse, DYN_MOTION_T_MAX);
+	EXPECT_LT(dyn.objects.motion.rot_rmse, DYN_MOTION_R_MAX);
+}
