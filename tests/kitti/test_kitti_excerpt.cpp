@@ -61,8 +61,8 @@ TEST(KittiExcerpt, ConversionCounts)
 	EXPECT_EQ(s.steps, 100u);
 	EXPECT_EQ(excerpt().raw.size(), 100u);
 	EXPECT_EQ(s.moving_tracks, 2u);  // the van and the cyclist ahead
-	EXPECT_GT(s.static_tracks, 5u);
-	EXPECT_GT(s.readings, 1000u);
+	EXPECT_EQ(s.static_tracks, 2u);  // a pedestrian and a parked van
+	EXPECT_EQ(s.readings, 1180u);
 	EXPECT_EQ(excerpt().gt.objects.size(), 2u);
 }
 
@@ -75,13 +75,20 @@ TEST(KittiExcerpt, FiltersEndToEnd)
 		std::cout << r->filter << ": ATE " << r->ate << " m, RPE10 " << r->rpe.trans_rmse << " m, map "
 		          << r->map_rmse << " m, objects " << r->objects.position_rmse << " m, motion "
 		          << r->objects.motion.trans_rmse << " m / " << r->objects.motion.rot_rmse << " rad\n";
-	EXPECT_LT(dyn.ate, DYN_ATE_MAX);
-	EXPECT_LT(only.ate, ONLY_ATE_MAX);
-	EXPECT_LT(all.ate, ALL_ATE_MAX);
-	EXPECT_LT(dyn.map_rmse, DYN_MAP_MAX);
-	EXPECT_LT(dyn.rpe.trans_rmse, DYN_RPE_MAX);
+	// measured (config/kitti.ini, config/compare_kitti.ini, this build): ATE static_all 20.80 m,
+	// static_landmarks_only 0.601 m, dynamic 0.601 m; dynamic: RPE10 0.128 m, map 0.576 m,
+	// objects 0.875 m, motion 0.106 m / 0.0385 rad (rms, 2 objects)
+	EXPECT_GT(all.ate, 5.0);  // the van and the cyclist ahead drag the static filter
+	EXPECT_LT(dyn.ate, 0.2 * all.ate);
+	EXPECT_LE(dyn.ate, 1.1 * only.ate);
+	EXPECT_LT(dyn.ate, 1.5);
+	EXPECT_LT(only.ate, 1.5);
+	EXPECT_LT(dyn.map_rmse, 1.5);
+	EXPECT_LT(dyn.rpe.trans_rmse, 0.35);
 	EXPECT_GT(dyn.objects.motion.n, 100u);
-	EXPECT_LT(dyn.objects.position_rmse, DYN_OBJ_MAX);
-	EXPECT_LT(dyn.objects.motion.trans_rmse, DYN_MOTION_T_MAX);
-	EXPECT_LT(dyn.objects.motion.rot_rmse, DYN_MOTION_R_MAX);
+	EXPECT_LT(dyn.objects.position_rmse, 2.5);
+	EXPECT_LT(dyn.objects.motion.trans_rmse, 0.3);
+	EXPECT_LT(dyn.objects.motion.rot_rmse, 0.1);
+	// the static filters do not estimate objects
+	EXPECT_EQ(all.objects.motion.n, 0u);
 }

@@ -219,7 +219,8 @@ std::string TImportSummary::toText() const
 	  << ", never read " << tracks_never_read << "\n"
 	  << "  annotation jitter (static tracks, read): frame-to-frame motion rms " << floor_trans_rmse
 	  << " m, " << floor_rot_rmse << " rad (" << floor_n << " motions); corners about their mean "
-	  << static_corner_rms << " m rms\n";
+	  << static_corner_rms << " m rms\n"
+	  << "  trajectory / labels scale (static tracks, diagnostic) " << trajectory_scale << "\n";
 	return o.str();
 }
 }  // namespace dynslam::kitti

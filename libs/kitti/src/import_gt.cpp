@@ -57,7 +57,22 @@ struct TJitter
 {
 	size_t n = 0, nc = 0;
 	double t2 = 0, r2 = 0, c2 = 0;
+	double scale_num = 0, scale_den = 0;
 };
+
+/** The trajectory-scale diagnostic of TImportSummary (first and last frame of a static track). */
+void addScale(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::Vector3d>& ego, TJitter& j)
+{
+	if (t.boxes.size() < 10) return;
+	const TKittiBox& a = L.boxes[t.boxes.front()];
+	const TKittiBox& b = L.boxes[t.boxes.back()];
+	const Eigen::Vector3d& ea = ego[size_t(a.frame)];
+	const Eigen::Vector3d& eb = ego[size_t(b.frame)];
+	const Eigen::Vector2d d = eb.head<2>() - ea.head<2>();
+	const Eigen::Vector2d q = models::rot2(ea.z()) * boxCentreEgo(a) - models::rot2(eb.z()) * boxCentreEgo(b);
+	j.scale_num += d.dot(q);
+	j.scale_den += q.squaredNorm();
+}
 
 /** Static track: motions between consecutive read frames (truth: none) and corner scatter. */
 void addJitter(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::Vector3d>& ego,
@@ -116,11 +131,13 @@ void fillGroundTruth(const TKittiLabels& L, const std::vector<Eigen::Vector3d>& 
 		mean /= double(t.boxes.size());
 		for (int c = 0; c < 4; ++c) gt.landmarks[ids.at({t.track, c})] = mean.col(c);
 		addJitter(t, L, ego, read, mean, jit);
+		addScale(t, L, ego, jit);
 	}
 	auto& s = res.summary;
 	s.floor_n = jit.n;
 	s.floor_trans_rmse = jit.n ? std::sqrt(jit.t2 / double(jit.n)) : 0;
 	s.floor_rot_rmse = jit.n ? std::sqrt(jit.r2 / double(jit.n)) : 0;
+	s.trajectory_scale = jit.scale_den > 0 ? jit.scale_num / jit.scale_den : kNaN;
 	s.static_corner_rms = jit.nc ? std::sqrt(jit.c2 / double(jit.nc)) : 0;
 	std::sort(res.track_steps.begin(), res.track_steps.end(),
 	          [](const TTrackStepRow& a, const TTrackStepRow& b)

@@ -123,6 +123,7 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 		            << "\nfloor_trans_rmse = " << s.floor_trans_rmse
 		            << "\nfloor_rot_rmse = " << s.floor_rot_rmse
 		            << "\nstatic_corner_rms = " << s.static_corner_rms
+		            << "\ntrajectory_scale = " << s.trajectory_scale
 		            << "\n\n[DynamicKFSLAM]\ninitial_pose = [0 0 0]\nSigma_0 = [0 0 0]\n\n";
 		          opts.dumpToTextStream(f);
 	          });

@@ -126,6 +126,12 @@ struct TImportSummary
 	 * as eval::objectErrors scores objects): n, RMSE of |translation| [m] and |rotation| [rad];
 	 * and the rms distance of the read corners from their mean world position [m]. */
 	size_t floor_n = 0;
+	/** Scale of the camera trajectory relative to the labels (a diagnostic, not applied): the
+	 * least-squares s with ego_b - ego_a = s (R_a c_a - R_b c_b) over the static tracks with
+	 * >= 10 frames (a, b = their first and last frame, c = footprint centre in the ego frame).
+	 * 1 if the trajectory and the boxes agree; > 1: the trajectory is longer than the boxes'
+	 * geometry says. NaN without such tracks. */
+	double trajectory_scale = 0;
 	double floor_trans_rmse = 0, floor_rot_rmse = 0, static_corner_rms = 0;
 	std::string toText() const;
 };
