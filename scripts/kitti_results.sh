@@ -65,7 +65,7 @@ function f(x, d) { return (x == "nan" || x == "-nan" || x == "") ? "-" : sprintf
 		print "| seq | filter | ATE [m] | RPE10 [m / deg] | map [m] | objects [m] | motion [m / deg] | floor [m / deg] | gated | ms/step |"
 		print "|---|---|---|---|---|---|---|---|---|---|"
 	}
-	dyn = ($c["filter"] == "dynamic")
+	dyn = ($c["filter"] ~ /^dynamic/)
 	printf "| %s | %s | %s | %s / %s | %s | %s | %s | %s / %s | %s | %s |\n", $c["label"], $c["filter"],
 		f($c["ate"], 3), f($c["rpe10_t"], 3), f($c["rpe10_r_deg"], 2), f($c["map_rmse"], 3),
 		dyn ? f($c["obj_pos_rmse"], 3) : "-",

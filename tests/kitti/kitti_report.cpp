@@ -1,5 +1,5 @@
 /** dynslam-kitti-report: development tool of scripts/kitti_results.sh (not a test). Runs
- * static_all, static_landmarks_only and dynamic (kitti_run.h) on one imported KITTI rawlog
+ * static_all, static_landmarks_only, dynamic and dynamic_nogate (kitti_run.h; --filters) on one imported KITTI rawlog
  * (ground truth and <base>_scenario.ini beside it) and writes, into --out:
  *   summary.csv   one row per filter: the columns of doc/kitti.md's tables, the annotation
  *                 jitter floor of the import, the sequence's counts
@@ -27,9 +27,9 @@ void drawMap(const TGroundTruth& gt, const std::vector<kitti_eval::TKittiRunResu
              const std::string& label, const std::string& path)
 {
 	std::vector<eval::TFigureSeries> series;
-	const size_t colors[] = {0, 3, 1};
+	const size_t colors[] = {0, 3, 1, 2};
 	for (size_t i = 0; i < results.size(); ++i)
-		series.push_back({results[i].filter, eval::seriesColor(colors[i % 3]), &results[i].run.est});
+		series.push_back({results[i].filter, eval::seriesColor(colors[i % 4]), &results[i].run.est});
 	eval::TMapFigureOptions mo;
 	mo.width = 1400;
 	mo.height = 1100;
@@ -53,6 +53,9 @@ int main(int argc, char** argv)
 		TCLAP::ValueArg<std::string> aCfg("c", "config", "INI (config/compare_kitti.ini)", true, "", "ini", cmd);
 		TCLAP::ValueArg<std::string> aOut("o", "out", "output folder", true, "", "dir", cmd);
 		TCLAP::ValueArg<std::string> aLabel("l", "label", "row label (e.g. 0000)", false, "", "s", cmd);
+		TCLAP::ValueArg<std::string> aFilters(
+		    "", "filters", "comma-separated filters", false,
+		    "static_all,static_landmarks_only,dynamic,dynamic_nogate", "list", cmd);
 		cmd.parse(argc, argv);
 
 		const std::string rawPath = aRaw.getValue(), label = aLabel.getValue();
@@ -83,11 +86,21 @@ int main(int argc, char** argv)
 		    << ",,,,,,,,,," << sc.read_double(R, "floor_trans_rmse", NAN) << ','
 		    << sc.read_double(R, "floor_rot_rmse", NAN) * kDeg << ',' << sc.read_int(R, "floor_n", 0)
 		    << ',' << sc.read_double(R, "static_corner_rms", NAN) << ",,,\n";
-		for (const std::string f : {"static_all", "static_landmarks_only", "dynamic"})
+		for (const std::string& f : apps::splitList(aFilters.getValue()))
 		{
-			results.push_back(kitti_eval::runKitti(raw, gt, ini, f));
+			try
+			{
+				results.push_back(kitti_eval::runKitti(raw, gt, ini, f));
+			}
+			catch (const std::exception& e)
+			{
+				// a filter that diverges (NaN state) is a result, not a reason to stop
+				std::cout << label << " " << f << ": FAILED: " << e.what() << "\n";
+				sum << label << ',' << f << ",failed,,,,nan,nan,nan,nan,,,,,,,,,,,,,,,\n";
+				continue;
+			}
 			const auto& r = results.back();
-			const bool dyn = f == "dynamic";
+			const bool dyn = f.rfind("dynamic", 0) == 0;
 			const auto& m = r.objects.motion;
 			auto val = [&](double v) { return dyn ? std::to_string(v) : std::string(); };
 			sum << label << ',' << f << ',' << r.run.steps << ',' << sc.read_double(R, "path_length", 0)

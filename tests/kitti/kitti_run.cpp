@@ -8,7 +8,9 @@ TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
                          const mrpt::config::CConfigFileMemory& ini, const std::string& filter)
 {
 	mrpt::config::CConfigFileMemory params(ini.getContent());
-	auto backend = apps::makeBackend(filter == "dynamic" ? "ekf" : filter, params);
+	const bool dyn = filter == "dynamic" || filter == "dynamic_nogate";
+	if (filter == "dynamic_nogate") params.write("DynamicKFSLAM", "innovation_gate", 0);
+	auto backend = apps::makeBackend(dyn ? "ekf" : filter, params);
 	TKittiRunResult r;
 	r.filter = filter;
 	auto perStep = [&](size_t, size_t)

@@ -18,7 +18,7 @@ namespace dynslam::kitti_eval
 {
 struct TKittiRunResult
 {
-	std::string filter;  ///< static_all | static_landmarks_only | dynamic
+	std::string filter;  ///< static_all | static_landmarks_only | dynamic | dynamic_nogate
 	apps::TFilterRun run;
 	apps::TEvaluation eval;
 	double ate = 0;        ///< [m], no alignment (the world frame is the true start)
@@ -29,7 +29,8 @@ struct TKittiRunResult
 	size_t gated_out = 0, static_updates = 0;
 };
 
-/** Runs one filter of config/compare_kitti.ini's three on the rawlog. Throws on errors. */
+/** Runs one filter of config/compare_kitti.ini's three on the rawlog, or "dynamic_nogate" (the
+ * dynamic filter with [DynamicKFSLAM] innovation_gate = 0, like MRPT's ungated filter). */
 TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
                          const mrpt::config::CConfigFileMemory& ini, const std::string& filter);
 }  // namespace dynslam::kitti_eval
