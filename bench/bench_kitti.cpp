@@ -29,7 +29,8 @@ const std::string& syntheticSequence()
 			// the camera drives 1 m per frame on a circle of radius 500 m (rotation about y)
 			const double a = -double(k) / 500.0, s = std::sin(a), c = std::cos(a);
 			const double tx = 500.0 * (1 - std::cos(a)), tz = 500.0 * std::sin(-a);
-			p << c << " 0 " << s << ' ' << tx << " 0 1 0 0 " << -s << " 0 " << c << ' ' << tz << "\n";
+			p << c << " 0 " << s << ' ' << tx << " 0 1 0 0 " << -s << " 0 " << c << ' ' << tz
+			  << "\n";
 			for (int j = 0; j < 2; ++j)
 				l << k << " -1 DontCare -1 -1 -10 1 2 3 4 -1000 -1000 -1000 -10 -1 -1 -1\n";
 			for (int j = 0; j < 3; ++j)  // parked, seen from 30 m down to 5 m ahead
@@ -65,7 +66,8 @@ void BM_KittiConvert(benchmark::State& state)
 	dynslam::kitti::TKittiOptions o;
 	for (auto _ : state)
 	{
-		const auto r = dynslam::kitti::importFromFiles(d + "/label_02", d + "/poses", "0000", o.import);
+		const auto r =
+		    dynslam::kitti::importFromFiles(d + "/label_02", d + "/poses", "0000", o.import);
 		dynslam::kitti::writeImport(r, o, d + "/out", "kitti_0000");
 	}
 }

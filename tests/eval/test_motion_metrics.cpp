@@ -12,7 +12,8 @@ using namespace dynslam::eval;
 namespace
 {
 /** G(xi) applied to a point, written out from the definition (not via SE(2) composition). */
-Eigen::Vector2d applyG(const Eigen::Vector3d& xi, const Eigen::Vector2d& c0, const Eigen::Vector2d& p)
+Eigen::Vector2d applyG(const Eigen::Vector3d& xi, const Eigen::Vector2d& c0,
+                       const Eigen::Vector2d& p)
 {
 	return models::rot2(xi.z()) * (p - c0) + c0 + xi.head<2>();
 }
@@ -56,7 +57,8 @@ TRunEstimates perfectEstimates(const TGroundTruth& gt)
 		est.object_poses.push_back({0, int(k), gt.objects[0].pose[k], Eigen::Matrix3d::Identity()});
 	}
 	for (int j = 0; j < 4; ++j)
-		est.object_features.push_back({0, j, gt.objects[0].features[0].col(j), Eigen::Matrix2d::Identity()});
+		est.object_features.push_back(
+		    {0, j, gt.objects[0].features[0].col(j), Eigen::Matrix2d::Identity()});
 	return est;
 }
 }  // namespace
@@ -153,12 +155,14 @@ TEST(MotionMetrics, RelativePoseErrorSeesAJumpOnce)
 	{
 		gt.t.push_back(k);
 		gt.ego.emplace_back(k, 0, 0);
-		est.ego.push_back({k, Eigen::Vector3d(k + (k >= 5 ? 1.0 : 0.0), 0, 0), Eigen::Matrix3d::Identity()});
+		est.ego.push_back(
+		    {k, Eigen::Vector3d(k + (k >= 5 ? 1.0 : 0.0), 0, 0), Eigen::Matrix3d::Identity()});
 	}
 	const TRelativePoseError r = relativePoseError(gt, est.ego, 1);
 	EXPECT_EQ(r.n, 10u);
 	EXPECT_NEAR(r.trans_rmse, std::sqrt(1.0 / 10), 1e-12);
-	for (auto& e : est.ego) e.mean = models::composePose(Eigen::Vector3d(3, -2, 0.7), gt.ego[size_t(e.step)]);
+	for (auto& e : est.ego)
+		e.mean = models::composePose(Eigen::Vector3d(3, -2, 0.7), gt.ego[size_t(e.step)]);
 	const TRelativePoseError c = relativePoseError(gt, est.ego, 3);
 	EXPECT_EQ(c.n, 8u);
 	EXPECT_LT(c.trans_rmse, 1e-12);

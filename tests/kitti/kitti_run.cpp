@@ -45,7 +45,9 @@ TOdometryOnly deadReckoning(const apps::TRawlog& rawlog, const TGroundTruth& gt)
 	for (size_t k = 0; k < rawlog.size() && k < gt.numSteps(); ++k)
 	{
 		const auto mv = rawlog.actions[k]->getBestMovementEstimation();
-		if (!mv) throw std::runtime_error("deadReckoning: step " + std::to_string(k) + " has no odometry");
+		if (!mv)
+			throw std::runtime_error("deadReckoning: step " + std::to_string(k) +
+			                         " has no odometry");
 		const auto m = mv->poseChange->getMeanVal();
 		x = models::composePose(x, Eigen::Vector3d(m.x(), m.y(), m.phi()));
 		eval::TEgoEstimate e;

@@ -21,9 +21,9 @@ struct TKittiRunResult
 	std::string filter;  ///< static_all | static_landmarks_only | dynamic | dynamic_nogate
 	apps::TFilterRun run;
 	apps::TEvaluation eval;
-	double ate = 0;        ///< [m], no alignment (the world frame is the true start)
+	double ate = 0;                ///< [m], no alignment (the world frame is the true start)
 	eval::TRelativePoseError rpe;  ///< over 10 frames
-	double map_rmse = 0;   ///< sqrt(rmse_x^2 + rmse_y^2) of the final static map [m]
+	double map_rmse = 0;           ///< sqrt(rmse_x^2 + rmse_y^2) of the final static map [m]
 	size_t landmarks_scored = 0;
 	eval::TObjectErrors objects;  ///< dynamic only
 	size_t gated_out = 0, static_updates = 0;

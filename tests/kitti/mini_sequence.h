@@ -25,10 +25,7 @@ inline std::string tempDir(const std::string& name)
 }
 
 /** Camera pose line of frame k: identity rotation, t = (0, 0, k). */
-inline std::string poseLine(int k)
-{
-	return "1 0 0 0 0 1 0 0 0 0 1 " + std::to_string(double(k));
-}
+inline std::string poseLine(int k) { return "1 0 0 0 0 1 0 0 0 0 1 " + std::to_string(double(k)); }
 
 /** A label line; x, z camera frame (x right, z forward), ry yaw. */
 inline std::string labelLine(int frame, int track, const std::string& type, double x, double z,

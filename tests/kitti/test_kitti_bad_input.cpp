@@ -62,9 +62,9 @@ TEST(KittiBadInput, ValidSequenceWritesEverythingAndReadsBack)
 	const std::string d = kitti_test::writeMiniSequence("valid");
 	const std::string out = d + "/out";
 	ASSERT_EQ(appError(d, "0007", out), "");
-	for (const char* f : {".rawlog", "_gt_ego.csv", "_gt_ego.tum", "_gt_landmarks.csv", "_gt_objects.csv",
-	                      "_gt_object_features.csv", "_gt_tracks.csv", "_gt_track_list.csv", "_gt_ids.csv",
-	                      "_summary.txt", "_scenario.ini"})
+	for (const char* f : {".rawlog", "_gt_ego.csv", "_gt_ego.tum", "_gt_landmarks.csv",
+	                      "_gt_objects.csv", "_gt_object_features.csv", "_gt_tracks.csv",
+	                      "_gt_track_list.csv", "_gt_ids.csv", "_summary.txt", "_scenario.ini"})
 		EXPECT_TRUE(fs::exists(out + "/kitti_0007" + f)) << f;
 	size_t entries = 0;
 	for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++entries;
@@ -142,11 +142,14 @@ TEST(KittiBadInput, MalformedLabelLinesNameFileAndLine)
 	expectContains(errorWithLabel(5, "2.5 1 Car 0 0 -1.5 100 150 300 250 1.5 1.8 4 4 1.6 7 0"),
 	               "0007.txt:6: column 1: '2.5' is not an integer");
 	// a box without 3-D data is skipped and counted, not an error
-	const std::string d = kitti_test::writeMiniSequence("no3d", 12, [] {
-		auto l = kitti_test::miniLabels();
-		l[5] = "1 0 Car 0 0 -1.5 100 150 300 250 -1 -1 -1 -1000 -1000 -1000 -10";
-		return l;
-	}());
+	const std::string d = kitti_test::writeMiniSequence(
+	    "no3d", 12,
+	    []
+	    {
+		    auto l = kitti_test::miniLabels();
+		    l[5] = "1 0 Car 0 0 -1.5 100 150 300 250 -1 -1 -1 -1000 -1000 -1000 -10";
+		    return l;
+	    }());
 	const auto L = readLabels(d + "/label_02/0007.txt");
 	EXPECT_EQ(L.no3d, 1u);
 	EXPECT_EQ(L.dontcare, 12u);
@@ -162,7 +165,8 @@ TEST(KittiBadInput, MalformedPoseLines)
 	expectContains(appError(d, "0007", d + "/out"), "poses/0007.txt:5: column 12: non-finite");
 	poses[4] = "2 0 0 0 0 1 0 0 0 0 1 4";
 	kitti_test::writeLines(d + "/poses/0007.txt", poses);
-	expectContains(appError(d, "0007", d + "/out"), "poses/0007.txt:5: the 3x3 block is not a rotation");
+	expectContains(appError(d, "0007", d + "/out"),
+	               "poses/0007.txt:5: the 3x3 block is not a rotation");
 	poses[4] = "1 0 0 0 0 1 0 0 0 0 1";
 	kitti_test::writeLines(d + "/poses/0007.txt", poses);
 	expectContains(appError(d, "0007", d + "/out"), "poses/0007.txt:5: expected 12 numbers");
@@ -177,15 +181,17 @@ TEST(KittiBadInput, CommandLine)
 	const std::string d = kitti_test::writeMiniSequence("cmdline");
 	CKittiApp app;
 	const std::string lab = d + "/label_02", pos = d + "/poses", out = d + "/out";
-	const char* noOut[] = {"dynslam-kitti", "--labels", lab.c_str(), "--poses", pos.c_str(), "--sequence", "0007"};
+	const char* noOut[] = {"dynslam-kitti", "--labels",   lab.c_str(), "--poses",
+	                       pos.c_str(),     "--sequence", "0007"};
 	EXPECT_FALSE(app.initialize(7, noOut));
 	EXPECT_EQ(app.exitCode(), 1);
-	const char* badIni[] = {"dynslam-kitti", "--labels", lab.c_str(), "--poses", pos.c_str(), "--sequence",
-	                        "0007", "--out", out.c_str(), "-c", "/nonexistent.ini"};
+	const char* badIni[] = {"dynslam-kitti",   "--labels", lab.c_str(), "--poses",   pos.c_str(),
+	                        "--sequence",      "0007",     "--out",     out.c_str(), "-c",
+	                        "/nonexistent.ini"};
 	CKittiApp app2;
 	EXPECT_THROW(app2.initialize(11, badIni), std::runtime_error);
-	const char* anon[] = {"dynslam-kitti", "--labels", lab.c_str(), "--poses", pos.c_str(), "--sequence",
-	                      "0007", "--out", out.c_str(), "--anonymous"};
+	const char* anon[] = {"dynslam-kitti", "--labels", lab.c_str(), "--poses",   pos.c_str(),
+	                      "--sequence",    "0007",     "--out",     out.c_str(), "--anonymous"};
 	CKittiApp app3;
 	ASSERT_TRUE(app3.initialize(10, anon));
 	EXPECT_TRUE(app3.options.import.anonymous);

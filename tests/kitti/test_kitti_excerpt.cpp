@@ -33,7 +33,8 @@ const TExcerpt& excerpt()
 		kitti::TKittiOptions o;
 		mrpt::config::CConfigFile ini(std::string(DYNSLAM_CONFIG_DIR) + "/kitti.ini");
 		o.loadFromConfigFile(ini, "KITTI_Import");
-		const auto res = kitti::importFromFiles(data + "/label_02", data + "/poses", "0000", o.import);
+		const auto res =
+		    kitti::importFromFiles(data + "/label_02", data + "/poses", "0000", o.import);
 		const std::string dir =
 		    (std::filesystem::temp_directory_path() / "dynslam_kitti_excerpt").string();
 		std::filesystem::remove_all(dir);
@@ -41,7 +42,8 @@ const TExcerpt& excerpt()
 		x.rawlog = dir + "/kitti_0000.rawlog";
 		x.summary = res.summary;
 		x.raw = apps::loadRawlog(x.rawlog);
-		x.gt = apps::loadGroundTruthFor(apps::groundTruthBesideRawlog(x.rawlog), x.raw.size(), x.rawlog);
+		x.gt = apps::loadGroundTruthFor(apps::groundTruthBesideRawlog(x.rawlog), x.raw.size(),
+		                                x.rawlog);
 		return x;
 	}();
 	return e;
@@ -72,9 +74,10 @@ TEST(KittiExcerpt, FiltersEndToEnd)
 	const auto only = run("static_landmarks_only");
 	const auto dyn = run("dynamic");
 	for (const auto* r : {&all, &only, &dyn})
-		std::cout << r->filter << ": ATE " << r->ate << " m, RPE10 " << r->rpe.trans_rmse << " m, map "
-		          << r->map_rmse << " m, objects " << r->objects.position_rmse << " m, motion "
-		          << r->objects.motion.trans_rmse << " m / " << r->objects.motion.rot_rmse << " rad\n";
+		std::cout << r->filter << ": ATE " << r->ate << " m, RPE10 " << r->rpe.trans_rmse
+		          << " m, map " << r->map_rmse << " m, objects " << r->objects.position_rmse
+		          << " m, motion " << r->objects.motion.trans_rmse << " m / "
+		          << r->objects.motion.rot_rmse << " rad\n";
 	// measured (config/kitti.ini, config/compare_kitti.ini, this build): ATE static_all 20.80 m,
 	// static_landmarks_only 0.601 m, dynamic 0.601 m; dynamic: RPE10 0.128 m, map 0.576 m,
 	// objects 0.875 m, motion 0.106 m / 0.0385 rad (rms, 2 objects)

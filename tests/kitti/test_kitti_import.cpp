@@ -148,8 +148,14 @@ TEST(KittiImport, LabelledStepsIdsAndGroundTruth)
 	ASSERT_EQ(r.steps[2].readings.size(), 8u);
 	std::set<int32_t> ids;
 	for (const auto& z : r.steps[2].readings) ids.insert(z.id);
-	const std::set<int32_t> expected{0, 1, 2, 3, ids::objectFeatureId(0, 0), ids::objectFeatureId(0, 1),
-	                                 ids::objectFeatureId(0, 2), ids::objectFeatureId(0, 3)};
+	const std::set<int32_t> expected{0,
+	                                 1,
+	                                 2,
+	                                 3,
+	                                 ids::objectFeatureId(0, 0),
+	                                 ids::objectFeatureId(0, 1),
+	                                 ids::objectFeatureId(0, 2),
+	                                 ids::objectFeatureId(0, 3)};
 	EXPECT_EQ(ids, expected);
 	// reading of corner 0 (front-left) of the parked car at step 2: ego (2, 0), corner (12, 3.9)
 	const auto& z0 = r.steps[2].readings[0];
@@ -208,7 +214,8 @@ TEST(KittiImport, AnonymousIdsSayNothingAndKeepTheReadings)
 	ASSERT_EQ(an.ids.size(), 8u);
 	std::vector<int32_t> order;
 	for (const auto& row : an.ids) order.push_back(row.track * 4 + row.corner);
-	EXPECT_NE(order, std::vector<int32_t>({0, 1, 2, 3, 4, 5, 6, 7}));  // a permutation, not the identity
+	EXPECT_NE(order,
+	          std::vector<int32_t>({0, 1, 2, 3, 4, 5, 6, 7}));  // a permutation, not the identity
 	for (const auto& row : an.ids)
 		if (!row.moving)
 		{
@@ -222,7 +229,8 @@ TEST(KittiImport, SeededNoiseWithTheConfiguredSpread)
 {
 	// the shipped excerpt is not needed here: 200 frames of the mini layout
 	std::vector<std::string> labels;
-	for (int k = 0; k < 200; ++k) labels.push_back(kitti_test::labelLine(k, 1, "Car", 4, 5.0 + k, -M_PI / 2));
+	for (int k = 0; k < 200; ++k)
+		labels.push_back(kitti_test::labelLine(k, 1, "Car", 4, 5.0 + k, -M_PI / 2));
 	const std::string d = kitti_test::writeMiniSequence("noise", 200, labels);
 	const auto poses = readPoses(d + "/poses/0007.txt");
 	const auto L = readLabels(d + "/label_02/0007.txt");

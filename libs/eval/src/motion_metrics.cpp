@@ -102,9 +102,10 @@ TObjectErrors objectErrors(const TGroundTruth& gt, const TRunEstimates& est)
 	for (const auto& p : est.object_poses)
 	{
 		if (!c0.count(p.object) || p.step < 0 || size_t(p.step) >= gt.numSteps()) continue;
-		if (!finite(gt.objects[size_t(p.object)].pose[size_t(p.step)].head(p.mean.size()))) continue;
-		poses[p.object][p.step] =
-		    p.mean.size() == 3 ? Eigen::Vector3d(p.mean) : Eigen::Vector3d(p.mean.x(), p.mean.y(), 0);
+		if (!finite(gt.objects[size_t(p.object)].pose[size_t(p.step)].head(p.mean.size())))
+			continue;
+		poses[p.object][p.step] = p.mean.size() == 3 ? Eigen::Vector3d(p.mean)
+		                                             : Eigen::Vector3d(p.mean.x(), p.mean.y(), 0);
 		rotates[p.object] = p.mean.size() == 3;
 	}
 	TObjectErrors out;
@@ -125,8 +126,8 @@ TObjectErrors objectErrors(const TGroundTruth& gt, const TRunEstimates& est)
 			if (prev == byStep.end()) continue;
 			Eigen::Vector3d xgp = truth[size_t(k - 1)];
 			if (!rotates[obj]) xgp.z() = 0;
-			const Eigen::Vector3d E = poseDifference(bodyFrameMotion(prev->second, xi, ce),
-			                                         bodyFrameMotion(xgp, xg, cg));
+			const Eigen::Vector3d E =
+			    poseDifference(bodyFrameMotion(prev->second, xi, ce), bodyFrameMotion(xgp, xg, cg));
 			acc.t.push_back(E.head<2>().norm());
 			if (rotates[obj]) acc.r.push_back(std::abs(E.z()));
 		}

@@ -39,17 +39,18 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	    "readings; static tracks as landmarks, moving ones as objects, or all anonymous) plus "
 	    "ground truth. See doc/kitti.md.",
 	    ' ', "0.1");
-	TCLAP::ValueArg<std::string> aLabels("", "labels", "folder of the label files (label_02/SSSS.txt)",
-	                                     true, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> aLabels(
+	    "", "labels", "folder of the label files (label_02/SSSS.txt)", true, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> aPoses("", "poses", "folder of the pose files (poses/SSSS.txt)",
 	                                    true, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> aSeq("", "sequence", "sequence, four digits (e.g. 0000)", true, "",
 	                                  "SSSS", cmd);
 	TCLAP::ValueArg<std::string> aOut("", "out", "output folder", true, "", "DIR", cmd);
-	TCLAP::ValueArg<std::string> aCfg("c", "config", "INI with a [KITTI_Import] section (config/kitti.ini)",
-	                                  false, "", "INI", cmd);
-	TCLAP::ValueArg<std::string> aBase("", "base", "base name of the output files (default kitti_SSSS)",
-	                                   false, "", "B", cmd);
+	TCLAP::ValueArg<std::string> aCfg("c", "config",
+	                                  "INI with a [KITTI_Import] section (config/kitti.ini)", false,
+	                                  "", "INI", cmd);
+	TCLAP::ValueArg<std::string> aBase(
+	    "", "base", "base name of the output files (default kitti_SSSS)", false, "", "B", cmd);
 	TCLAP::SwitchArg aAnon("", "anonymous",
 	                       "every track anonymous: IDs that say nothing about track or class", cmd);
 	if (!cmd.parse(argc, argv))

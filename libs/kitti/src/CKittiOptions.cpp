@@ -6,7 +6,8 @@
 
 namespace dynslam::kitti
 {
-void TKittiOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& sec)
+void TKittiOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                       const std::string& sec)
 {
 	using namespace dynslam::config;
 	rejectUnknownKeys(c, sec,
@@ -20,12 +21,14 @@ void TKittiOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	if (o.fov_deg > 360) fail(sec, "fov_deg", c.read_string(sec, "fov_deg", ""), "must be <= 360");
 	o.static_radius = readNonNegative(c, sec, "static_radius", o.static_radius);
 	const std::vector<std::string> modes{"gaussian", "none"};
-	o.noise = readChoice(c, sec, "noise", modes, int(o.noise)) == 0 ? ENoise::Gaussian : ENoise::None;
+	o.noise =
+	    readChoice(c, sec, "noise", modes, int(o.noise)) == 0 ? ENoise::Gaussian : ENoise::None;
 	o.odometry_noise = readChoice(c, sec, "odometry_noise", modes, int(o.odometry_noise)) == 0
 	                       ? ENoise::Gaussian
 	                       : ENoise::None;
 	const long seed = readInt(c, sec, "seed", long(o.seed));
-	if (seed < 0 || seed > 4294967295L) fail(sec, "seed", std::to_string(seed), "must be in 0..2^32-1");
+	if (seed < 0 || seed > 4294967295L)
+		fail(sec, "seed", std::to_string(seed), "must be in 0..2^32-1");
 	o.seed = uint32_t(seed);
 	o.std_range = readPositive(c, sec, "std_range", o.std_range);
 	o.std_bearing = readPositive(c, sec, "std_bearing", o.std_bearing);

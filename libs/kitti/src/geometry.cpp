@@ -30,5 +30,8 @@ Eigen::Vector2d egoToWorld(const Eigen::Vector3d& pose, const Eigen::Vector2d& p
 	return pose.head<2>() + models::rot2(pose.z()) * p;
 }
 
-Eigen::Vector2d rangeBearing(const Eigen::Vector2d& p) { return {p.norm(), std::atan2(p.y(), p.x())}; }
+Eigen::Vector2d rangeBearing(const Eigen::Vector2d& p)
+{
+	return {p.norm(), std::atan2(p.y(), p.x())};
+}
 }  // namespace dynslam::kitti

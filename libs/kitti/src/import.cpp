@@ -87,7 +87,8 @@ std::map<std::pair<int, int>, int32_t> assignIds(TImportResult& res, const TImpo
 	for (auto& [id, t] : res.tracks)
 		if (t.moving && t.first_read >= 0) movers.push_back(&t);
 	std::stable_sort(movers.begin(), movers.end(),
-	                 [](const TTrack* a, const TTrack* b) { return a->first_read < b->first_read; });
+	                 [](const TTrack* a, const TTrack* b)
+	                 { return a->first_read < b->first_read; });
 	for (size_t i = 0; i < movers.size(); ++i) movers[i]->object = int(i);
 
 	std::map<std::pair<int, int>, int32_t> ids;  // (track, corner) -> ID
@@ -213,8 +214,9 @@ std::string TImportSummary::toText() const
 	  << path_length << " m\n"
 	  << "  label lines " << label_rows << ": DontCare " << dontcare << " (skipped), no 3-D data "
 	  << no3d << " (skipped), boxes " << boxes << "\n"
-	  << "  boxes read " << boxes_read << ", out of range " << out_of_range << ", out of field of view "
-	  << out_of_fov << "; readings (4 corners per box) " << readings << "\n"
+	  << "  boxes read " << boxes_read << ", out of range " << out_of_range
+	  << ", out of field of view " << out_of_fov << "; readings (4 corners per box) " << readings
+	  << "\n"
 	  << "  tracks " << tracks << ": static " << static_tracks << ", moving " << moving_tracks
 	  << ", never read " << tracks_never_read << "\n"
 	  << "  annotation jitter (static tracks, read): frame-to-frame motion rms " << floor_trans_rmse

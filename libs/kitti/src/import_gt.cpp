@@ -41,7 +41,8 @@ void addObject(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::
 	o.visible.assign(n, 0);
 	Eigen::Vector3d p0 = Eigen::Vector3d::Constant(kNaN);
 	for (size_t i : t.boxes)
-		if (L.boxes[i].frame == t.first_read) p0 = worldBoxPose(L.boxes[i], ego[size_t(t.first_read)]);
+		if (L.boxes[i].frame == t.first_read)
+			p0 = worldBoxPose(L.boxes[i], ego[size_t(t.first_read)]);
 	for (size_t i : t.boxes)
 	{
 		const TKittiBox& b = L.boxes[i];
@@ -50,7 +51,8 @@ void addObject(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::
 		o.visible[k] = read[i];
 		if (b.frame < t.first_read) continue;
 		const Eigen::Vector3d p = worldBoxPose(b, ego[k]);
-		o.pose[k] = Eigen::Vector3d(p.x() - p0.x(), p.y() - p0.y(), models::wrapToPi(p.z() - p0.z()));
+		o.pose[k] =
+		    Eigen::Vector3d(p.x() - p0.x(), p.y() - p0.y(), models::wrapToPi(p.z() - p0.z()));
 	}
 }
 struct TJitter
@@ -61,7 +63,8 @@ struct TJitter
 };
 
 /** The trajectory-scale diagnostic of TImportSummary (first and last frame of a static track). */
-void addScale(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::Vector3d>& ego, TJitter& j)
+void addScale(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::Vector3d>& ego,
+              TJitter& j)
 {
 	if (t.boxes.size() < 10) return;
 	const TKittiBox& a = L.boxes[t.boxes.front()];
@@ -69,14 +72,16 @@ void addScale(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::V
 	const Eigen::Vector3d& ea = ego[size_t(a.frame)];
 	const Eigen::Vector3d& eb = ego[size_t(b.frame)];
 	const Eigen::Vector2d d = eb.head<2>() - ea.head<2>();
-	const Eigen::Vector2d q = models::rot2(ea.z()) * boxCentreEgo(a) - models::rot2(eb.z()) * boxCentreEgo(b);
+	const Eigen::Vector2d q =
+	    models::rot2(ea.z()) * boxCentreEgo(a) - models::rot2(eb.z()) * boxCentreEgo(b);
 	j.scale_num += d.dot(q);
 	j.scale_den += q.squaredNorm();
 }
 
 /** Static track: motions between consecutive read frames (truth: none) and corner scatter. */
 void addJitter(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::Vector3d>& ego,
-               const std::vector<uint8_t>& read, const Eigen::Matrix<double, 2, 4>& mean, TJitter& j)
+               const std::vector<uint8_t>& read, const Eigen::Matrix<double, 2, 4>& mean,
+               TJitter& j)
 {
 	for (size_t a = 0; a < t.boxes.size(); ++a)
 	{
@@ -89,8 +94,9 @@ void addJitter(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::
 		if (a == 0) continue;
 		const size_t h = t.boxes[a - 1];
 		if (!read[h] || L.boxes[h].frame + 1 != b.frame) continue;
-		const Eigen::Vector3d M = models::poseDifference(worldBoxPose(b, ego[size_t(b.frame)]),
-		                                                 worldBoxPose(L.boxes[h], ego[size_t(L.boxes[h].frame)]));
+		const Eigen::Vector3d M =
+		    models::poseDifference(worldBoxPose(b, ego[size_t(b.frame)]),
+		                           worldBoxPose(L.boxes[h], ego[size_t(L.boxes[h].frame)]));
 		j.t2 += M.head<2>().squaredNorm();
 		j.r2 += M.z() * M.z();
 		++j.n;

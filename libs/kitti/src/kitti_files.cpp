@@ -39,7 +39,8 @@ double number(const std::string& tok, const std::string& path, int line, size_t 
 	if (e == b || *e != '\0')
 		failAt(path, line, "column " + std::to_string(col + 1) + ": '" + tok + "' is not a number");
 	if (!std::isfinite(v) || errno == ERANGE)
-		failAt(path, line, "column " + std::to_string(col + 1) + ": non-finite value '" + tok + "'");
+		failAt(path, line,
+		       "column " + std::to_string(col + 1) + ": non-finite value '" + tok + "'");
 	return v;
 }
 
@@ -47,7 +48,8 @@ int integer(const std::string& tok, const std::string& path, int line, size_t co
 {
 	const double v = number(tok, path, line, col);
 	if (v != std::floor(v) || std::abs(v) > 1e9)
-		failAt(path, line, "column " + std::to_string(col + 1) + ": '" + tok + "' is not an integer");
+		failAt(path, line,
+		       "column " + std::to_string(col + 1) + ": '" + tok + "' is not an integer");
 	return int(v);
 }
 
@@ -66,7 +68,8 @@ const std::vector<std::string> kTypes = {"Car",     "Van",  "Truck", "Pedestrian
 
 void checkSequenceName(const std::string& seq)
 {
-	if (seq.size() != 4 || !std::all_of(seq.begin(), seq.end(), [](char c) { return c >= '0' && c <= '9'; }))
+	if (seq.size() != 4 ||
+	    !std::all_of(seq.begin(), seq.end(), [](char c) { return c >= '0' && c <= '9'; }))
 		throw std::invalid_argument("sequence '" + seq + "': expected four digits, e.g. 0000");
 }
 
@@ -95,13 +98,16 @@ std::vector<TCameraPose> readPoses(const std::string& path)
 			break;
 		}
 		if (toks.size() != 12)
-			failAt(path, line, "expected 12 numbers (3x4 [R t]), found " + std::to_string(toks.size()));
+			failAt(path, line,
+			       "expected 12 numbers (3x4 [R t]), found " + std::to_string(toks.size()));
 		TCameraPose T;
-		for (size_t i = 0; i < 12; ++i) T(long(i / 4), long(i % 4)) = number(toks[i], path, line, i);
+		for (size_t i = 0; i < 12; ++i)
+			T(long(i / 4), long(i % 4)) = number(toks[i], path, line, i);
 		const Eigen::Matrix3d R = T.leftCols<3>();
 		const double orth = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
 		if (orth > 1e-3 || R.determinant() < 0)
-			failAt(path, line, "the 3x3 block is not a rotation (|R^T R - I| = " + std::to_string(orth) + ")");
+			failAt(path, line,
+			       "the 3x3 block is not a rotation (|R^T R - I| = " + std::to_string(orth) + ")");
 		poses.push_back(T);
 	}
 	if (poses.empty()) throw std::runtime_error(path + ": no poses");
@@ -167,11 +173,13 @@ TKittiLabels readLabels(const std::string& path)
 	return L;
 }
 
-void checkLabelsAgainstPoses(const TKittiLabels& labels, size_t numPoses, const std::string& posesPath)
+void checkLabelsAgainstPoses(const TKittiLabels& labels, size_t numPoses,
+                             const std::string& posesPath)
 {
 	if (labels.max_frame >= 0 && size_t(labels.max_frame) >= numPoses)
 		failAt(labels.file, labels.max_frame_line,
-		       "frame " + std::to_string(labels.max_frame) + " has no pose: " + posesPath + " has " +
-		           std::to_string(numPoses) + " lines (frames 0.." + std::to_string(numPoses - 1) + ")");
+		       "frame " + std::to_string(labels.max_frame) + " has no pose: " + posesPath +
+		           " has " + std::to_string(numPoses) + " lines (frames 0.." +
+		           std::to_string(numPoses - 1) + ")");
 }
 }  // namespace dynslam::kitti

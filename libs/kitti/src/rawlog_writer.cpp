@@ -86,8 +86,8 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 		          f << "step,t,track,type,moving,read,x,y,yaw\n";
 		          for (const auto& r : res.track_steps)
 			          f << r.step << ',' << res.gt.t[size_t(r.step)] << ',' << r.track << ','
-			            << tracks.at(r.track).type << ',' << int(r.moving) << ',' << int(r.read) << ','
-			            << r.pose.x() << ',' << r.pose.y() << ',' << r.pose.z() << '\n';
+			            << tracks.at(r.track).type << ',' << int(r.moving) << ',' << int(r.read)
+			            << ',' << r.pose.x() << ',' << r.pose.y() << ',' << r.pose.z() << '\n';
 	          });
 	writeText(file("_gt_track_list.csv"),
 	          [&](std::ostream& f)
@@ -95,8 +95,8 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 		          f << "track,type,moving,radius,first_frame,last_frame,frames,read_frames,first_"
 		               "read,object,length,width\n";
 		          for (const auto& [id, t] : tracks)
-			          f << t.track << ',' << t.type << ',' << int(t.moving) << ',' << t.radius << ','
-			            << t.first_frame << ',' << t.last_frame << ',' << t.frames << ','
+			          f << t.track << ',' << t.type << ',' << int(t.moving) << ',' << t.radius
+			            << ',' << t.first_frame << ',' << t.last_frame << ',' << t.frames << ','
 			            << t.read_frames << ',' << t.first_read << ',' << t.object << ','
 			            << t.length << ',' << t.width << '\n';
 	          });
@@ -116,10 +116,12 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 		          f << "; Written by dynslam-kitti: the import's effective options (the noise\n"
 		            << "; used) and counts. World frame = the ego frame of frame 0, so the\n"
 		            << "; filters start at the origin with zero covariance.\n"
-		            << "[KITTI_ImportResult]\nsequence = " << s.sequence << "\nmode = "
-		            << (opts.import.anonymous ? "anonymous" : "labelled") << "\nsteps = " << s.steps
-		            << "\nreadings = " << s.readings << "\nstatic_tracks = " << s.static_tracks
-		            << "\nmoving_tracks = " << s.moving_tracks << "\npath_length = " << s.path_length << "\nfloor_n = " << s.floor_n
+		            << "[KITTI_ImportResult]\nsequence = " << s.sequence
+		            << "\nmode = " << (opts.import.anonymous ? "anonymous" : "labelled")
+		            << "\nsteps = " << s.steps << "\nreadings = " << s.readings
+		            << "\nstatic_tracks = " << s.static_tracks
+		            << "\nmoving_tracks = " << s.moving_tracks
+		            << "\npath_length = " << s.path_length << "\nfloor_n = " << s.floor_n
 		            << "\nfloor_trans_rmse = " << s.floor_trans_rmse
 		            << "\nfloor_rot_rmse = " << s.floor_rot_rmse
 		            << "\nstatic_corner_rms = " << s.static_corner_rms

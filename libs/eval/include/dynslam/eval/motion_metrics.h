@@ -43,8 +43,8 @@ TRelativePoseError relativePoseError(const TGroundTruth& gt, const std::vector<T
 /** Errors of one object or pooled. */
 struct TMotionError
 {
-	size_t n = 0;        ///< frame-to-frame motions scored
-	size_t n_rot = 0;    ///< of these, with a rotation (3-dof poses)
+	size_t n = 0;                               ///< frame-to-frame motions scored
+	size_t n_rot = 0;                           ///< of these, with a rotation (3-dof poses)
 	double trans_rmse = kNaN, rot_rmse = kNaN;  ///< [m], [rad]
 	double trans_mean = kNaN, rot_mean = kNaN;  ///< [m], [rad] (VDO-SLAM reports means)
 };
@@ -65,5 +65,5 @@ TObjectErrors objectErrors(const TGroundTruth& gt, const TRunEstimates& est);
 /** Body-frame motion M = L_{k-1}^-1 L_k (x, y, theta) of a pose pair with rotation centre c0
  * (3-dof xi; for 2-dof pass dtheta = 0). */
 Eigen::Vector3d bodyFrameMotion(const Eigen::Vector3d& xi_prev, const Eigen::Vector3d& xi_now,
-                                   const Eigen::Vector2d& c0);
+                                const Eigen::Vector2d& c0);
 }  // namespace dynslam::eval

@@ -51,19 +51,19 @@ enum class ENoise
 /** Defaults: the values of config/kitti.ini (a test checks that both agree). */
 struct TImportOptions
 {
-	double dt = 0.1;          ///< [s] frame period (KITTI: 10 Hz)
-	double max_range = 40;    ///< [m] boxes whose centre is farther are not read
-	double fov_deg = 90;      ///< [deg] full horizontal field of view, centred forward
-	double static_radius = 2.0;  ///< [m] classify.h
-	ENoise noise = ENoise::Gaussian;           ///< readings
+	double dt = 0.1;                  ///< [s] frame period (KITTI: 10 Hz)
+	double max_range = 40;            ///< [m] boxes whose centre is farther are not read
+	double fov_deg = 90;              ///< [deg] full horizontal field of view, centred forward
+	double static_radius = 2.0;       ///< [m] classify.h
+	ENoise noise = ENoise::Gaussian;  ///< readings
 	ENoise odometry_noise = ENoise::Gaussian;  ///< odometry
-	uint32_t seed = 1;         ///< noise draws and the anonymous permutation
-	double std_range = 0.1;    ///< [m] added noise; written as sensor_std_range
-	double std_bearing = 0.005;  ///< [rad] added noise; written as sensor_std_yaw
-	double odo_std_xy = 0.01;          ///< [m]
-	double odo_std_xy_per_m = 0.02;    ///< [m/m]
-	double odo_std_phi = 0.002;        ///< [rad]
-	double odo_std_phi_per_m = 0.001;  ///< [rad/m]
+	uint32_t seed = 1;                         ///< noise draws and the anonymous permutation
+	double std_range = 0.1;                    ///< [m] added noise; written as sensor_std_range
+	double std_bearing = 0.005;                ///< [rad] added noise; written as sensor_std_yaw
+	double odo_std_xy = 0.01;                  ///< [m]
+	double odo_std_xy_per_m = 0.02;            ///< [m/m]
+	double odo_std_phi = 0.002;                ///< [rad]
+	double odo_std_phi_per_m = 0.001;          ///< [rad/m]
 	bool anonymous = false;
 };
 
