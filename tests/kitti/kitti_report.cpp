@@ -44,6 +44,32 @@ void drawMap(const TGroundTruth& gt, const std::vector<kitti_eval::TKittiRunResu
 	    label + ": ego paths, parked cars (static landmarks) and object tracks over the truth";
 	eval::savePng(eval::drawMapFigure(&gt, series, mo), path);
 }
+
+/** One row of summary.csv (and objects.csv for the dynamic filters). */
+void writeRow(std::ostream& sum, std::ostream& obj, const std::string& label,
+              const kitti_eval::TKittiRunResult& r, const mrpt::config::CConfigFileBase& sc)
+{
+	const char* R = "KITTI_ImportResult";
+	const std::string& f = r.filter;
+	const bool dyn = f.rfind("dynamic", 0) == 0;
+	const auto& m = r.objects.motion;
+	auto val = [&](double v) { return dyn ? std::to_string(v) : std::string(); };
+	sum << label << ',' << f << ',' << r.run.steps << ',' << sc.read_double(R, "path_length", 0)
+	    << ',' << sc.read_int(R, "moving_tracks", 0) << ',' << sc.read_int(R, "static_tracks", 0)
+	    << ',' << r.ate << ',' << r.rpe.trans_rmse << ',' << r.rpe.rot_rmse * kDeg << ','
+	    << r.map_rmse << ',' << r.landmarks_scored << ',' << val(r.objects.position_rmse) << ','
+	    << (dyn ? std::to_string(r.objects.position_n) : "") << ',' << val(m.trans_rmse) << ','
+	    << val(m.rot_rmse * kDeg) << ',' << val(m.trans_mean) << ',' << val(m.rot_mean * kDeg)
+	    << ',' << (dyn ? std::to_string(m.n) : "") << ','
+	    << sc.read_double(R, "floor_trans_rmse", NAN) << ','
+	    << sc.read_double(R, "floor_rot_rmse", NAN) * kDeg << ',' << sc.read_int(R, "floor_n", 0)
+	    << ',' << sc.read_double(R, "static_corner_rms", NAN) << ',' << r.gated_out << ','
+	    << r.static_updates << ',' << r.run.est.ms_per_step << "\n";
+	if (dyn)
+		for (const auto& [o, e] : r.objects.motion_per_object)
+			obj << label << ',' << f << ',' << o << ',' << r.objects.position_rmse_per_object.at(o)
+			    << ',' << e.n << ',' << e.trans_rmse << ',' << e.rot_rmse * kDeg << "\n";
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -106,27 +132,8 @@ int main(int argc, char** argv)
 				continue;
 			}
 			const auto& r = results.back();
-			const bool dyn = f.rfind("dynamic", 0) == 0;
+			writeRow(sum, obj, label, r, sc);
 			const auto& m = r.objects.motion;
-			auto val = [&](double v) { return dyn ? std::to_string(v) : std::string(); };
-			sum << label << ',' << f << ',' << r.run.steps << ','
-			    << sc.read_double(R, "path_length", 0) << ',' << sc.read_int(R, "moving_tracks", 0)
-			    << ',' << sc.read_int(R, "static_tracks", 0) << ',' << r.ate << ','
-			    << r.rpe.trans_rmse << ',' << r.rpe.rot_rmse * kDeg << ',' << r.map_rmse << ','
-			    << r.landmarks_scored << ',' << val(r.objects.position_rmse) << ','
-			    << (dyn ? std::to_string(r.objects.position_n) : "") << ',' << val(m.trans_rmse)
-			    << ',' << val(m.rot_rmse * kDeg) << ',' << val(m.trans_mean) << ','
-			    << val(m.rot_mean * kDeg) << ',' << (dyn ? std::to_string(m.n) : "") << ','
-			    << sc.read_double(R, "floor_trans_rmse", NAN) << ','
-			    << sc.read_double(R, "floor_rot_rmse", NAN) * kDeg << ','
-			    << sc.read_int(R, "floor_n", 0) << ','
-			    << sc.read_double(R, "static_corner_rms", NAN) << ',' << r.gated_out << ','
-			    << r.static_updates << ',' << r.run.est.ms_per_step << "\n";
-			if (dyn)
-				for (const auto& [o, e] : r.objects.motion_per_object)
-					obj << label << ',' << f << ',' << o << ','
-					    << r.objects.position_rmse_per_object.at(o) << ',' << e.n << ','
-					    << e.trans_rmse << ',' << e.rot_rmse * kDeg << "\n";
 			std::cout << label << " " << f << ": ATE " << r.ate << " m, RPE10 " << r.rpe.trans_rmse
 			          << " m, map " << r.map_rmse << " m, objects " << r.objects.position_rmse
 			          << " m, motion " << m.trans_rmse << " m / " << m.rot_rmse * kDeg << " deg, "
