@@ -32,7 +32,9 @@ void drawObjects(eval::CPlotCanvas& c, const CDynamicKFSLAM2D& f)
 	for (const auto& fe : f.getObjectFeatures())
 		if (fe.at_time0)
 		{
-			auto& e = c0[fe.object];
+			auto it =
+			    c0.emplace(fe.object, std::make_pair(Eigen::Vector2d::Zero().eval(), 0)).first;
+			auto& e = it->second;
 			e.first += fe.mean;
 			e.second += 1;
 		}
