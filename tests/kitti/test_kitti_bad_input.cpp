@@ -12,6 +12,8 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "mini_sequence.h"
 
@@ -69,6 +71,12 @@ TEST(KittiBadInput, ValidSequenceWritesEverythingAndReadsBack)
 	size_t entries = 0;
 	for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++entries;
 	EXPECT_EQ(entries, 11u);  // no temporary folder left
+	// the scenario file records the options, i.e. the noise used
+	std::ifstream sc(out + "/kitti_0007_scenario.ini");
+	const std::string text((std::istreambuf_iterator<char>(sc)), std::istreambuf_iterator<char>());
+	for (const char* key : {"[KITTI_Import]", "noise = gaussian", "std_range = 0.1", "seed = 1",
+	                        "mode = labelled", "static_radius = 2"})
+		EXPECT_NE(text.find(key), std::string::npos) << key;
 	const TGroundTruth gt = readGroundTruth(out, "kitti_0007");
 	EXPECT_EQ(gt.numSteps(), 12u);
 	EXPECT_EQ(gt.landmarks.size(), 4u);
@@ -197,4 +205,19 @@ TEST(KittiBadInput, CommandLine)
 	EXPECT_TRUE(app3.options.import.anonymous);
 	app3.run();
 	EXPECT_TRUE(fs::exists(out + "/kitti_0007_gt_ids.csv"));
+}
+
+TEST(KittiBadInput, UnwritableOutputLeavesNothingBehind)
+{
+	const std::string d = kitti_test::writeMiniSequence("unwritable");
+	// --out is a regular file
+	kitti_test::writeLines(d + "/afile", {"x"});
+	EXPECT_NE(appError(d, "0007", d + "/afile"), "");
+	// a destination is a folder: refused before any file is moved, temporary folder removed
+	const std::string out = d + "/out";
+	fs::create_directories(out + "/kitti_0007_gt_ego.csv");
+	expectContains(appError(d, "0007", out), "kitti_0007_gt_ego.csv: is a folder");
+	size_t entries = 0;
+	for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++entries;
+	EXPECT_EQ(entries, 1u);
 }

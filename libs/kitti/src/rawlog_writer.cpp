@@ -159,6 +159,11 @@ std::vector<std::string> writeImport(const TImportResult& res, const TKittiOptio
 		writeRawlog(res, opts.import, (tmp / (base + ".rawlog")).string());
 		writeGroundTruth(res.gt, tmp.string(), base);
 		writeExtras(res, opts, tmp.string(), base);
+		// refuse before moving anything if a destination cannot be replaced by a file
+		for (const auto& e : fs::directory_iterator(tmp))
+			if (fs::is_directory(fs::path(dir) / e.path().filename()))
+				throw std::runtime_error((fs::path(dir) / e.path().filename()).string() +
+				                         ": is a folder, cannot write the file there");
 		for (const auto& e : fs::directory_iterator(tmp))
 		{
 			const fs::path dst = fs::path(dir) / e.path().filename();
