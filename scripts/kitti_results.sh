@@ -67,7 +67,7 @@ function f(x, d) { return (x == "nan" || x == "-nan" || x == "") ? "-" : sprintf
 	}
 	dyn = ($c["filter"] ~ /^dynamic/)
 	printf "| %s | %s | %s | %s / %s | %s | %s | %s | %s / %s | %s | %s |\n", $c["label"], $c["filter"],
-		f($c["ate"], 3), f($c["rpe10_t"], 3), f($c["rpe10_r_deg"], 2), f($c["map_rmse"], 3),
+		($c["steps"] == "failed") ? "failed (see the log)" : f($c["ate"], 3), f($c["rpe10_t"], 3), f($c["rpe10_r_deg"], 2), f($c["map_rmse"], 3),
 		dyn ? f($c["obj_pos_rmse"], 3) : "-",
 		dyn ? f($c["motion_t_rmse"], 3) " / " f($c["motion_r_rmse_deg"], 2) : "-",
 		f($c["floor_t_rmse"], 3), f($c["floor_r_rmse_deg"], 2),
