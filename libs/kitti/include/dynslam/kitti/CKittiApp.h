@@ -1,0 +1,46 @@
+#pragma once
+/** @file CKittiApp.h
+ * The dynslam-kitti app (a thin main() around this class):
+ *
+ *   dynslam-kitti --labels DIR --poses DIR --sequence SSSS --out DIR [-c INI] [--anonymous]
+ *                 [--base B]
+ *
+ * Reads DIR/SSSS.txt of the labels (label_02) and of the poses, converts them (import.h) and
+ * writes into --out `<B>.rawlog` and the ground truth (rawlog_writer.h); B defaults to
+ * kitti_SSSS. Everything is read and checked before anything is written. */
+#include <dynslam/kitti/CKittiOptions.h>
+#include <dynslam/kitti/import.h>
+#include <mrpt/system/COutputLogger.h>
+
+#include <string>
+#include <vector>
+
+namespace dynslam::kitti
+{
+class CKittiApp : public mrpt::system::COutputLogger
+{
+public:
+	CKittiApp();
+	/** Parses the command line and loads the INI. Returns false when the program should stop
+	 * (help/version: exit code 0; bad arguments: 1, see exitCode()). Throws on a bad INI. */
+	bool initialize(int argc, const char** argv);
+	int exitCode() const { return m_exitCode; }
+	/** Reads, converts and writes. Throws std::runtime_error on bad input (nothing written). */
+	void run();
+
+	// --- settings (filled by initialize(), or set directly by tests) ---
+	std::string labels_dir, poses_dir, sequence, out_dir, config_file, base;
+	TKittiOptions options;
+
+	// --- results ---
+	TImportSummary summary;
+	std::vector<std::string> written;
+
+private:
+	int m_exitCode = 0;
+};
+
+/** Reads and converts one sequence (no output): DIR/SSSS.txt of labels and poses. */
+TImportResult importFromFiles(const std::string& labelsDir, const std::string& posesDir,
+                              const std::string& sequence, const TImportOptions& opts);
+}  // namespace dynslam::kitti

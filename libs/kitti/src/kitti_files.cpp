@@ -1,0 +1,185 @@
+#include <dynslam/kitti/kitti_files.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace dynslam::kitti
+{
+namespace
+{
+[[noreturn]] void failAt(const std::string& path, int line, const std::string& what)
+{
+	throw std::runtime_error(path + ":" + std::to_string(line) + ": " + what);
+}
+
+std::vector<std::string> splitWs(const std::string& s)
+{
+	std::vector<std::string> out;
+	std::istringstream is(s);
+	std::string tok;
+	while (is >> tok) out.push_back(tok);
+	return out;
+}
+
+double number(const std::string& tok, const std::string& path, int line, size_t col)
+{
+	const char* b = tok.c_str();
+	char* e = nullptr;
+	errno = 0;
+	const double v = std::strtod(b, &e);
+	if (e == b || *e != '\0')
+		failAt(path, line, "column " + std::to_string(col + 1) + ": '" + tok + "' is not a number");
+	if (!std::isfinite(v) || errno == ERANGE)
+		failAt(path, line,
+		       "column " + std::to_string(col + 1) + ": non-finite value '" + tok + "'");
+	return v;
+}
+
+int integer(const std::string& tok, const std::string& path, int line, size_t col)
+{
+	const double v = number(tok, path, line, col);
+	if (v != std::floor(v) || std::abs(v) > 1e9)
+		failAt(path, line,
+		       "column " + std::to_string(col + 1) + ": '" + tok + "' is not an integer");
+	return int(v);
+}
+
+std::ifstream openIn(const std::string& path)
+{
+	if (!std::filesystem::is_regular_file(path))
+		throw std::runtime_error(path + ": file not found");
+	std::ifstream f(path, std::ios::binary);
+	if (!f) throw std::runtime_error(path + ": cannot open file");
+	return f;
+}
+
+const std::vector<std::string> kTypes = {"Car",     "Van",  "Truck", "Pedestrian", "Person_sitting",
+                                         "Cyclist", "Tram", "Misc",  "DontCare"};
+}  // namespace
+
+void checkSequenceName(const std::string& seq)
+{
+	if (seq.size() != 4 ||
+	    !std::all_of(seq.begin(), seq.end(), [](char c) { return c >= '0' && c <= '9'; }))
+		throw std::invalid_argument("sequence '" + seq + "': expected four digits, e.g. 0000");
+}
+
+std::string sequenceFile(const std::string& dir, const std::string& seq)
+{
+	return (std::filesystem::path(dir) / (seq + ".txt")).string();
+}
+
+std::vector<TCameraPose> readPoses(const std::string& path)
+{
+	auto f = openIn(path);
+	std::vector<TCameraPose> poses;
+	std::string s;
+	int line = 0;
+	while (std::getline(f, s))
+	{
+		++line;
+		if (!s.empty() && s.back() == '\r') s.pop_back();
+		const auto toks = splitWs(s);
+		if (toks.empty())
+		{
+			// a trailing empty line is fine; an empty line inside the file would shift frames
+			std::string rest;
+			while (std::getline(f, rest))
+				if (!splitWs(rest).empty()) failAt(path, line, "empty line inside the pose file");
+			break;
+		}
+		if (toks.size() != 12)
+			failAt(path, line,
+			       "expected 12 numbers (3x4 [R t]), found " + std::to_string(toks.size()));
+		TCameraPose T;
+		for (size_t i = 0; i < 12; ++i)
+			T(long(i / 4), long(i % 4)) = number(toks[i], path, line, i);
+		const Eigen::Matrix3d R = T.leftCols<3>();
+		const double orth = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+		if (orth > 1e-3 || R.determinant() < 0)
+			failAt(path, line,
+			       "the 3x3 block is not a rotation (|R^T R - I| = " + std::to_string(orth) + ")");
+		poses.push_back(T);
+	}
+	if (poses.empty()) throw std::runtime_error(path + ": no poses");
+	return poses;
+}
+
+TKittiLabels readLabels(const std::string& path)
+{
+	auto f = openIn(path);
+	TKittiLabels L;
+	L.file = path;
+	std::set<std::pair<int, int>> seen;
+	std::string s;
+	int line = 0;
+	while (std::getline(f, s))
+	{
+		++line;
+		if (!s.empty() && s.back() == '\r') s.pop_back();
+		const auto t = splitWs(s);
+		if (t.empty()) continue;
+		++L.rows;
+		if (t.size() != 17)
+			failAt(path, line, "expected 17 columns, found " + std::to_string(t.size()));
+		const int frame = integer(t[0], path, line, 0);
+		const int track = integer(t[1], path, line, 1);
+		if (frame < 0) failAt(path, line, "negative frame " + t[0]);
+		if (std::find(kTypes.begin(), kTypes.end(), t[2]) == kTypes.end())
+			failAt(path, line, "unknown type '" + t[2] + "'");
+		std::vector<double> v(17);
+		for (size_t i = 3; i < 17; ++i) v[i] = number(t[i], path, line, i);
+		if (frame > L.max_frame)
+		{
+			L.max_frame = frame;
+			L.max_frame_line = line;
+		}
+		if (t[2] == "DontCare")
+		{
+			++L.dontcare;
+			continue;
+		}
+		if (track < 0) failAt(path, line, "track_id " + t[1] + " on a " + t[2] + " box");
+		if (!seen.emplace(frame, track).second)
+			failAt(path, line, "track " + t[1] + " given twice in frame " + t[0]);
+		TKittiBox b;
+		b.frame = frame;
+		b.track = track;
+		b.type = t[2];
+		b.h = v[10];
+		b.w = v[11];
+		b.l = v[12];
+		b.x = v[13];
+		b.y = v[14];
+		b.z = v[15];
+		b.ry = v[16];
+		b.line = line;
+		if (!(b.w > 0 && b.l > 0 && b.h > 0) || b.z <= -999)
+		{
+			++L.no3d;
+			continue;
+		}
+		L.boxes.push_back(b);
+	}
+	return L;
+}
+
+void checkLabelsAgainstPoses(const TKittiLabels& labels, size_t numPoses,
+                             const std::string& posesPath)
+{
+	if (labels.max_frame >= 0 && size_t(labels.max_frame) >= numPoses)
+		failAt(labels.file, labels.max_frame_line,
+		       "frame " + std::to_string(labels.max_frame) + " has no pose: " + posesPath +
+		           " has " + std::to_string(numPoses) + " lines (frames 0.." +
+		           std::to_string(numPoses - 1) + ")");
+}
+}  // namespace dynslam::kitti

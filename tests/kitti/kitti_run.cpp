@@ -1,0 +1,64 @@
+#include "kitti_run.h"
+
+#include <cmath>
+
+namespace dynslam::kitti_eval
+{
+TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
+                         const mrpt::config::CConfigFileMemory& ini, const std::string& filter)
+{
+	mrpt::config::CConfigFileMemory params(ini.getContent());
+	const bool dyn = filter == "dynamic" || filter == "dynamic_nogate";
+	if (filter == "dynamic_nogate") params.write("DynamicKFSLAM", "innovation_gate", 0);
+	auto backend = apps::makeBackend(dyn ? "ekf" : filter, params);
+	TKittiRunResult r;
+	r.filter = filter;
+	auto perStep = [&](size_t, size_t)
+	{
+		const TStepReport& rep = backend->getLastStepReport();
+		r.gated_out += rep.gated_out;
+		r.static_updates += rep.static_updates;
+	};
+	r.run = apps::runFilter(*backend, rawlog.actions, rawlog.frames, perStep);
+	r.run.name = filter;
+	r.eval = apps::evaluateRun(gt, r.run.est);
+	r.ate = r.eval.metrics.ate;
+	const auto& sm = r.eval.metrics.static_map;
+	r.map_rmse = std::sqrt(sm.x * sm.x + sm.y * sm.y);
+	r.landmarks_scored = sm.n_xy;
+	r.rpe = eval::relativePoseError(gt, r.run.est.ego, 10);
+	r.objects = eval::objectErrors(gt, r.run.est);
+	return r;
+}
+}  // namespace dynslam::kitti_eval
+
+#include <dynslam/models/se2.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+
+namespace dynslam::kitti_eval
+{
+TOdometryOnly deadReckoning(const apps::TRawlog& rawlog, const TGroundTruth& gt)
+{
+	std::vector<eval::TEgoEstimate> ego;
+	Eigen::Vector3d x = Eigen::Vector3d::Zero();
+	double se = 0;
+	for (size_t k = 0; k < rawlog.size() && k < gt.numSteps(); ++k)
+	{
+		const auto mv = rawlog.actions[k]->getBestMovementEstimation();
+		if (!mv)
+			throw std::runtime_error("deadReckoning: step " + std::to_string(k) +
+			                         " has no odometry");
+		const auto m = mv->poseChange->getMeanVal();
+		x = models::composePose(x, Eigen::Vector3d(m.x(), m.y(), m.phi()));
+		eval::TEgoEstimate e;
+		e.step = int(k);
+		e.mean = x;
+		ego.push_back(e);
+		se += (x.head<2>() - gt.ego[k].head<2>()).squaredNorm();
+	}
+	TOdometryOnly r;
+	r.ate = ego.empty() ? NAN : std::sqrt(se / double(ego.size()));
+	r.rpe = eval::relativePoseError(gt, ego, 10);
+	return r;
+}
+}  // namespace dynslam::kitti_eval

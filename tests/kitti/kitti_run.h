@@ -1,0 +1,48 @@
+#pragma once
+/** @file kitti_run.h
+ * The filters of dynslam-compare on an imported KITTI sequence, with the metrics of
+ * doc/kitti.md: ego ATE and RPE over 10 frames, static map RMSE, object position RMSE and the
+ * object motion error in VDO-SLAM's form (eval/motion_metrics.h), static updates rejected by the
+ * dynamic filter's gate, ms per step. Shared by the end-to-end test (test_kitti_excerpt) and
+ * the development tool dynslam-kitti-report (scripts/kitti_results.sh). */
+#include <dynslam/apps/app_common.h>
+#include <dynslam/apps/filter_run.h>
+#include <dynslam/apps/rawlog_io.h>
+#include <dynslam/eval/motion_metrics.h>
+#include <dynslam/ground_truth.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <string>
+
+namespace dynslam::kitti_eval
+{
+struct TKittiRunResult
+{
+	std::string filter;  ///< static_all | static_landmarks_only | dynamic | dynamic_nogate
+	apps::TFilterRun run;
+	apps::TEvaluation eval;
+	double ate = 0;                ///< [m], no alignment (the world frame is the true start)
+	eval::TRelativePoseError rpe;  ///< over 10 frames
+	double map_rmse = 0;           ///< sqrt(rmse_x^2 + rmse_y^2) of the final static map [m]
+	size_t landmarks_scored = 0;
+	eval::TObjectErrors objects;  ///< dynamic only
+	size_t gated_out = 0, static_updates = 0;
+};
+
+/** Runs one filter of config/compare_kitti.ini's three on the rawlog, or "dynamic_nogate" (the
+ * dynamic filter with [DynamicKFSLAM] innovation_gate = 0, like MRPT's ungated filter). */
+TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
+                         const mrpt::config::CConfigFileMemory& ini, const std::string& filter);
+}  // namespace dynslam::kitti_eval
+
+namespace dynslam::kitti_eval
+{
+/** Dead reckoning: the rawlog's odometry increments composed from the origin (no filter), with
+ * ATE and RPE as for the filters: the reference a filter should beat. */
+struct TOdometryOnly
+{
+	double ate = 0;
+	eval::TRelativePoseError rpe;
+};
+TOdometryOnly deadReckoning(const apps::TRawlog& rawlog, const TGroundTruth& gt);
+}  // namespace dynslam::kitti_eval
