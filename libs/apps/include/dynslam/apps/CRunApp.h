@@ -4,7 +4,8 @@
  * and run(), tests drive the class and read its result members).
  *
  *   dynslam-run -c config/run_highway.ini [-r file.rawlog] [--gt DIR/BASE | --no-gt]
- *               [-o OUTDIR] [--backend ekf] [--no-figures] [-q]
+ *               [-o OUTDIR] [--backend ekf] [--no-figures] [-q] [--full-covariance]
+ *               [--scene FILE.3Dscene] [--video FILE.mp4]
  *
  * Runs one back-end (default: the dynamic EKF) over a rawlog and writes into OUTDIR:
  * ego.csv (per-step estimate, 3-sigma, ground truth, error, NEES, NIS), trajectory.tum,
@@ -44,7 +45,10 @@ public:
 	std::string backend = "ekf";
 	std::string outDir = "dynslam-run-out";
 	bool figures = true;
-	int progressEvery = 0;  ///< log every N steps (0: 10 times per run)
+	int progressEvery = 0;        ///< log every N steps (0: 10 times per run)
+	bool fullCovariance = false;  ///< --full-covariance: OUTDIR/covariance.txt
+	std::string sceneFile;        ///< --scene FILE.3Dscene (empty: none)
+	std::string videoFile;        ///< --video FILE.mp4 (empty: none)
 
 	// --- results of run() ---
 	TFilterRun result;
