@@ -44,7 +44,10 @@ TEST(MonteCarloShards, MergedShardsEqualTheSingleMachineTablesByteForByte)
 	{
 		const std::string dir = root + "/s" + std::to_string(i);
 		const CMonteCarloApp sh = runMc({"--shard", std::to_string(i) + "/3", "--out", dir});
-		EXPECT_EQ(sh.results.size(), 2u);
+		ASSERT_EQ(sh.results.size(), 2u);
+		// The documented rule: job j = level index * runs + run goes to shard j mod n + 1.
+		for (const auto& r : sh.results)
+			EXPECT_EQ(((r.level == "w1v1" ? 0 : 1) * 3 + r.run) % 3, i - 1) << r.level << r.run;
 		for (const auto& r : sh.results)
 		{
 			EXPECT_TRUE(seen.insert({r.level, r.run}).second) << "job run twice";

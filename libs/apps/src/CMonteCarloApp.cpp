@@ -16,6 +16,7 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 #include "cmdline.h"
 
@@ -114,22 +115,7 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 		                            "' (folders are only given with --merge)");
 	if (argShard.isSet())
 	{
-		const std::string v = argShard.getValue();
-		const auto slash = v.find('/');
-		try
-		{
-			size_t p1 = 0, p2 = 0;
-			if (slash == std::string::npos) throw std::invalid_argument(v);
-			shardIndex = std::stoi(v.substr(0, slash), &p1);
-			shardCount = std::stoi(v.substr(slash + 1), &p2);
-			if (p1 != slash || p2 != v.size() - slash - 1) throw std::invalid_argument(v);
-		}
-		catch (const std::exception&)
-		{
-			throw std::invalid_argument("--shard '" + v + "': expected i/n, e.g. 2/8");
-		}
-		if (shardCount < 1 || shardIndex < 1 || shardIndex > shardCount)
-			throw std::invalid_argument("--shard '" + v + "': need 1 <= i <= n");
+		std::tie(shardIndex, shardCount) = parseShard(argShard.getValue());
 		if (argOut.getValue().empty())
 			throw std::invalid_argument("--shard needs --out DIR (the per-run records go there)");
 	}

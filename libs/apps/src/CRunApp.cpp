@@ -142,19 +142,7 @@ void CRunApp::run()
 		eval::writeFile(p, w);
 		writtenFiles.push_back(p);
 	};
-	if (fullCovariance)
-		out("covariance.txt", [&](std::ostream& os) { eval::writeCovariances(os, result.est); });
-	const std::vector<TDrawnRun> drawn{{result.name, {0, 0, 255}, &result}};
-	if (!sceneFile.empty())
-	{
-		writeScene(sceneFile, drawn, g);
-		writtenFiles.push_back(sceneFile);
-	}
-	if (!videoFile.empty())
-	{
-		writeVideo(videoFile, drawn, g, data.rawlog.frames);
-		writtenFiles.push_back(videoFile);
-	}
+	writeOptionalOutputs(data.rawlog);
 	out("effective_config.ini",
 	    [&](std::ostream& os)
 	    {
@@ -217,5 +205,27 @@ void CRunApp::run()
 	}
 	for (const auto& f : writtenFiles) MRPT_LOG_DEBUG_STREAM("wrote " << f);
 	MRPT_LOG_INFO_STREAM("outputs in " << outDir << " (" << writtenFiles.size() << " files)");
+}
+
+void CRunApp::writeOptionalOutputs(const TRawlog& rawlog)
+{
+	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	if (fullCovariance)
+	{
+		const std::string p = joinPath(outDir, "covariance.txt");
+		eval::writeFile(p, [&](std::ostream& os) { eval::writeCovariances(os, result.est); });
+		writtenFiles.push_back(p);
+	}
+	const std::vector<TDrawnRun> drawn{{result.name, {0, 0, 255}, &result}};
+	if (!sceneFile.empty())
+	{
+		writeScene(sceneFile, drawn, g);
+		writtenFiles.push_back(sceneFile);
+	}
+	if (!videoFile.empty())
+	{
+		writeVideo(videoFile, drawn, g, rawlog.frames);
+		writtenFiles.push_back(videoFile);
+	}
 }
 }  // namespace dynslam::apps

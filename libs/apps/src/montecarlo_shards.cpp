@@ -24,6 +24,27 @@ std::string joined(const std::vector<std::string>& v)
 }
 }  // namespace
 
+std::pair<int, int> CMonteCarloApp::parseShard(const std::string& v)
+{
+	const auto slash = v.find('/');
+	int i = 0, n = 0;
+	try
+	{
+		size_t p1 = 0, p2 = 0;
+		if (slash == std::string::npos) throw std::invalid_argument(v);
+		i = std::stoi(v.substr(0, slash), &p1);
+		n = std::stoi(v.substr(slash + 1), &p2);
+		if (p1 != slash || p2 != v.size() - slash - 1) throw std::invalid_argument(v);
+	}
+	catch (const std::exception&)
+	{
+		throw std::invalid_argument("--shard '" + v + "': expected i/n, e.g. 2/8");
+	}
+	if (n < 1 || i < 1 || i > n)
+		throw std::invalid_argument("--shard '" + v + "': need 1 <= i <= n");
+	return {i, n};
+}
+
 void CMonteCarloApp::writeRunsCsv(std::ostream& os) const
 {
 	os << "level,run,seed,steps,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,static_rmse_y,"

@@ -41,6 +41,8 @@ public:
 	/** Runs the sweep, prints the tables and (with an output dir) writes the files. */
 	void run();
 
+	/** "i/n" of --shard as (i, n); throws std::invalid_argument unless 1 <= i <= n. */
+	static std::pair<int, int> parseShard(const std::string& v);
 	/** The noise seed of run `run` at paper level `level` (w1v1..w3v3). */
 	uint64_t runSeed(const std::string& level, int run) const;
 

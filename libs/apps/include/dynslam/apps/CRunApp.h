@@ -15,6 +15,7 @@
  * the dump of every options struct). See doc/apps.md for the [Run] keys. */
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/filter_run.h>
+#include <dynslam/apps/rawlog_io.h>
 #include <dynslam/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/COutputLogger.h>
@@ -57,5 +58,9 @@ public:
 	std::optional<TEvaluation> evaluation;
 	std::string groundTruthUsed, scenarioNoiseUsed;
 	std::vector<std::string> writtenFiles;
+
+private:
+	/** --full-covariance, --scene, --video. */
+	void writeOptionalOutputs(const TRawlog& rawlog);
 };
 }  // namespace dynslam::apps
