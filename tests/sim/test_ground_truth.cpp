@@ -63,7 +63,10 @@ TEST(SimGroundTruth, HighwayLayout)
 	const dynslam::TGroundTruth gt = buildGroundTruth(o);
 	ASSERT_EQ(gt.numSteps(), 121u);
 	EXPECT_EQ(gt.ego[0], Eigen::Vector3d::Zero());  // world frame = ego start pose
-	EXPECT_EQ(gt.t[120], 60.0);
+	// Ground-truth time = the rawlog's time stamps: start_time + k dt.
+	EXPECT_EQ(gt.t[0], o.start_time);
+	EXPECT_EQ(gt.t[120], o.start_time + 60.0);
+	EXPECT_EQ(o.start_time, 1.6e9);
 	EXPECT_GT(gt.ego.back()[0], 950);  // about 1 km in 60 s
 	EXPECT_LT(gt.ego.back()[0], 1050);
 	EXPECT_EQ(gt.landmarks.size(), size_t(o.highway.num_landmarks));

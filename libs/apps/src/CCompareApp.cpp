@@ -1,7 +1,9 @@
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
+#include <dynslam/apps/run_outputs.h>
 #include <dynslam/config_utils.h>
+#include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
 
 #include <algorithm>
@@ -21,12 +23,28 @@ const char* kDefaultIni = "config/compare_highway.ini";
 
 std::string backendOf(const std::string& filter) { return filter == "dynamic" ? "ekf" : filter; }
 
+/** Fixed colours per filter, whatever the subset: static_all red, static only orange, dynamic
+ * blue (eval::seriesColor). */
+size_t filterColorIndex(const std::string& n)
+{
+	return n == "static_all" ? 0 : n == "static_landmarks_only" ? 3 : 1;
+}
+
+/** From this many steps on, each filter logs ten progress lines. */
+constexpr size_t kLongRun = 2000;
+
 }  // namespace
 
 const std::vector<std::string>& CCompareApp::allFilters()
 {
 	static const std::vector<std::string> f{"static_all", "static_landmarks_only", "dynamic"};
 	return f;
+}
+
+std::string CCompareApp::mapTitle(bool withGroundTruth)
+{
+	return withGroundTruth ? "Ego paths and maps of the filters over the ground truth"
+	                       : "Ego paths and maps of the filters (no ground truth)";
 }
 
 CCompareApp::CCompareApp() : mrpt::system::COutputLogger("dynslam-compare") {}
@@ -58,7 +76,20 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	    "", "list", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the PNG figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "Only the table, warnings and errors", cmd);
+	TCLAP::SwitchArg argCov("", "full-covariance",
+	                        "With --out: also write <filter>_covariance.txt (ego 3x3 per step, "
+	                        "landmark and object blocks; doc/apps.md)",
+	                        cmd);
+	TCLAP::ValueArg<std::string> argScene(
+	    "", "scene", "Also write all filters as an MRPT 3-D scene (open with SceneViewer3D)", false,
+	    "", "file.3Dscene", cmd);
+	TCLAP::ValueArg<std::string> argVideo(
+	    "", "video", "Also write the filters drawn step by step as an MP4 video", false, "",
+	    "file.mp4", cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-compare")) return false;
+	fullCovariance = argCov.getValue();
+	sceneFile = argScene.getValue();
+	videoFile = argVideo.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
@@ -66,7 +97,7 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	using namespace dynslam::config;
 	rejectUnknownKeys(params, kSection,
 	                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
-	                   "figures", "out_dir"});
+	                   "figures", "out_dir", "progress_every"});
 	data = readDataSettings(params, kSection, folderOf(iniFile));
 	if (argRawlog.isSet())
 	{
@@ -93,9 +124,15 @@ bool CCompareApp::initialize(int argc, const char** argv)
 		if (filters.empty()) fail(kSection, "filters", fl, "empty list");
 	}
 	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+	progressEvery = int(readInt(params, kSection, "progress_every", 0));
+	if (progressEvery < 0)
+		fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
 	outDir = readString(params, kSection, "out_dir", "");
 	if (argOut.isSet()) outDir = argOut.getValue();
+	if (fullCovariance && outDir.empty())
+		throw std::invalid_argument("--full-covariance needs --out DIR (the files go there)");
 	for (const auto& f : filters) makeBackend(backendOf(f), params);  // fail early on bad options
+	if (!outDir.empty()) makeOutputDir(outDir);
 	return true;
 }
 
@@ -116,46 +153,102 @@ void CCompareApp::run()
 	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
 
 	std::ostringstream dump;
-	for (const auto& f : filters)
+	const size_t n = d.rawlog.size();
+	// Progress lines on long runs: every progress_every steps, or ten per filter from
+	// kLongRun steps on (a filter's start and end are always logged).
+	const size_t every = progressEvery > 0 ? size_t(progressEvery)
+	                     : n >= kLongRun   ? std::max<size_t>(1, n / 10)
+	                                       : 0;
+	for (size_t i = 0; i < filters.size(); ++i)
 	{
+		const std::string& f = filters[i];
 		dump << "\n# ======== filter " << f << " ========\n";
 		auto backend = makeBackend(backendOf(f), params, &dump);
-		TFilterRun r = runFilter(*backend, d.rawlog.actions, d.rawlog.frames);
+		MRPT_LOG_INFO_FMT("filter %zu/%zu: %s on %zu steps", i + 1, filters.size(), f.c_str(), n);
+		TFilterRun r =
+		    runFilter(*backend, d.rawlog.actions, d.rawlog.frames,
+		              [&](size_t done, size_t total)
+		              {
+			              if (every == 0 || (done % every != 0 && done != total)) return;
+			              MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", f.c_str(), done, total,
+			                                100.0 * double(done) / double(total));
+		              });
 		r.name = f;
-		setEgoTimes(r, hasGroundTruth);
+		setEgoTimes(r);
+		if (hasGroundTruth && runs.empty())
+			if (const std::string w = timeBaseWarning(r, gt); !w.empty()) MRPT_LOG_WARN(w);
 		MRPT_LOG_INFO_FMT("%s: %zu steps, %.3f ms/step", f.c_str(), r.steps, r.est.ms_per_step);
 		if (hasGroundTruth)
 		{
 			const TEvaluation ev = evaluateRun(gt, r.est);
 			rows.push_back({f, ev.metrics, ev.summary});
 		}
-		else
-		{
-			eval::TMetricsRow row;
-			row.filter = f;
-			row.metrics.ms_per_step = r.est.ms_per_step;
-			rows.push_back(row);
-		}
 		runs.push_back(std::move(r));
 	}
+	if (!hasGroundTruth) differenceRows();
 
 	std::ostringstream table;
 	eval::writeMetricsTable(table, rows);
-	table
-	    << "RMSE against the ground truth (map: static landmarks only); ms/step: wall time of one "
-	       "filter step on this machine.\n";
-	if (!hasGroundTruth) table << "(no ground truth: only timing)\n";
+	if (hasGroundTruth)
+		table << "RMSE against the ground truth (map: static landmarks only); ms/step: wall time "
+		         "of one filter step on this machine.\n";
+	else
+		table << "No ground truth: RMS DIFFERENCES to the '" << referenceFilter
+		      << "' row, not errors (ego per step; map: the static landmarks both filters have; "
+		         "ATE column: RMS ego position distance); ms/step: wall time of one filter step "
+		         "on this machine.\n";
 	tableText = table.str();
 	std::cout << "\n" << tableText;
 	if (!outDir.empty())
 		writeOutputs(dump.str());
 	else
 		std::cout << "(add --out DIR to write metrics.csv, per-filter estimates and figures)\n";
+	writeVisualOutputs();
+}
+
+void CCompareApp::differenceRows()
+{
+	// The reference: the dynamic filter if it ran, else the first filter.
+	size_t ref = 0;
+	for (size_t i = 0; i < runs.size(); ++i)
+		if (runs[i].name == "dynamic") ref = i;
+	referenceFilter = runs.empty() ? std::string() : runs[ref].name;
+	const TGroundTruth refGt = runs.empty() ? TGroundTruth() : estimatesAsReference(runs[ref]);
+	for (const auto& r : runs)
+	{
+		eval::TMetricsRow row;
+		row.filter = r.name;
+		row.metrics = eval::computeRunMetrics(refGt, r.est);
+		rows.push_back(row);
+	}
+}
+
+void CCompareApp::writeVisualOutputs()
+{
+	std::vector<TDrawnRun> drawn;
+	for (const auto& r : runs)
+	{
+		const auto c = eval::seriesColor(filterColorIndex(r.name));
+		drawn.push_back({r.name, {c.R, c.G, c.B}, &r});
+	}
+	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	if (!sceneFile.empty())
+	{
+		writeScene(sceneFile, drawn, g);
+		writtenFiles.push_back(sceneFile);
+	}
+	if (!videoFile.empty())
+	{
+		// Readings drawn from the last filter's pose (the dynamic EKF by default).
+		std::reverse(drawn.begin(), drawn.end());
+		writeVideo(videoFile, drawn, g, m_rawlog.frames);
+		writtenFiles.push_back(videoFile);
+	}
 }
 
 void CCompareApp::writeOutputs(const std::string& optionsDump)
 {
-	std::filesystem::create_directories(outDir);
+	makeOutputDir(outDir);
 	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w)
 	{
@@ -163,7 +256,9 @@ void CCompareApp::writeOutputs(const std::string& optionsDump)
 		eval::writeFile(p, w);
 		writtenFiles.push_back(p);
 	};
-	out("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
+	// Without ground truth the rows are differences to the reference filter, not errors.
+	out(hasGroundTruth ? "metrics.csv" : "differences.csv",
+	    [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
 	out("metrics.txt",
 	    [&](std::ostream& os)
 	    {
@@ -175,7 +270,13 @@ void CCompareApp::writeOutputs(const std::string& optionsDump)
 				    eval::writeConsistencySummary(os, *r.consistency);
 			    }
 	    });
-	for (const auto& r : runs) writeEstimateFiles(outDir, r.name + "_", r.est, g, writtenFiles);
+	for (const auto& r : runs)
+	{
+		writeEstimateFiles(outDir, r.name + "_", r.est, g, writtenFiles);
+		if (fullCovariance)
+			out(r.name + "_covariance.txt",
+			    [&](std::ostream& os) { eval::writeCovariances(os, r.est); });
+	}
 	out("effective_config.ini",
 	    [&](std::ostream& os)
 	    {
@@ -199,9 +300,8 @@ void CCompareApp::drawFigures()
 	{
 		// fixed colours per filter, whatever the subset: static_all red, static only orange,
 		// dynamic blue
-		const auto& n = runs[i].name;
-		const size_t c = n == "static_all" ? 0 : n == "static_landmarks_only" ? 3 : 1;
-		series.push_back({n, eval::seriesColor(c), &runs[i].est});
+		series.push_back(
+		    {runs[i].name, eval::seriesColor(filterColorIndex(runs[i].name)), &runs[i].est});
 	}
 	auto png = [&](const std::string& name, const mrpt::img::CImage& img)
 	{
@@ -218,7 +318,7 @@ void CCompareApp::drawFigures()
 		for (const auto& [id, p] : gt.landmarks) truthBox.expand(p.x(), p.y());
 	}
 	eval::TMapFigureOptions mo;
-	mo.title = "Ego paths and maps of the filters over the ground truth";
+	mo.title = mapTitle(hasGroundTruth);
 	if (g && truthBox.valid()) mo.view = truthBox.withMargin(0.03);
 	png("compare_map.png", eval::drawMapFigure(g, series, mo));
 	if (!hasGroundTruth) return;

@@ -3,6 +3,7 @@
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/progress.h>
+#include <dynslam/apps/run_outputs.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/sim/scenario.h>
 
@@ -15,6 +16,7 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 #include "cmdline.h"
 
@@ -81,7 +83,42 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	    "dir", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the NEES figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "No progress bar; only the tables", cmd);
+	TCLAP::ValueArg<std::string> argShard(
+	    "", "shard",
+	    "Run only part i of n (1 <= i <= n) of the (level, run) grid, with the seeds of the whole "
+	    "sweep; writes per-run records into --out for --merge",
+	    false, "", "i/n", cmd);
+	TCLAP::SwitchArg argMerge(
+	    "", "merge", "Build the tables from the *.runs files of the given shard folders", cmd);
+	TCLAP::UnlabeledMultiArg<std::string> argDirs("dirs", "Shard folders (with --merge)", false,
+	                                              "DIR", cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-montecarlo")) return false;
+	// The folder list takes any word, so an unknown option lands there.
+	for (const auto& d : argDirs.getValue())
+		if (!d.empty() && d[0] == '-')
+			throw std::invalid_argument("bad command line: unknown option '" + d +
+			                            "' (see dynslam-montecarlo --help)");
+	if (argMerge.getValue())
+	{
+		mergeDirs = argDirs.getValue();
+		if (mergeDirs.empty())
+			throw std::invalid_argument("--merge needs at least one shard folder");
+		if (argShard.isSet()) throw std::invalid_argument("--merge and --shard exclude each other");
+		outDir = argOut.getValue();
+		figures = !argNoFig.getValue();
+		progress = !argQuiet.getValue();
+		if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
+		return true;
+	}
+	if (!argDirs.getValue().empty())
+		throw std::invalid_argument("unexpected argument '" + argDirs.getValue().front() +
+		                            "' (folders are only given with --merge)");
+	if (argShard.isSet())
+	{
+		std::tie(shardIndex, shardCount) = parseShard(argShard.getValue());
+		if (argOut.getValue().empty())
+			throw std::invalid_argument("--shard needs --out DIR (the per-run records go there)");
+	}
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile("config/montecarlo.ini");
 	loadIniFile(iniFile, params);
@@ -120,11 +157,17 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	progress = !argQuiet.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
 	makeBackend(backend, params);  // fail early on bad options
+	if (!outDir.empty()) makeOutputDir(outDir);
 	return true;
 }
 
 void CMonteCarloApp::run()
 {
+	if (!mergeDirs.empty())
+	{
+		runMerge();
+		return;
+	}
 	using Clock = std::chrono::steady_clock;
 	const auto t0 = Clock::now();
 	results.clear();
@@ -166,26 +209,36 @@ void CMonteCarloApp::run()
 		lv[i].ini = ini.getContent();
 	}
 
-	const size_t total = levels.size() * size_t(runs);
-	results.assign(total, TRunResult());
+	const size_t grid = levels.size() * size_t(runs);
+	// The jobs of this process: the whole grid, or every shardCount-th job of it.
+	std::vector<size_t> jobs;
+	for (size_t j = 0; j < grid; ++j)
+		if (shardCount == 0 || j % size_t(shardCount) == size_t(shardIndex - 1)) jobs.push_back(j);
+	const size_t total = jobs.size();
+	results.assign(grid, TRunResult());
 	threadsUsed = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-	threadsUsed = int(std::min<size_t>(size_t(threadsUsed), total));
-	MRPT_LOG_INFO_STREAM(levels.size() << " noise level(s) x " << runs << " runs = " << total
-	                                   << " runs of '" << backend << "' on " << threadsUsed
-	                                   << " thread(s); scenario " << scenarioFile);
+	threadsUsed = int(std::max<size_t>(1, std::min<size_t>(size_t(threadsUsed), total)));
+	MRPT_LOG_INFO_STREAM(levels.size()
+	                     << " noise level(s) x " << runs << " runs = " << grid << " runs of '"
+	                     << backend << "'"
+	                     << (shardCount ? ", shard " + std::to_string(shardIndex) + "/" +
+	                                          std::to_string(shardCount) + ": " +
+	                                          std::to_string(total) + " runs"
+	                                    : std::string())
+	                     << " on " << threadsUsed << " thread(s); scenario " << scenarioFile);
 
 	std::atomic<size_t> next{0};
 	std::atomic<bool> failed{false};
 	std::exception_ptr error;
 	std::mutex errMtx;
-	std::vector<double> msPerStep(total, 0.0);
 	CProgressBar bar("runs", total, std::cerr, progress);
 	auto worker = [&]()
 	{
 		for (;;)
 		{
-			const size_t j = next.fetch_add(1);
-			if (j >= total || failed) return;
+			const size_t idx = next.fetch_add(1);
+			if (idx >= total || failed) return;
+			const size_t j = jobs[idx];
 			const size_t li = j / size_t(runs);
 			const int r = int(j % size_t(runs));
 			try
@@ -202,7 +255,6 @@ void CMonteCarloApp::run()
 					lg->setMinLoggingLevel(mrpt::system::LVL_ERROR);
 				const TFilterRun fr = runFilter(*filter, simRun.actions, simRun.frames);
 				res.steps = fr.steps;
-				msPerStep[j] = fr.est.ms_per_step;
 				res.metrics = eval::computeRunMetrics(lv[li].gt, fr.est);
 				res.consistency = eval::computeRunConsistency(lv[li].gt, fr.est);
 			}
@@ -238,6 +290,36 @@ void CMonteCarloApp::run()
 	bar.finish();
 	if (error) std::rethrow_exception(error);
 
+	if (shardCount > 0)
+	{
+		std::vector<TRunResult> mine;
+		for (size_t j : jobs) mine.push_back(results[j]);
+		results = std::move(mine);
+	}
+	meanMsPerStep = 0;
+	for (const auto& r : results) meanMsPerStep += r.metrics.ms_per_step / double(results.size());
+	wallSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+	if (shardCount > 0)
+	{
+		writeShard();
+		return;
+	}
+	aggregate();
+	printTables();
+	char buf[200];
+	std::snprintf(buf, sizeof(buf),
+	              "\n%zu runs (%zu levels x %d) on %d thread(s): wall time %.2f s; filter %.3f "
+	              "ms/step, %.1f ms/run\n",
+	              total, levels.size(), runs, threadsUsed, wallSeconds, meanMsPerStep,
+	              meanMsPerStep * double(results.empty() ? 0 : results.front().steps));
+	std::cout << buf << std::flush;
+	if (!outDir.empty()) writeOutputs();
+}
+
+void CMonteCarloApp::aggregate()
+{
+	table = eval::TTable1();
+	nees.clear();
 	for (size_t li = 0; li < levels.size(); ++li)
 	{
 		std::vector<eval::TRunMetrics> m;
@@ -250,21 +332,13 @@ void CMonteCarloApp::run()
 		table.levels.push_back(eval::aggregateTable1Level(levels[li], m));
 		nees.emplace_back(levels[li], eval::summarizeConsistency(c));
 	}
-	meanMsPerStep = 0;
-	for (double v : msPerStep) meanMsPerStep += v / double(total);
-	wallSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
+void CMonteCarloApp::printTables() const
+{
 	std::cout << "\nTable I: RMSE averaged over " << runs << " run(s) per level, ours / paper\n\n";
 	eval::writeTable1Markdown(std::cout, table);
 	std::cout << "\nNEES / NIS per level (average over runs, two-sided 95% chi-square bounds)\n\n";
 	writeNeesMarkdown(std::cout, nees);
-	char buf[200];
-	std::snprintf(buf, sizeof(buf),
-	              "\n%zu runs (%zu levels x %d) on %d thread(s): wall time %.2f s; filter %.3f "
-	              "ms/step, %.1f ms/run\n",
-	              total, levels.size(), runs, threadsUsed, wallSeconds, meanMsPerStep,
-	              meanMsPerStep * double(results.empty() ? 0 : results.front().steps));
-	std::cout << buf << std::flush;
-	if (!outDir.empty()) writeOutputs();
 }
 }  // namespace dynslam::apps

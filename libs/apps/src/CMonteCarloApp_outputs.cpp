@@ -1,6 +1,7 @@
 // Output files of dynslam-montecarlo (CMonteCarloApp::writeOutputs) and the NEES Markdown table.
 #include <dynslam/apps/CMonteCarloApp.h>
 #include <dynslam/apps/app_common.h>
+#include <dynslam/apps/run_outputs.h>
 #include <dynslam/eval/figures.h>
 #include <dynslam/eval/writers.h>
 
@@ -64,7 +65,7 @@ void writeNeesMarkdown(std::ostream& os,
 
 void CMonteCarloApp::writeOutputs()
 {
-	std::filesystem::create_directories(outDir);
+	makeOutputDir(outDir);
 	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w)
 	{
 		const std::string p = joinPath(outDir, name);
@@ -86,27 +87,20 @@ void CMonteCarloApp::writeOutputs()
 		    os << "# NEES / NIS per noise level (" << runs << " run(s) each)\n\n";
 		    writeNeesMarkdown(os, nees);
 	    });
-	out("runs.csv",
-	    [&](std::ostream& os)
-	    {
-		    os << "level,run,seed,steps,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,static_"
-		          "rmse_y,"
-		          "ate,ms_per_step\n";
-		    os.precision(10);
-		    for (const auto& r : results)
-		    {
-			    const auto& m = r.metrics;
-			    os << r.level << "," << r.run << "," << r.seed << "," << r.steps << "," << m.ego.x
-			       << "," << m.ego.y << "," << m.ego.theta << "," << m.static_map.x << ","
-			       << m.static_map.y << "," << m.ate << "," << m.ms_per_step << "\n";
-		    }
-	    });
+	out("runs.csv", [&](std::ostream& os) { writeRunsCsv(os); });
 	for (const auto& [l, s] : nees)
 		out("nees_ego_" + l + ".csv",
 		    [&](std::ostream& os) { eval::writeConsistencyCsv(os, s.ego); });
 	out("effective_config.ini",
 	    [&](std::ostream& os)
 	    {
+		    if (!mergedFiles.empty())
+		    {
+			    os << "# dynslam-montecarlo --merge of the per-run records:\n";
+			    for (const auto& f : mergedFiles) os << "#   " << f << "\n";
+			    os << "# (each shard folder has the sweep's effective_config.ini)\n";
+			    return;
+		    }
 		    os << "# Effective configuration of dynslam-montecarlo\n# config: " << iniFile
 		       << "\n# scenario: " << scenarioFile << "\n# runs per level: " << runs
 		       << ", threads: " << threadsUsed << ", base seed: " << seed

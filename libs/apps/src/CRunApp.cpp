@@ -1,6 +1,8 @@
 #include <dynslam/apps/CRunApp.h>
 #include <dynslam/apps/data_files.h>
+#include <dynslam/apps/run_outputs.h>
 #include <dynslam/config_utils.h>
+#include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
 #include <dynslam/eval/writers.h>
 
@@ -45,7 +47,20 @@ bool CRunApp::initialize(int argc, const char** argv)
 	    false, "", "kind", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the PNG figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "Only warnings and errors on the console", cmd);
+	TCLAP::SwitchArg argCov("", "full-covariance",
+	                        "Also write covariance.txt: the ego 3x3 covariance per step, then the "
+	                        "landmark and object blocks (format in doc/apps.md)",
+	                        cmd);
+	TCLAP::ValueArg<std::string> argScene(
+	    "", "scene", "Also write the run as an MRPT 3-D scene (open with SceneViewer3D)", false, "",
+	    "file.3Dscene", cmd);
+	TCLAP::ValueArg<std::string> argVideo("", "video",
+	                                      "Also write the run drawn step by step as an MP4 video",
+	                                      false, "", "file.mp4", cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-run")) return false;
+	fullCovariance = argCov.getValue();
+	sceneFile = argScene.getValue();
+	videoFile = argVideo.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
 
 	iniFile = argIni.getValue();
@@ -73,8 +88,9 @@ bool CRunApp::initialize(int argc, const char** argv)
 	if (rawlogFile.empty())
 		throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " +
 		                            iniFile + ")");
-	// Fail early on bad back-end options (before reading a long rawlog).
+	// Fail early on bad back-end options and an unusable output folder (before a long run).
 	makeBackend(backend, params);
+	makeOutputDir(outDir);
 	return true;
 }
 
@@ -111,11 +127,13 @@ void CRunApp::run()
 		                   MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", filter->name().c_str(),
 		                                     done, total, 100.0 * double(done) / double(total));
 	                   });
-	setEgoTimes(result, hasGroundTruth);
+	setEgoTimes(result);
+	if (hasGroundTruth)
+		if (const std::string w = timeBaseWarning(result, gt); !w.empty()) MRPT_LOG_WARN(w);
 	MRPT_LOG_INFO_FMT("%s: %zu steps in %.1f ms (%.3f ms/step)", result.name.c_str(), result.steps,
 	                  result.total_ms, result.est.ms_per_step);
 
-	std::filesystem::create_directories(outDir);
+	makeOutputDir(outDir);
 	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	writeEstimateFiles(outDir, "", result.est, g, writtenFiles);
 	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w)
@@ -124,6 +142,7 @@ void CRunApp::run()
 		eval::writeFile(p, w);
 		writtenFiles.push_back(p);
 	};
+	writeOptionalOutputs(data.rawlog);
 	out("effective_config.ini",
 	    [&](std::ostream& os)
 	    {
@@ -186,5 +205,27 @@ void CRunApp::run()
 	}
 	for (const auto& f : writtenFiles) MRPT_LOG_DEBUG_STREAM("wrote " << f);
 	MRPT_LOG_INFO_STREAM("outputs in " << outDir << " (" << writtenFiles.size() << " files)");
+}
+
+void CRunApp::writeOptionalOutputs(const TRawlog& rawlog)
+{
+	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	if (fullCovariance)
+	{
+		const std::string p = joinPath(outDir, "covariance.txt");
+		eval::writeFile(p, [&](std::ostream& os) { eval::writeCovariances(os, result.est); });
+		writtenFiles.push_back(p);
+	}
+	const std::vector<TDrawnRun> drawn{{result.name, {0, 0, 255}, &result}};
+	if (!sceneFile.empty())
+	{
+		writeScene(sceneFile, drawn, g);
+		writtenFiles.push_back(sceneFile);
+	}
+	if (!videoFile.empty())
+	{
+		writeVideo(videoFile, drawn, g, rawlog.frames);
+		writtenFiles.push_back(videoFile);
+	}
 }
 }  // namespace dynslam::apps

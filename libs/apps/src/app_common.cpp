@@ -46,12 +46,11 @@ TEvaluation evaluateRun(const TGroundTruth& gt, const eval::TRunEstimates& est)
 	return e;
 }
 
-void setEgoTimes(TFilterRun& run, bool haveGroundTruth)
+void setEgoTimes(TFilterRun& run)
 {
 	for (auto& e : run.est.ego)
-		e.t = (!haveGroundTruth && e.step >= 0 && size_t(e.step) < run.stamps.size())
-		          ? run.stamps[size_t(e.step)]
-		          : eval::kNaN;
+		e.t = (e.step >= 0 && size_t(e.step) < run.stamps.size()) ? run.stamps[size_t(e.step)]
+		                                                          : eval::kNaN;
 }
 
 TDataSettings readDataSettings(const mrpt::config::CConfigFileBase& ini, const std::string& section,

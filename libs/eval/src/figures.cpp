@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -179,8 +180,13 @@ mrpt::img::CImage drawEgoErrorFigure(const TGroundTruth& gt,
 	std::vector<std::vector<TEgoErrorRow>> rows;
 	for (const auto& s : series)
 		rows.push_back(s.est ? egoErrors(gt, s.est->ego) : std::vector<TEgoErrorRow>{});
+	// Time axis from the first stamp: stamps are the rawlog's (e.g. 1.6e9 s since 1970).
+	double t0 = std::numeric_limits<double>::infinity();
+	for (const auto& v : rows)
+		for (const auto& r : v)
+			if (std::isfinite(r.t)) t0 = std::min(t0, r.t);
 	auto xOf = [&](const TEgoErrorRow& r)
-	{ return opt.time_axis && std::isfinite(r.t) ? r.t : static_cast<double>(r.step); };
+	{ return opt.time_axis && std::isfinite(r.t) ? r.t - t0 : static_cast<double>(r.step); };
 	TBox xr = TBox::empty();
 	for (const auto& v : rows)
 		for (const auto& r : v) xr.expand(xOf(r), 0);
@@ -198,7 +204,7 @@ mrpt::img::CImage drawEgoErrorFigure(const TGroundTruth& gt,
 		if (!(w.xmax > w.xmin)) w = w.withMargin(0);
 		CPlotCanvas cv(img, left, top + i * (panelH + gap), opt.width - left - right, panelH, w,
 		               false);
-		cv.axes(i == 2 ? (opt.time_axis ? "t [s]" : "step") : "", names[i],
+		cv.axes(i == 2 ? (opt.time_axis ? "time since the first step [s]" : "step") : "", names[i],
 		        i == 0 ? opt.title : "");
 		cv.line(w.xmin, 0, w.xmax, 0, kGrey);
 		std::vector<TLegendEntry> legend;

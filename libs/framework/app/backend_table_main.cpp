@@ -13,11 +13,23 @@ int main(int argc, char** argv)
 		TCLAP::ValueArg<std::string> ini("s", "scenario", "scenario INI", true, "", "file", cmd);
 		TCLAP::ValueArg<int> runs("n", "runs", "Monte Carlo runs", false, 3, "N", cmd);
 		TCLAP::ValueArg<int> steps("k", "steps", "steps (-1: the scenario's)", false, -1, "K", cmd);
-		TCLAP::ValueArg<std::string> noise("l", "noise", "noise level w1v1..w3v3", false, "w2v2", "L", cmd);
+		TCLAP::ValueArg<std::string> noise("l", "noise", "noise level w1v1..w3v3", false, "w2v2",
+		                                   "L", cmd);
 		TCLAP::ValueArg<int> window("w", "window", "window size W", false, 10, "W", cmd);
 		TCLAP::ValueArg<double> sxi("x", "sigma-xi", "Sigma_xi = value * I", false, 0.1, "s", cmd);
-		TCLAP::ValueArg<std::string> out("o", "out", "also write the Markdown table here", false, "", "file", cmd);
-		cmd.parse(argc, argv);
+		TCLAP::ValueArg<std::string> out("o", "out", "also write the Markdown table here", false,
+		                                 "", "file", cmd);
+		// MRPT's TCLAP returns false both for --help/--version (exit 0) and for errors
+		// (after printing them; exit 1).
+		if (!cmd.parse(argc, argv))
+		{
+			for (int i = 1; i < argc; ++i)
+			{
+				const std::string a = argv[i];
+				if (a == "-h" || a == "--help" || a == "--version") return 0;
+			}
+			return 1;
+		}
 		dynslam::framework::TBackendTableOptions o;
 		o.scenario_ini = ini.getValue();
 		o.runs = runs.getValue();
@@ -36,7 +48,7 @@ int main(int argc, char** argv)
 	}
 	catch (const std::exception& e)
 	{
-		std::cerr << "dynslam-backend-table: " << e.what() << "\n";
+		std::cerr << "dynslam-backend-table: error: " << e.what() << "\n";
 		return 1;
 	}
 }

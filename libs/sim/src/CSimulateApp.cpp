@@ -94,7 +94,14 @@ void CSimulateApp::run()
 	}
 	if (figureOnly) return;
 
-	std::filesystem::create_directories(outDir);
+	{
+		std::error_code ec;
+		std::filesystem::create_directories(outDir, ec);
+		if (ec || !std::filesystem::is_directory(outDir))
+			throw std::runtime_error("cannot create the output folder '" + outDir +
+			                         "': " + (ec ? ec.message() : "a file is in the way") +
+			                         " (give another folder with -o)");
+	}
 	const std::string base = options.name;
 	auto path = [&](const std::string& suffix)
 	{ return (std::filesystem::path(outDir) / (base + suffix)).string(); };

@@ -177,8 +177,10 @@ TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
 	gt.landmarks = w.landmarks;
 	for (size_t k = 0; k < n; ++k)
 	{
-		gt.t[k] = o.stepTime(k);
-		gt.ego[k] = w.ego.pose(w.track, gt.t[k]);
+		// The rawlog's time stamps (start_time + k dt, as stepTimestamp() writes them), so that
+		// the ground-truth files and the apps' trajectories share one time base.
+		gt.t[k] = o.start_time + o.stepTime(k);
+		gt.ego[k] = w.ego.pose(w.track, o.stepTime(k));
 	}
 	gt.objects.resize(w.objects.size());
 	for (size_t i = 0; i < w.objects.size(); ++i)
@@ -192,7 +194,8 @@ TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
 		og.visible.assign(n, 0);
 		for (size_t k = 0; k < n; ++k)
 		{
-			const Eigen::Matrix2Xd F = bodyToWorld(obj.motion.pose(w.track, gt.t[k]), obj.body);
+			const Eigen::Matrix2Xd F =
+			    bodyToWorld(obj.motion.pose(w.track, o.stepTime(k)), obj.body);
 			og.features[k] = F;
 			// The sensor reports an object as a whole when its centroid is within range.
 			const Eigen::Vector2d c = F.rowwise().mean();

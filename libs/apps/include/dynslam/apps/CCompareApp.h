@@ -13,6 +13,7 @@
  *
  *   dynslam-compare [-c INI] [-r file.rawlog] [--gt DIR/BASE | --no-gt] [--out DIR]
  *                   [--filters static_all,static_landmarks_only,dynamic] [--no-figures] [-q]
+ *                   [--full-covariance] [--scene FILE.3Dscene] [--video FILE.mp4]
  *
  * Without -c it uses the shipped highway default config/compare_highway.ini (which points at
  * datasets/highway.rawlog), searched in the current directory, then <exe>/../share/dynslam,
@@ -43,6 +44,8 @@ public:
 
 	/** Filter names in table order. */
 	static const std::vector<std::string>& allFilters();
+	/** Title of compare_map.png. */
+	static std::string mapTitle(bool withGroundTruth);
 
 	// --- settings (filled by initialize(); may be edited before run()) ---
 	mrpt::config::CConfigFileMemory params;
@@ -51,10 +54,17 @@ public:
 	std::vector<std::string> filters = allFilters();
 	std::string outDir;  ///< empty: print only
 	bool figures = true;
+	bool fullCovariance = false;  ///< --full-covariance: DIR/<filter>_covariance.txt
+	std::string sceneFile;        ///< --scene FILE.3Dscene (empty: none)
+	std::string videoFile;        ///< --video FILE.mp4 (empty: none)
+	int progressEvery = 0;  ///< [Compare] progress_every (0: ten lines per filter on long runs)
 
 	// --- results of run() ---
-	std::vector<TFilterRun> runs;         ///< one per filter, in `filters` order
-	std::vector<eval::TMetricsRow> rows;  ///< metrics per filter (only with ground truth)
+	std::vector<TFilterRun> runs;  ///< one per filter, in `filters` order
+	/** Metrics per filter; without ground truth the RMS differences of each filter to
+	 * referenceFilter (the dynamic filter if it ran, else the first). */
+	std::vector<eval::TMetricsRow> rows;
+	std::string referenceFilter;  ///< without ground truth: the rows' reference
 	bool hasGroundTruth = false;
 	TGroundTruth gt;
 	std::string groundTruthUsed, noiseUsed;
@@ -65,5 +75,7 @@ private:
 	TRawlog m_rawlog;  ///< kept for the snapshot figure
 	void writeOutputs(const std::string& optionsDump);
 	void drawFigures();
+	void differenceRows();
+	void writeVisualOutputs();  ///< --scene, --video
 };
 }  // namespace dynslam::apps

@@ -9,6 +9,8 @@
  *
  *   dynslam-montecarlo [-c config/montecarlo.ini] [--runs N] [--levels w1v1,w2v2|all]
  *                      [--threads T] [--seed S] [--out DIR] [--no-figures] [-q]
+ *                      [--shard i/n]            run only part i of n of the (level, run) grid
+ *   dynslam-montecarlo --merge DIR... --out DIR  tables from the shards' per-run records
  *
  * Prints Table I (ours / paper per cell) and the NEES summary per level; with --out DIR writes
  * table1.md, table1.csv (one row per level and quantity, ours and the paper's), nees_summary.csv
@@ -39,6 +41,8 @@ public:
 	/** Runs the sweep, prints the tables and (with an output dir) writes the files. */
 	void run();
 
+	/** "i/n" of --shard as (i, n); throws std::invalid_argument unless 1 <= i <= n. */
+	static std::pair<int, int> parseShard(const std::string& v);
 	/** The noise seed of run `run` at paper level `level` (w1v1..w3v3). */
 	uint64_t runSeed(const std::string& level, int run) const;
 
@@ -56,6 +60,12 @@ public:
 	/** [MonteCarlo] initial_covariance: sigma_w (the paper: Sigma_0 = Sigma_w of the level) or
 	 * ini ([DynamicKFSLAM] Sigma_0 as written, e.g. 0 for a filter anchored at the true start). */
 	bool sigma0FromLevel = true;
+	/** --shard i/n (1 <= i <= n): only the jobs j (level-major index in the whole grid) with
+	 * j mod n = i - 1, same seeds as the whole sweep; writes shard_<i>_of_<n>.runs (per-run
+	 * records, dynslam/eval/run_records.h) and runs.csv, no tables. 0/0: not sharded. */
+	int shardIndex = 0, shardCount = 0;
+	/** --merge: folders with *.runs files of one sweep; run() then merges instead of running. */
+	std::vector<std::string> mergeDirs;
 
 	// --- results of run() ---
 	struct TRunResult
@@ -67,7 +77,8 @@ public:
 		eval::TRunConsistency consistency;
 		size_t steps = 0;
 	};
-	std::vector<TRunResult> results;  ///< level-major, then run
+	std::vector<TRunResult> results;       ///< level-major, then run (a shard: its runs only)
+	std::vector<std::string> mergedFiles;  ///< --merge: the record files read
 	eval::TTable1 table;
 	std::vector<std::pair<std::string, eval::TConsistencySummary>> nees;  ///< per level
 	double wallSeconds = 0;    ///< the whole sweep (simulation + filtering + scoring)
@@ -77,6 +88,12 @@ public:
 
 private:
 	void writeOutputs();
+	/** Table I and the NEES summary from `results` (every run of every level). */
+	void aggregate();
+	void printTables() const;
+	void writeShard();  ///< --shard: the record file and runs.csv
+	void runMerge();    ///< --merge
+	void writeRunsCsv(std::ostream& os) const;
 };
 
 /** The NEES summary per level as a Markdown table (ego, static map, landmarks, object poses,

@@ -4,7 +4,8 @@
  * and run(), tests drive the class and read its result members).
  *
  *   dynslam-run -c config/run_highway.ini [-r file.rawlog] [--gt DIR/BASE | --no-gt]
- *               [-o OUTDIR] [--backend ekf] [--no-figures] [-q]
+ *               [-o OUTDIR] [--backend ekf] [--no-figures] [-q] [--full-covariance]
+ *               [--scene FILE.3Dscene] [--video FILE.mp4]
  *
  * Runs one back-end (default: the dynamic EKF) over a rawlog and writes into OUTDIR:
  * ego.csv (per-step estimate, 3-sigma, ground truth, error, NEES, NIS), trajectory.tum,
@@ -14,6 +15,7 @@
  * the dump of every options struct). See doc/apps.md for the [Run] keys. */
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/filter_run.h>
+#include <dynslam/apps/rawlog_io.h>
 #include <dynslam/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/COutputLogger.h>
@@ -44,7 +46,10 @@ public:
 	std::string backend = "ekf";
 	std::string outDir = "dynslam-run-out";
 	bool figures = true;
-	int progressEvery = 0;  ///< log every N steps (0: 10 times per run)
+	int progressEvery = 0;        ///< log every N steps (0: 10 times per run)
+	bool fullCovariance = false;  ///< --full-covariance: OUTDIR/covariance.txt
+	std::string sceneFile;        ///< --scene FILE.3Dscene (empty: none)
+	std::string videoFile;        ///< --video FILE.mp4 (empty: none)
 
 	// --- results of run() ---
 	TFilterRun result;
@@ -53,5 +58,9 @@ public:
 	std::optional<TEvaluation> evaluation;
 	std::string groundTruthUsed, scenarioNoiseUsed;
 	std::vector<std::string> writtenFiles;
+
+private:
+	/** --full-covariance, --scene, --video. */
+	void writeOptionalOutputs(const TRawlog& rawlog);
 };
 }  // namespace dynslam::apps

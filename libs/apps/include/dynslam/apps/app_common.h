@@ -31,10 +31,11 @@ struct TEvaluation
 };
 TEvaluation evaluateRun(const TGroundTruth& gt, const eval::TRunEstimates& est);
 
-/** Without ground truth, the TUM writer needs time stamps: copies the rawlog's observation
- * stamps into the ego estimates (with ground truth they stay NaN and gt.t is used, so that
- * our trajectory and the ground truth's TUM file share one time base). */
-void setEgoTimes(TFilterRun& run, bool haveGroundTruth);
+/** One time base everywhere: copies the rawlog's observation stamps into the ego estimates
+ * (t of ego.csv and trajectory.tum), with or without ground truth. The simulator's and the
+ * MRCLAM importer's ground truth carry the same stamps (BASE_gt_ego.tum), so evo associates
+ * the two files. A step without a stamp keeps t = NaN (the writers then use gt.t). */
+void setEgoTimes(TFilterRun& run);
 
 /** Writes <dir>/<prefix>ego.csv, trajectory.tum, landmarks.csv, object_features.csv,
  * object_poses.csv (writers.h); appends the paths to `written`. */
