@@ -58,44 +58,58 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	    "", "list", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the PNG figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "Only the table, warnings and errors", cmd);
+	TCLAP::SwitchArg argStrict("", "strict",
+	                           "Unknown keys in MRPT's own INI sections ([RangeBearingKFSLAM], "
+	                           "[*_KalmanFilter]) are errors, not warnings",
+	                           cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-compare")) return false;
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
 	loadIniFile(iniFile, params);
-	using namespace dynslam::config;
-	rejectUnknownKeys(params, kSection,
-	                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
-	                   "figures", "out_dir"});
-	data = readDataSettings(params, kSection, folderOf(iniFile));
-	if (argRawlog.isSet())
+	try
 	{
-		// The INI's ground truth belongs to its rawlog: look beside the new one instead.
-		data.rawlog = argRawlog.getValue();
-		data.groundTruth = "auto";
-	}
-	if (argGt.isSet()) data.groundTruth = argGt.getValue();
-	if (argNoGt.getValue()) data.groundTruth.clear();
-	if (data.rawlog.empty())
-		throw std::invalid_argument(
-		    "dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
+		using namespace dynslam::config;
+		rejectUnknownKeys(params, kSection,
+		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
+		                   "figures", "out_dir"});
+		data = readDataSettings(params, kSection, folderOf(iniFile));
+		if (argRawlog.isSet())
+		{
+			// The INI's ground truth belongs to its rawlog: look beside the new one instead.
+			data.rawlog = argRawlog.getValue();
+			data.groundTruth = "auto";
+		}
+		if (argGt.isSet()) data.groundTruth = argGt.getValue();
+		if (argNoGt.getValue()) data.groundTruth.clear();
+		if (data.rawlog.empty())
+			throw std::invalid_argument(
+			    "dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
 
-	const std::string fl =
-	    argFilters.isSet() ? argFilters.getValue() : readString(params, kSection, "filters", "");
-	if (!fl.empty())
-	{
-		filters = splitList(fl);
+		const std::string fl = argFilters.isSet() ? argFilters.getValue()
+		                                          : readString(params, kSection, "filters", "");
+		if (!fl.empty())
+		{
+			filters = splitList(fl);
+			for (const auto& f : filters)
+				if (std::find(allFilters().begin(), allFilters().end(), f) == allFilters().end())
+					fail(kSection, "filters", fl,
+					     "unknown filter '" + f +
+					         "' (known: static_all, static_landmarks_only, dynamic)");
+			if (filters.empty()) fail(kSection, "filters", fl, "empty list");
+		}
+		figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+		outDir = readString(params, kSection, "out_dir", "");
+		if (argOut.isSet()) outDir = argOut.getValue();
+		for (const auto& w : checkSharedSections(params, iniFile, argStrict.getValue()))
+			MRPT_LOG_WARN(w);
 		for (const auto& f : filters)
-			if (std::find(allFilters().begin(), allFilters().end(), f) == allFilters().end())
-				fail(kSection, "filters", fl,
-				     "unknown filter '" + f +
-				         "' (known: static_all, static_landmarks_only, dynamic)");
-		if (filters.empty()) fail(kSection, "filters", fl, "empty list");
+			makeBackend(backendOf(f), params);  // fail early on bad options
 	}
-	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
-	outDir = readString(params, kSection, "out_dir", "");
-	if (argOut.isSet()) outDir = argOut.getValue();
-	for (const auto& f : filters) makeBackend(backendOf(f), params);  // fail early on bad options
+	catch (const std::invalid_argument& e)
+	{
+		throw std::invalid_argument(inConfigFile(iniFile, e.what()));  // name the INI file
+	}
 	return true;
 }
 
@@ -105,6 +119,7 @@ void CCompareApp::run()
 	rows.clear();
 	writtenFiles.clear();
 	TLoadedData d = loadData(data, params, "DynamicKFSLAM", "RangeBearingKFSLAM");
+	for (const auto& w : d.rawlog.warnings) MRPT_LOG_WARN(w);
 	hasGroundTruth = d.gt.has_value();
 	if (hasGroundTruth) gt = *d.gt;
 	groundTruthUsed = d.groundTruthUsed;

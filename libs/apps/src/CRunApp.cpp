@@ -45,36 +45,50 @@ bool CRunApp::initialize(int argc, const char** argv)
 	    false, "", "kind", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the PNG figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "Only warnings and errors on the console", cmd);
+	TCLAP::SwitchArg argStrict("", "strict",
+	                           "Unknown keys in MRPT's own INI sections ([RangeBearingKFSLAM], "
+	                           "[*_KalmanFilter]) are errors, not warnings",
+	                           cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-run")) return false;
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
 
 	iniFile = argIni.getValue();
 	loadIniFile(iniFile, params);
-	using namespace dynslam::config;
-	rejectUnknownKeys(params, kSection,
-	                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "backend",
-	                   "out_dir", "figures", "progress_every"});
-	const TDataSettings d = readDataSettings(params, kSection, folderOf(iniFile));
-	rawlogFile = argRawlog.isSet() ? argRawlog.getValue() : d.rawlog;
-	groundTruth = d.groundTruth;
-	if (argRawlog.isSet()) groundTruth = "auto";  // the INI's ground truth belongs to its rawlog
-	if (argGt.isSet()) groundTruth = argGt.getValue();
-	if (argNoGt.getValue()) groundTruth.clear();
-	scenarioFile = d.scenario;
-	noiseFromScenario = d.noiseFromScenario;
-	backend = readString(params, kSection, "backend", "ekf");
-	if (argBackend.isSet()) backend = argBackend.getValue();
-	outDir = readString(params, kSection, "out_dir", outDir);
-	if (argOut.isSet()) outDir = argOut.getValue();
-	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
-	progressEvery = int(readInt(params, kSection, "progress_every", 0));
-	if (progressEvery < 0)
-		fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
-	if (rawlogFile.empty())
-		throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " +
-		                            iniFile + ")");
-	// Fail early on bad back-end options (before reading a long rawlog).
-	makeBackend(backend, params);
+	try
+	{
+		using namespace dynslam::config;
+		rejectUnknownKeys(params, kSection,
+		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "backend",
+		                   "out_dir", "figures", "progress_every"});
+		const TDataSettings d = readDataSettings(params, kSection, folderOf(iniFile));
+		rawlogFile = argRawlog.isSet() ? argRawlog.getValue() : d.rawlog;
+		groundTruth = d.groundTruth;
+		if (argRawlog.isSet())
+			groundTruth = "auto";  // the INI's ground truth belongs to its rawlog
+		if (argGt.isSet()) groundTruth = argGt.getValue();
+		if (argNoGt.getValue()) groundTruth.clear();
+		scenarioFile = d.scenario;
+		noiseFromScenario = d.noiseFromScenario;
+		backend = readString(params, kSection, "backend", "ekf");
+		if (argBackend.isSet()) backend = argBackend.getValue();
+		outDir = readString(params, kSection, "out_dir", outDir);
+		if (argOut.isSet()) outDir = argOut.getValue();
+		figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+		progressEvery = int(readInt(params, kSection, "progress_every", 0));
+		if (progressEvery < 0)
+			fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
+		if (rawlogFile.empty())
+			throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " +
+			                            iniFile + ")");
+		// Fail early on bad back-end options (before reading a long rawlog).
+		for (const auto& w : checkSharedSections(params, iniFile, argStrict.getValue()))
+			MRPT_LOG_WARN(w);
+		makeBackend(backend, params);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		throw std::invalid_argument(inConfigFile(iniFile, e.what()));  // name the INI file
+	}
 	return true;
 }
 
@@ -90,6 +104,7 @@ void CRunApp::run()
 	const bool isStatic = backend == "static_all" || backend == "static_landmarks_only";
 	TLoadedData data =
 	    loadData(ds, params, isStatic ? "" : "DynamicKFSLAM", isStatic ? "RangeBearingKFSLAM" : "");
+	for (const auto& w : data.rawlog.warnings) MRPT_LOG_WARN(w);
 	hasGroundTruth = data.gt.has_value();
 	if (hasGroundTruth) gt = *data.gt;
 	groundTruthUsed = data.groundTruthUsed;
