@@ -176,3 +176,19 @@ TEST(BadInput, MisspelledKeyInMrptSectionWarnsOrFailsWithStrict)
 	    runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " --strict -c " + q(rini) + " -o " + q(out));
 	expectCleanFailure(r, {"[DynamicKFSLAM_KalmanFilter] enable_profilr: unknown key"});
 }
+
+TEST(BadInput, MontecarloStrictRejectsAMisspelledMrptKey)
+{
+	const std::string dir = apps_test::freshDir("mcstrict");
+	std::string text = apps_test::readFile(configFile("montecarlo.ini"));
+	text = std::regex_replace(text, std::regex("\\[DynamicKFSLAM_KalmanFilter\\]"),
+	                          "[DynamicKFSLAM_KalmanFilter]\nenable_profilr = false");
+	text = std::regex_replace(text, std::regex("(^|\\n)scenario *= *"),
+	                          "$1scenario = " + std::string(DYNSLAM_CONFIG_DIR) + "/");
+	const std::string ini = dir + "/mc.ini";
+	apps_test::writeFile(ini, text);
+	const auto r = runCommand(std::string(q(DYNSLAM_MONTECARLO_EXE)) + " --strict -q --runs 1 " +
+	                          "--levels w1v1 -c " + q(ini));
+	expectCleanFailure(r, {"config file '" + ini + "'",
+	                       "[DynamicKFSLAM_KalmanFilter] enable_profilr: unknown key"});
+}

@@ -2,6 +2,7 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/filter_run.h>
+#include <dynslam/apps/mrpt_sections.h>
 #include <dynslam/apps/progress.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/sim/scenario.h>
@@ -81,6 +82,10 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	    "dir", cmd);
 	TCLAP::SwitchArg argNoFig("", "no-figures", "Do not draw the NEES figures", cmd);
 	TCLAP::SwitchArg argQuiet("q", "quiet", "No progress bar; only the tables", cmd);
+	TCLAP::SwitchArg argStrict("", "strict",
+	                           "Unknown keys in MRPT's own INI sections ([RangeBearingKFSLAM], "
+	                           "[*_KalmanFilter]) are errors, not warnings",
+	                           cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-montecarlo")) return false;
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile("config/montecarlo.ini");
@@ -119,6 +124,7 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	outDir = argOut.getValue();
 	progress = !argQuiet.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
+	for (const auto& w : checkMrptSections(params, iniFile, argStrict.getValue())) MRPT_LOG_WARN(w);
 	makeBackend(backend, params);  // fail early on bad options
 	return true;
 }
