@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages dynslam needs, only those missing. Needs root (or sudo).
 set -euo pipefail
-PKGS=(build-essential cmake libmrpt-dev libeigen3-dev libopencv-dev libgtest-dev libbenchmark-dev ccache)
+PKGS=(build-essential cmake libmrpt-dev mrpt-apps libeigen3-dev libopencv-dev libgtest-dev libbenchmark-dev ccache)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

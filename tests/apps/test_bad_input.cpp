@@ -136,3 +136,59 @@ TEST(BadInput, HelpExitsZero)
 		EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
 	}
 }
+
+TEST(BadInput, IniErrorsNameTheFile)
+{
+	const std::string dir = apps_test::freshDir("inifile");
+	const std::string ini = editedIni(dir, "run_highway.ini", "Sigma_v", "Sigma_v = [1e-5 abc]");
+	const auto r =
+	    runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " + q(ini) + " -o " + q(dir + "/out"));
+	expectCleanFailure(r, {"config file '" + ini + "': [DynamicKFSLAM] Sigma_v", "abc"});
+	const std::string cini =
+	    editedIni(dir, "compare_highway.ini", "std_sensor_range", "std_sensor_range = -0.1");
+	const auto c = runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -q -c " + q(cini));
+	expectCleanFailure(c, {"config file '" + cini + "': [RangeBearingKFSLAM] std_sensor_range"});
+}
+
+TEST(BadInput, MisspelledKeyInMrptSectionWarnsOrFailsWithStrict)
+{
+	const std::string dir = apps_test::freshDir("mrptkey");
+	// A misspelled key in MRPT's own section: MRPT would silently ignore it.
+	const std::string ini = editedIni(dir, "compare_highway.ini", "std_sensor_range",
+	                                  "std_sensor_range = 0.0031622776601683794\n"
+	                                  "std_sensor_rnage = 0.5");
+	const std::string out = dir + "/out";
+	const auto w = runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -q --no-figures -c " +
+	                          q(ini) + " --filters static_landmarks_only");
+	ASSERT_TRUE(w.exitedNormally) << w.output;
+	EXPECT_EQ(w.exitCode, 0) << w.output;
+	EXPECT_NE(w.output.find("config file '" + ini +
+	                        "': [RangeBearingKFSLAM] std_sensor_rnage: unknown key"),
+	          std::string::npos)
+	    << w.output;
+	const auto s = runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -q --strict -c " + q(ini) +
+	                          " --filters static_landmarks_only");
+	expectCleanFailure(s, {"std_sensor_rnage: unknown key", "--strict"});
+	// The same through dynslam-run, in [DynamicKFSLAM_KalmanFilter] (MRPT's TKF_options).
+	const std::string rini =
+	    editedIni(dir, "run_highway.ini", "enable_profiler", "enable_profilr = false");
+	const auto r =
+	    runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " --strict -c " + q(rini) + " -o " + q(out));
+	expectCleanFailure(r, {"[DynamicKFSLAM_KalmanFilter] enable_profilr: unknown key"});
+}
+
+TEST(BadInput, MontecarloStrictRejectsAMisspelledMrptKey)
+{
+	const std::string dir = apps_test::freshDir("mcstrict");
+	std::string text = apps_test::readFile(configFile("montecarlo.ini"));
+	text = std::regex_replace(text, std::regex("\\[DynamicKFSLAM_KalmanFilter\\]"),
+	                          "[DynamicKFSLAM_KalmanFilter]\nenable_profilr = false");
+	text = std::regex_replace(text, std::regex("(^|\\n)scenario *= *"),
+	                          "$1scenario = " + std::string(DYNSLAM_CONFIG_DIR) + "/");
+	const std::string ini = dir + "/mc.ini";
+	apps_test::writeFile(ini, text);
+	const auto r = runCommand(std::string(q(DYNSLAM_MONTECARLO_EXE)) + " --strict -q --runs 1 " +
+	                          "--levels w1v1 -c " + q(ini));
+	expectCleanFailure(r, {"config file '" + ini + "'",
+	                       "[DynamicKFSLAM_KalmanFilter] enable_profilr: unknown key"});
+}

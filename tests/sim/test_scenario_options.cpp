@@ -1,7 +1,10 @@
 /** Scenario INI reading: the shipped configs load, bad input is rejected naming the key. */
 #include <dynslam/sim/TScenarioOptions.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "sim_test_utils.h"
@@ -132,6 +135,28 @@ TEST(SimOptions, BadIniIsRejectedNamingTheKey)
 	expectRejected(setIniKey(ini, "Noise", "sigma_w", "[1e-4 1e-4 1e-6]"),
 	               {"[Noise] sigma_w", "conflicts"});
 	expectRejected(setIniKey(ini, "Highway", "num_agents", "4"), {"[Agent4] type", "missing"});
+}
+
+TEST(SimOptions, BadIniFileIsNamedInTheError)
+{
+	const std::string path = (std::filesystem::temp_directory_path() /
+	                          ("dynslam_sim_bad_scenario_" + std::to_string(getpid()) + ".ini"))
+	                             .string();
+	{
+		std::ofstream f(path);
+		f << setIniKey(readFile(dynslam_test::highwayIni()), "Sensor", "range", "abc");
+	}
+	try
+	{
+		loadScenario(path);
+		FAIL() << "expected a rejection";
+	}
+	catch (const std::invalid_argument& e)
+	{
+		const std::string m = e.what();
+		EXPECT_NE(m.find("scenario file '" + path + "': [Sensor] range"), std::string::npos) << m;
+	}
+	std::filesystem::remove(path);
 }
 
 TEST(SimOptions, CustomNoiseAndRangeBearingModel)

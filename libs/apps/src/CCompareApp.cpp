@@ -86,6 +86,10 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	TCLAP::ValueArg<std::string> argVideo(
 	    "", "video", "Also write the filters drawn step by step as an MP4 video", false, "",
 	    "file.mp4", cmd);
+	TCLAP::SwitchArg argStrict("", "strict",
+	                           "Unknown keys in MRPT's own INI sections ([RangeBearingKFSLAM], "
+	                           "[*_KalmanFilter]) are errors, not warnings",
+	                           cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-compare")) return false;
 	fullCovariance = argCov.getValue();
 	sceneFile = argScene.getValue();
@@ -94,45 +98,55 @@ bool CCompareApp::initialize(int argc, const char** argv)
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
 	loadIniFile(iniFile, params);
-	using namespace dynslam::config;
-	rejectUnknownKeys(params, kSection,
-	                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
-	                   "figures", "out_dir", "progress_every"});
-	data = readDataSettings(params, kSection, folderOf(iniFile));
-	if (argRawlog.isSet())
+	try
 	{
-		// The INI's ground truth belongs to its rawlog: look beside the new one instead.
-		data.rawlog = argRawlog.getValue();
-		data.groundTruth = "auto";
-	}
-	if (argGt.isSet()) data.groundTruth = argGt.getValue();
-	if (argNoGt.getValue()) data.groundTruth.clear();
-	if (data.rawlog.empty())
-		throw std::invalid_argument(
-		    "dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
+		using namespace dynslam::config;
+		rejectUnknownKeys(params, kSection,
+		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
+		                   "figures", "out_dir", "progress_every"});
+		data = readDataSettings(params, kSection, folderOf(iniFile));
+		if (argRawlog.isSet())
+		{
+			// The INI's ground truth belongs to its rawlog: look beside the new one instead.
+			data.rawlog = argRawlog.getValue();
+			data.groundTruth = "auto";
+		}
+		if (argGt.isSet()) data.groundTruth = argGt.getValue();
+		if (argNoGt.getValue()) data.groundTruth.clear();
+		if (data.rawlog.empty())
+			throw std::invalid_argument(
+			    "dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
 
-	const std::string fl =
-	    argFilters.isSet() ? argFilters.getValue() : readString(params, kSection, "filters", "");
-	if (!fl.empty())
-	{
-		filters = splitList(fl);
+		const std::string fl = argFilters.isSet() ? argFilters.getValue()
+		                                          : readString(params, kSection, "filters", "");
+		if (!fl.empty())
+		{
+			filters = splitList(fl);
+			for (const auto& f : filters)
+				if (std::find(allFilters().begin(), allFilters().end(), f) == allFilters().end())
+					fail(kSection, "filters", fl,
+					     "unknown filter '" + f +
+					         "' (known: static_all, static_landmarks_only, dynamic)");
+			if (filters.empty()) fail(kSection, "filters", fl, "empty list");
+		}
+		figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+		progressEvery = int(readInt(params, kSection, "progress_every", 0));
+		if (progressEvery < 0)
+			fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
+		outDir = readString(params, kSection, "out_dir", "");
+		if (argOut.isSet()) outDir = argOut.getValue();
+		if (fullCovariance && outDir.empty())
+			throw std::invalid_argument("--full-covariance needs --out DIR (the files go there)");
+		for (const auto& w : checkSharedSections(params, iniFile, argStrict.getValue()))
+			MRPT_LOG_WARN(w);
 		for (const auto& f : filters)
-			if (std::find(allFilters().begin(), allFilters().end(), f) == allFilters().end())
-				fail(kSection, "filters", fl,
-				     "unknown filter '" + f +
-				         "' (known: static_all, static_landmarks_only, dynamic)");
-		if (filters.empty()) fail(kSection, "filters", fl, "empty list");
+			makeBackend(backendOf(f), params);  // fail early on bad options
 	}
-	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
-	progressEvery = int(readInt(params, kSection, "progress_every", 0));
-	if (progressEvery < 0)
-		fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
-	outDir = readString(params, kSection, "out_dir", "");
-	if (argOut.isSet()) outDir = argOut.getValue();
-	if (fullCovariance && outDir.empty())
-		throw std::invalid_argument("--full-covariance needs --out DIR (the files go there)");
-	for (const auto& f : filters) makeBackend(backendOf(f), params);  // fail early on bad options
-	if (!outDir.empty()) makeOutputDir(outDir);
+	catch (const std::invalid_argument& e)
+	{
+		throw std::invalid_argument(inConfigFile(iniFile, e.what()));  // name the INI file
+	}
+	if (!outDir.empty()) makeOutputDir(outDir);  // an unusable folder fails before the run
 	return true;
 }
 
@@ -142,6 +156,7 @@ void CCompareApp::run()
 	rows.clear();
 	writtenFiles.clear();
 	TLoadedData d = loadData(data, params, "DynamicKFSLAM", "RangeBearingKFSLAM");
+	for (const auto& w : d.rawlog.warnings) MRPT_LOG_WARN(w);
 	hasGroundTruth = d.gt.has_value();
 	if (hasGroundTruth) gt = *d.gt;
 	groundTruthUsed = d.groundTruthUsed;

@@ -2,6 +2,7 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/filter_run.h>
+#include <dynslam/apps/mrpt_sections.h>
 #include <dynslam/apps/progress.h>
 #include <dynslam/apps/run_outputs.h>
 #include <dynslam/config_utils.h>
@@ -92,6 +93,10 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	    "", "merge", "Build the tables from the *.runs files of the given shard folders", cmd);
 	TCLAP::UnlabeledMultiArg<std::string> argDirs("dirs", "Shard folders (with --merge)", false,
 	                                              "DIR", cmd);
+	TCLAP::SwitchArg argStrict("", "strict",
+	                           "Unknown keys in MRPT's own INI sections ([RangeBearingKFSLAM], "
+	                           "[*_KalmanFilter]) are errors, not warnings",
+	                           cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-montecarlo")) return false;
 	// The folder list takes any word, so an unknown option lands there.
 	for (const auto& d : argDirs.getValue())
@@ -156,6 +161,7 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	outDir = argOut.getValue();
 	progress = !argQuiet.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
+	for (const auto& w : checkMrptSections(params, iniFile, argStrict.getValue())) MRPT_LOG_WARN(w);
 	makeBackend(backend, params);  // fail early on bad options
 	if (!outDir.empty()) makeOutputDir(outDir);
 	return true;

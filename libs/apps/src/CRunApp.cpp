@@ -57,6 +57,10 @@ bool CRunApp::initialize(int argc, const char** argv)
 	TCLAP::ValueArg<std::string> argVideo("", "video",
 	                                      "Also write the run drawn step by step as an MP4 video",
 	                                      false, "", "file.mp4", cmd);
+	TCLAP::SwitchArg argStrict("", "strict",
+	                           "Unknown keys in MRPT's own INI sections ([RangeBearingKFSLAM], "
+	                           "[*_KalmanFilter]) are errors, not warnings",
+	                           cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-run")) return false;
 	fullCovariance = argCov.getValue();
 	sceneFile = argScene.getValue();
@@ -65,32 +69,42 @@ bool CRunApp::initialize(int argc, const char** argv)
 
 	iniFile = argIni.getValue();
 	loadIniFile(iniFile, params);
-	using namespace dynslam::config;
-	rejectUnknownKeys(params, kSection,
-	                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "backend",
-	                   "out_dir", "figures", "progress_every"});
-	const TDataSettings d = readDataSettings(params, kSection, folderOf(iniFile));
-	rawlogFile = argRawlog.isSet() ? argRawlog.getValue() : d.rawlog;
-	groundTruth = d.groundTruth;
-	if (argRawlog.isSet()) groundTruth = "auto";  // the INI's ground truth belongs to its rawlog
-	if (argGt.isSet()) groundTruth = argGt.getValue();
-	if (argNoGt.getValue()) groundTruth.clear();
-	scenarioFile = d.scenario;
-	noiseFromScenario = d.noiseFromScenario;
-	backend = readString(params, kSection, "backend", "ekf");
-	if (argBackend.isSet()) backend = argBackend.getValue();
-	outDir = readString(params, kSection, "out_dir", outDir);
-	if (argOut.isSet()) outDir = argOut.getValue();
-	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
-	progressEvery = int(readInt(params, kSection, "progress_every", 0));
-	if (progressEvery < 0)
-		fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
-	if (rawlogFile.empty())
-		throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " +
-		                            iniFile + ")");
-	// Fail early on bad back-end options and an unusable output folder (before a long run).
-	makeBackend(backend, params);
-	makeOutputDir(outDir);
+	try
+	{
+		using namespace dynslam::config;
+		rejectUnknownKeys(params, kSection,
+		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "backend",
+		                   "out_dir", "figures", "progress_every"});
+		const TDataSettings d = readDataSettings(params, kSection, folderOf(iniFile));
+		rawlogFile = argRawlog.isSet() ? argRawlog.getValue() : d.rawlog;
+		groundTruth = d.groundTruth;
+		if (argRawlog.isSet())
+			groundTruth = "auto";  // the INI's ground truth belongs to its rawlog
+		if (argGt.isSet()) groundTruth = argGt.getValue();
+		if (argNoGt.getValue()) groundTruth.clear();
+		scenarioFile = d.scenario;
+		noiseFromScenario = d.noiseFromScenario;
+		backend = readString(params, kSection, "backend", "ekf");
+		if (argBackend.isSet()) backend = argBackend.getValue();
+		outDir = readString(params, kSection, "out_dir", outDir);
+		if (argOut.isSet()) outDir = argOut.getValue();
+		figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+		progressEvery = int(readInt(params, kSection, "progress_every", 0));
+		if (progressEvery < 0)
+			fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
+		if (rawlogFile.empty())
+			throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " +
+			                            iniFile + ")");
+		// Fail early on bad back-end options (before reading a long rawlog).
+		for (const auto& w : checkSharedSections(params, iniFile, argStrict.getValue()))
+			MRPT_LOG_WARN(w);
+		makeBackend(backend, params);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		throw std::invalid_argument(inConfigFile(iniFile, e.what()));  // name the INI file
+	}
+	makeOutputDir(outDir);  // an unusable folder fails before the run
 	return true;
 }
 
@@ -106,6 +120,7 @@ void CRunApp::run()
 	const bool isStatic = backend == "static_all" || backend == "static_landmarks_only";
 	TLoadedData data =
 	    loadData(ds, params, isStatic ? "" : "DynamicKFSLAM", isStatic ? "RangeBearingKFSLAM" : "");
+	for (const auto& w : data.rawlog.warnings) MRPT_LOG_WARN(w);
 	hasGroundTruth = data.gt.has_value();
 	if (hasGroundTruth) gt = *data.gt;
 	groundTruthUsed = data.groundTruthUsed;

@@ -1,7 +1,9 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
+#include <dynslam/apps/mrpt_sections.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/eval/writers.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 
 #include <filesystem>
 #include <fstream>
@@ -35,6 +37,19 @@ void loadIniFile(const std::string& path, mrpt::config::CConfigFileMemory& out)
 	std::ostringstream ss;
 	ss << f.rdbuf();
 	out.setContent(ss.str());
+}
+
+std::string inConfigFile(const std::string& iniFile, const std::string& msg)
+{
+	if (msg.find(iniFile) != std::string::npos) return msg;
+	return "config file '" + iniFile + "': " + msg;
+}
+
+std::vector<std::string> checkSharedSections(const mrpt::config::CConfigFileBase& params,
+                                             const std::string& iniFile, bool strict)
+{
+	TOdometryNoiseOptions().loadFromConfigFile(params, "OdometryNoise");
+	return checkMrptSections(params, iniFile, strict);
 }
 
 TEvaluation evaluateRun(const TGroundTruth& gt, const eval::TRunEstimates& est)
@@ -72,19 +87,44 @@ TDataSettings readDataSettings(const mrpt::config::CConfigFileBase& ini, const s
 	return s;
 }
 
+TGroundTruth loadGroundTruthForRawlog(const std::string& spec, const TRawlog& rawlog)
+{
+	if (!isMrptGroundTruthSpec(spec)) return loadGroundTruthFor(spec, rawlog.size(), rawlog.path);
+	std::vector<double> times;
+	for (size_t k = 0; k < rawlog.size(); ++k)
+	{
+		const auto o =
+		    rawlog.frames[k]->getObservationByClass<mrpt::obs::CObservationBearingRange>();
+		times.push_back(o ? mrpt::Clock::toDouble(o->timestamp) : double(k));
+	}
+	const std::string lm = mrptLandmarksFileFor(spec);
+	try
+	{
+		return readMrptGroundTruth(spec, lm, rawlog.framesInFile, rawlog.frameIndex, times);
+	}
+	catch (const std::exception& e)
+	{
+		throw std::runtime_error("ground truth '" + spec + "' (MRPT format, landmarks " + lm +
+		                         ") for rawlog '" + rawlog.path + "': " + e.what());
+	}
+}
+
 TLoadedData loadData(const TDataSettings& s, mrpt::config::CConfigFileMemory& params,
                      const std::string& dynSection, const std::string& staticSection)
 {
 	if (s.rawlog.empty())
 		throw std::runtime_error("no rawlog given (command line -r FILE or the INI key rawlog)");
 	TLoadedData d;
-	d.rawlog = loadRawlog(s.rawlog);
+	TOdometryNoiseOptions odometryNoise;  // used by observations-only (format #2) rawlogs
+	odometryNoise.loadFromConfigFile(params, "OdometryNoise");
+	d.rawlog = loadRawlog(s.rawlog, odometryNoise);
 	std::string gtSpec = s.groundTruth;
 	if (gtSpec == "auto") gtSpec = groundTruthBesideRawlog(s.rawlog);
 	if (!gtSpec.empty())
 	{
-		d.gt = loadGroundTruthFor(gtSpec, d.rawlog.size(), s.rawlog);
-		d.groundTruthUsed = parseGroundTruthSpec(gtSpec).str();
+		d.gt = loadGroundTruthForRawlog(gtSpec, d.rawlog);
+		d.groundTruthUsed =
+		    isMrptGroundTruthSpec(gtSpec) ? gtSpec : parseGroundTruthSpec(gtSpec).str();
 	}
 	if (s.noiseFromScenario != TDataSettings::ScenarioNoise::Off)
 	{

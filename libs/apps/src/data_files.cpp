@@ -98,7 +98,33 @@ TGroundTruthSpec parseGroundTruthSpec(const std::string& spec)
 std::string groundTruthBesideRawlog(const std::string& rawlogPath)
 {
 	const std::string b = stripRawlogExt(rawlogPath);
-	return isFile(b + "_gt_ego.csv") ? b : std::string();
+	if (isFile(b + "_gt_ego.csv")) return b;
+	const std::string mrpt = rawlogPath + "_ground_truth_robot_path.txt";  // simul-landmarks
+	return isFile(mrpt) ? mrpt : std::string();
+}
+
+namespace
+{
+const char* const kMrptPathSuffixes[2][2] = {
+    {"_ground_truth_robot_path.txt", "_ground_truth.txt"},  // simul-landmarks
+    {"_gt_robot_path.txt", "_gt_landmarks.txt"}};           // dynslam-simulate (kf-slam files)
+}
+
+bool isMrptGroundTruthSpec(const std::string& spec)
+{
+	for (const auto& s : kMrptPathSuffixes)
+		if (endsWith(spec, s[0])) return true;
+	return false;
+}
+
+std::string mrptLandmarksFileFor(const std::string& robotPathFile)
+{
+	for (const auto& s : kMrptPathSuffixes)
+		if (endsWith(robotPathFile, s[0]))
+			return robotPathFile.substr(0, robotPathFile.size() - std::string(s[0]).size()) + s[1];
+	throw std::runtime_error("'" + robotPathFile +
+	                         "' is not an MRPT robot-path ground-truth file name (expected "
+	                         "..._ground_truth_robot_path.txt or ..._gt_robot_path.txt)");
 }
 
 std::string scenarioBesideRawlog(const std::string& rawlogPath)

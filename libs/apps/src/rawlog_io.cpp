@@ -1,11 +1,15 @@
 #include <dynslam/apps/rawlog_io.h>
 #include <mrpt/core/exceptions.h>
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+
+#include "rawlog_detail.h"
 
 namespace dynslam::apps
 {
@@ -38,10 +42,72 @@ std::string shortReason(const std::exception& e)
 }
 }  // namespace
 
-TRawlog loadRawlog(const std::string& path)
+void detail::checkSensorPose(const mrpt::obs::CObservationBearingRange& obs,
+                             const std::string& path, size_t entry)
+{
+	const auto& p = obs.sensorLocationOnRobot;
+	for (int i = 0; i < 6; ++i)
+		if (!std::isfinite(p[i]))
+			throw std::runtime_error(detail::rawlogWhat(path) + ": entry " + std::to_string(entry) +
+			                         ": the bearing-range observation's sensorLocationOnRobot is "
+			                         "not finite (x y z yaw pitch roll = " +
+			                         p.asString() + ")");
+}
+
+void detail::pairActionsAndFrames(const std::vector<TEntry>& entries, TRawlog& out)
+{
+	const std::string what = detail::rawlogWhat(out.path);
+	mrpt::obs::CActionCollection::Ptr pendingAction;
+	size_t pendingEntry = 0, standalone = 0;
+	for (const auto& [entry, obj] : entries)
+	{
+		if (auto act = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj))
+		{
+			if (pendingAction)
+				out.warnings.push_back(
+				    what + ": the action at entry " + std::to_string(pendingEntry) +
+				    " is followed by another action (entry " + std::to_string(entry) +
+				    ") before any sensory frame: the later one is used, as in "
+				    "MRPT's CRawlog::readActionObservationPair");
+			pendingAction = act;
+			pendingEntry = entry;
+		}
+		else if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj))
+		{
+			const size_t frame = out.framesInFile++;
+			if (auto o = sf->getObservationByClass<mrpt::obs::CObservationBearingRange>())
+				detail::checkSensorPose(*o, out.path, entry);
+			if (!pendingAction)
+			{
+				out.warnings.push_back(
+				    what + ": the sensory frame at entry " + std::to_string(entry) +
+				    " comes before any action: skipped, as MRPT's kf-slam does (MRPT's "
+				    "simul-landmarks writes each step as sensory frame, then action)");
+				continue;
+			}
+			out.actions.push_back(pendingAction);
+			out.frames.push_back(sf);
+			out.frameIndex.push_back(frame);
+			pendingAction.reset();
+		}
+		else if (std::dynamic_pointer_cast<mrpt::obs::CObservation>(obj) &&
+		         !std::dynamic_pointer_cast<mrpt::obs::CObservationComment>(obj))
+			++standalone;
+	}
+	if (pendingAction)
+		out.warnings.push_back(what + ": the action at entry " + std::to_string(pendingEntry) +
+		                       " has no sensory frame after it: ignored, as MRPT's kf-slam does (" +
+		                       std::to_string(out.size()) + " pairs before it)");
+	if (standalone > 0)
+		out.warnings.push_back(what + ": " + std::to_string(standalone) +
+		                       " standalone observation(s) outside sensory frames ignored (the "
+		                       "file is in format #1: actions and sensory frames)");
+}
+
+TRawlog loadRawlog(const std::string& path, const TOdometryNoiseOptions& odometryNoise)
 {
 	namespace fs = std::filesystem;
-	const std::string what = "rawlog '" + path + "'";
+	const std::string what = detail::rawlogWhat(path);
 	std::error_code ec;
 	if (!fs::exists(path, ec)) throw std::runtime_error(what + ": file not found");
 	if (fs::is_directory(path, ec)) throw std::runtime_error(what + ": is a directory, not a file");
@@ -52,8 +118,9 @@ TRawlog loadRawlog(const std::string& path)
 
 	TRawlog out;
 	out.path = path;
-	mrpt::obs::CActionCollection::Ptr pendingAction;
-	size_t pendingEntry = 0;
+	std::vector<detail::TEntry> entries;
+	bool hasActions = false, pending = false;
+	size_t pairsSoFar = 0;  // format #1 pairs read so far (for the truncation message)
 	for (;;)
 	{
 		mrpt::serialization::CSerializable::Ptr obj;
@@ -69,36 +136,29 @@ TRawlog loadRawlog(const std::string& path)
 		{
 			std::ostringstream msg;
 			msg << what << ": corrupt or truncated at entry " << out.entries << " (after "
-			    << out.size() << " complete action/observation pairs): " << shortReason(e);
+			    << pairsSoFar << " complete action/observation pairs): " << shortReason(e);
 			throw std::runtime_error(msg.str());
 		}
 		const size_t entry = out.entries++;
 		if (!obj) continue;
-		if (auto act = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj))
-		{
-			// Like readActionObservationPair: a second action before any sensory frame
-			// replaces the first.
-			pendingAction = act;
-			pendingEntry = entry;
-		}
-		else if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj))
-		{
-			if (!pendingAction) continue;  // frames before the first action are skipped
-			out.actions.push_back(pendingAction);
-			out.frames.push_back(sf);
-			pendingAction.reset();
-		}
-		// anything else (comments, format-#2 observations) is skipped
+		if (std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj))
+			hasActions = pending = true;
+		else if (pending && std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj))
+			pending = false, ++pairsSoFar;
+		entries.push_back({entry, std::move(obj)});
 	}
-	if (pendingAction)
-		throw std::runtime_error(what + ": truncated: the action at entry " +
-		                         std::to_string(pendingEntry) + " has no sensory frame after it (" +
-		                         std::to_string(out.size()) + " complete pairs before it)");
+	if (hasActions)
+		detail::pairActionsAndFrames(entries, out);
+	else
+	{
+		out.format = TRawlog::Format::ObservationsOnly;
+		detail::convertObservationsOnly(entries, odometryNoise, out);
+	}
 	if (out.size() == 0)
 		throw std::runtime_error(
 		    what + ": no action/observation pair found (" + std::to_string(out.entries) +
 		    " entries read); expected an MRPT rawlog in format #1 (CActionCollection, "
-		    "CSensoryFrame, ...)");
+		    "CSensoryFrame, ...) or format #2 (CObservationOdometry and CObservationBearingRange)");
 	return out;
 }
 }  // namespace dynslam::apps

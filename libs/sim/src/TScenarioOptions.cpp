@@ -379,7 +379,14 @@ TScenarioOptions loadScenario(const std::string& iniPath)
 		throw std::runtime_error("scenario INI file not found: " + iniPath);
 	mrpt::config::CConfigFile f(iniPath);
 	TScenarioOptions o;
-	o.loadFromConfigFile(f);
+	try
+	{
+		o.loadFromConfigFile(f);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		throw std::invalid_argument("scenario file '" + iniPath + "': " + e.what());
+	}
 	return o;
 }
 

@@ -49,4 +49,19 @@ struct TGroundTruth
 void writeGroundTruth(const TGroundTruth& gt, const std::string& dir, const std::string& base);
 /** Reads them back. Throws std::runtime_error naming file and line on malformed input. */
 TGroundTruth readGroundTruth(const std::string& dir, const std::string& base);
+
+/** Ground truth in the plain-text formats of MRPT's simul-landmarks and kf-slam (static
+ * landmarks only; lines starting with '%' or '#' and blank lines are comments):
+ *  - robot path (simul-landmarks: <outFile>_ground_truth_robot_path.txt; kf-slam's
+ *    ground_truth_file_robot; dynslam-simulate: <base>_gt_robot_path.txt): one row per sensory
+ *    frame of the rawlog, 6 columns x y z yaw pitch roll (z, pitch, roll must be 0: 2-D);
+ *  - landmarks (simul-landmarks: <outFile>_ground_truth.txt, CLandmarksMap::saveToTextFile;
+ *    kf-slam's ground_truth_file; dynslam-simulate: <base>_gt_landmarks.txt): 7 columns
+ *    x y z type seenCount tLastSeen ID (z must be 0).
+ * Step k of the result is path row rowOfStep[k] (the rawlog pairing dropped some frames, see
+ * rawlog_io.h) with time stepTimes[k]. Throws std::runtime_error naming file and line on
+ * malformed input, and on a row count that is not rowsExpected. */
+TGroundTruth readMrptGroundTruth(const std::string& pathFile, const std::string& landmarksFile,
+                                 size_t rowsExpected, const std::vector<size_t>& rowOfStep,
+                                 const std::vector<double>& stepTimes);
 }  // namespace dynslam

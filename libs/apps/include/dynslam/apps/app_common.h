@@ -19,6 +19,16 @@ namespace dynslam::apps
  * or unreadable. */
 void loadIniFile(const std::string& path, mrpt::config::CConfigFileMemory& out);
 
+/** "config file 'iniFile': msg", unless msg already names the file: every INI error names the
+ * file it is in. */
+std::string inConfigFile(const std::string& iniFile, const std::string& msg);
+
+/** INI checks shared by the apps: [OdometryNoise] (rawlog_io.h; throws std::invalid_argument on
+ * bad values) and unknown keys in MRPT's own sections (mrpt_sections.h: returned as warnings,
+ * or thrown with strict). */
+std::vector<std::string> checkSharedSections(const mrpt::config::CConfigFileBase& params,
+                                             const std::string& iniFile, bool strict);
+
 /** Splits a command-line list at commas, spaces and tabs, dropping empty items. */
 std::vector<std::string> splitList(const std::string& s);
 
@@ -70,9 +80,16 @@ struct TLoadedData
 	std::string groundTruthUsed;  ///< "DIR/BASE" or empty
 	std::string noiseUsed;  ///< description of the scenario noise written into the INI, or empty
 };
-/** Loads the rawlog, the ground truth (checked against the rawlog) and, with
- * noiseFromScenario, writes the scenario noise into the filter sections of `params`
- * (applyScenarioNoise). Throws std::runtime_error with clear messages. */
+/** The ground truth of a loaded rawlog, checked against it: the project's CSVs (spec "DIR/BASE",
+ * loadGroundTruthFor) or MRPT's text files (spec = the robot-path file, isMrptGroundTruthSpec:
+ * path rows are matched to the rawlog's sensory frames by TRawlog::frameIndex, times are the
+ * observations' timestamps). Throws std::runtime_error naming the files. */
+TGroundTruth loadGroundTruthForRawlog(const std::string& spec, const TRawlog& rawlog);
+
+/** Loads the rawlog (format #2 with the odometry noise of [OdometryNoise] in params), the ground
+ * truth (checked against the rawlog) and, with noiseFromScenario, writes the scenario noise into
+ * the filter sections of `params` (applyScenarioNoise). Throws std::runtime_error with clear
+ * messages. */
 TLoadedData loadData(const TDataSettings& s, mrpt::config::CConfigFileMemory& params,
                      const std::string& dynSection, const std::string& staticSection);
 

@@ -35,8 +35,17 @@ struct TGroundTruthSpec
 	std::string str() const;  ///< "D/B"
 };
 TGroundTruthSpec parseGroundTruthSpec(const std::string& spec);
-/** "D/B" for rawlog D/B.rawlog if D/B_gt_ego.csv exists, else an empty string. */
+/** "D/B" for rawlog D/B.rawlog if D/B_gt_ego.csv exists; else MRPT's simul-landmarks robot
+ * path "D/B.rawlog_ground_truth_robot_path.txt" if it exists; else an empty string. */
 std::string groundTruthBesideRawlog(const std::string& rawlogPath);
+
+/** True if the spec names a robot-path file in MRPT's format (ground_truth.h,
+ * readMrptGroundTruth): "..._ground_truth_robot_path.txt" (simul-landmarks) or
+ * "..._gt_robot_path.txt" (dynslam-simulate's kf-slam files). */
+bool isMrptGroundTruthSpec(const std::string& spec);
+/** The landmarks file beside such a robot-path file: "..._ground_truth.txt" or
+ * "..._gt_landmarks.txt". */
+std::string mrptLandmarksFileFor(const std::string& robotPathFile);
 
 /** Reads the ground truth and checks that it has one step per rawlog pair. Throws
  * std::runtime_error naming the files on a missing/malformed file or a step-count mismatch. */
