@@ -4,8 +4,16 @@
  * rigid-body fit is zero: Sigma_xi = 1e-9 I). The NEES of each run is computed by
  * eval::computeRunConsistency; the test takes one sample per run (the final step's ego pose;
  * each object's last pose), which are independent over runs, so the average over N runs lies
- * inside chi2(N d)/N bounds if the filter is consistent. (Averages over all steps of a run are
- * not: a run's errors are a correlated drift, doc/results.md; they are printed only.) */
+ * inside chi2(N d)/N bounds if the filter is consistent. Four such checks (ego, three objects) at
+ * 99 % each: a consistent filter fails one with probability <= 4 %. (Averages over all steps of
+ * a run are not independent samples: a run's errors are a correlated drift, doc/results.md;
+ * they are printed only.)
+ *
+ * Measured (100 runs, seeds 100..199): ego 3.296, objects 3.243, 3.571, 2.704, 99 % bounds
+ * [2.41, 3.67] (3 dof); the per-step object-pose averages at steps 10, 20, ..., 120 range over
+ * 2.65-3.57, so object 1's last pose is sampling noise, not a bias. With the odometry noise
+ * under-stated 4x (Q = J S J^T / 4) the ego average is 4.34 and the test fails. Runtime about
+ * 2-4 s. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/chi2.h>
 #include <dynslam/eval/consistency.h>
@@ -19,7 +27,7 @@ using namespace dynslam;
 
 namespace
 {
-constexpr int kRuns = 30;
+constexpr int kRuns = 100;
 constexpr int kSteps = 120;
 
 eval::TRunEstimates runOnce(const TGroundTruth& gt, const sim::TScenarioOptions& so, unsigned seed)
@@ -62,7 +70,7 @@ struct TAvg
 		++n;
 	}
 	double mean() const { return sum / n; }
-	eval::TChi2Interval bounds() const { return eval::averageChi2Bounds(dof, n); }
+	eval::TChi2Interval bounds() const { return eval::averageChi2Bounds(dof, n, 0.99); }
 };
 }  // namespace
 

@@ -112,7 +112,7 @@ TEST(RecordedPoseCovariance, EkfRecordsEqualAlg1Marginals)
 	std::cout << "[recorded poses] " << dropped << " dropped poses, worst EKF vs Alg. 1 " << worst
 	          << "\n";
 	EXPECT_EQ(dropped, 2u * (kSteps - 1 - 2));  // K = 2 kept per object
-	EXPECT_LT(worst, 1e-8);
+	EXPECT_LT(worst, 1e-9);                     // measured 1.7e-15
 }
 
 TEST(RecordedPoseCovariance, SymmetricPositiveDefiniteInEveryBackend)
@@ -132,7 +132,11 @@ TEST(RecordedPoseCovariance, SymmetricPositiveDefiniteInEveryBackend)
 				recorded += !p.in_state;
 			}
 		EXPECT_EQ(n, 2u * (kSteps - 1));
-		if (kind != "vdo") EXPECT_GT(recorded, 0u);  // vdo keeps the whole horizon
+		// The EKF and Alg. 1 keep K = 2 poses; every window (window_size = 3 above, vdo too)
+		// holds the poses of 3 steps.
+		const size_t expected =
+		    (kind == "ekf" || kind == "alg1") ? 2u * (kSteps - 1 - 2) : 2u * (kSteps - 1 - 3);
+		EXPECT_EQ(recorded, expected);
 	}
 }
 
@@ -143,6 +147,7 @@ TEST(RecordedPoseCovariance, CubeSlamRelativePoseIsJointMarginalThroughMinus)
 	const auto& w = dynamic_cast<const CWindowBackend&>(*be);
 	const auto tracks = be->getObjectTracks();
 	size_t checked = 0;
+	double worst = 0;
 	for (const auto& [obj, tr] : tracks)
 		for (const auto& p : tr.poses)
 		{
@@ -165,12 +170,16 @@ TEST(RecordedPoseCovariance, CubeSlamRelativePoseIsJointMarginalThroughMinus)
 			}
 			const Eigen::MatrixXd C = w.cost().covariance({k0, kt});
 			const Eigen::MatrixXd ref = J * C * J.transpose();
-			EXPECT_LT((p.cov - ref).cwiseAbs().maxCoeff(), 1e-6 * ref.cwiseAbs().maxCoeff())
-			    << "object " << obj << " step " << p.step << "\n"
-			    << p.cov << "\nvs\n"
-			    << ref;
+			const double e = (p.cov - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff();
+			worst = std::max(worst, e);
+			EXPECT_LT(e, 1e-8) << "object " << obj << " step " << p.step << "\n"
+			                   << p.cov << "\nvs\n"
+			                   << ref;
 			EXPECT_LT((p.mean - blockMinus(VarKind::ObjectBodyPose, b, a)).norm(), 1e-12);
 			++checked;
 		}
+	// Measured 2.8e-10 (rounding of the central differences, h = 1e-6); threshold 1e-8;
+	// with the Jacobian's sign flipped ([I, I]) the error is 5e-3 (measured with that break).
+	std::cout << "[cubeslam] relative pose covariance vs J C J^T: worst relative " << worst << "\n";
 	EXPECT_EQ(checked, 2u * 3u);  // window of 3 ego poses, two objects
 }

@@ -126,11 +126,12 @@ TEST(Window, GaussNewtonConvergesEveryStep)
 			maxIt = std::max(maxIt, w.lastIterations());
 			EXPECT_LT(w.lastIterations(), 10) << "step " << k << ": hit max_iterations";
 		}
-		// Measured: 2e-13-ish (the tolerance is 1e-9 on the last step taken); one GN
-		// iteration per step leaves 1e-3-ish.
+		// Measured: 1.4e-11 (rounding; the last step taken was < tolerance = 1e-9 and GN
+		// converges quadratically); threshold 1e-10. With one GN iteration per step the next
+		// step moves 0.20 (measured with that break).
 		std::cout << "[window] " << kind << ": one more GN step moves at most " << worst
 		          << "; most iterations in a step " << maxIt << "\n";
-		EXPECT_LT(worst, 1e-8);
+		EXPECT_LT(worst, 1e-10);
 		EXPECT_GE(maxIt, 2);  // the problem is nonlinear: GN had to iterate
 	}
 }
@@ -181,10 +182,11 @@ TEST(Window, WholeWindowEqualsBatchOptimum)
 		for (const auto& k : batch.keys())
 			worst = std::max(worst,
 			                 blockMinus(k.kind, c.value(k), batch.value(k)).cwiseAbs().maxCoeff());
-		// Measured: ~1e-12; one GN iteration per step leaves 1e-3-ish.
+		// Measured: 1.5e-11 for all three (threshold 1e-10); with one GN iteration per step
+		// 0.099 (measured with that break).
 		std::cout << "[window] " << kind << " ("
 		          << extra.substr(0, extra.size() - (extra.empty() ? 0 : 1))
 		          << "): worst |x - x_batch| " << worst << "\n";
-		EXPECT_LT(worst, 1e-8);
+		EXPECT_LT(worst, 1e-10);
 	}
 }
