@@ -12,13 +12,19 @@ using namespace dynslam;
 
 namespace
 {
-void runBoth(
-	mrpt::bayes::TKFMethod method, unsigned seed, double* worstX, double* worstP, bool sparse = false)
+dynslam_test::TinyScenarioOptions options(unsigned seed)
 {
 	dynslam_test::TinyScenarioOptions o;
 	o.steps = 40;
 	o.landmarks = 15;
 	o.seed = seed;
+	return o;
+}
+
+void runBoth(
+	mrpt::bayes::TKFMethod method, const dynslam_test::TinyScenarioOptions& o, double* worstX,
+	double* worstP, bool sparse = false)
+{
 	const auto sc = dynslam_test::makeTinyScenario(o);
 
 	mrpt::slam::CRangeBearingKFSLAM2D rb;
@@ -69,7 +75,7 @@ TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_Naive)
 	for (unsigned seed : {1u, 2u, 3u})
 	{
 		double ex, ep;
-		runBoth(mrpt::bayes::kfEKFNaive, seed, &ex, &ep);
+		runBoth(mrpt::bayes::kfEKFNaive, options(seed), &ex, &ep);
 		std::cout << "seed " << seed << ": worst relative |dx| " << ex << ", |dP| " << ep << "\n";
 		EXPECT_LT(ex, 1e-9) << "seed " << seed;
 		EXPECT_LT(ep, 1e-9) << "seed " << seed;
@@ -79,7 +85,7 @@ TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_Naive)
 TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_SparseUpdate)
 {
 	double ex, ep;
-	runBoth(mrpt::bayes::kfEKFNaive, 5, &ex, &ep, true);
+	runBoth(mrpt::bayes::kfEKFNaive, options(5), &ex, &ep, true);
 	std::cout << "sparse update vs MRPT: worst relative |dx| " << ex << ", |dP| " << ep << "\n";
 	EXPECT_LT(ex, 1e-9);
 	EXPECT_LT(ep, 1e-9);
@@ -88,9 +94,28 @@ TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_SparseUpdate)
 TEST(DynamicVsMrpt, ReproducesRangeBearingKFSLAM2D_Davison)
 {
 	double ex, ep;
-	runBoth(mrpt::bayes::kfEKFAlaDavison, 4, &ex, &ep);
+	runBoth(mrpt::bayes::kfEKFAlaDavison, options(4), &ex, &ep);
 	EXPECT_LT(ex, 1e-9);
 	EXPECT_LT(ep, 1e-9);
+}
+
+TEST(DynamicVsMrpt, UnevenCorrelatedOdometryNoiseAtNonZeroHeading)
+{
+	// The action covariance is on the robot-frame increment; both filters rotate it into the
+	// state (Q = J S J^T). Uneven along/across variances with cross terms, and a heading that
+	// turns 0.3 rad per step (across +-pi), so that Q = S would differ from J S J^T.
+	for (bool sparse : {false, true})
+	{
+		dynslam_test::TinyScenarioOptions o = options(6);
+		o.u = Eigen::Vector3d(0.5, 0.05, 0.3);
+		o.Sigma_w << 4e-4, 1.5e-4, 2e-5, 1.5e-4, 1e-4, -1e-5, 2e-5, -1e-5, 1e-5;
+		double ex, ep;
+		runBoth(mrpt::bayes::kfEKFNaive, o, &ex, &ep, sparse);
+		std::cout << "uneven correlated odometry noise (sparse " << sparse << "): worst relative |dx| "
+				  << ex << ", |dP| " << ep << "\n";
+		EXPECT_LT(ex, 1e-9);
+		EXPECT_LT(ep, 1e-9);
+	}
 }
 
 TEST(DynamicVsMrpt, SparseStaticUpdateEqualsMrptUpdate)

@@ -112,6 +112,30 @@ TEST(Metrics, ObjectFeaturesAtFirstSightingAndPoses)
 	EXPECT_EQ(m.object_estimates_unmatched, 2u);  // object 1 feature 1, object 7
 }
 
+TEST(Metrics, ObjectPoseHeadingErrorWrapsAcrossPi)
+{
+	// Object 0's true relative heading near +pi, estimates just across -pi: the errors are
+	// +0.02 and -0.03, not 2 pi - 0.02 (an unwrapped difference would give an RMSE near 6.3).
+	auto gt = eval_test::smallGroundTruth();
+	gt.objects[0].pose[2] = Eigen::Vector3d(1, 0, M_PI - 0.01);
+	gt.objects[0].pose[3] = Eigen::Vector3d(2, 0, -M_PI + 0.01);
+	TRunEstimates est;
+	TObjectPoseEstimate p;
+	p.object = 0;
+	p.cov = Eigen::Matrix3d::Identity();
+	p.step = 2;
+	p.mean = Eigen::Vector3d(1, 0, -M_PI + 0.01);  // error +0.02 across the cut
+	est.object_poses.push_back(p);
+	p.step = 3;
+	p.mean = Eigen::Vector3d(2, 0, M_PI - 0.02);  // error -0.03 across the cut
+	est.object_poses.push_back(p);
+	const TRunMetrics m = computeRunMetrics(gt, est);
+	ASSERT_EQ(m.objects.size(), 2u);
+	EXPECT_EQ(m.objects[0].poses.n_theta, 2u);
+	EXPECT_NEAR(m.objects[0].poses.theta, std::sqrt((0.02 * 0.02 + 0.03 * 0.03) / 2), 1e-12);
+	EXPECT_NEAR(m.objects[0].poses.x, 0.0, 1e-15);
+}
+
 TEST(Metrics, EgoErrorRowsWithThreeSigma)
 {
 	const auto gt = eval_test::smallGroundTruth();

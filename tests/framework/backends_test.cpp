@@ -73,28 +73,34 @@ TErrors run(const std::string& kind, int steps, const std::string& extra = "")
 
 TEST(Backends, EveryKindRunsOnTheHighway)
 {
+	// Thresholds about 3x the measured worst case over the kinds (2026-11-24, seed 7, 30
+	// steps): ego 0.0107 m, landmark 0.0098 m, object translation 0.0169 m
+	// (clusterslam_semidecoupled; the others 0.0160-0.0164 m); 60 poses (bookkeeping: exact).
 	for (const auto& kind : backendKinds())
 	{
 		const TErrors e = run(kind, 30);
-		EXPECT_LT(e.ego, 0.5) << kind;
-		EXPECT_LT(e.map, 1.0) << kind;
-		EXPECT_GT(e.poses, 10u) << kind;
-		EXPECT_LT(e.pose, 1.0) << kind;
+		EXPECT_LT(e.ego, 0.032) << kind;
+		EXPECT_LT(e.map, 0.03) << kind;
+		EXPECT_EQ(e.poses, 60u) << kind;
+		EXPECT_LT(e.pose, 0.05) << kind;
 	}
 }
 
 TEST(Backends, OptionVariantsRun)
 {
-	// pose-space residual with the dense solver, the sparse solver, a window of one pose
+	// pose-space residual with the dense solver, the sparse solver, a window of one pose.
+	// Measured (20 steps): ego 0.0067 m, landmark 0.0096 m, object translation 0.0105 m for
+	// all three; 40 poses. Thresholds about 3x.
 	for (const auto& [kind, extra] : std::vector<std::pair<std::string, std::string>>{
 			 {"dynaslam2", "pose_residual = pose_space\nsolver = dense\n"},
 			 {"vdo", "solver = sparse\n"},
 			 {"cubeslam", "window_size = 1\n"}})
 	{
 		const TErrors e = run(kind, 20, extra);
-		EXPECT_LT(e.ego, 0.5) << kind << " " << extra;
-		EXPECT_LT(e.pose, 1.0) << kind << " " << extra;
-		EXPECT_GT(e.poses, 5u) << kind << " " << extra;
+		EXPECT_LT(e.ego, 0.02) << kind << " " << extra;
+		EXPECT_LT(e.map, 0.03) << kind << " " << extra;
+		EXPECT_LT(e.pose, 0.032) << kind << " " << extra;
+		EXPECT_EQ(e.poses, 40u) << kind << " " << extra;
 	}
 }
 

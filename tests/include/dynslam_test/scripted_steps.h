@@ -1,0 +1,70 @@
+#pragma once
+/** Hand-scripted steps for the back-end tests: an odometry action with a chosen covariance,
+ * and a range-bearing frame of chosen world points seen from a known ego pose (noise-free or
+ * with a seeded Cartesian noise). Every back-end (CDynamicKFSLAM2D and the framework's) takes
+ * these through ISlamBackend::processActionObservation. */
+#include <dynslam/models/measurement.h>
+#include <dynslam/models/se2.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <cstdint>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace dynslam_test::script
+{
+/** A CActionCollection with one CActionRobotMovement2D: increment u, covariance C. */
+inline mrpt::obs::CActionCollection::Ptr action(const Eigen::Vector3d& u, const Eigen::Matrix3d& C)
+{
+	mrpt::obs::CActionRobotMovement2D mov;
+	mrpt::math::CMatrixDouble33 cov;
+	for (int i = 0; i < 3; ++i)
+		for (int j = 0; j < 3; ++j) cov(i, j) = C(i, j);
+	mov.poseChange =
+	    mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(u[0], u[1], u[2]), cov);
+	mov.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
+	auto acts = mrpt::obs::CActionCollection::Create();
+	acts->insert(mov);
+	return acts;
+}
+
+/** (landmark ID, world point) pairs seen in one step. */
+using TSeen = std::vector<std::pair<int32_t, Eigen::Vector2d>>;
+
+/** A sensory frame with the range-bearing readings of `seen` from ego pose x. With a non-null
+ * rng, each reading gets Cartesian noise N(0, Sigma) in the sensor frame first. */
+inline mrpt::obs::CSensoryFrame::Ptr frame(const Eigen::Vector3d& x, const TSeen& seen,
+                                           std::mt19937* rng = nullptr,
+                                           const Eigen::Matrix2d& Sigma = Eigen::Matrix2d::Zero())
+{
+	using namespace dynslam;
+	auto obs = mrpt::obs::CObservationBearingRange::Create();
+	obs->sensorLabel = "RB";
+	obs->maxSensorDistance = 1000.f;
+	obs->fieldOfView_yaw = float(2 * M_PI);
+	std::normal_distribution<double> N(0, 1);
+	const Eigen::Matrix2d L = Sigma.llt().matrixL();
+	for (const auto& [id, p] : seen)
+	{
+		Eigen::Vector2d z = models::cartesianObserve(x, p);
+		if (rng) z += L * Eigen::Vector2d(N(*rng), N(*rng));
+		const Eigen::Vector2d rb = models::cartesianToRangeBearing(z);
+		mrpt::obs::CObservationBearingRange::TMeasurement m;
+		m.range = float(rb[0]);
+		m.yaw = float(models::wrapToPi(rb[1]));
+		m.pitch = 0;
+		m.landmarkID = id;
+		obs->sensedData.push_back(m);
+	}
+	auto sf = mrpt::obs::CSensoryFrame::Create();
+	sf->insert(obs);
+	return sf;
+}
+}  // namespace dynslam_test::script
