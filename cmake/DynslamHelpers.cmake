@@ -1,8 +1,9 @@
 # Shared helpers for dynslam targets.
 
-# Warnings: -Wall -Wextra -Wpedantic, kept clean.
+# Warnings: -Wall -Wextra -Wpedantic, kept clean; -Winvalid-pch reports a translation unit
+# that cannot use its precompiled header (e.g. flags that differ from the shared one's).
 function(dynslam_warnings target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Winvalid-pch)
 endfunction()
 
 # dynslam_add_library(NAME <name> SOURCES ... [MRPT_PCH] LIBS ...)
@@ -29,18 +30,24 @@ function(dynslam_add_library)
   install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endfunction()
 
-# Precompiled MRPT headers (the heavy part of every MRPT translation unit).
+# The shared precompiled MRPT header (target dynslam_mrpt_pch, libs/pch): reused, not rebuilt,
+# by every library that asks for it. Same compile flags as the PCH target is a requirement of
+# the compiler; per-source COMPILE_DEFINITIONS are fine on SKIP_PRECOMPILE_HEADERS sources.
 function(dynslam_mrpt_pch target)
-  target_precompile_headers(${target} PRIVATE
-    <mrpt/obs/CActionCollection.h>
-    <mrpt/obs/CSensoryFrame.h>
-    <mrpt/obs/CObservationBearingRange.h>
-    <mrpt/obs/CActionRobotMovement2D.h>
-    <mrpt/poses/CPose2D.h>
-    <mrpt/poses/CPosePDFGaussian.h>
-    <mrpt/config/CConfigFileBase.h>
-    <mrpt/system/COutputLogger.h>
-    <Eigen/Dense>)
+  if(NOT TARGET dynslam_mrpt_pch)
+    message(FATAL_ERROR "dynslam_mrpt_pch(${target}): libs/pch must be added first")
+  endif()
+  target_precompile_headers(${target} REUSE_FROM dynslam_mrpt_pch)
+endfunction()
+
+# TCLAP as bundled with MRPT (header-only), for command lines. Build-tree only: it is not part
+# of the link interface of installed targets (dynslamConfig.cmake does not look for it, and
+# nothing of it is needed to link a static dynslam library).
+function(dynslam_link_tclap target)
+  if(NOT TARGET mrpt::tclap)
+    find_package(mrpt-tclap REQUIRED)
+  endif()
+  target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:mrpt::tclap>)
 endfunction()
 
 # dynslam_add_app(NAME <exe> SOURCES ... LIBS ...)

@@ -1,4 +1,4 @@
-/** CDynamicKFSLAM2D: options (TOptions) and result getters. */
+/** CDynamicKFSLAM2D: result getters (the options are dynslam/model_options.h). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/backend_results.h>
 #include <dynslam/config_utils.h>
@@ -10,111 +10,6 @@
 
 namespace dynslam
 {
-TParseOptions CDynamicKFSLAM2D::TOptions::parseOptions() const
-{
-	return {measurement_model, motion_noise_from_action};
-}
-
-estimator::TDropOptions CDynamicKFSLAM2D::TOptions::dropOptions() const
-{
-	estimator::TDropOptions d;
-	d.drop_time_t_features = drop_time_t_features;
-	d.keep_last_poses = keep_last_poses;
-	d.drop_static_after_unseen_steps = drop_static_after_unseen_steps;
-	d.record_dropped = record_dropped;
-	return d;
-}
-
-// ------------------------------------------------------------------------------------------
-// Options
-// ------------------------------------------------------------------------------------------
-void CDynamicKFSLAM2D::TOptions::loadFromConfigFile(
-	const mrpt::config::CConfigFileBase& c, const std::string& s)
-{
-	using namespace dynslam::config;
-	rejectUnknownKeys(
-		c, s,
-		{"measurement_model", "Sigma_v", "motion_noise", "Sigma_w", "initial_pose", "Sigma_0",
-		 "Sigma_xi", "smoothing", "Sigma_s", "drop_time_t_features", "keep_last_poses",
-		 "drop_static_after_unseen_steps", "skip_prediction_on_empty_map", "static_update",
-		 "innovation_gate", "first_estimate_jacobians", "record_dropped"});
-	measurement_model = readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
-							? models::MeasurementModel::Cartesian
-							: models::MeasurementModel::RangeBearing;
-	Sigma_v = readCovariance(c, s, "Sigma_v", Sigma_v, 2, true);
-	motion_noise_from_action = readChoice(c, s, "motion_noise", {"action", "config"}, 0) == 0;
-	Sigma_w = readCovariance(c, s, "Sigma_w", Sigma_w, 3, !motion_noise_from_action);
-	initial_pose = readVector(c, s, "initial_pose", initial_pose, 3);
-	Sigma_0 = readCovariance(c, s, "Sigma_0", Sigma_0, 3, false, true);
-	Sigma_xi = readCovariance(c, s, "Sigma_xi", Sigma_xi, 2);
-	smoothing = readBool(c, s, "smoothing", smoothing);
-	Sigma_s = readCovariance(c, s, "Sigma_s", Sigma_s, 3, smoothing);
-	drop_time_t_features = readBool(c, s, "drop_time_t_features", drop_time_t_features);
-	keep_last_poses = int(readInt(c, s, "keep_last_poses", keep_last_poses));
-	drop_static_after_unseen_steps =
-		int(readInt(c, s, "drop_static_after_unseen_steps", drop_static_after_unseen_steps));
-	skip_prediction_on_empty_map =
-		readBool(c, s, "skip_prediction_on_empty_map", skip_prediction_on_empty_map);
-	sparse_static_update =
-		readChoice(c, s, "static_update", {"mrpt", "sparse"}, sparse_static_update ? 1 : 0) == 1;
-	innovation_gate = readNonNegative(c, s, "innovation_gate", innovation_gate);
-	first_estimate_jacobians = readBool(c, s, "first_estimate_jacobians", first_estimate_jacobians);
-	record_dropped = readBool(c, s, "record_dropped", record_dropped);
-	try
-	{
-		validate();
-	}
-	catch (const std::invalid_argument& e)
-	{
-		throw std::invalid_argument("[" + s + "] " + e.what());
-	}
-}
-
-void CDynamicKFSLAM2D::TOptions::validate() const
-{
-	if (keep_last_poses < 1)
-		throw std::invalid_argument(
-			"keep_last_poses = " + std::to_string(keep_last_poses) + ": must be >= 1");
-	if (smoothing && keep_last_poses < 3)
-		throw std::invalid_argument(
-			"keep_last_poses = " + std::to_string(keep_last_poses) +
-			": smoothing needs the last 3 object poses (keep_last_poses >= 3)");
-	if (drop_static_after_unseen_steps < 0)
-		throw std::invalid_argument(
-			"drop_static_after_unseen_steps = " + std::to_string(drop_static_after_unseen_steps) +
-			": must be >= 0");
-	if (!initial_pose.allFinite()) throw std::invalid_argument("initial_pose: not finite");
-	if (!(innovation_gate >= 0 && innovation_gate < 1))
-		throw std::invalid_argument(
-			"innovation_gate = " + std::to_string(innovation_gate) +
-			": must be a probability in [0, 1) (0 = no gate)");
-}
-
-void CDynamicKFSLAM2D::TOptions::dumpToTextStream(std::ostream& out) const
-{
-	using config::formatMatrix;
-	out << "\n----------- [CDynamicKFSLAM2D::TOptions] ------------\n\n";
-	out << "measurement_model              = " << models::toString(measurement_model) << "\n";
-	out << "Sigma_v                        = " << formatMatrix(Sigma_v) << "\n";
-	out << "motion_noise                   = " << (motion_noise_from_action ? "action" : "config")
-		<< "\n";
-	out << "Sigma_w                        = " << formatMatrix(Sigma_w) << "\n";
-	out << "initial_pose                   = " << formatMatrix(initial_pose.transpose()) << "\n";
-	out << "Sigma_0                        = " << formatMatrix(Sigma_0) << "\n";
-	out << "Sigma_xi                       = " << formatMatrix(Sigma_xi) << "\n";
-	out << "smoothing                      = " << (smoothing ? "true" : "false") << "\n";
-	out << "Sigma_s                        = " << formatMatrix(Sigma_s) << "\n";
-	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
-	out << "keep_last_poses                = " << keep_last_poses << "\n";
-	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";
-	out << "skip_prediction_on_empty_map   = " << (skip_prediction_on_empty_map ? "true" : "false")
-		<< "\n";
-	out << "static_update                  = " << (sparse_static_update ? "sparse" : "mrpt") << "\n";
-	out << "innovation_gate                = " << innovation_gate << "\n";
-	out << "first_estimate_jacobians       = " << (first_estimate_jacobians ? "true" : "false")
-		<< "\n";
-	out << "record_dropped                 = " << (record_dropped ? "true" : "false") << "\n";
-}
 
 // ------------------------------------------------------------------------------------------
 // Results

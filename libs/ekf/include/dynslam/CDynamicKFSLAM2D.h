@@ -41,6 +41,7 @@
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/estimator/update_engine.h>
+#include <dynslam/model_options.h>
 #include <dynslam/models/measurement.h>
 #include <dynslam/step_input.h>
 
@@ -87,70 +88,9 @@ class CDynamicKFSLAM2D : public mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>,
 public:
 	using Base = mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>;
 
-	/** Options, section [DynamicKFSLAM] (KF_options in [DynamicKFSLAM_KalmanFilter]). */
-	struct TOptions : public mrpt::config::CLoadableOptions
-	{
-		void loadFromConfigFile(
-			const mrpt::config::CConfigFileBase& source, const std::string& section) override;
-		void dumpToTextStream(std::ostream& out) const override;
-		/** Throws std::invalid_argument naming the offending option. */
-		void validate() const;
-		/** What the step-input parser and the drop policy of every back-end take from these. */
-		TParseOptions parseOptions() const;
-		estimator::TDropOptions dropOptions() const;
-
-		/** measurement_model (required): cartesian (paper, Sigma_v on the sensor-frame
-		 * point) or range_bearing (MRPT's; Sigma_v = diag(std_range^2, std_bearing^2)). */
-		models::MeasurementModel measurement_model = models::MeasurementModel::Cartesian;
-		/** Sigma_v (required): measurement noise covariance in the model's space [m^2] or
-		 * [m^2, rad^2]. */
-		Eigen::Matrix2d Sigma_v = Eigen::Matrix2d::Identity() * 1e-4;
-		/** motion_noise = action (the CActionRobotMovement2D covariance, rotated by the
-		 * heading, as CRangeBearingKFSLAM2D does) or config (Sigma_w on the increment). */
-		bool motion_noise_from_action = true;
-		Eigen::Matrix3d Sigma_w = Eigen::Matrix3d::Identity() * 1e-4;  ///< [m^2, m^2, rad^2]
-		Eigen::Vector3d initial_pose = Eigen::Vector3d::Zero();  ///< x_0 mean
-		Eigen::Matrix3d Sigma_0 = Eigen::Matrix3d::Zero();  ///< x_0 covariance (PSD)
-		/** Sigma_xi: per-feature residual covariance of the object pose map (paper 0.1 I). */
-		Eigen::Matrix2d Sigma_xi = Eigen::Matrix2d::Identity() * 0.1;
-		bool smoothing = false;  ///< Alg. 6 on/off (paper: off on the highway)
-		Eigen::Matrix3d Sigma_s = Eigen::Matrix3d::Identity() * 1e-2;  ///< smoothing covariance
-		bool drop_time_t_features = true;  ///< drop f_t after pose augmentation
-		int keep_last_poses = 1;  ///< K >= 1 object poses kept per object (3 with smoothing)
-		/** Drop static landmarks unseen for this many steps (0 = never). Off by default:
-		 * loop closure needs them. */
-		int drop_static_after_unseen_steps = 0;
-		/** Reproduce CRangeBearingKFSLAM2D, which skips the prediction (mean and covariance)
-		 * while the map is empty. Off by default: it ignores the motion before the first
-		 * landmark. Only for comparisons with MRPT's filter. */
-		bool skip_prediction_on_empty_map = false;
-		/** static_update = sparse (default): the EKF update as a rank-2k correction using only
-		 * the non-zero columns of H (ekf::sparseUpdate, O(n^2 k)), run inside MRPT's iteration
-		 * between its prediction and its augmentation; equal to MRPT's kfEKFNaive within
-		 * rounding (tested), and numerically stable where MRPT's dense P <- (I - K H) P is not
-		 * (it lost positive definiteness in 3 of 25 highway runs at noise level w3v1,
-		 * doc/results.md). static_update = mrpt: MRPT's own update (KF_options.method). */
-		bool sparse_static_update = true;
-		/** Innovation gate for static-landmark updates: a measurement whose squared
-		 * Mahalanobis distance (with its own 2x2 innovation covariance) exceeds the chi-square
-		 * quantile of this probability (2 dof) is not used, and counted
-		 * (TStepReport::gated_out). 0 = no gate (default; MRPT's filter has none). */
-		double innovation_gate = 0;
-		/** record_dropped: keep the last estimate of every dropped object pose and static
-		 * landmark (getObjectTracks, getStaticLandmarks(true)); default true. false: dropped
-		 * entries are forgotten, so memory stays bounded in endless runs. */
-		bool record_dropped = true;
-		/** First-estimate Jacobians (Huang, Mourikis, Roumeliotis, ICRA/ISER 2008), default
-		 * off. On: the ego propagation Jacobian uses the ego position difference
-		 * p_{k+1|k} - p_{k|k-1} of the predicted (first) estimates instead of R(theta_{k|k}) u,
-		 * and the static-landmark measurement Jacobians (update and innovation gate, both
-		 * update paths) are evaluated at the predicted ego pose and the landmark's first
-		 * estimate (its mean at the end of the step in which it was initialized); the
-		 * innovation still uses the current estimates. Object steps are unchanged. The
-		 * linearized system then keeps the 3-dof unobservable subspace (global translation
-		 * and rotation) of the true one. See doc/results.md. */
-		bool first_estimate_jacobians = false;
-	};
+	/** Options, section [DynamicKFSLAM] (KF_options in [DynamicKFSLAM_KalmanFilter]): the
+	 * model shared with the framework, dynslam/model_options.h. */
+	using TOptions = TModelOptions;
 
 	TOptions options;
 

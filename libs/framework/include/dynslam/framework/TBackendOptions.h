@@ -1,10 +1,10 @@
 #pragma once
 /** @file TBackendOptions.h
  * Options of the framework's back-ends (doc/backends.md). The model (noise covariances,
- * measurement model, prior, drop policies) is the dynamic EKF's: CDynamicKFSLAM2D::TOptions,
+ * measurement model, prior, drop policies) is the dynamic EKF's: TModelOptions (dynslam::common),
  * read from the section named by `model_section` (default [DynamicKFSLAM]), so one INI
  * configures the EKF and every back-end alike. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/model_options.h>
 
 #include <mrpt/config/CLoadableOptions.h>
 
@@ -34,7 +34,7 @@ struct TBackendOptions : public mrpt::config::CLoadableOptions
 	 * clusterslam_semidecoupled. */
 	std::string backend = "alg1";
 	std::string model_section = "DynamicKFSLAM";
-	CDynamicKFSLAM2D::TOptions model;
+	TModelOptions model;
 	/** Ego poses kept in the window (>= 1); 0 in the INI is rejected; "all" (stored as -1)
 	 * keeps the whole horizon (vdo's default). alg1 keeps 1 (the EKF). */
 	int window_size = 10;

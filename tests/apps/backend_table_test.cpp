@@ -1,12 +1,12 @@
 /** The back-end table on a small Monte Carlo (2 runs, 40 steps of the highway): every
  * back-end runs, its errors are finite and small, and the full smoother (vdo) is at least as
  * accurate as the EKF-equivalent Alg. 1 on the ego trajectory. */
-#include <dynslam/framework/backend_table.h>
+#include <dynslam/apps/backend_table.h>
 #include <gtest/gtest.h>
 
 #include <iostream>
 
-using namespace dynslam::framework;
+using namespace dynslam::apps;
 
 TEST(BackendTable, SmallMonteCarlo)
 {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace dynslam::framework
+namespace dynslam::apps
 {
 struct TBackendTableOptions
 {
@@ -45,4 +45,4 @@ struct TBackendTableRow
 
 std::vector<TBackendTableRow> runBackendTable(const TBackendTableOptions& o);
 void writeBackendTableMarkdown(std::ostream& os, const std::vector<TBackendTableRow>& rows);
-}  // namespace dynslam::framework
+}  // namespace dynslam::apps

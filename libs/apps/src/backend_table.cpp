@@ -3,7 +3,7 @@
 #include <dynslam/eval/metrics.h>
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/backend_factory.h>
-#include <dynslam/framework/backend_table.h>
+#include <dynslam/apps/backend_table.h>
 #include <dynslam/models/se2.h>
 #include <dynslam/sim/scenario.h>
 
@@ -12,8 +12,9 @@
 #include <iomanip>
 #include <map>
 
-namespace dynslam::framework
+namespace dynslam::apps
 {
+using namespace dynslam::framework;
 namespace
 {
 /** Pooled sums of squared errors for the RMSE over runs. */
@@ -213,4 +214,4 @@ void writeBackendTableMarkdown(std::ostream& os, const std::vector<TBackendTable
 	for (const auto& r : rows)
 		if (r.failures) os << "\n" << r.kind << ": first failure: " << r.failure << "\n";
 }
-}  // namespace dynslam::framework
+}  // namespace dynslam::apps

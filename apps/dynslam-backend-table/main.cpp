@@ -1,5 +1,5 @@
 /** dynslam-backend-table: every back-end on the highway Monte Carlo (doc/backends.md). */
-#include <dynslam/framework/backend_table.h>
+#include <dynslam/apps/backend_table.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
 #include <fstream>
@@ -30,19 +30,19 @@ int main(int argc, char** argv)
 			}
 			return 1;
 		}
-		dynslam::framework::TBackendTableOptions o;
+		dynslam::apps::TBackendTableOptions o;
 		o.scenario_ini = ini.getValue();
 		o.runs = runs.getValue();
 		o.steps = steps.getValue();
 		o.noise_level = noise.getValue();
 		o.window_size = window.getValue();
 		o.sigma_xi = sxi.getValue();
-		const auto rows = dynslam::framework::runBackendTable(o);
-		dynslam::framework::writeBackendTableMarkdown(std::cout, rows);
+		const auto rows = dynslam::apps::runBackendTable(o);
+		dynslam::apps::writeBackendTableMarkdown(std::cout, rows);
 		if (!out.getValue().empty())
 		{
 			std::ofstream f(out.getValue());
-			dynslam::framework::writeBackendTableMarkdown(f, rows);
+			dynslam::apps::writeBackendTableMarkdown(f, rows);
 		}
 		return 0;
 	}

@@ -1,0 +1,1 @@
+// The translation unit that builds the shared MRPT precompiled header (libs/pch/CMakeLists.txt).
