@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Checks the library layering of doc/building.md on CMake's own target graph and on the
 # compiler's view of the public headers; exits 1 with the violations, 0 if there is none:
-#  1. dynslam::core links no MRPT (pure Eigen);
-#  2. common, framework, sim, eval and mrclam do not depend on dynslam::ekf or dynslam::apps;
+#  1. dynslam::core and dynslam::estimator link no MRPT (pure Eigen);
+#  2. estimator, common, framework, sim, eval, mrclam and kitti do not depend on dynslam::ekf
+#     or dynslam::apps;
 #  3. no public header of common, framework or sim includes, even indirectly,
 #     CKalmanFilterCapable.h or CDynamicKFSLAM2D.h.
 # Usage: scripts/check_layering.sh [work dir] (default: a temporary directory; a fresh CMake
@@ -26,13 +27,15 @@ violation() {
 # Names of the targets in the dependency graph of one target (labels of the .dot file).
 deps() { grep -o 'label = "[^"\\]*' "$G.$1" | sed 's/label = "//' | sort -u; }
 
-for lib in core common ekf framework sim eval mrclam apps; do
+for lib in core estimator common ekf framework sim eval mrclam kitti apps; do
 	[[ -f "$G.dynslam_$lib" ]] || violation "no target dynslam_$lib in the graph ($G.dynslam_$lib)"
 done
-if deps dynslam_core | grep -q '^mrpt::'; then
-	violation "dynslam::core depends on MRPT: $(deps dynslam_core | grep '^mrpt::' | tr '\n' ' ')"
-fi
-for lib in common framework sim eval mrclam; do
+for lib in core estimator; do
+	if deps "dynslam_$lib" | grep -q '^mrpt::'; then
+		violation "dynslam::$lib depends on MRPT: $(deps "dynslam_$lib" | grep '^mrpt::' | tr '\n' ' ')"
+	fi
+done
+for lib in estimator common framework sim eval mrclam kitti; do
 	for upper in dynslam_ekf dynslam_apps; do
 		if deps "dynslam_$lib" | grep -qx "$upper"; then
 			violation "dynslam_$lib depends on $upper"
@@ -58,7 +61,8 @@ for lib in common framework sim; do
 	fi
 done
 if [[ $fail -eq 0 ]]; then
-	echo "check_layering: ok (core without MRPT; common, framework, sim, eval, mrclam without" \
-		"the EKF and the apps; headers of common, framework, sim without the Kalman filter)"
+	echo "check_layering: ok (core and estimator without MRPT; estimator, common, framework," \
+		"sim, eval, mrclam, kitti without the EKF and the apps; headers of common, framework, sim" \
+		"without the Kalman filter)"
 fi
 exit $fail
