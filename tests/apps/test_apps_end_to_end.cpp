@@ -136,15 +136,15 @@ TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 	ASSERT_EQ(lines.size(), 4u);
 	const auto header = apps_test::splitCsv(lines[0]);
 	const std::vector<std::string> required{
-	    "filter",        "ego_rmse_x",    "ego_rmse_y", "ego_rmse_theta",
-	    "static_rmse_x", "static_rmse_y", "ate",        "ms_per_step"};
+	    "filter",        "ego_rmse_x", "ego_rmse_y",  "ego_rmse_theta", "static_rmse_x",
+	    "static_rmse_y", "ate",        "ate_aligned", "ms_per_step"};
 	ASSERT_GE(header.size(), required.size());
 	for (size_t i = 0; i < required.size(); ++i) EXPECT_EQ(header[i], required[i]);
 	EXPECT_EQ(apps_test::splitCsv(lines[1])[0], "static_all");
 	EXPECT_EQ(apps_test::splitCsv(lines[2])[0], "static_landmarks_only");
 	EXPECT_EQ(apps_test::splitCsv(lines[3])[0], "dynamic");
 	for (size_t r = 1; r < 4; ++r)
-		EXPECT_GT(std::stod(apps_test::splitCsv(lines[r])[7]), 0.0);  // ms_per_step
+		EXPECT_GT(std::stod(apps_test::splitCsv(lines[r])[8]), 0.0);  // ms_per_step
 	for (const char* f : {"compare_map.png", "compare_map_start.png", "compare_ego_errors.png",
 	                      "compare_ego_errors_without_static_all.png"})
 		EXPECT_TRUE(apps_test::isPng(out + "/" + f)) << f;
