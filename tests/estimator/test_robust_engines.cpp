@@ -2,9 +2,11 @@
 // update without outliers, down-weighting/rejecting an injected outlier, bad parameters, and
 // the gate with recovery that cannot lock out (the MRCLAM robot-4 case: a heading error larger
 // than its covariance admits).
+#include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/robust_update_engines.h>
 #include <dynslam/models/se2.h>
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
 #include <random>
@@ -186,4 +188,34 @@ TEST(RobustEngines, GateWithRecoveryCannotLockOut)
 	CGateRecoveryUpdateEngine strict(p);
 	EXPECT_NEAR(run(strict, 30, &first), 0.3, 1e-6);
 	EXPECT_EQ(strict.inflations(), 0u);
+}
+
+TEST(RobustEngines, OneIniKeySelectsTheEngineAndBadValuesAreClearErrors)
+{
+	const std::string base =
+	    "[DynamicKFSLAM]\n"
+	    "measurement_model = cartesian\n"
+	    "Sigma_v = [1e-4 1e-4]\n"
+	    "Sigma_xi = [0.1 0.1]\n";
+	const auto engineOf = [&](const std::string& extra)
+	{
+		mrpt::config::CConfigFileMemory ini(base + extra);
+		CDynamicKFSLAM2D kf;
+		kf.loadOptions(ini, "DynamicKFSLAM");
+		return kf.updateEngine().name();
+	};
+	EXPECT_EQ(engineOf(""), "sparse");  // default: gate (with innovation_gate = 0, no gate)
+	EXPECT_EQ(engineOf("outlier_method = none\n"), "sparse");
+	EXPECT_EQ(engineOf("outlier_method = huber\n"), "huber");
+	EXPECT_EQ(engineOf("outlier_method = Cauchy\nrobust_kernel_c = 3\n"), "cauchy");
+	EXPECT_EQ(engineOf("outlier_method = gate_recovery\ninnovation_gate = 0.999\n"),
+	          "gate_recovery");
+	for (const char* bad :
+	     {"outlier_method = jcbb\n", "outlier_method = huber\nrobust_kernel_c = 0\n",
+	      "outlier_method = cauchy\nrobust_kernel_c = -2\n", "robust_iterations = 0\n",
+	      "outlier_method = gate_recovery\n",  // no gate to recover from
+	      "outlier_method = gate_recovery\ninnovation_gate = 0.99\nrecovery_count = 0\n",
+	      "recovery_inflation = 1\n", "recovery_min_updates = -1\n",
+	      "outlier_method = huber\nstatic_update = mrpt\n"})
+		EXPECT_THROW(engineOf(bad), std::exception) << bad;
 }
