@@ -136,8 +136,8 @@ TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 	ASSERT_EQ(lines.size(), 4u);
 	const auto header = apps_test::splitCsv(lines[0]);
 	const std::vector<std::string> required{
-	    "filter",        "ego_rmse_x",    "ego_rmse_y", "ego_rmse_theta",
-	    "static_rmse_x", "static_rmse_y", "ate",        "ms_per_step"};
+	    "filter",        "ego_rmse_x", "ego_rmse_y",  "ego_rmse_theta", "static_rmse_x",
+	    "static_rmse_y", "ate",        "ate_aligned", "ms_per_step"};
 	ASSERT_GE(header.size(), required.size());
 	for (size_t i = 0; i < required.size(); ++i) EXPECT_EQ(header[i], required[i]);
 	EXPECT_EQ(apps_test::splitCsv(lines[1])[0], "static_all");

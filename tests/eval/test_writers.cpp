@@ -121,15 +121,18 @@ TEST(Writers, MetricsCsvHasRequiredColumnsAndOneRowPerFilter)
 	const auto l = lines(os.str());
 	ASSERT_EQ(l.size(), 3u);
 	EXPECT_EQ(l[0].rfind("filter,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,static_rmse_y,"
-	                     "ate,ms_per_step,",
+	                     "ate,ate_aligned,ms_per_step,",
 	                     0),
 	          0u);
 	EXPECT_NE(l[0].find("agent2_pose_rmse_theta"), std::string::npos);
 	const auto commas = std::count(l[0].begin(), l[0].end(), ',');
 	for (const auto& r : l) EXPECT_EQ(std::count(r.begin(), r.end(), ','), commas) << r;
 	// Ego errors: step 0 (0, 0, 0), step 1 (0, 0.5, pi/2 - 0.1); landmark 2 error (0.3, 0).
-	EXPECT_EQ(l[1].rfind("static_all,0,0.353553391,1.04001006,0.3,0,0.353553391,0.25,2,1,2,1,", 0),
-	          0u)
+	// Aligned ATE of two points: half the length difference (sqrt(1.25) - 1) / 2 = 0.0590169944.
+	EXPECT_EQ(
+	    l[1].rfind(
+	        "static_all,0,0.353553391,1.04001006,0.3,0,0.353553391,0.0590169944,0.25,2,1,2,1,", 0),
+	    0u)
 	    << l[1];
 	EXPECT_NEAR((M_PI / 2 - 0.1) / std::sqrt(2.0), 1.04001006, 1e-8);
 	std::ostringstream table;

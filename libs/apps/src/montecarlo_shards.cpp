@@ -48,14 +48,14 @@ std::pair<int, int> CMonteCarloApp::parseShard(const std::string& v)
 void CMonteCarloApp::writeRunsCsv(std::ostream& os) const
 {
 	os << "level,run,seed,steps,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,static_rmse_y,"
-	      "ate,ms_per_step\n";
+	      "ate,ate_aligned,ms_per_step\n";
 	os.precision(10);
 	for (const auto& r : results)
 	{
 		const auto& m = r.metrics;
 		os << r.level << "," << r.run << "," << r.seed << "," << r.steps << "," << m.ego.x << ","
 		   << m.ego.y << "," << m.ego.theta << "," << m.static_map.x << "," << m.static_map.y << ","
-		   << m.ate << "," << m.ms_per_step << "\n";
+		   << m.ate << "," << m.ate_aligned << "," << m.ms_per_step << "\n";
 	}
 }
 

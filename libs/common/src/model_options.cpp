@@ -4,6 +4,7 @@
 
 #include <ostream>
 #include <stdexcept>
+#include <vector>
 
 namespace dynslam
 {
@@ -18,7 +19,9 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	    {"measurement_model", "Sigma_v", "motion_noise", "Sigma_w", "initial_pose", "Sigma_0",
 	     "Sigma_xi", "smoothing", "Sigma_s", "drop_time_t_features", "keep_last_poses",
 	     "drop_static_after_unseen_steps", "skip_prediction_on_empty_map", "static_update",
-	     "innovation_gate", "first_estimate_jacobians", "record_dropped"});
+	     "innovation_gate", "first_estimate_jacobians", "record_dropped", "outlier_method",
+	     "robust_kernel_c", "robust_iterations", "recovery_count", "recovery_inflation",
+	     "recovery_min_updates"});
 	measurement_model =
 	    readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 	        ? models::MeasurementModel::Cartesian
@@ -42,6 +45,13 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	innovation_gate = readNonNegative(c, s, "innovation_gate", innovation_gate);
 	first_estimate_jacobians = readBool(c, s, "first_estimate_jacobians", first_estimate_jacobians);
 	record_dropped = readBool(c, s, "record_dropped", record_dropped);
+	const std::vector<std::string> methods{"gate", "none", "huber", "cauchy", "gate_recovery"};
+	outlier_method = methods[size_t(readChoice(c, s, "outlier_method", methods, 0))];
+	robust_kernel_c = readPositive(c, s, "robust_kernel_c", robust_kernel_c);
+	robust_iterations = int(readInt(c, s, "robust_iterations", robust_iterations));
+	recovery_count = int(readInt(c, s, "recovery_count", recovery_count));
+	recovery_inflation = readDouble(c, s, "recovery_inflation", recovery_inflation);
+	recovery_min_updates = int(readInt(c, s, "recovery_min_updates", recovery_min_updates));
 	try
 	{
 		validate();
@@ -69,6 +79,19 @@ void TModelOptions::validate() const
 	if (!(innovation_gate >= 0 && innovation_gate < 1))
 		throw std::invalid_argument("innovation_gate = " + std::to_string(innovation_gate) +
 		                            ": must be a probability in [0, 1) (0 = no gate)");
+	if (outlier_method != "gate" && !sparse_static_update)
+		throw std::invalid_argument(
+		    "outlier_method = " + outlier_method + ": needs static_update = sparse");
+	if (outlier_method == "gate_recovery" && innovation_gate == 0)
+		throw std::invalid_argument(
+		    "outlier_method = gate_recovery: needs a gate (innovation_gate > 0)");
+	if (!(robust_kernel_c > 0) || robust_iterations < 1)
+		throw std::invalid_argument("robust_kernel_c must be > 0 and robust_iterations >= 1");
+	if (recovery_count < 1 || !(recovery_inflation > 1) || recovery_min_updates < 0)
+		throw std::invalid_argument(
+		    "recovery_count = " + std::to_string(recovery_count) + ", recovery_inflation = " +
+		    std::to_string(recovery_inflation) + ", recovery_min_updates = " +
+		    std::to_string(recovery_min_updates) + ": need >= 1, > 1 and >= 0");
 }
 
 void TModelOptions::dumpToTextStream(std::ostream& out) const
@@ -93,6 +116,12 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "static_update                  = " << (sparse_static_update ? "sparse" : "mrpt")
 	    << "\n";
 	out << "innovation_gate                = " << innovation_gate << "\n";
+	out << "outlier_method                 = " << outlier_method << "\n";
+	out << "robust_kernel_c                = " << robust_kernel_c << "\n";
+	out << "robust_iterations              = " << robust_iterations << "\n";
+	out << "recovery_count                 = " << recovery_count << "\n";
+	out << "recovery_inflation             = " << recovery_inflation << "\n";
+	out << "recovery_min_updates           = " << recovery_min_updates << "\n";
 	out << "first_estimate_jacobians       = " << (first_estimate_jacobians ? "true" : "false")
 	    << "\n";
 	out << "record_dropped                 = " << (record_dropped ? "true" : "false") << "\n";

@@ -5,6 +5,7 @@
  * model: CDynamicKFSLAM2D_objects.cpp. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/CMrptUpdateEngine.h>
+#include <dynslam/estimator/robust_update_engines.h>
 #include <dynslam/ekf_steps.h>
 #include <dynslam/models/se2.h>
 
@@ -72,7 +73,17 @@ void CDynamicKFSLAM2D::reset()
 	m_router->reset();
 	if (!m_userEngine)
 	{
-		if (options.sparse_static_update)
+		const auto& m = options.outlier_method;
+		if (m == "huber" || m == "cauchy")
+			m_engine = std::make_unique<estimator::CRobustUpdateEngine>(
+				m == "huber" ? estimator::RobustKernel::Huber : estimator::RobustKernel::Cauchy,
+				options.robust_kernel_c, options.robust_iterations);
+		else if (m == "gate_recovery")
+			m_engine = std::make_unique<estimator::CGateRecoveryUpdateEngine>(
+				estimator::TGateRecoveryParams{
+					options.recovery_count, options.recovery_inflation,
+					options.recovery_min_updates});
+		else if (options.sparse_static_update)
 			m_engine = std::make_unique<estimator::CSparseUpdateEngine>();
 		else
 			m_engine = std::make_unique<CMrptUpdateEngine>(*this);
@@ -186,7 +197,9 @@ estimator::TUpdateContext CDynamicKFSLAM2D::updateContext() const
 	estimator::TUpdateContext ctx;
 	ctx.model = options.measurement_model;
 	ctx.R = options.Sigma_v;
-	ctx.gate_threshold = estimator::gateThreshold2Dof(options.innovation_gate);
+	ctx.gate_threshold = options.outlier_method == "none"
+							 ? std::numeric_limits<double>::infinity()
+							 : estimator::gateThreshold2Dof(options.innovation_gate);
 	if (options.first_estimate_jacobians)
 		ctx.jacobians = [this](int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& Jx,
 							   Eigen::Matrix2d& Jf) { firstEstimateJacobians(id, ego, Jx, Jf); };

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "dynslam/eval/align.h"
+
 namespace dynslam::eval
 {
 namespace
@@ -79,6 +81,7 @@ TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est)
 	// Ego: every estimated step inside the ground truth.
 	TSq ego;
 	double sumSqPos = 0;
+	std::vector<Eigen::Vector2d> estXY, truthXY;
 	for (const auto& e : est.ego)
 	{
 		if (e.step < 0 || e.step >= nSteps)
@@ -91,9 +94,15 @@ TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est)
 		ego.y.push_back(d[1]);
 		ego.theta.push_back(d[2]);
 		sumSqPos += d[0] * d[0] + d[1] * d[1];
+		estXY.push_back(e.mean.head<2>());
+		truthXY.push_back(gt.ego[e.step].head<2>());
 	}
 	m.ego = ego.finish();
-	if (!ego.x.empty()) m.ate = std::sqrt(sumSqPos / static_cast<double>(ego.x.size()));
+	if (!ego.x.empty())
+	{
+		m.ate = std::sqrt(sumSqPos / static_cast<double>(ego.x.size()));
+		m.ate_aligned = alignSE2(estXY, truthXY).rms;
+	}
 
 	// Static map: final estimates of IDs present in the ground truth.
 	TSq lm;

@@ -139,7 +139,7 @@ void writeRunRecords(std::ostream& os, const TRunRecordFile& f)
 		os << "run " << r.level << ' ' << r.run << ' ' << r.seed << ' ' << r.steps << '\n';
 		rmseLine(os, "ego", m.ego);
 		rmseLine(os, "static_map", m.static_map);
-		os << "scalars " << hx(m.ate) << ' ' << m.ego_skipped << ' ' << m.landmarks_missing << ' '
+		os << "scalars " << hx(m.ate) << ' ' << hx(m.ate_aligned) << ' ' << m.ego_skipped << ' ' << m.landmarks_missing << ' '
 		   << m.landmarks_unmatched << ' ' << m.object_estimates_unmatched << ' '
 		   << hx(m.ms_per_step) << '\n';
 		for (const auto& o : m.objects)
@@ -186,6 +186,7 @@ TRunRecordFile readRunRecords(std::istream& is, const std::string& name)
 		m.static_map = rd.rmse("static_map");
 		rd.expect("scalars");
 		m.ate = rd.dbl();
+		m.ate_aligned = rd.dbl();
 		m.ego_skipped = rd.integer<size_t>();
 		m.landmarks_missing = rd.integer<size_t>();
 		m.landmarks_unmatched = rd.integer<size_t>();

@@ -66,6 +66,20 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * quantile of this probability (2 dof) is not used, and counted
 	 * (TStepReport::gated_out). 0 = no gate (default; MRPT's filter has none). */
 	double innovation_gate = 0;
+	/** outlier_method (issue 17; estimator/robust_update_engines.h): gate (default: the
+	 * sparse update with the innovation_gate above, today's behaviour, kept as the default
+	 * because the other methods were not yet checked on held-out real data), none (no gate even
+	 * if innovation_gate > 0), huber / cauchy (IRLS with robust_kernel_c [Mahalanobis units
+	 * of Sigma_v] and at most robust_iterations updates; no gate), gate_recovery (the gate
+	 * with innovation_gate > 0 plus ego-covariance inflation by recovery_inflation after
+	 * recovery_count consecutive rejections of a landmark with >= recovery_min_updates
+	 * accepted readings). Methods other than gate need static_update = sparse. */
+	std::string outlier_method = "gate";
+	double robust_kernel_c = 2.0;
+	int robust_iterations = 5;
+	int recovery_count = 5;
+	double recovery_inflation = 4.0;
+	int recovery_min_updates = 3;
 	/** record_dropped: keep the last estimate of every dropped object pose and static
 	 * landmark (getObjectTracks, getStaticLandmarks(true)); default true. false: dropped
 	 * entries are forgotten, so memory stays bounded in endless runs. */

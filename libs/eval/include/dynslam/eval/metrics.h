@@ -37,6 +37,7 @@ struct TRunMetrics
 {
 	TRmse ego;                       ///< over all estimated steps (x, y, theta)
 	double ate = kNaN;               ///< sqrt(mean(ex^2 + ey^2)) over the same steps; no alignment
+	double ate_aligned = kNaN;       ///< the same after the SE(2) least-squares alignment (align.h)
 	size_t ego_skipped = 0;          ///< ego estimates at steps outside the ground truth
 	TRmse static_map;                ///< final landmark estimates vs truth (x, y)
 	size_t landmarks_missing = 0;    ///< ground-truth landmarks never estimated (excluded)

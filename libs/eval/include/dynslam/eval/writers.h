@@ -53,7 +53,7 @@ struct TMetricsRow
 };
 
 /** Metrics CSV: a header row, then one row per filter. Columns:
- * filter,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,static_rmse_y,ate,ms_per_step,
+ * filter,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,static_rmse_y,ate,ate_aligned,ms_per_step,
  * ego_steps,landmarks_scored,landmarks_missing,landmarks_unmatched,
  * for each agent k = 1..K (K = most objects in any row): agentk_object,agentk_feat_rmse_x,
  * agentk_feat_rmse_y,agentk_pose_rmse_x,agentk_pose_rmse_y,agentk_pose_rmse_theta,
