@@ -4,6 +4,7 @@
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
+#include <dynslam/estimator/state_layout.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/se2.h>
 #include <dynslam_test/numeric_jacobian.h>
@@ -144,4 +145,42 @@ TEST(EstimatorMotionModel, SmoothingJacobiansMatchNumericalAcrossPi)
 		EXPECT_TRUE(dynslam_test::jacobianMatches(Jall, f, all, 1e-6));
 		EXPECT_NEAR(r[2], 1e-3, 1e-12) << "angle differences wrapped at theta = " << th;
 	}
+}
+
+TEST(EstimatorLayout, TypedBlocksMapToPaddedSlots)
+{
+	CPaddedLayout L;
+	TBlock lm;
+	lm.id = 4;
+	TBlock pose;
+	pose.kind = BlockKind::ObjectPose;
+	pose.object = 1;
+	pose.dim = 3;
+	TBlock pose2 = pose;
+	pose2.dim = 2;  // translation-only: no pad
+	L.append(lm);
+	L.append(pose);
+	L.append(pose2);
+	L.append(lm);
+	EXPECT_EQ(L.storageDim(), 3 + 2 + 4 + 2 + 2);
+	EXPECT_EQ(L.first(0), 3);
+	EXPECT_EQ(L.first(1), 5);
+	EXPECT_EQ(L.first(2), 9);
+	EXPECT_EQ(L.first(3), 11);
+	EXPECT_EQ(L.indices(1), (std::vector<int>{5, 6, 7}));
+	EXPECT_EQ(L.padIndices(), (std::vector<int>{8}));
+	EXPECT_EQ(L.numSlots(), 5u);
+	EXPECT_EQ(L.slotOf(2), 3u);
+	EXPECT_EQ(L.blockAtSlot(2), 1u);  // the pose's second slot [dtheta, pad]
+	const std::vector<bool> drop{false, true, false, false};
+	EXPECT_EQ(L.keptStorage(drop), (std::vector<int>{0, 1, 2, 3, 4, 9, 10, 11, 12}));
+	L.removeBlocks(drop);
+	ASSERT_EQ(L.size(), 3u);
+	EXPECT_EQ(L.first(1), 5);
+	EXPECT_EQ(L[1].dim, 2);
+	EXPECT_TRUE(L.padIndices().empty());
+	TBlock bad;
+	bad.dim = 5;
+	EXPECT_THROW(L.append(bad), std::invalid_argument);
+	EXPECT_THROW(L.keptStorage({true}), std::invalid_argument);
 }

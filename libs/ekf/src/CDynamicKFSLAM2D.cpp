@@ -91,8 +91,8 @@ void CDynamicKFSLAM2D::reset()
 	if (!m_userMotion)
 		m_motion = estimator::makeObjectMotionModel(options.smoothing, options.Sigma_s);
 	m_drop = estimator::CDropPolicy(options.dropOptions());
-	m_slots.clear();
-	m_staticSlot.clear();
+	m_layout.clear();
+	onLayoutChanged();
 	m_droppedStatic.clear();
 	m_in = estimator::TStepInput();
 	m_routed = estimator::TRoutedStep();
@@ -141,7 +141,7 @@ void CDynamicKFSLAM2D::processActionObservation(
 	try
 	{
 		m_routed = m_router->route(
-			m_step, m_in.readings, [this](int32_t id) { return m_staticSlot.count(id) != 0; });
+			m_step, m_in.readings, [this](int32_t id) { return m_staticBlock.count(id) != 0; });
 		m_report.skipped_unknown_object_feature = m_routed.skipped_unknown_object_feature;
 		propagateEgo();  // Alg. 7
 		staticUpdate();  // Alg. 5
@@ -211,7 +211,7 @@ void CDynamicKFSLAM2D::staticUpdate()
 	std::vector<estimator::TStaticObservation> obs;
 	for (const auto& m : m_routed.with(estimator::Route::StaticKnown))
 		obs.push_back(
-			{m.reading.id, m.reading.z, int(slotStateIndex(m_staticSlot.at(m.reading.id)))});
+			{m.reading.id, m.reading.z, m_layout.first(m_staticBlock.at(m.reading.id))});
 	auto x = m_xkk.asEigen();
 	auto P = m_pkk.asEigen();
 	const estimator::TUpdateResult r = m_engine->update(x, P, obs, updateContext());
@@ -233,12 +233,11 @@ void CDynamicKFSLAM2D::recordFirstEstimates()
 	// object steps and the smoothing may move it after its augmentation in that step). A
 	// dropped landmark is forgotten: if seen again, it is a new state entry with a new one.
 	std::set<int32_t> inState;
-	for (size_t s = 0; s < m_slots.size(); ++s)
+	for (const auto& [id, b] : m_staticBlock)
 	{
-		if (m_slots[s].kind != SlotKind::StaticLandmark) continue;
-		inState.insert(m_slots[s].id);
-		const size_t k = slotStateIndex(s);
-		m_firstEstimate.emplace(m_slots[s].id, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
+		inState.insert(id);
+		const int k = m_layout.first(b);
+		m_firstEstimate.emplace(id, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
 	}
 	for (auto it = m_firstEstimate.begin(); it != m_firstEstimate.end();)
 		it = inState.count(it->first) ? std::next(it) : m_firstEstimate.erase(it);

@@ -68,7 +68,7 @@ void CDynamicKFSLAM2D::OnPreComputingPredictions(
 {
 	// IDs are known: predict exactly the tracked static landmarks read in this step.
 	out_idx.clear();
-	for (const auto& o : m_mrptObs) out_idx.push_back(m_staticSlot.at(o.id));
+	for (const auto& o : m_mrptObs) out_idx.push_back(m_layout.slotOf(m_staticBlock.at(o.id)));
 }
 
 namespace
@@ -93,7 +93,7 @@ void CDynamicKFSLAM2D::OnObservationModel(
 		const size_t s = idx[i];
 		out[i][0] = out[i][1] = 0;
 		if (s >= m_slots.size() || m_slots[s].kind != SlotKind::StaticLandmark) continue;
-		const size_t k = slotStateIndex(s);
+		const int k = m_layout.first(m_layout.blockAtSlot(s));
 		const Eigen::Vector2d z =
 			safeObserve(m_mrptCtx.model, ego, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
 		out[i][0] = z[0];
@@ -106,7 +106,7 @@ void CDynamicKFSLAM2D::OnObservationJacobians(size_t s, KFMatrix_OxV& Hx, KFMatr
 	Hx.setZero();
 	Hy.setZero();
 	if (s >= m_slots.size() || m_slots[s].kind != SlotKind::StaticLandmark) return;
-	const size_t k = slotStateIndex(s);
+	const int k = m_layout.first(m_layout.blockAtSlot(s));
 	models::Matrix23d J_z_x;
 	Eigen::Matrix2d J_z_f;
 	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
@@ -134,7 +134,7 @@ void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 	std::vector<Eigen::Vector2d> nus;
 	for (const auto& o : m_mrptObs)
 	{
-		const size_t slot = m_staticSlot.at(o.id);
+		const size_t slot = m_layout.slotOf(m_staticBlock.at(o.id));
 		const size_t q = size_t(
 			std::find(lm_indices_in_S.begin(), lm_indices_in_S.end(), slot) -
 			lm_indices_in_S.begin());
@@ -186,10 +186,10 @@ void CDynamicKFSLAM2D::OnNewLandmarkAddedToMap(size_t, size_t)
 void CDynamicKFSLAM2D::OnNormalizeStateVector()
 {
 	m_xkk[2] = models::wrapToPi(m_xkk[2]);
-	for (size_t s = 0; s < m_slots.size(); ++s)
-		if (m_slots[s].kind == SlotKind::ObjectPoseB)
+	for (size_t b = 0; b < m_layout.size(); ++b)
+		if (m_layout[b].kind == estimator::BlockKind::ObjectPose && m_layout[b].dim == 3)
 		{
-			const size_t k = slotStateIndex(s);
+			const int k = m_layout.first(b) + 2;
 			m_xkk[k] = models::wrapToPi(m_xkk[k]);
 		}
 }

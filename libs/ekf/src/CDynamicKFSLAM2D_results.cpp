@@ -10,6 +10,8 @@
 
 namespace dynslam
 {
+using estimator::BlockKind;
+using estimator::TBlock;
 
 // ------------------------------------------------------------------------------------------
 // Results
@@ -26,12 +28,12 @@ mrpt::poses::CPosePDFGaussian CDynamicKFSLAM2D::getEgoPose() const
 std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks(bool includeDropped) const
 {
 	std::vector<TStaticLandmarkEstimate> out;
-	for (size_t s = 0; s < m_slots.size(); ++s)
+	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
-		if (m_slots[s].kind != SlotKind::StaticLandmark) continue;
-		const size_t k = slotStateIndex(s);
+		if (m_layout[b].kind != BlockKind::StaticLandmark) continue;
+		const int k = m_layout.first(b);
 		TStaticLandmarkEstimate e;
-		e.id = m_slots[s].id;
+		e.id = m_layout[b].id;
 		e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
 		e.cov << m_pkk(k, k), m_pkk(k, k + 1), m_pkk(k + 1, k), m_pkk(k + 1, k + 1);
 		e.in_state = true;
@@ -44,16 +46,16 @@ std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks(bool i
 std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 {
 	std::vector<TObjectFeatureEstimate> out;
-	for (size_t s = 0; s < m_slots.size(); ++s)
+	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
-		const TSlot& t = m_slots[s];
-		if (t.kind != SlotKind::ObjectFeature0 && t.kind != SlotKind::ObjectFeatureT) continue;
-		const size_t k = slotStateIndex(s);
+		const TBlock& t = m_layout[b];
+		if (t.kind != BlockKind::ObjectFeature0 && t.kind != BlockKind::ObjectFeatureT) continue;
+		const int k = m_layout.first(b);
 		TObjectFeatureEstimate e;
 		e.object = t.object;
 		e.feature = t.feature;
 		e.id = t.id;
-		e.at_time0 = t.kind == SlotKind::ObjectFeature0;
+		e.at_time0 = t.kind == BlockKind::ObjectFeature0;
 		e.step = t.step;
 		e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
 		e.cov << m_pkk(k, k), m_pkk(k, k + 1), m_pkk(k + 1, k), m_pkk(k + 1, k + 1);
@@ -65,14 +67,11 @@ std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 {
 	std::map<int32_t, TObjectTrack> out = tracksFromRegistry(m_router->registry());
-	for (size_t s = 0; s < m_slots.size(); ++s)
+	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
-		const TSlot& t = m_slots[s];
-		if (t.kind != SlotKind::ObjectPoseA) continue;
-		const bool rigid = s + 1 < m_slots.size() && m_slots[s + 1].kind == SlotKind::ObjectPoseB;
-		const int k = int(slotStateIndex(s));
-		std::vector<int> idx{k, k + 1};
-		if (rigid) idx.push_back(k + 2);
+		const TBlock& t = m_layout[b];
+		if (t.kind != BlockKind::ObjectPose) continue;
+		const std::vector<int> idx = m_layout.indices(b);
 		TObjectPoseEstimate e;
 		e.step = t.step;
 		e.mean = m_xkk.asEigen()(idx);
@@ -86,49 +85,95 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 
 std::vector<size_t> CDynamicKFSLAM2D::padIndices() const
 {
-	std::vector<size_t> out;
-	for (size_t s = 0; s < m_slots.size(); ++s)
-		if (m_slots[s].kind == SlotKind::ObjectPoseB) out.push_back(slotStateIndex(s) + 1);
-	return out;
+	const std::vector<int> p = m_layout.padIndices();
+	return std::vector<size_t>(p.begin(), p.end());
 }
+
+void CDynamicKFSLAM2D::onLayoutChanged()
+{
+	m_slots.clear();
+	m_staticBlock.clear();
+	for (size_t b = 0; b < m_layout.size(); ++b)
+	{
+		const TBlock& t = m_layout[b];
+		TSlot s;
+		s.id = t.id;
+		s.object = t.object;
+		s.feature = t.feature;
+		s.step = t.step;
+		switch (t.kind)
+		{
+			case BlockKind::StaticLandmark:
+				s.kind = SlotKind::StaticLandmark;
+				m_staticBlock[t.id] = b;
+				break;
+			case BlockKind::ObjectFeature0:
+				s.kind = SlotKind::ObjectFeature0;
+				break;
+			case BlockKind::ObjectFeatureT:
+				s.kind = SlotKind::ObjectFeatureT;
+				break;
+			case BlockKind::ObjectPose:
+				s.kind = SlotKind::ObjectPoseA;
+				s.id = -1;
+				break;
+			case BlockKind::ObjectVelocity:
+				throw std::logic_error("CDynamicKFSLAM2D: object velocities are not in this filter");
+		}
+		m_slots.push_back(s);
+		if (t.kind == BlockKind::ObjectPose && t.dim == 3)
+		{
+			s.kind = SlotKind::ObjectPoseB;  // [dtheta, pad]
+			m_slots.push_back(s);
+		}
+	}
+}
+
+namespace
+{
+void appendLabels(const TBlock& t, std::vector<std::string>& labels)
+{
+	const std::string o = "obj" + std::to_string(t.object);
+	switch (t.kind)
+	{
+		case BlockKind::StaticLandmark:
+			labels.push_back("lm" + std::to_string(t.id) + ".x");
+			labels.push_back("lm" + std::to_string(t.id) + ".y");
+			break;
+		case BlockKind::ObjectFeature0:
+		case BlockKind::ObjectFeatureT:
+		{
+			const bool t0 = t.kind == BlockKind::ObjectFeature0;
+			const std::string f = o + ".f" + std::to_string(t.feature) +
+								  (t0 ? ".t0" : ".t" + std::to_string(t.step));
+			labels.push_back(f + ".x");
+			labels.push_back(f + ".y");
+			break;
+		}
+		case BlockKind::ObjectPose:
+		{
+			const std::string p = o + ".xi" + std::to_string(t.step);
+			labels.push_back(p + ".dx");
+			labels.push_back(p + ".dy");
+			if (t.dim == 3) labels.push_back(p + ".dtheta");
+			break;
+		}
+		case BlockKind::ObjectVelocity:
+			for (int i = 0; i < t.dim; ++i)
+				labels.push_back(o + ".v" + std::to_string(t.step) + "." + std::to_string(i));
+			break;
+	}
+}
+}  // namespace
 
 void CDynamicKFSLAM2D::getStateWithoutPads(
 	Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>* labels) const
 {
-	const auto pads = padIndices();
-	const std::vector<int> keep =
-		ekf::keptIndices(int(m_xkk.size()), std::vector<int>(pads.begin(), pads.end()));
+	const std::vector<int> keep = ekf::keptIndices(int(m_xkk.size()), m_layout.padIndices());
 	x = m_xkk.asEigen()(keep);
 	P = m_pkk.asEigen()(keep, keep);
 	if (!labels) return;
 	labels->assign({"ego.x", "ego.y", "ego.theta"});
-	for (const TSlot& t : m_slots)
-	{
-		const std::string o = "obj" + std::to_string(t.object);
-		switch (t.kind)
-		{
-			case SlotKind::StaticLandmark:
-				labels->push_back("lm" + std::to_string(t.id) + ".x");
-				labels->push_back("lm" + std::to_string(t.id) + ".y");
-				break;
-			case SlotKind::ObjectFeature0:
-			case SlotKind::ObjectFeatureT:
-			{
-				const std::string f = o + ".f" + std::to_string(t.feature) +
-									  (t.kind == SlotKind::ObjectFeature0 ? ".t0" : ".t") +
-									  (t.kind == SlotKind::ObjectFeatureT ? std::to_string(t.step) : "");
-				labels->push_back(f + ".x");
-				labels->push_back(f + ".y");
-				break;
-			}
-			case SlotKind::ObjectPoseA:
-				labels->push_back(o + ".xi" + std::to_string(t.step) + ".dx");
-				labels->push_back(o + ".xi" + std::to_string(t.step) + ".dy");
-				break;
-			case SlotKind::ObjectPoseB:
-				labels->push_back(o + ".xi" + std::to_string(t.step) + ".dtheta");
-				break;
-		}
-	}
+	for (const TBlock& t : m_layout.blocks()) appendLabels(t, *labels);
 }
 }  // namespace dynslam

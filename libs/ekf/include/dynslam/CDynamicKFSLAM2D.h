@@ -40,6 +40,7 @@
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
+#include <dynslam/estimator/state_layout.h>
 #include <dynslam/estimator/update_engine.h>
 #include <dynslam/model_options.h>
 #include <dynslam/models/measurement.h>
@@ -61,7 +62,8 @@
 
 namespace dynslam
 {
-/** What one 2-dof slot of the state (after the ego pose) holds. */
+/** What one 2-dof slot of MRPT's storage (after the ego pose) holds: a view of the typed
+ * layout (estimator::CPaddedLayout, getLayout()) for MRPT's landmark indices and for tests. */
 enum class SlotKind : uint8_t
 {
 	StaticLandmark,
@@ -132,6 +134,9 @@ public:
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
 	/** Every object's pose history: dropped poses (recorded) and poses in the state. */
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
+	/** The typed state after the ego pose (blocks and where they are stored). */
+	const estimator::CPaddedLayout& getLayout() const { return m_layout; }
+	/** The layout as MRPT's 2-dof slots (a 3-dof pose is ObjectPoseA + ObjectPoseB). */
 	const std::vector<TSlot>& getSlots() const { return m_slots; }
 	/** Mean and covariance without pad entries; labels[i] names entry i. */
 	void getStateWithoutPads(
@@ -207,16 +212,16 @@ private:
 	estimator::TUpdateContext updateContext() const;
 	/** What a step adds and drops, before it is written to the state: the new features as an
 	 * augmentation a of the current state, the object poses as an augmentation b of the state
-	 * extended by a (pads included; 2 entries per new slot in all), and the slots to remove,
-	 * indexed in m_slots followed by `slots`. */
+	 * extended by a (pads included), their blocks, and the blocks to remove, indexed in the
+	 * layout extended by `blocks`. */
 	struct TPending
 	{
 		ekf::Augmentation a, b;
-		std::vector<TSlot> slots;
+		std::vector<estimator::TBlock> blocks;
 		std::vector<size_t> remove;
 	};
-	/** m_slots followed by plan.slots: the slots of the state extended by the plan. */
-	std::vector<TSlot> extendedSlots(const TPending& plan) const;
+	/** The layout of the state extended by the plan. */
+	estimator::CPaddedLayout extendedLayout(const TPending& plan) const;
 	void planFeatures(TPending& plan);  // Alg. 3: new static landmarks, objects
 	void planObjectPoses(TPending& plan);  // Alg. 4, on the state extended by plan
 	void planDrops(TPending& plan);  // drop policies, recording what they drop
@@ -224,7 +229,8 @@ private:
 	 * the slot tables; clears plan. */
 	void commit(TPending& plan);
 	void applyObjectMotion();  // the object motion model's pseudo-measurements (Alg. 6)
-	size_t slotStateIndex(size_t slot) const { return 3 + 2 * slot; }
+	/** Rebuilds what is derived from the layout: the slot view and the static-landmark index. */
+	void onLayoutChanged();
 
 	// the seams (doc/architecture.md)
 	std::unique_ptr<estimator::IMeasurementRouter> m_router;
@@ -242,8 +248,9 @@ private:
 	estimator::TUpdateResult m_mrptResult;
 
 	// slot table and indices
-	std::vector<TSlot> m_slots;
-	std::map<int32_t, size_t> m_staticSlot;  ///< landmark ID -> slot
+	estimator::CPaddedLayout m_layout;  ///< the typed state after the ego (commit() writes it)
+	std::vector<TSlot> m_slots;  ///< derived: the layout as MRPT's 2-dof slots
+	std::map<int32_t, size_t> m_staticBlock;  ///< derived: landmark ID -> block
 	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
 	int m_step = -1;
 	TStepReport m_report;

@@ -1,0 +1,82 @@
+#include <dynslam/estimator/state_layout.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace dynslam::estimator
+{
+const char* toString(BlockKind k)
+{
+	switch (k)
+	{
+		case BlockKind::StaticLandmark:
+			return "static_landmark";
+		case BlockKind::ObjectFeature0:
+			return "object_feature_t0";
+		case BlockKind::ObjectFeatureT:
+			return "object_feature_t";
+		case BlockKind::ObjectPose:
+			return "object_pose";
+		case BlockKind::ObjectVelocity:
+			return "object_velocity";
+	}
+	return "?";
+}
+
+void CPaddedLayout::clear()
+{
+	m_blocks.clear();
+	m_first.clear();
+	m_blockAtSlot.clear();
+}
+
+void CPaddedLayout::append(const TBlock& b)
+{
+	if (b.dim < 1 || b.dim > 4)
+		throw std::invalid_argument(
+			"CPaddedLayout: a block has 1..4 entries, not " + std::to_string(b.dim));
+	m_first.push_back(storageDim());
+	for (int s = 0; s < b.slots(); ++s) m_blockAtSlot.push_back(m_blocks.size());
+	m_blocks.push_back(b);
+}
+
+std::vector<int> CPaddedLayout::indices(size_t b) const
+{
+	std::vector<int> idx(size_t(m_blocks.at(b).dim));
+	for (size_t i = 0; i < idx.size(); ++i) idx[i] = m_first[b] + int(i);
+	return idx;
+}
+
+std::vector<int> CPaddedLayout::padIndices() const
+{
+	std::vector<int> out;
+	for (size_t b = 0; b < m_blocks.size(); ++b)
+		for (int i = m_blocks[b].dim; i < 2 * m_blocks[b].slots(); ++i) out.push_back(m_first[b] + i);
+	return out;
+}
+
+std::vector<int> CPaddedLayout::keptStorage(const std::vector<bool>& remove) const
+{
+	if (remove.size() != m_blocks.size())
+		throw std::invalid_argument("CPaddedLayout::keptStorage: one flag per block");
+	std::vector<int> keep;
+	keep.reserve(size_t(storageDim()));
+	for (int i = 0; i < kEgoDim; ++i) keep.push_back(i);
+	for (size_t b = 0; b < m_blocks.size(); ++b)
+		if (!remove[b])
+			for (int i = 0; i < 2 * m_blocks[b].slots(); ++i) keep.push_back(m_first[b] + i);
+	return keep;
+}
+
+void CPaddedLayout::removeBlocks(const std::vector<bool>& remove)
+{
+	if (remove.size() != m_blocks.size())
+		throw std::invalid_argument("CPaddedLayout::removeBlocks: one flag per block");
+	std::vector<TBlock> kept;
+	kept.reserve(m_blocks.size());
+	for (size_t b = 0; b < m_blocks.size(); ++b)
+		if (!remove[b]) kept.push_back(m_blocks[b]);
+	clear();
+	for (const auto& b : kept) append(b);
+}
+}  // namespace dynslam::estimator
