@@ -72,6 +72,27 @@ void drawTracked(const TGroundTruth& gt, const realdata::TRealDataResult& r, dou
 	c.legend(legend);
 	eval::savePng(img, path);
 }
+
+/** Ego paths and final maps of the filters over the ground truth, metric (equal aspect). */
+void drawFilterMaps(const TGroundTruth& gt, const std::vector<realdata::TRealDataResult>& results,
+                    const std::string& label, const std::string& path)
+{
+	std::vector<eval::TFigureSeries> series;
+	const size_t colors[] = {0, 3, 1, 2};
+	for (size_t i = 0; i < results.size(); ++i)
+		series.push_back({results[i].filter, eval::seriesColor(colors[i]), &results[i].run.est});
+	eval::TMapFigureOptions mo;
+	mo.width = 1300;
+	mo.height = 1000;
+	mo.equal_aspect = true;
+	mo.show_objects = false;
+	eval::TBox box = eval::TBox::empty();
+	for (const auto& x : gt.ego) box.expand(x.x(), x.y());
+	for (const auto& [id, p] : gt.landmarks) box.expand(p.x(), p.y());
+	mo.view = box.withMargin(0.05);
+	mo.title = label + ": ego paths and final landmarks (3-sigma) over the ground truth";
+	eval::savePng(eval::drawMapFigure(&gt, series, mo), path);
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -135,24 +156,7 @@ int main(int argc, char** argv)
 			          << "), gated " << r.gated_out << ", " << r.run.est.ms_per_step
 			          << " ms/step\n";
 		}
-		// Ego paths and final maps of the filters over the ground truth, metric (equal aspect).
-		std::vector<eval::TFigureSeries> series;
-		const size_t colors[] = {0, 3, 1, 2};
-		for (size_t i = 0; i < results.size(); ++i)
-			series.push_back(
-			    {results[i].filter, eval::seriesColor(colors[i]), &results[i].run.est});
-		eval::TMapFigureOptions mo;
-		mo.width = 1300;
-		mo.height = 1000;
-		mo.equal_aspect = true;
-		mo.show_objects = false;
-		eval::TBox box = eval::TBox::empty();
-		for (const auto& x : gt.ego) box.expand(x.x(), x.y());
-		for (const auto& [id, p] : gt.landmarks) box.expand(p.x(), p.y());
-		mo.view = box.withMargin(0.05);
-		mo.title =
-		    aLabel.getValue() + ": ego paths and final landmarks (3-sigma) over the ground truth";
-		eval::savePng(eval::drawMapFigure(&gt, series, mo), out + "/map.png");
+		drawFilterMaps(gt, results, aLabel.getValue(), out + "/map.png");
 		return 0;
 	}
 	catch (const std::exception& e)

@@ -41,6 +41,23 @@ const std::vector<std::string>& CCompareApp::allFilters()
 	return f;
 }
 
+namespace
+{
+/** The filters of a comma-separated list; throws on an unknown name or an empty list. */
+std::vector<std::string> parseFilterList(const std::string& fl)
+{
+	using dynslam::config::fail;
+	const auto& all = CCompareApp::allFilters();
+	std::vector<std::string> filters = splitList(fl);
+	for (const auto& f : filters)
+		if (std::find(all.begin(), all.end(), f) == all.end())
+			fail(kSection, "filters", fl,
+			     "unknown filter '" + f + "' (known: static_all, static_landmarks_only, dynamic)");
+	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
+	return filters;
+}
+}  // namespace
+
 std::string CCompareApp::mapTitle(bool withGroundTruth)
 {
 	return withGroundTruth ? "Ego paths and maps of the filters over the ground truth"
@@ -119,16 +136,7 @@ bool CCompareApp::initialize(int argc, const char** argv)
 
 		const std::string fl = argFilters.isSet() ? argFilters.getValue()
 		                                          : readString(params, kSection, "filters", "");
-		if (!fl.empty())
-		{
-			filters = splitList(fl);
-			for (const auto& f : filters)
-				if (std::find(allFilters().begin(), allFilters().end(), f) == allFilters().end())
-					fail(kSection, "filters", fl,
-					     "unknown filter '" + f +
-					         "' (known: static_all, static_landmarks_only, dynamic)");
-			if (filters.empty()) fail(kSection, "filters", fl, "empty list");
-		}
+		if (!fl.empty()) filters = parseFilterList(fl);
 		figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
 		progressEvery = int(readInt(params, kSection, "progress_every", 0));
 		if (progressEvery < 0)

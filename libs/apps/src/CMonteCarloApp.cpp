@@ -59,6 +59,169 @@ uint64_t CMonteCarloApp::runSeed(const std::string& level, int r) const
 	return seed + 1000u * uint64_t(levelIndex(level)) + uint64_t(r);
 }
 
+namespace
+{
+/** The [MonteCarlo] settings of app.params (after the scenario file): each INI value unless
+ * its command-line option is set. */
+void readMonteCarloSettings(CMonteCarloApp& app, TCLAP::ValueArg<int>& argRuns,
+                            TCLAP::ValueArg<std::string>& argLevels,
+                            TCLAP::ValueArg<int>& argThreads, TCLAP::ValueArg<long long>& argSeed,
+                            TCLAP::SwitchArg& argNoFig)
+{
+	using namespace dynslam::config;
+	auto& params = app.params;
+	rejectUnknownKeys(params, kSection,
+	                  {"scenario", "backend", "runs", "levels", "threads", "seed", "figures",
+	                   "initial_covariance"});
+	app.scenarioFile =
+	    resolvePath(requireString(params, kSection, "scenario"), folderOf(app.iniFile));
+	app.scenario = sim::loadScenario(app.scenarioFile);
+	app.backend = readString(params, kSection, "backend", "ekf");
+	int& runs = app.runs;
+	runs = int(readInt(params, kSection, "runs", 25));
+	if (argRuns.isSet()) runs = argRuns.getValue();
+	if (runs < 1) fail(kSection, "runs", std::to_string(runs), "must be >= 1");
+	const std::string lv =
+	    argLevels.isSet() ? argLevels.getValue() : readString(params, kSection, "levels", "all");
+	try
+	{
+		app.levels = parseLevels(lv);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		fail(kSection, "levels", lv, e.what());
+	}
+	int& threads = app.threads;
+	threads = int(readInt(params, kSection, "threads", 0));
+	if (argThreads.isSet()) threads = argThreads.getValue();
+	if (threads < 0) fail(kSection, "threads", std::to_string(threads), "must be >= 0");
+	const long long s = argSeed.isSet() ? argSeed.getValue() : readInt(params, kSection, "seed", 1);
+	if (s < 0 || s + 1000LL * 9 + runs > 4294967295LL)
+		fail(kSection, "seed", std::to_string(s),
+		     "seed + 1000 * 8 + runs must be in [0, 4294967295]");
+	app.seed = uint64_t(s);
+	app.figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+	app.sigma0FromLevel =
+	    readChoice(params, kSection, "initial_covariance", {"sigma_w", "ini"}, 0) == 0;
+}
+
+/** One noise level of the sweep: scenario options with the level's noise, ground truth and
+ * the filter INI text. */
+struct TLevelSetup
+{
+	sim::TScenarioOptions opt;
+	TGroundTruth gt;
+	std::string ini;
+};
+
+TLevelSetup levelSetup(const CMonteCarloApp& app, const std::string& level, bool isStatic)
+{
+	TLevelSetup L;
+	L.opt = app.scenario;
+	L.opt.setNoiseLevel(level);
+	// The paper: Sigma_0 = Sigma_w; initial_covariance = ini keeps the INI's Sigma_0.
+	L.opt.Sigma_0 =
+	    app.sigma0FromLevel
+	        ? L.opt.Sigma_w
+	        : Eigen::Matrix3d(config::readCovariance(app.params, "DynamicKFSLAM", "Sigma_0",
+	                                                 Eigen::Matrix3d::Zero(), 3, false, true));
+	L.gt = sim::buildGroundTruth(L.opt);
+	TScenarioNoise n;
+	n.file = "noise level " + level;
+	n.level = level;
+	n.Sigma_w = L.opt.Sigma_w;
+	n.Sigma_v = L.opt.Sigma_v;
+	n.Sigma_0 = L.opt.Sigma_0;
+	n.std_range = L.opt.std_range;
+	n.std_yaw_deg = L.opt.std_yaw * 180.0 / M_PI;
+	mrpt::config::CConfigFileMemory ini(app.params.getContent());
+	applyScenarioNoise(ini, n, isStatic ? "" : "DynamicKFSLAM",
+	                   isStatic ? "RangeBearingKFSLAM" : "");
+	L.ini = ini.getContent();
+	return L;
+}
+
+/** Simulates and filters one run of a level; res.seed is set. */
+void simulateAndFilter(const std::string& backend, const TLevelSetup& L,
+                       CMonteCarloApp::TRunResult& res)
+{
+	const sim::TSimulatedRun simRun = sim::simulateMeasurements(L.gt, L.opt, res.seed);
+	mrpt::config::CConfigFileMemory ini(L.ini);
+	auto filter = makeBackend(backend, ini);
+	if (auto* lg = dynamic_cast<mrpt::system::COutputLogger*>(filter.get()))
+		lg->setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	const TFilterRun fr = runFilter(*filter, simRun.actions, simRun.frames);
+	res.steps = fr.steps;
+	res.metrics = eval::computeRunMetrics(L.gt, fr.est);
+	res.consistency = eval::computeRunConsistency(L.gt, fr.est);
+}
+
+/** The exception being handled (call inside a catch), as a std::runtime_error naming the run. */
+std::exception_ptr runError(const std::string& level, int r)
+{
+	std::ostringstream what;
+	try
+	{
+		throw;
+	}
+	catch (const std::exception& e)
+	{
+		what << "level " << level << " run " << r << ": " << e.what();
+	}
+	catch (...)
+	{
+		what << "level " << level << " run " << r << ": unknown error";
+	}
+	return std::make_exception_ptr(std::runtime_error(what.str()));
+}
+
+/** Runs the jobs (indices into the level-major grid of app.results) on app.threadsUsed
+ * threads; rethrows the first failure. */
+void runJobs(CMonteCarloApp& app, const std::vector<TLevelSetup>& lv,
+             const std::vector<size_t>& jobs)
+{
+	const size_t total = jobs.size();
+	const int runs = app.runs;
+	std::atomic<size_t> next{0};
+	std::atomic<bool> failed{false};
+	std::exception_ptr error;
+	std::mutex errMtx;
+	CProgressBar bar("runs", total, std::cerr, app.progress);
+	auto worker = [&]()
+	{
+		for (;;)
+		{
+			const size_t idx = next.fetch_add(1);
+			if (idx >= total || failed) return;
+			const size_t j = jobs[idx];
+			const size_t li = j / size_t(runs);
+			const int r = int(j % size_t(runs));
+			try
+			{
+				CMonteCarloApp::TRunResult& res = app.results[j];
+				res.level = app.levels[li];
+				res.run = r;
+				res.seed = app.runSeed(app.levels[li], r);
+				simulateAndFilter(app.backend, lv[li], res);
+			}
+			catch (...)
+			{
+				std::lock_guard<std::mutex> lk(errMtx);
+				if (!error) error = runError(app.levels[li], r);
+				failed = true;
+				return;
+			}
+			bar.advance();
+		}
+	};
+	std::vector<std::thread> pool;
+	for (int t = 0; t < app.threadsUsed; ++t) pool.emplace_back(worker);
+	for (auto& t : pool) t.join();
+	bar.finish();
+	if (error) std::rethrow_exception(error);
+}
+}  // namespace
+
 bool CMonteCarloApp::initialize(int argc, const char** argv)
 {
 	TCLAP::CmdLine cmd(
@@ -127,37 +290,7 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile("config/montecarlo.ini");
 	loadIniFile(iniFile, params);
-	using namespace dynslam::config;
-	rejectUnknownKeys(params, kSection,
-	                  {"scenario", "backend", "runs", "levels", "threads", "seed", "figures",
-	                   "initial_covariance"});
-	scenarioFile = resolvePath(requireString(params, kSection, "scenario"), folderOf(iniFile));
-	scenario = sim::loadScenario(scenarioFile);
-	backend = readString(params, kSection, "backend", "ekf");
-	runs = int(readInt(params, kSection, "runs", 25));
-	if (argRuns.isSet()) runs = argRuns.getValue();
-	if (runs < 1) fail(kSection, "runs", std::to_string(runs), "must be >= 1");
-	const std::string lv =
-	    argLevels.isSet() ? argLevels.getValue() : readString(params, kSection, "levels", "all");
-	try
-	{
-		levels = parseLevels(lv);
-	}
-	catch (const std::invalid_argument& e)
-	{
-		fail(kSection, "levels", lv, e.what());
-	}
-	threads = int(readInt(params, kSection, "threads", 0));
-	if (argThreads.isSet()) threads = argThreads.getValue();
-	if (threads < 0) fail(kSection, "threads", std::to_string(threads), "must be >= 0");
-	const long long s = argSeed.isSet() ? argSeed.getValue() : readInt(params, kSection, "seed", 1);
-	if (s < 0 || s + 1000LL * 9 + runs > 4294967295LL)
-		fail(kSection, "seed", std::to_string(s),
-		     "seed + 1000 * 8 + runs must be in [0, 4294967295]");
-	seed = uint64_t(s);
-	figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
-	sigma0FromLevel =
-	    readChoice(params, kSection, "initial_covariance", {"sigma_w", "ini"}, 0) == 0;
+	readMonteCarloSettings(*this, argRuns, argLevels, argThreads, argSeed, argNoFig);
 	outDir = argOut.getValue();
 	progress = !argQuiet.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
@@ -182,38 +315,8 @@ void CMonteCarloApp::run()
 	writtenFiles.clear();
 	const bool isStatic = backend == "static_all" || backend == "static_landmarks_only";
 
-	// Per level: scenario options with the level's noise, ground truth, filter INI text.
-	struct TLevel
-	{
-		sim::TScenarioOptions opt;
-		TGroundTruth gt;
-		std::string ini;
-	};
-	std::vector<TLevel> lv(levels.size());
-	for (size_t i = 0; i < levels.size(); ++i)
-	{
-		lv[i].opt = scenario;
-		lv[i].opt.setNoiseLevel(levels[i]);
-		// The paper: Sigma_0 = Sigma_w; initial_covariance = ini keeps the INI's Sigma_0.
-		lv[i].opt.Sigma_0 =
-		    sigma0FromLevel
-		        ? lv[i].opt.Sigma_w
-		        : Eigen::Matrix3d(config::readCovariance(params, "DynamicKFSLAM", "Sigma_0",
-		                                                 Eigen::Matrix3d::Zero(), 3, false, true));
-		lv[i].gt = sim::buildGroundTruth(lv[i].opt);
-		TScenarioNoise n;
-		n.file = "noise level " + levels[i];
-		n.level = levels[i];
-		n.Sigma_w = lv[i].opt.Sigma_w;
-		n.Sigma_v = lv[i].opt.Sigma_v;
-		n.Sigma_0 = lv[i].opt.Sigma_0;
-		n.std_range = lv[i].opt.std_range;
-		n.std_yaw_deg = lv[i].opt.std_yaw * 180.0 / M_PI;
-		mrpt::config::CConfigFileMemory ini(params.getContent());
-		applyScenarioNoise(ini, n, isStatic ? "" : "DynamicKFSLAM",
-		                   isStatic ? "RangeBearingKFSLAM" : "");
-		lv[i].ini = ini.getContent();
-	}
+	std::vector<TLevelSetup> lv;
+	for (const auto& level : levels) lv.push_back(levelSetup(*this, level, isStatic));
 
 	const size_t grid = levels.size() * size_t(runs);
 	// The jobs of this process: the whole grid, or every shardCount-th job of it.
@@ -233,68 +336,7 @@ void CMonteCarloApp::run()
 	                                    : std::string())
 	                     << " on " << threadsUsed << " thread(s); scenario " << scenarioFile);
 
-	std::atomic<size_t> next{0};
-	std::atomic<bool> failed{false};
-	std::exception_ptr error;
-	std::mutex errMtx;
-	CProgressBar bar("runs", total, std::cerr, progress);
-	auto worker = [&]()
-	{
-		for (;;)
-		{
-			const size_t idx = next.fetch_add(1);
-			if (idx >= total || failed) return;
-			const size_t j = jobs[idx];
-			const size_t li = j / size_t(runs);
-			const int r = int(j % size_t(runs));
-			try
-			{
-				TRunResult& res = results[j];
-				res.level = levels[li];
-				res.run = r;
-				res.seed = runSeed(levels[li], r);
-				const sim::TSimulatedRun simRun =
-				    sim::simulateMeasurements(lv[li].gt, lv[li].opt, res.seed);
-				mrpt::config::CConfigFileMemory ini(lv[li].ini);
-				auto filter = makeBackend(backend, ini);
-				if (auto* lg = dynamic_cast<mrpt::system::COutputLogger*>(filter.get()))
-					lg->setMinLoggingLevel(mrpt::system::LVL_ERROR);
-				const TFilterRun fr = runFilter(*filter, simRun.actions, simRun.frames);
-				res.steps = fr.steps;
-				res.metrics = eval::computeRunMetrics(lv[li].gt, fr.est);
-				res.consistency = eval::computeRunConsistency(lv[li].gt, fr.est);
-			}
-			catch (...)
-			{
-				std::lock_guard<std::mutex> lk(errMtx);
-				if (!error)
-				{
-					std::ostringstream what;
-					try
-					{
-						throw;
-					}
-					catch (const std::exception& e)
-					{
-						what << "level " << levels[li] << " run " << r << ": " << e.what();
-					}
-					catch (...)
-					{
-						what << "level " << levels[li] << " run " << r << ": unknown error";
-					}
-					error = std::make_exception_ptr(std::runtime_error(what.str()));
-				}
-				failed = true;
-				return;
-			}
-			bar.advance();
-		}
-	};
-	std::vector<std::thread> pool;
-	for (int t = 0; t < threadsUsed; ++t) pool.emplace_back(worker);
-	for (auto& t : pool) t.join();
-	bar.finish();
-	if (error) std::rethrow_exception(error);
+	runJobs(*this, lv, jobs);
 
 	if (shardCount > 0)
 	{

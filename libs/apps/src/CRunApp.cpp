@@ -151,26 +151,36 @@ void CRunApp::run()
 	makeOutputDir(outDir);
 	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	writeEstimateFiles(outDir, "", result.est, g, writtenFiles);
-	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w)
-	{
-		const std::string p = joinPath(outDir, name);
-		eval::writeFile(p, w);
-		writtenFiles.push_back(p);
-	};
 	writeOptionalOutputs(data.rawlog);
-	out("effective_config.ini",
-	    [&](std::ostream& os)
-	    {
-		    os << "# Effective configuration of dynslam-run\n# config: " << iniFile
-		       << "\n# rawlog: " << rawlogFile
-		       << "\n# ground truth: " << (hasGroundTruth ? groundTruthUsed : "none") << "\n";
-		    if (!scenarioNoiseUsed.empty()) os << "# " << scenarioNoiseUsed << "\n";
-		    os << "\n"
-		       << params.getContent() << "\n\n# ---- effective options of the back-end '" << backend
-		       << "' (" << result.name << ") ----\n"
-		       << dump.str();
-	    });
+	writeOutput("effective_config.ini",
+	            [&](std::ostream& os)
+	            {
+		            os << "# Effective configuration of dynslam-run\n# config: " << iniFile
+		               << "\n# rawlog: " << rawlogFile
+		               << "\n# ground truth: " << (hasGroundTruth ? groundTruthUsed : "none")
+		               << "\n";
+		            if (!scenarioNoiseUsed.empty()) os << "# " << scenarioNoiseUsed << "\n";
+		            os << "\n"
+		               << params.getContent() << "\n\n# ---- effective options of the back-end '"
+		               << backend << "' (" << result.name << ") ----\n"
+		               << dump.str();
+	            });
 
+	const eval::TConsistencySummary summary = evaluateAndReport();
+	if (figures) drawFigures(summary);
+	for (const auto& f : writtenFiles) MRPT_LOG_DEBUG_STREAM("wrote " << f);
+	MRPT_LOG_INFO_STREAM("outputs in " << outDir << " (" << writtenFiles.size() << " files)");
+}
+
+void CRunApp::writeOutput(const std::string& name, const std::function<void(std::ostream&)>& w)
+{
+	const std::string p = joinPath(outDir, name);
+	eval::writeFile(p, w);
+	writtenFiles.push_back(p);
+}
+
+eval::TConsistencySummary CRunApp::evaluateAndReport()
+{
 	eval::TRunConsistency cons;
 	eval::TConsistencySummary summary;
 	if (hasGroundTruth)
@@ -179,12 +189,13 @@ void CRunApp::run()
 		cons = evaluation->consistency;
 		summary = evaluation->summary;
 		std::vector<eval::TMetricsRow> rows{{result.name, evaluation->metrics, summary}};
-		out("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
+		writeOutput("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
 		std::ostringstream table;
 		eval::writeMetricsTable(table, rows);
 		eval::writeConsistencySummary(table, summary);
-		out("metrics.txt", [&](std::ostream& os) { os << table.str(); });
-		out("nees_ego.csv", [&](std::ostream& os) { eval::writeConsistencyCsv(os, summary.ego); });
+		writeOutput("metrics.txt", [&](std::ostream& os) { os << table.str(); });
+		writeOutput("nees_ego.csv",
+		            [&](std::ostream& os) { eval::writeConsistencyCsv(os, summary.ego); });
 		std::cout << table.str();
 	}
 	else
@@ -195,31 +206,31 @@ void CRunApp::run()
 		          << " ms/step (no ground truth: no metrics)\n";
 	}
 	if (!summary.nis.rows.empty())
-		out("nis.csv", [&](std::ostream& os) { eval::writeConsistencyCsv(os, summary.nis); });
+		writeOutput("nis.csv",
+		            [&](std::ostream& os) { eval::writeConsistencyCsv(os, summary.nis); });
+	return summary;
+}
 
-	if (figures)
+void CRunApp::drawFigures(const eval::TConsistencySummary& summary)
+{
+	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	const std::vector<eval::TFigureSeries> series{{result.name, eval::seriesColor(1), &result.est}};
+	auto png = [&](const std::string& name, const mrpt::img::CImage& img)
 	{
-		const std::vector<eval::TFigureSeries> series{
-		    {result.name, eval::seriesColor(1), &result.est}};
-		auto png = [&](const std::string& name, const mrpt::img::CImage& img)
-		{
-			const std::string p = joinPath(outDir, name);
-			eval::savePng(img, p);
-			writtenFiles.push_back(p);
-		};
-		eval::TMapFigureOptions mo;
-		mo.title = "dynslam-run: " + result.name + " on " + rawlogFile;
-		png("map.png", eval::drawMapFigure(g, series, mo));
-		if (hasGroundTruth)
-		{
-			png("ego_errors.png", eval::drawEgoErrorFigure(gt, series));
-			if (!summary.ego.rows.empty())
-				png("nees_ego.png", eval::drawConsistencyFigure(summary.ego));
-		}
-		if (!summary.nis.rows.empty()) png("nis.png", eval::drawConsistencyFigure(summary.nis));
+		const std::string p = joinPath(outDir, name);
+		eval::savePng(img, p);
+		writtenFiles.push_back(p);
+	};
+	eval::TMapFigureOptions mo;
+	mo.title = "dynslam-run: " + result.name + " on " + rawlogFile;
+	png("map.png", eval::drawMapFigure(g, series, mo));
+	if (hasGroundTruth)
+	{
+		png("ego_errors.png", eval::drawEgoErrorFigure(gt, series));
+		if (!summary.ego.rows.empty())
+			png("nees_ego.png", eval::drawConsistencyFigure(summary.ego));
 	}
-	for (const auto& f : writtenFiles) MRPT_LOG_DEBUG_STREAM("wrote " << f);
-	MRPT_LOG_INFO_STREAM("outputs in " << outDir << " (" << writtenFiles.size() << " files)");
+	if (!summary.nis.rows.empty()) png("nis.png", eval::drawConsistencyFigure(summary.nis));
 }
 
 void CRunApp::writeOptionalOutputs(const TRawlog& rawlog)

@@ -208,106 +208,127 @@ void writeGroundTruth(const TGroundTruth& gt, const std::string& dir, const std:
 	}
 }
 
+namespace
+{
+/** BASE_gt_ego.csv: the step times and ego poses (rows in step order). */
+void readEgoFile(const std::string& dir, const std::string& base, TGroundTruth& gt)
+{
+	std::vector<double> r;
+	CCsvReader in(fileName(dir, base, "_gt_ego.csv"), "step,t,x,y,theta");
+	while (in.next(r))
+	{
+		if (in.integer(r, 0, "step") != long(gt.ego.size()))
+			in.fail("step " + num(r[0]) + " out of sequence");
+		gt.t.push_back(r[1]);
+		gt.ego.emplace_back(r[2], r[3], r[4]);
+	}
+}
+
+/** BASE_gt_landmarks.csv: static landmark positions (unique static IDs). */
+void readLandmarkFile(const std::string& dir, const std::string& base, TGroundTruth& gt)
+{
+	std::vector<double> r;
+	CCsvReader in(fileName(dir, base, "_gt_landmarks.csv"), "id,x,y");
+	while (in.next(r))
+	{
+		const long id = in.integer(r, 0, "id");
+		if (!ids::isStatic(int32_t(id)))
+			in.fail("id " + std::to_string(id) + " is not a static landmark ID");
+		if (!gt.landmarks.emplace(int32_t(id), Eigen::Vector2d(r[1], r[2])).second)
+			in.fail("duplicate landmark id " + std::to_string(id));
+	}
+}
+
+/** BASE_gt_objects.csv: objects in index order, one row per object and step. */
+void readObjectFile(const std::string& dir, const std::string& base, TGroundTruth& gt)
+{
+	std::vector<double> r;
+	const size_t n = gt.ego.size();
+	CCsvReader in(fileName(dir, base, "_gt_objects.csv"),
+	              "step,t,object,visible,first_step,dx,dy,dtheta");
+	std::vector<std::vector<uint8_t>> seen;
+	while (in.next(r))
+	{
+		const long k = in.integer(r, 0, "step"), obj = in.integer(r, 2, "object");
+		if (k < 0 || size_t(k) >= n) in.fail("step " + std::to_string(k) + " not in the ego path");
+		if (obj < 0 || obj > ids::kMaxObject) in.fail("bad object index " + std::to_string(obj));
+		if (size_t(obj) >= gt.objects.size())
+		{
+			if (size_t(obj) != gt.objects.size())
+				in.fail("object " + std::to_string(obj) + " out of order");
+			TObjectGroundTruth o;
+			o.object = int32_t(obj);
+			o.first_step = int(in.integer(r, 4, "first_step"));
+			o.pose.assign(n, Eigen::Vector3d::Constant(kNaN));
+			o.visible.assign(n, 0);
+			o.features.resize(n);
+			gt.objects.push_back(std::move(o));
+			seen.emplace_back(n, 0);
+		}
+		if (seen[obj][k]) in.fail("duplicate row for object " + std::to_string(obj));
+		seen[obj][k] = 1;
+		TObjectGroundTruth& o = gt.objects[obj];
+		if (in.integer(r, 4, "first_step") != o.first_step) in.fail("first_step changes");
+		const long vis = in.integer(r, 3, "visible");
+		if (vis != 0 && vis != 1) in.fail("visible must be 0 or 1");
+		o.visible[k] = uint8_t(vis);
+		o.pose[k] = Eigen::Vector3d(r[5], r[6], r[7]);
+	}
+	for (size_t i = 0; i < seen.size(); ++i)
+		for (size_t k = 0; k < n; ++k)
+			if (!seen[i][k])
+				in.fail("object " + std::to_string(i) + " has no row for step " +
+				        std::to_string(k));
+}
+
+/** BASE_gt_object_features.csv: the same number of features per object at every step. */
+void readObjectFeatureFile(const std::string& dir, const std::string& base, TGroundTruth& gt)
+{
+	std::vector<double> r;
+	const size_t n = gt.ego.size();
+	CCsvReader in(fileName(dir, base, "_gt_object_features.csv"),
+	              "step,t,object,feature,id,x,y,visible");
+	std::vector<std::vector<std::vector<Eigen::Vector2d>>> feats(gt.objects.size());
+	for (auto& f : feats) f.resize(n);
+	while (in.next(r))
+	{
+		const long k = in.integer(r, 0, "step"), obj = in.integer(r, 2, "object");
+		const long j = in.integer(r, 3, "feature"), id = in.integer(r, 4, "id");
+		if (k < 0 || size_t(k) >= n) in.fail("step " + std::to_string(k) + " not in the ego path");
+		if (obj < 0 || size_t(obj) >= gt.objects.size())
+			in.fail("object " + std::to_string(obj) + " missing from the objects file");
+		if (j < 0 || j >= ids::kFeaturesPerObject)
+			in.fail("bad feature index " + std::to_string(j));
+		if (id != ids::objectFeatureId(int32_t(obj), int32_t(j)))
+			in.fail("id " + std::to_string(id) + " does not match object/feature");
+		auto& v = feats[obj][k];
+		if (j != long(v.size())) in.fail("feature " + std::to_string(j) + " out of order");
+		v.emplace_back(r[5], r[6]);
+	}
+	for (size_t i = 0; i < feats.size(); ++i)
+	{
+		TObjectGroundTruth& o = gt.objects[i];
+		o.num_features = n ? int(feats[i][0].size()) : 0;
+		for (size_t k = 0; k < n; ++k)
+		{
+			if (int(feats[i][k].size()) != o.num_features || o.num_features == 0)
+				in.fail("object " + std::to_string(i) + " step " + std::to_string(k) +
+				        " has an inconsistent number of features");
+			o.features[k].resize(2, o.num_features);
+			for (int j = 0; j < o.num_features; ++j) o.features[k].col(j) = feats[i][k][j];
+		}
+	}
+}
+
+}  // namespace
+
 TGroundTruth readGroundTruth(const std::string& dir, const std::string& base)
 {
 	TGroundTruth gt;
-	std::vector<double> r;
-	{
-		CCsvReader in(fileName(dir, base, "_gt_ego.csv"), "step,t,x,y,theta");
-		while (in.next(r))
-		{
-			if (in.integer(r, 0, "step") != long(gt.ego.size()))
-				in.fail("step " + num(r[0]) + " out of sequence");
-			gt.t.push_back(r[1]);
-			gt.ego.emplace_back(r[2], r[3], r[4]);
-		}
-	}
-	const size_t n = gt.ego.size();
-	{
-		CCsvReader in(fileName(dir, base, "_gt_landmarks.csv"), "id,x,y");
-		while (in.next(r))
-		{
-			const long id = in.integer(r, 0, "id");
-			if (!ids::isStatic(int32_t(id)))
-				in.fail("id " + std::to_string(id) + " is not a static landmark ID");
-			if (!gt.landmarks.emplace(int32_t(id), Eigen::Vector2d(r[1], r[2])).second)
-				in.fail("duplicate landmark id " + std::to_string(id));
-		}
-	}
-	{
-		CCsvReader in(fileName(dir, base, "_gt_objects.csv"),
-		              "step,t,object,visible,first_step,dx,dy,dtheta");
-		std::vector<std::vector<uint8_t>> seen;
-		while (in.next(r))
-		{
-			const long k = in.integer(r, 0, "step"), obj = in.integer(r, 2, "object");
-			if (k < 0 || size_t(k) >= n)
-				in.fail("step " + std::to_string(k) + " not in the ego path");
-			if (obj < 0 || obj > ids::kMaxObject)
-				in.fail("bad object index " + std::to_string(obj));
-			if (size_t(obj) >= gt.objects.size())
-			{
-				if (size_t(obj) != gt.objects.size())
-					in.fail("object " + std::to_string(obj) + " out of order");
-				TObjectGroundTruth o;
-				o.object = int32_t(obj);
-				o.first_step = int(in.integer(r, 4, "first_step"));
-				o.pose.assign(n, Eigen::Vector3d::Constant(kNaN));
-				o.visible.assign(n, 0);
-				o.features.resize(n);
-				gt.objects.push_back(std::move(o));
-				seen.emplace_back(n, 0);
-			}
-			if (seen[obj][k]) in.fail("duplicate row for object " + std::to_string(obj));
-			seen[obj][k] = 1;
-			TObjectGroundTruth& o = gt.objects[obj];
-			if (in.integer(r, 4, "first_step") != o.first_step) in.fail("first_step changes");
-			const long vis = in.integer(r, 3, "visible");
-			if (vis != 0 && vis != 1) in.fail("visible must be 0 or 1");
-			o.visible[k] = uint8_t(vis);
-			o.pose[k] = Eigen::Vector3d(r[5], r[6], r[7]);
-		}
-		for (size_t i = 0; i < seen.size(); ++i)
-			for (size_t k = 0; k < n; ++k)
-				if (!seen[i][k])
-					in.fail("object " + std::to_string(i) + " has no row for step " +
-					        std::to_string(k));
-	}
-	{
-		CCsvReader in(fileName(dir, base, "_gt_object_features.csv"),
-		              "step,t,object,feature,id,x,y,visible");
-		std::vector<std::vector<std::vector<Eigen::Vector2d>>> feats(gt.objects.size());
-		for (auto& f : feats) f.resize(n);
-		while (in.next(r))
-		{
-			const long k = in.integer(r, 0, "step"), obj = in.integer(r, 2, "object");
-			const long j = in.integer(r, 3, "feature"), id = in.integer(r, 4, "id");
-			if (k < 0 || size_t(k) >= n)
-				in.fail("step " + std::to_string(k) + " not in the ego path");
-			if (obj < 0 || size_t(obj) >= gt.objects.size())
-				in.fail("object " + std::to_string(obj) + " missing from the objects file");
-			if (j < 0 || j >= ids::kFeaturesPerObject)
-				in.fail("bad feature index " + std::to_string(j));
-			if (id != ids::objectFeatureId(int32_t(obj), int32_t(j)))
-				in.fail("id " + std::to_string(id) + " does not match object/feature");
-			auto& v = feats[obj][k];
-			if (j != long(v.size())) in.fail("feature " + std::to_string(j) + " out of order");
-			v.emplace_back(r[5], r[6]);
-		}
-		for (size_t i = 0; i < feats.size(); ++i)
-		{
-			TObjectGroundTruth& o = gt.objects[i];
-			o.num_features = n ? int(feats[i][0].size()) : 0;
-			for (size_t k = 0; k < n; ++k)
-			{
-				if (int(feats[i][k].size()) != o.num_features || o.num_features == 0)
-					in.fail("object " + std::to_string(i) + " step " + std::to_string(k) +
-					        " has an inconsistent number of features");
-				o.features[k].resize(2, o.num_features);
-				for (int j = 0; j < o.num_features; ++j) o.features[k].col(j) = feats[i][k][j];
-			}
-		}
-	}
+	readEgoFile(dir, base, gt);
+	readLandmarkFile(dir, base, gt);
+	readObjectFile(dir, base, gt);
+	readObjectFeatureFile(dir, base, gt);
 	gt.checkConsistent();
 	return gt;
 }

@@ -8,17 +8,15 @@
 
 namespace dynslam::models
 {
-Eigen::Matrix2Xd objectPoseMap(
-	const Eigen::Vector3d& xi, const Eigen::Matrix2Xd& f0, Eigen::MatrixXd* J_ft_xi,
-	Eigen::MatrixXd* J_ft_f0)
+Eigen::Matrix2Xd objectPoseMap(const Eigen::Vector3d& xi, const Eigen::Matrix2Xd& f0,
+                               Eigen::MatrixXd* J_ft_xi, Eigen::MatrixXd* J_ft_f0)
 {
 	const Eigen::Index n = f0.cols();
 	if (n < 1) throw std::invalid_argument("objectPoseMap: object without features");
 	const Eigen::Vector2d c0 = f0.rowwise().mean();
 	const Eigen::Matrix2d R = rot2(xi[2]), dR = rot2Derivative(xi[2]);
 	Eigen::Matrix2Xd ft(2, n);
-	for (Eigen::Index k = 0; k < n; ++k)
-		ft.col(k) = R * (f0.col(k) - c0) + c0 + xi.head<2>();
+	for (Eigen::Index k = 0; k < n; ++k) ft.col(k) = R * (f0.col(k) - c0) + c0 + xi.head<2>();
 	if (J_ft_xi)
 	{
 		J_ft_xi->resize(2 * n, 3);
@@ -35,23 +33,26 @@ Eigen::Matrix2Xd objectPoseMap(
 		J_ft_f0->resize(2 * n, 2 * n);
 		for (Eigen::Index k = 0; k < n; ++k)
 			for (Eigen::Index j = 0; j < n; ++j)
-				J_ft_f0->block<2, 2>(2 * k, 2 * j) = common + (k == j ? R : Eigen::Matrix2d::Zero());
+				J_ft_f0->block<2, 2>(2 * k, 2 * j) =
+				    common + (k == j ? R : Eigen::Matrix2d::Zero());
 	}
 	return ft;
 }
 
-Eigen::Vector3d objectPoseInverse(
-	const Eigen::Matrix2Xd& f0, const Eigen::Matrix2Xd& ft, const std::vector<int>& seenIn,
-	Eigen::MatrixXd* Gamma1, Eigen::MatrixXd* Gamma2)
+namespace
 {
-	const Eigen::Index n = f0.cols(), m = ft.cols();
+/** objectPoseInverse's correspondence list: seenIn (time-0 index of each of the m time-t
+ * features; empty: the identity when m == n), checked to be m distinct indices below n. */
+std::vector<int> checkedCorrespondences(Eigen::Index n, Eigen::Index m,
+                                        const std::vector<int>& seenIn)
+{
 	std::vector<int> seen = seenIn;
 	if (seen.empty())
 	{
 		if (m != n)
-			throw std::invalid_argument(
-				"objectPoseInverse: " + std::to_string(m) + " time-t features for " +
-				std::to_string(n) + " time-0 features and no correspondence list");
+			throw std::invalid_argument("objectPoseInverse: " + std::to_string(m) +
+			                            " time-t features for " + std::to_string(n) +
+			                            " time-0 features and no correspondence list");
 		for (int i = 0; i < n; ++i) seen.push_back(i);
 	}
 	if (Eigen::Index(seen.size()) != m)
@@ -60,14 +61,23 @@ Eigen::Vector3d objectPoseInverse(
 	for (int s : seen)
 	{
 		if (s < 0 || s >= n || used[s])
-			throw std::invalid_argument(
-				"objectPoseInverse: bad or duplicate correspondence " + std::to_string(s));
+			throw std::invalid_argument("objectPoseInverse: bad or duplicate correspondence " +
+			                            std::to_string(s));
 		used[s] = true;
 	}
+	return seen;
+}
+}  // namespace
+
+Eigen::Vector3d objectPoseInverse(const Eigen::Matrix2Xd& f0, const Eigen::Matrix2Xd& ft,
+                                  const std::vector<int>& seenIn, Eigen::MatrixXd* Gamma1,
+                                  Eigen::MatrixXd* Gamma2)
+{
+	const Eigen::Index n = f0.cols(), m = ft.cols();
+	const std::vector<int> seen = checkedCorrespondences(n, m, seenIn);
 	if (m < 2)
-		throw std::domain_error(
-			"objectPoseInverse: rotation undetermined with " + std::to_string(m) +
-			" seen feature(s)");
+		throw std::domain_error("objectPoseInverse: rotation undetermined with " +
+		                        std::to_string(m) + " seen feature(s)");
 
 	const Eigen::Vector2d c0 = f0.rowwise().mean();
 	Eigen::Matrix2Xd a(2, m);
@@ -89,8 +99,7 @@ Eigen::Vector3d objectPoseInverse(
 	const double minSpread2 = double(m) * spreadTol * spreadTol;
 	// By Cauchy-Schwarz D <= pp*qq; D ~ pp*qq for a rigid motion. Coinciding points give 0.
 	if (!(pp > minSpread2) || !(qq > minSpread2) || !(D > 1e-20 * pp * qq) || !std::isfinite(D))
-		throw std::domain_error(
-			"objectPoseInverse: seen features coincide, rotation undetermined");
+		throw std::domain_error("objectPoseInverse: seen features coincide, rotation undetermined");
 
 	// atan2 returns -pi for (C, S) = (-0, S < 0): wrap into (-pi, pi] like every other angle
 	const double th = wrapToPi(std::atan2(C, S));
@@ -116,8 +125,8 @@ Eigen::Vector3d objectPoseInverse(
 			Gamma2->setZero(3, 2 * m);
 			for (Eigen::Index i = 0; i < m; ++i)
 			{
-				Gamma2->block<2, 2>(0, 2 * i) = Eigen::Matrix2d::Identity() / double(m) -
-												dRlever * dth_db.col(i).transpose();
+				Gamma2->block<2, 2>(0, 2 * i) =
+				    Eigen::Matrix2d::Identity() / double(m) - dRlever * dth_db.col(i).transpose();
 				Gamma2->block<1, 2>(2, 2 * i) = dth_db.col(i).transpose();
 			}
 		}
@@ -130,7 +139,8 @@ Eigen::Vector3d objectPoseInverse(
 			for (Eigen::Index i = 0; i < m; ++i)
 			{
 				const int k = seen[i];
-				Gamma1->block<2, 2>(0, 2 * k) += -R / double(m) - dRlever * dth_da.col(i).transpose();
+				Gamma1->block<2, 2>(0, 2 * k) +=
+				    -R / double(m) - dRlever * dth_da.col(i).transpose();
 				Gamma1->block<1, 2>(2, 2 * k) = dth_da.col(i).transpose();
 			}
 		}
@@ -138,9 +148,8 @@ Eigen::Vector3d objectPoseInverse(
 	return xi;
 }
 
-Eigen::Vector2d objectTranslationInverse(
-	const Eigen::Vector2d& f0, const Eigen::Vector2d& ft, Eigen::Matrix2d* Gamma1,
-	Eigen::Matrix2d* Gamma2)
+Eigen::Vector2d objectTranslationInverse(const Eigen::Vector2d& f0, const Eigen::Vector2d& ft,
+                                         Eigen::Matrix2d* Gamma1, Eigen::Matrix2d* Gamma2)
 {
 	if (Gamma1) *Gamma1 = -Eigen::Matrix2d::Identity();
 	if (Gamma2) *Gamma2 = Eigen::Matrix2d::Identity();

@@ -21,9 +21,11 @@ namespace dynslam::framework
 // ---------------------------------------------------------------------------------------
 void CRunningCost::addVariable(const TVarKey& key, const Eigen::VectorXd& value)
 {
-	if (has(key)) throw std::invalid_argument("CRunningCost: variable " + toString(key) + " exists");
+	if (has(key))
+		throw std::invalid_argument("CRunningCost: variable " + toString(key) + " exists");
 	if (value.size() == 0 || !value.allFinite())
-		throw std::invalid_argument("CRunningCost: value of " + toString(key) + " empty or not finite");
+		throw std::invalid_argument("CRunningCost: value of " + toString(key) +
+		                            " empty or not finite");
 	m_index[key] = m_keys.size();
 	m_keys.push_back(key);
 	Eigen::VectorXd v = value;
@@ -37,16 +39,14 @@ void CRunningCost::addVariable(const TVarKey& key, const Eigen::VectorXd& value)
 const Eigen::VectorXd& CRunningCost::value(const TVarKey& key) const
 {
 	const auto it = m_index.find(key);
-	if (it == m_index.end())
-		throw std::out_of_range("CRunningCost: no variable " + toString(key));
+	if (it == m_index.end()) throw std::out_of_range("CRunningCost: no variable " + toString(key));
 	return m_values[it->second];
 }
 
 void CRunningCost::setValue(const TVarKey& key, const Eigen::VectorXd& v)
 {
 	const auto it = m_index.find(key);
-	if (it == m_index.end())
-		throw std::out_of_range("CRunningCost: no variable " + toString(key));
+	if (it == m_index.end()) throw std::out_of_range("CRunningCost: no variable " + toString(key));
 	if (v.size() != m_values[it->second].size() || !v.allFinite())
 		throw std::invalid_argument("CRunningCost: bad value for " + toString(key));
 	m_values[it->second] = v;
@@ -55,15 +55,15 @@ void CRunningCost::setValue(const TVarKey& key, const Eigen::VectorXd& v)
 int CRunningCost::offset(const TVarKey& key) const
 {
 	const auto it = m_index.find(key);
-	if (it == m_index.end())
-		throw std::out_of_range("CRunningCost: no variable " + toString(key));
+	if (it == m_index.end()) throw std::out_of_range("CRunningCost: no variable " + toString(key));
 	return m_offsets[it->second];
 }
 
 Eigen::VectorXd CRunningCost::stackedValues() const
 {
 	Eigen::VectorXd x(m_totalDim);
-	for (size_t i = 0; i < m_keys.size(); ++i) x.segment(m_offsets[i], m_values[i].size()) = m_values[i];
+	for (size_t i = 0; i < m_keys.size(); ++i)
+		x.segment(m_offsets[i], m_values[i].size()) = m_values[i];
 	return x;
 }
 
@@ -88,19 +88,18 @@ void CRunningCost::addTerm(const CTermPtr& term)
 	if (!term) throw std::invalid_argument("CRunningCost::addTerm: null term");
 	for (const auto& k : term->keys())
 		if (!has(k))
-			throw std::invalid_argument(
-				"CRunningCost::addTerm: term '" + term->name() + "' references variable " +
-				toString(k) + ", which does not exist (add the variable first)");
+			throw std::invalid_argument("CRunningCost::addTerm: term '" + term->name() +
+			                            "' references variable " + toString(k) +
+			                            ", which does not exist (add the variable first)");
 	// Evaluate once: catches wrong block sizes and non-finite residuals at insertion.
 	const TLinearization L = term->linearize(termValues(*term));
 	if (!L.r.allFinite() || !L.W.allFinite())
-		throw std::invalid_argument(
-			"CRunningCost::addTerm: term '" + term->name() + "' is not finite at the current values");
+		throw std::invalid_argument("CRunningCost::addTerm: term '" + term->name() +
+		                            "' is not finite at the current values");
 	for (size_t i = 0; i < term->keys().size(); ++i)
 		if (L.J[i].rows() != L.r.size() || L.J[i].cols() != dim(term->keys()[i]))
-			throw std::invalid_argument(
-				"CRunningCost::addTerm: term '" + term->name() + "': block size mismatch for " +
-				toString(term->keys()[i]));
+			throw std::invalid_argument("CRunningCost::addTerm: term '" + term->name() +
+			                            "': block size mismatch for " + toString(term->keys()[i]));
 	m_terms.push_back(term);
 }
 
@@ -131,9 +130,9 @@ double CRunningCost::evaluate() const
 	return c;
 }
 
-void CRunningCost::buildNormal(
-	const std::vector<size_t>& termIdx, const std::vector<int>& localOffset, Eigen::MatrixXd& H,
-	Eigen::VectorXd& g, double* cost) const
+void CRunningCost::buildNormal(const std::vector<size_t>& termIdx,
+                               const std::vector<int>& localOffset, Eigen::MatrixXd& H,
+                               Eigen::VectorXd& g, double* cost) const
 {
 	if (cost) *cost = 0;
 	for (size_t ti : termIdx)
@@ -144,9 +143,9 @@ void CRunningCost::buildNormal(
 		std::vector<int> off;
 		for (const auto& k : t.keys()) off.push_back(localOffset[m_index.at(k)]);
 		detail::scatterTerm(
-			t, L, off,
-			[&](int r, int c, const Eigen::MatrixXd& B) { H.block(r, c, B.rows(), B.cols()) += B; },
-			[&](int r, const Eigen::VectorXd& v) { g.segment(r, v.size()) += v; });
+		    t, L, off,
+		    [&](int r, int c, const Eigen::MatrixXd& B) { H.block(r, c, B.rows(), B.cols()) += B; },
+		    [&](int r, const Eigen::VectorXd& v) { g.segment(r, v.size()) += v; });
 	}
 }
 
@@ -169,6 +168,94 @@ void CRunningCost::throwSingular(const Eigen::MatrixXd& Hs, const std::string& w
 	throw std::runtime_error(msg.str());
 }
 
+void CRunningCost::throwUnconstrained(int idx) const
+{
+	for (size_t i = 0; i < m_keys.size(); ++i)
+		if (idx >= m_offsets[i] && idx < m_offsets[i] + m_values[i].size())
+			throw std::runtime_error("CRunningCost::gaussNewtonStep: singular system: variable " +
+			                         toString(m_keys[i]) +
+			                         " is not constrained by any term (unobservable)");
+	throw std::logic_error("unconstrained index");
+}
+
+void CRunningCost::solveDense(const std::vector<size_t>& all, const TGaussNewtonOptions& opts,
+                              Eigen::VectorXd& g, Eigen::VectorXd& delta,
+                              TGaussNewtonResult& res) const
+{
+	const int n = m_totalDim;
+	Eigen::VectorXd s;
+	int bad = -1;
+	Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+	buildNormal(all, m_offsets, H, g, &res.cost_before);
+	H = 0.5 * (H + H.transpose()).eval();
+	const bool scaled = detail::jacobiScale(H.diagonal(), s, bad);
+	if (!scaled && !opts.allow_singular) throwUnconstrained(bad);
+	const Eigen::MatrixXd Hs = s.asDiagonal() * H * s.asDiagonal();
+	const Eigen::LDLT<Eigen::MatrixXd> ldlt(Hs);
+	const bool ok = scaled && ldlt.info() == Eigen::Success && ldlt.isPositive() &&
+	                ldlt.vectorD().minCoeff() > opts.singular_tol;
+	Eigen::MatrixXd HsInv;
+	if (ok)
+	{
+		delta = -(s.asDiagonal() * ldlt.solve(s.asDiagonal() * g));
+		if (opts.compute_covariance) HsInv = ldlt.solve(Eigen::MatrixXd::Identity(n, n));
+	}
+	else if (opts.allow_singular)
+	{
+		HsInv = psdPseudoInverse(Hs, opts.singular_tol);
+		delta = -(s.asDiagonal() * HsInv * (s.asDiagonal() * g));
+	}
+	else
+		throwSingular(Hs, "CRunningCost::gaussNewtonStep");
+	if (HsInv.size())
+	{
+		res.covariance = s.asDiagonal() * HsInv * s.asDiagonal();
+		res.covariance = 0.5 * (res.covariance + res.covariance.transpose()).eval();
+	}
+	res.information = std::move(H);
+}
+
+void CRunningCost::solveSparse(const std::vector<size_t>& all, const TGaussNewtonOptions& opts,
+                               Eigen::VectorXd& g, Eigen::VectorXd& delta,
+                               TGaussNewtonResult& res) const
+{
+	const int n = m_totalDim;
+	Eigen::VectorXd s;
+	int bad = -1;
+	if (opts.allow_singular)
+		throw std::invalid_argument("gaussNewtonStep: allow_singular needs the dense solver");
+	std::vector<Eigen::Triplet<double>> trip;
+	res.cost_before = 0;
+	for (size_t ti : all)
+	{
+		const CTerm& t = *m_terms[ti];
+		const TLinearization L = t.linearize(termValues(t));
+		res.cost_before += L.r.dot(L.W * L.r);
+		std::vector<int> off;
+		for (const auto& k : t.keys()) off.push_back(m_offsets[m_index.at(k)]);
+		detail::scatterTerm(
+		    t, L, off,
+		    [&](int r, int c, const Eigen::MatrixXd& B)
+		    {
+			    for (Eigen::Index i = 0; i < B.rows(); ++i)
+				    for (Eigen::Index j = 0; j < B.cols(); ++j)
+					    if (B(i, j) != 0) trip.emplace_back(r + i, c + j, B(i, j));
+		    },
+		    [&](int r, const Eigen::VectorXd& v) { g.segment(r, v.size()) += v; });
+	}
+	Eigen::SparseMatrix<double> H(n, n);
+	H.setFromTriplets(trip.begin(), trip.end());
+	if (!detail::jacobiScale(H.diagonal(), s, bad)) throwUnconstrained(bad);
+	const Eigen::SparseMatrix<double> Hs = s.asDiagonal() * H * s.asDiagonal();
+	Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(Hs);
+	if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() <= opts.singular_tol)
+	{
+		if (n <= 3000) throwSingular(Eigen::MatrixXd(Hs), "CRunningCost::gaussNewtonStep");
+		throw std::runtime_error("CRunningCost::gaussNewtonStep: singular sparse system");
+	}
+	delta = -(s.asDiagonal() * ldlt.solve(Eigen::VectorXd(s.asDiagonal() * g)));
+}
+
 TGaussNewtonResult CRunningCost::gaussNewtonStep(const TGaussNewtonOptions& opts)
 {
 	const int n = m_totalDim;
@@ -176,92 +263,21 @@ TGaussNewtonResult CRunningCost::gaussNewtonStep(const TGaussNewtonOptions& opts
 	std::vector<size_t> all(m_terms.size());
 	for (size_t i = 0; i < all.size(); ++i) all[i] = i;
 	const bool sparse = opts.solver == SolverKind::Sparse ||
-						(opts.solver == SolverKind::Auto && n > opts.sparse_threshold);
+	                    (opts.solver == SolverKind::Auto && n > opts.sparse_threshold);
 	TGaussNewtonResult res;
 	res.dense = !sparse;
-	Eigen::VectorXd g = Eigen::VectorXd::Zero(n), s, delta;
-	int bad = -1;
-	auto unconstrained = [&](int idx) {
-		for (size_t i = 0; i < m_keys.size(); ++i)
-			if (idx >= m_offsets[i] && idx < m_offsets[i] + m_values[i].size())
-				throw std::runtime_error(
-					"CRunningCost::gaussNewtonStep: singular system: variable " +
-					toString(m_keys[i]) + " is not constrained by any term (unobservable)");
-		throw std::logic_error("unconstrained index");
-	};
-
+	Eigen::VectorXd g = Eigen::VectorXd::Zero(n), delta;
 	if (!sparse)
-	{
-		Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
-		buildNormal(all, m_offsets, H, g, &res.cost_before);
-		H = 0.5 * (H + H.transpose()).eval();
-		const bool scaled = detail::jacobiScale(H.diagonal(), s, bad);
-		if (!scaled && !opts.allow_singular) unconstrained(bad);
-		const Eigen::MatrixXd Hs = s.asDiagonal() * H * s.asDiagonal();
-		const Eigen::LDLT<Eigen::MatrixXd> ldlt(Hs);
-		const bool ok = scaled && ldlt.info() == Eigen::Success && ldlt.isPositive() &&
-						ldlt.vectorD().minCoeff() > opts.singular_tol;
-		Eigen::MatrixXd HsInv;
-		if (ok)
-		{
-			delta = -(s.asDiagonal() * ldlt.solve(s.asDiagonal() * g));
-			if (opts.compute_covariance) HsInv = ldlt.solve(Eigen::MatrixXd::Identity(n, n));
-		}
-		else if (opts.allow_singular)
-		{
-			HsInv = psdPseudoInverse(Hs, opts.singular_tol);
-			delta = -(s.asDiagonal() * HsInv * (s.asDiagonal() * g));
-		}
-		else
-			throwSingular(Hs, "CRunningCost::gaussNewtonStep");
-		if (HsInv.size())
-		{
-			res.covariance = s.asDiagonal() * HsInv * s.asDiagonal();
-			res.covariance = 0.5 * (res.covariance + res.covariance.transpose()).eval();
-		}
-		res.information = std::move(H);
-	}
+		solveDense(all, opts, g, delta, res);
 	else
-	{
-		if (opts.allow_singular)
-			throw std::invalid_argument("gaussNewtonStep: allow_singular needs the dense solver");
-		std::vector<Eigen::Triplet<double>> trip;
-		res.cost_before = 0;
-		for (size_t ti : all)
-		{
-			const CTerm& t = *m_terms[ti];
-			const TLinearization L = t.linearize(termValues(t));
-			res.cost_before += L.r.dot(L.W * L.r);
-			std::vector<int> off;
-			for (const auto& k : t.keys()) off.push_back(m_offsets[m_index.at(k)]);
-			detail::scatterTerm(
-				t, L, off,
-				[&](int r, int c, const Eigen::MatrixXd& B) {
-					for (Eigen::Index i = 0; i < B.rows(); ++i)
-						for (Eigen::Index j = 0; j < B.cols(); ++j)
-							if (B(i, j) != 0) trip.emplace_back(r + i, c + j, B(i, j));
-				},
-				[&](int r, const Eigen::VectorXd& v) { g.segment(r, v.size()) += v; });
-		}
-		Eigen::SparseMatrix<double> H(n, n);
-		H.setFromTriplets(trip.begin(), trip.end());
-		if (!detail::jacobiScale(H.diagonal(), s, bad)) unconstrained(bad);
-		const Eigen::SparseMatrix<double> Hs = s.asDiagonal() * H * s.asDiagonal();
-		Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(Hs);
-		if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() <= opts.singular_tol)
-		{
-			if (n <= 3000) throwSingular(Eigen::MatrixXd(Hs), "CRunningCost::gaussNewtonStep");
-			throw std::runtime_error("CRunningCost::gaussNewtonStep: singular sparse system");
-		}
-		delta = -(s.asDiagonal() * ldlt.solve(Eigen::VectorXd(s.asDiagonal() * g)));
-	}
+		solveSparse(all, opts, g, delta, res);
 	if (!delta.allFinite())
 		throw std::runtime_error("CRunningCost::gaussNewtonStep: non-finite step");
 	res.max_step = delta.cwiseAbs().maxCoeff();
 	res.cost_linear_min = res.cost_before + g.dot(delta);
 	for (size_t i = 0; i < m_keys.size(); ++i)
 		m_values[i] =
-			blockPlus(m_keys[i].kind, m_values[i], delta.segment(m_offsets[i], m_values[i].size()));
+		    blockPlus(m_keys[i].kind, m_values[i], delta.segment(m_offsets[i], m_values[i].size()));
 	return res;
 }
 

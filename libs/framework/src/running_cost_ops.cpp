@@ -31,15 +31,7 @@ std::shared_ptr<CPriorTerm> CRunningCost::marginalize(const std::vector<TVarKey>
 	if (mIdx.empty()) return nullptr;
 	std::vector<size_t> termIdx;
 	std::set<size_t> kIdx;
-	for (size_t ti = 0; ti < m_terms.size(); ++ti)
-	{
-		bool hit = false;
-		for (const auto& k : m_terms[ti]->keys()) hit = hit || mIdx.count(m_index.at(k));
-		if (!hit) continue;
-		termIdx.push_back(ti);
-		for (const auto& k : m_terms[ti]->keys())
-			if (!mIdx.count(m_index.at(k))) kIdx.insert(m_index.at(k));
-	}
+	termsTouching(mIdx, termIdx, kIdx);
 	// Local system [K, M].
 	std::vector<int> local(m_keys.size(), -1);
 	int nK = 0, nM = 0;
@@ -68,15 +60,15 @@ std::shared_ptr<CPriorTerm> CRunningCost::marginalize(const std::vector<TVarKey>
 	if (ok)
 	{
 		ldlt.compute(s.asDiagonal() * Hmm * s.asDiagonal());
-		ok = ldlt.info() == Eigen::Success && ldlt.isPositive() && ldlt.vectorD().minCoeff() > 1e-12;
+		ok =
+		    ldlt.info() == Eigen::Success && ldlt.isPositive() && ldlt.vectorD().minCoeff() > 1e-12;
 	}
 	if (!ok)
 		throw std::runtime_error(
-			"CRunningCost::marginalize: the information on {" + names +
-			"} is singular (a variable to marginalize is unobservable); drop it instead");
-	auto HmmInv = [&](const Eigen::MatrixXd& B) -> Eigen::MatrixXd {
-		return s.asDiagonal() * ldlt.solve(s.asDiagonal() * B);
-	};
+		    "CRunningCost::marginalize: the information on {" + names +
+		    "} is singular (a variable to marginalize is unobservable); drop it instead");
+	auto HmmInv = [&](const Eigen::MatrixXd& B) -> Eigen::MatrixXd
+	{ return s.asDiagonal() * ldlt.solve(s.asDiagonal() * B); };
 	std::shared_ptr<CPriorTerm> prior;
 	if (nK > 0)
 	{
@@ -94,11 +86,33 @@ std::shared_ptr<CPriorTerm> CRunningCost::marginalize(const std::vector<TVarKey>
 			keys.push_back(m_keys[i]);
 			dims.push_back(int(m_values[i].size()));
 			mean.segment(local[i], dims.back()) =
-				blockPlus(m_keys[i].kind, m_values[i], d.segment(local[i], dims.back()));
+			    blockPlus(m_keys[i].kind, m_values[i], d.segment(local[i], dims.back()));
 		}
 		prior = std::make_shared<CPriorTerm>(keys, dims, mean, Omega);
 	}
 	// Remove the terms and the variables, then add the prior.
+	eraseTermsAndVariables(termIdx, mIdx);
+	if (prior) m_terms.push_back(prior);
+	return prior;
+}
+
+void CRunningCost::termsTouching(const std::set<size_t>& mIdx, std::vector<size_t>& termIdx,
+                                 std::set<size_t>& kIdx) const
+{
+	for (size_t ti = 0; ti < m_terms.size(); ++ti)
+	{
+		bool hit = false;
+		for (const auto& k : m_terms[ti]->keys()) hit = hit || mIdx.count(m_index.at(k));
+		if (!hit) continue;
+		termIdx.push_back(ti);
+		for (const auto& k : m_terms[ti]->keys())
+			if (!mIdx.count(m_index.at(k))) kIdx.insert(m_index.at(k));
+	}
+}
+
+void CRunningCost::eraseTermsAndVariables(const std::vector<size_t>& termIdx,
+                                          const std::set<size_t>& varIdx)
+{
 	std::vector<CTermPtr> kept;
 	size_t q = 0;
 	for (size_t ti = 0; ti < m_terms.size(); ++ti)
@@ -114,7 +128,7 @@ std::shared_ptr<CPriorTerm> CRunningCost::marginalize(const std::vector<TVarKey>
 	std::vector<TVarKey> keys;
 	std::vector<Eigen::VectorXd> values;
 	for (size_t i = 0; i < m_keys.size(); ++i)
-		if (!mIdx.count(i))
+		if (!varIdx.count(i))
 		{
 			keys.push_back(m_keys[i]);
 			values.push_back(m_values[i]);
@@ -122,8 +136,6 @@ std::shared_ptr<CPriorTerm> CRunningCost::marginalize(const std::vector<TVarKey>
 	m_keys.swap(keys);
 	m_values.swap(values);
 	reindex();
-	if (prior) m_terms.push_back(prior);
-	return prior;
 }
 
 void CRunningCost::drop(const std::vector<TVarKey>& D)
@@ -158,8 +170,8 @@ void CRunningCost::drop(const std::vector<TVarKey>& D)
 // ---------------------------------------------------------------------------------------
 // covariance and whitened system
 // ---------------------------------------------------------------------------------------
-Eigen::MatrixXd CRunningCost::covariance(
-	const std::vector<TVarKey>& blocks, const TGaussNewtonOptions& opts) const
+Eigen::MatrixXd CRunningCost::covariance(const std::vector<TVarKey>& blocks,
+                                         const TGaussNewtonOptions& opts) const
 {
 	const int n = m_totalDim;
 	std::vector<int> cols;
@@ -171,7 +183,7 @@ Eigen::MatrixXd CRunningCost::covariance(
 	std::vector<size_t> all(m_terms.size());
 	for (size_t i = 0; i < all.size(); ++i) all[i] = i;
 	const bool sparse = opts.solver == SolverKind::Sparse ||
-						(opts.solver == SolverKind::Auto && n > opts.sparse_threshold);
+	                    (opts.solver == SolverKind::Auto && n > opts.sparse_threshold);
 	Eigen::VectorXd s;
 	int bad = -1;
 	Eigen::MatrixXd X;
@@ -186,7 +198,7 @@ Eigen::MatrixXd CRunningCost::covariance(
 		const Eigen::MatrixXd Hs = s.asDiagonal() * H * s.asDiagonal();
 		const Eigen::LDLT<Eigen::MatrixXd> ldlt(Hs);
 		if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
-			ldlt.vectorD().minCoeff() <= opts.singular_tol)
+		    ldlt.vectorD().minCoeff() <= opts.singular_tol)
 			throwSingular(Hs, "CRunningCost::covariance");
 		X = s.asDiagonal() * ldlt.solve(s.asDiagonal() * E);
 	}
@@ -200,13 +212,14 @@ Eigen::MatrixXd CRunningCost::covariance(
 			std::vector<int> off;
 			for (const auto& k : t.keys()) off.push_back(m_offsets[m_index.at(k)]);
 			detail::scatterTerm(
-				t, L, off,
-				[&](int r, int c, const Eigen::MatrixXd& B) {
-					for (Eigen::Index i = 0; i < B.rows(); ++i)
-						for (Eigen::Index j = 0; j < B.cols(); ++j)
-							if (B(i, j) != 0) trip.emplace_back(r + i, c + j, B(i, j));
-				},
-				[](int, const Eigen::VectorXd&) {});
+			    t, L, off,
+			    [&](int r, int c, const Eigen::MatrixXd& B)
+			    {
+				    for (Eigen::Index i = 0; i < B.rows(); ++i)
+					    for (Eigen::Index j = 0; j < B.cols(); ++j)
+						    if (B(i, j) != 0) trip.emplace_back(r + i, c + j, B(i, j));
+			    },
+			    [](int, const Eigen::VectorXd&) {});
 		}
 		Eigen::SparseMatrix<double> H(n, n);
 		H.setFromTriplets(trip.begin(), trip.end());
@@ -223,8 +236,8 @@ Eigen::MatrixXd CRunningCost::covariance(
 	return 0.5 * (C + C.transpose());
 }
 
-void CRunningCost::whitenedSystem(
-	Eigen::MatrixXd& J, Eigen::VectorXd& C, const std::vector<size_t>& termIdx) const
+void CRunningCost::whitenedSystem(Eigen::MatrixXd& J, Eigen::VectorXd& C,
+                                  const std::vector<size_t>& termIdx) const
 {
 	std::vector<size_t> idx = termIdx;
 	if (idx.empty())
@@ -259,13 +272,12 @@ void CRunningCost::whitenedSystem(
 }
 
 // ---------------------------------------------------------------------------------------
-void projectorMarginal(
-	const Eigen::MatrixXd& J_K, const Eigen::MatrixXd& J_M, const Eigen::VectorXd& C,
-	Eigen::MatrixXd& Omega_K, Eigen::VectorXd& d_K)
+void projectorMarginal(const Eigen::MatrixXd& J_K, const Eigen::MatrixXd& J_M,
+                       const Eigen::VectorXd& C, Eigen::MatrixXd& Omega_K, Eigen::VectorXd& d_K)
 {
 	const Eigen::MatrixXd JtJ = J_M.transpose() * J_M;
-	const Eigen::MatrixXd P = Eigen::MatrixXd::Identity(J_M.rows(), J_M.rows()) -
-							  J_M * JtJ.ldlt().solve(J_M.transpose());
+	const Eigen::MatrixXd P =
+	    Eigen::MatrixXd::Identity(J_M.rows(), J_M.rows()) - J_M * JtJ.ldlt().solve(J_M.transpose());
 	Omega_K = J_K.transpose() * P * J_K;
 	Omega_K = 0.5 * (Omega_K + Omega_K.transpose()).eval();
 	d_K = -psdPseudoInverse(Omega_K) * (J_K.transpose() * P * C);

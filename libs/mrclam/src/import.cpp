@@ -104,26 +104,32 @@ std::string TImportSummary::toText() const
 	return o.str();
 }
 
-TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
+namespace
 {
-	if (!(opts.group_window >= 0)) throw std::invalid_argument("group_window must be >= 0");
-	std::map<int, CTrajectoryInterpolator> gt;
-	for (const auto& [r, rows] : d.groundTruth) gt.emplace(r, CTrajectoryInterpolator(rows));
-	if (!gt.count(d.ego))
-		throw std::runtime_error("no ground truth for ego robot " + std::to_string(d.ego));
-	const std::string measFile = robotFile(d.dir, d.ego, "Measurement");
+/** Filter id of an accepted subject; throws when its ground truth is missing. */
+int32_t subjectFilterId(const TDataset& d, const std::map<int, CTrajectoryInterpolator>& gt,
+                        const std::string& measFile, int line, int subject)
+{
+	if (isLandmarkSubject(subject))
+	{
+		if (!d.landmarks.count(subject))
+			throw std::runtime_error(measFile + ":" + std::to_string(line) + ": landmark subject " +
+			                         std::to_string(subject) +
+			                         " has no entry in Landmark_Groundtruth.dat");
+		return subject;
+	}
+	if (!gt.count(subject))
+		throw std::runtime_error(measFile + ":" + std::to_string(line) + ": robot subject " +
+		                         std::to_string(subject) + " has no ground truth");
+	return ids::objectFeatureId(subject, 0);
+}
 
-	TImportResult res;
-	auto& sum = res.summary;
-	sum.dataset = d.dir;
-	sum.ego = d.ego;
-	sum.rows = d.measurements.size();
-
-	double lo = 0, hi = 0;
-	timeWindow(d, gt, opts.clip_to_ground_truth, lo, hi);
-
-	// --- group measurements into steps ---
-	std::vector<TStep>& steps = res.steps;
+/** Groups the measurements inside [lo, hi] into steps, counting the dropped ones in sum. */
+std::vector<TStep> groupSteps(const TDataset& d, const std::map<int, CTrajectoryInterpolator>& gt,
+                              const TImportOptions& opts, double lo, double hi,
+                              const std::string& measFile, TImportSummary& sum)
+{
+	std::vector<TStep> steps;
 	double groupStart = -std::numeric_limits<double>::infinity();
 	double tFirst = kNaN;
 	TStep cur;
@@ -168,23 +174,7 @@ TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
 			sum.duplicates++;
 			continue;
 		}
-		int32_t id = 0;
-		if (isLandmarkSubject(subject))
-		{
-			if (!d.landmarks.count(subject))
-				throw std::runtime_error(measFile + ":" + std::to_string(m.line) +
-				                         ": landmark subject " + std::to_string(subject) +
-				                         " has no entry in Landmark_Groundtruth.dat");
-			id = subject;
-		}
-		else
-		{
-			if (!gt.count(subject))
-				throw std::runtime_error(measFile + ":" + std::to_string(m.line) +
-				                         ": robot subject " + std::to_string(subject) +
-				                         " has no ground truth");
-			id = ids::objectFeatureId(subject, 0);
-		}
+		const int32_t id = subjectFilterId(d, gt, measFile, m.line, subject);
 		if (std::isnan(tFirst)) tFirst = cur.t;
 		cur.meas.push_back({subject, id, m.t, m.range, m.bearing, m.line});
 		sum.kept++;
@@ -192,11 +182,12 @@ TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
 		sum.max_range_seen = std::max(sum.max_range_seen, m.range);
 	}
 	closeGroup();
-	if (steps.empty())
-		throw std::runtime_error(measFile +
-		                         ": no valid measurement inside the ground truth's time span");
+	return steps;
+}
 
-	// --- odometry increments ---
+/** Sets each step's odometry increment (from the previous step) and its covariance. */
+void addOdometry(const TDataset& d, const TImportOptions& opts, std::vector<TStep>& steps)
+{
 	const COdometryIntegrator odo(d.odometry, opts.odometry_delay, opts.odometry_scale_v,
 	                              opts.odometry_scale_w);
 	for (size_t k = 1; k < steps.size(); k++)
@@ -204,19 +195,60 @@ TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
 		steps[k].increment = odo.integrate(steps[k - 1].t, steps[k].t);
 		steps[k].cov = opts.odometry_noise.covariance(steps[k].increment);
 	}
+}
 
-	// --- ground truth in the frame of the ego's pose at step 0 ---
+/** Placeholder for the ego and for robots without ground truth: never observed, NaN positions. */
+TObjectGroundTruth placeholderObject(int r, size_t K)
+{
+	TObjectGroundTruth o;
+	o.object = r;
+	o.num_features = 1;
+	o.features.assign(K, Eigen::Matrix2Xd::Constant(2, 1, kNaN));
+	o.pose.assign(K, Eigen::Vector3d::Constant(kNaN));
+	o.visible.assign(K, 0);
+	return o;
+}
+
+/** Ground truth of robot r in the world frame at origin: its position as a one-feature object,
+ * its pose the displacement since its first observation. */
+TObjectGroundTruth robotObject(int r, const CTrajectoryInterpolator& traj,
+                               const std::vector<TStep>& steps, const Eigen::Vector3d& origin)
+{
 	const size_t K = steps.size();
-	sum.steps = K;
-	sum.t_first = steps.front().t;
-	sum.t_last = steps.back().t;
-	for (const auto& [r, traj] : gt)
-		if (r == d.ego || opts.clip_to_ground_truth)
-			sum.max_gt_gap = std::max(sum.max_gt_gap, traj.maxGap(sum.t_first, sum.t_last));
-	const Eigen::Vector3d origin = gt.at(d.ego).at(sum.t_first);
-	sum.origin = origin;
+	TObjectGroundTruth o;
+	o.object = r;
+	o.num_features = 1;
+	for (size_t k = 0; k < K; k++)
+	{
+		const bool vis = std::any_of(steps[k].meas.begin(), steps[k].meas.end(),
+		                             [&](const TStepMeasurement& x) { return x.subject == r; });
+		o.visible.push_back(vis ? 1 : 0);
+		if (vis && o.first_step < 0) o.first_step = static_cast<int>(k);
+		Eigen::Matrix2Xd f(2, 1);
+		if (traj.covers(steps[k].t))
+			f.col(0) = toFrame(origin, traj.at(steps[k].t).head<2>());
+		else
+			f.setConstant(kNaN);  // only without clip_to_ground_truth
+		o.features.push_back(f);
+	}
+	for (size_t k = 0; k < K; k++)
+	{
+		if (o.first_step >= 0 && static_cast<int>(k) >= o.first_step)
+		{
+			const Eigen::Vector2d dp = o.features[k].col(0) - o.features[o.first_step].col(0);
+			o.pose.emplace_back(dp.x(), dp.y(), 0.0);
+		}
+		else
+			o.pose.emplace_back(kNaN, kNaN, kNaN);
+	}
+	return o;
+}
 
-	TGroundTruth& g = res.gt;
+/** Ground truth of the steps in the frame of origin (the ego's pose at step 0). */
+TGroundTruth groundTruthInFrame(const TDataset& d, const std::map<int, CTrajectoryInterpolator>& gt,
+                                const std::vector<TStep>& steps, const Eigen::Vector3d& origin)
+{
+	TGroundTruth g;
 	for (const auto& s : steps)
 	{
 		g.t.push_back(s.t);
@@ -227,44 +259,50 @@ TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
 	// ego are placeholders: never observed, positions NaN.
 	for (int r = 0; r <= kLastRobot; r++)
 	{
-		TObjectGroundTruth o;
-		o.object = r;
-		o.num_features = 1;
 		if (r == d.ego || !gt.count(r))
-		{
-			o.features.assign(K, Eigen::Matrix2Xd::Constant(2, 1, kNaN));
-			o.pose.assign(K, Eigen::Vector3d::Constant(kNaN));
-			o.visible.assign(K, 0);
-			g.objects.push_back(std::move(o));
-			continue;
-		}
-		const auto& traj = gt.at(r);
-		for (size_t k = 0; k < K; k++)
-		{
-			const bool vis = std::any_of(steps[k].meas.begin(), steps[k].meas.end(),
-			                             [&](const TStepMeasurement& x) { return x.subject == r; });
-			o.visible.push_back(vis ? 1 : 0);
-			if (vis && o.first_step < 0) o.first_step = static_cast<int>(k);
-			Eigen::Matrix2Xd f(2, 1);
-			if (traj.covers(steps[k].t))
-				f.col(0) = toFrame(origin, traj.at(steps[k].t).head<2>());
-			else
-				f.setConstant(kNaN);  // only without clip_to_ground_truth
-			o.features.push_back(f);
-		}
-		for (size_t k = 0; k < K; k++)
-		{
-			if (o.first_step >= 0 && static_cast<int>(k) >= o.first_step)
-			{
-				const Eigen::Vector2d dp = o.features[k].col(0) - o.features[o.first_step].col(0);
-				o.pose.emplace_back(dp.x(), dp.y(), 0.0);
-			}
-			else
-				o.pose.emplace_back(kNaN, kNaN, kNaN);
-		}
-		g.objects.push_back(std::move(o));
+			g.objects.push_back(placeholderObject(r, steps.size()));
+		else
+			g.objects.push_back(robotObject(r, gt.at(r), steps, origin));
 	}
-	g.checkConsistent();
+	return g;
+}
+}  // namespace
+
+TImportResult importRobot(const TDataset& d, const TImportOptions& opts)
+{
+	if (!(opts.group_window >= 0)) throw std::invalid_argument("group_window must be >= 0");
+	std::map<int, CTrajectoryInterpolator> gt;
+	for (const auto& [r, rows] : d.groundTruth) gt.emplace(r, CTrajectoryInterpolator(rows));
+	if (!gt.count(d.ego))
+		throw std::runtime_error("no ground truth for ego robot " + std::to_string(d.ego));
+	const std::string measFile = robotFile(d.dir, d.ego, "Measurement");
+
+	TImportResult res;
+	auto& sum = res.summary;
+	sum.dataset = d.dir;
+	sum.ego = d.ego;
+	sum.rows = d.measurements.size();
+
+	double lo = 0, hi = 0;
+	timeWindow(d, gt, opts.clip_to_ground_truth, lo, hi);
+	res.steps = groupSteps(d, gt, opts, lo, hi, measFile, sum);
+	std::vector<TStep>& steps = res.steps;
+	if (steps.empty())
+		throw std::runtime_error(measFile +
+		                         ": no valid measurement inside the ground truth's time span");
+	addOdometry(d, opts, steps);
+
+	sum.steps = steps.size();
+	sum.t_first = steps.front().t;
+	sum.t_last = steps.back().t;
+	for (const auto& [r, traj] : gt)
+		if (r == d.ego || opts.clip_to_ground_truth)
+			sum.max_gt_gap = std::max(sum.max_gt_gap, traj.maxGap(sum.t_first, sum.t_last));
+	const Eigen::Vector3d origin = gt.at(d.ego).at(sum.t_first);
+	sum.origin = origin;
+
+	res.gt = groundTruthInFrame(d, gt, steps, origin);
+	res.gt.checkConsistent();
 	return res;
 }
 }  // namespace dynslam::mrclam

@@ -178,10 +178,11 @@ TNoiseSamples collectNoiseSamples(const TDataset& d, const TImportResult& res)
 	return s;
 }
 
-TNoiseEstimate estimateNoise(const TNoiseSamples& s, double outlierFactor, double trimChi2)
+namespace
 {
-	TNoiseEstimate est;
-	est.outlier_factor = outlierFactor;
+/** Range and bearing residual statistics: all, per subject kind and per true-range bin. */
+void estimateMeasurementNoise(const TNoiseSamples& s, double outlierFactor, TNoiseEstimate& est)
+{
 	std::vector<double> rA, bA, rL, bL, rR, bR;
 	const std::vector<std::pair<double, double>> binEdges = {{0, 2}, {2, 4}, {4, 6}, {6, 100}};
 	std::vector<std::vector<double>> rB(binEdges.size()), bB(binEdges.size());
@@ -208,8 +209,12 @@ TNoiseEstimate estimateNoise(const TNoiseSamples& s, double outlierFactor, doubl
 		est.bins.push_back({binEdges[i].first, binEdges[i].second,
 		                    residualStats(rB[i], outlierFactor),
 		                    residualStats(bB[i], outlierFactor)});
+}
 
-	// --- odometry ---
+/** Odometry noise model fitted to the squared increment errors, with its consistency figures. */
+void estimateOdometryNoise(const TNoiseSamples& s, double outlierFactor, double trimChi2,
+                           TNoiseEstimate& est)
+{
 	const Eigen::Index n = static_cast<Eigen::Index>(s.odo.size());
 	est.odo_steps = s.odo.size();
 	if (n >= 3)
@@ -267,6 +272,15 @@ TNoiseEstimate estimateNoise(const TNoiseSamples& s, double outlierFactor, doubl
 		est.odo_ey = residualStats(ey, outlierFactor);
 		est.odo_ephi = residualStats(ephi, outlierFactor);
 	}
+}
+}  // namespace
+
+TNoiseEstimate estimateNoise(const TNoiseSamples& s, double outlierFactor, double trimChi2)
+{
+	TNoiseEstimate est;
+	est.outlier_factor = outlierFactor;
+	estimateMeasurementNoise(s, outlierFactor, est);
+	estimateOdometryNoise(s, outlierFactor, trimChi2, est);
 	return est;
 }
 

@@ -196,6 +196,105 @@ THighwayAgent readAgent(const CConfigFileBase& c, const std::string& sec, const 
 	if (isEgo && !(a.speed > 0)) cfg::fail(sec, "speed", fmt(a.speed), "the ego must move (> 0)");
 	return a;
 }
+
+/** Reads [Highway], [Ego] and [Agent<i>] into h (defaults kept for absent optional keys). */
+void readHighway(const CConfigFileBase& c, THighwayOptions& h)
+{
+	const std::string H = "Highway";
+	cfg::rejectUnknownKeys(c, H,
+	                       {"length", "num_lanes", "lane_width", "ego_lane", "num_landmarks",
+	                        "landmark_offset_min", "landmark_offset_max", "num_agents"});
+	h.length = cfg::readPositive(c, H, "length", 1000, true);
+	h.num_lanes = int(readCount(c, H, "num_lanes", 3, true, 100));
+	if (h.num_lanes < 1) cfg::fail(H, "num_lanes", "0", "need at least one lane");
+	h.lane_width = cfg::readPositive(c, H, "lane_width", 3.5, true);
+	h.ego_lane = readLane(c, H, "ego_lane", h.num_lanes);
+	h.num_landmarks = int(readCount(c, H, "num_landmarks", 40, true, ids::kStaticMax + 1));
+	h.landmark_offset_min = cfg::readNonNegative(c, H, "landmark_offset_min", 3, true);
+	h.landmark_offset_max = cfg::readPositive(c, H, "landmark_offset_max", 30, true);
+	if (h.landmark_offset_max < h.landmark_offset_min)
+		cfg::fail(H, "landmark_offset_max", fmt(h.landmark_offset_max),
+		          "smaller than landmark_offset_min");
+	const long na = readCount(c, H, "num_agents", 3, true, 1000);
+	h.ego = readAgent(c, "Ego", h, true);
+	h.ego.section = "Ego";
+	for (long i = 1; i <= na; ++i)
+		h.agents.push_back(readAgent(c, "Agent" + std::to_string(i), h, false));
+}
+
+/** Reads [Generated] into g (defaults kept for absent optional keys). */
+void readGenerated(const CConfigFileBase& c, TGeneratedOptions& g)
+{
+	const std::string G = "Generated";
+	cfg::rejectUnknownKeys(c, G,
+	                       {"track_radius",
+	                        "ego_speed",
+	                        "num_landmarks",
+	                        "landmark_offset_min",
+	                        "landmark_offset_max",
+	                        "num_lanes",
+	                        "lane_width",
+	                        "num_cars",
+	                        "num_pedestrians",
+	                        "num_rotating",
+	                        "features_per_car",
+	                        "features_per_pedestrian",
+	                        "features_per_rotating",
+	                        "car_length",
+	                        "car_width",
+	                        "pedestrian_width",
+	                        "rotating_radius",
+	                        "car_speed_factor_min",
+	                        "car_speed_factor_max",
+	                        "pedestrian_speed",
+	                        "yaw_rate_max",
+	                        "object_spread"});
+	g.track_radius = cfg::readNonNegative(c, G, "track_radius", 0, true);
+	g.ego_speed = cfg::readPositive(c, G, "ego_speed", 10, true);
+	g.num_landmarks = int(readCount(c, G, "num_landmarks", 200, true, ids::kStaticMax + 1));
+	g.landmark_offset_min = cfg::readNonNegative(c, G, "landmark_offset_min", 3);
+	g.landmark_offset_max = cfg::readPositive(c, G, "landmark_offset_max", 30);
+	if (g.landmark_offset_max < g.landmark_offset_min)
+		cfg::fail(G, "landmark_offset_max", fmt(g.landmark_offset_max),
+		          "smaller than landmark_offset_min");
+	g.num_lanes = int(readCount(c, G, "num_lanes", 3, false, 100));
+	if (g.num_lanes < 1) cfg::fail(G, "num_lanes", "0", "need at least one lane");
+	g.lane_width = cfg::readPositive(c, G, "lane_width", 3.5);
+	const long maxObj = ids::kMaxObject + 1;
+	g.num_cars = int(readCount(c, G, "num_cars", 2, true, maxObj));
+	g.num_pedestrians = int(readCount(c, G, "num_pedestrians", 1, true, maxObj));
+	g.num_rotating = int(readCount(c, G, "num_rotating", 1, true, maxObj));
+	if (long(g.num_cars) + g.num_pedestrians + g.num_rotating > maxObj)
+		cfg::fail(G, "num_cars", std::to_string(g.num_cars), "too many objects in total");
+	const long maxF = ids::kFeaturesPerObject;
+	g.features_per_car = int(readCount(c, G, "features_per_car", 4, false, maxF));
+	g.features_per_pedestrian = int(readCount(c, G, "features_per_pedestrian", 2, false, maxF));
+	g.features_per_rotating = int(readCount(c, G, "features_per_rotating", 3, false, maxF));
+	for (const auto& [k, v] : {std::pair<const char*, int>{"features_per_car", g.features_per_car},
+	                           {"features_per_pedestrian", g.features_per_pedestrian},
+	                           {"features_per_rotating", g.features_per_rotating}})
+		if (v < 1) cfg::fail(G, k, std::to_string(v), "an object needs at least one feature");
+	g.car_length = cfg::readPositive(c, G, "car_length", 4.5);
+	g.car_width = cfg::readPositive(c, G, "car_width", 1.8);
+	g.pedestrian_width = cfg::readPositive(c, G, "pedestrian_width", 0.5);
+	g.rotating_radius = cfg::readPositive(c, G, "rotating_radius", 1.0);
+	g.car_speed_factor_min = cfg::readNonNegative(c, G, "car_speed_factor_min", 0.8);
+	g.car_speed_factor_max = cfg::readNonNegative(c, G, "car_speed_factor_max", 1.2);
+	if (g.car_speed_factor_max < g.car_speed_factor_min)
+		cfg::fail(G, "car_speed_factor_max", fmt(g.car_speed_factor_max),
+		          "smaller than car_speed_factor_min");
+	g.pedestrian_speed = cfg::readPositive(c, G, "pedestrian_speed", 1.4);
+	g.yaw_rate_max = cfg::readPositive(c, G, "yaw_rate_max", 0.5);
+	g.object_spread = cfg::readPositive(c, G, "object_spread", 60);
+	if (g.track_radius > 0)
+	{
+		const double reach = std::max(g.landmark_offset_max,
+		                              (g.num_lanes + 1.0) * g.lane_width + g.rotating_radius + 2.0);
+		if (reach >= g.track_radius)
+			cfg::fail(G, "track_radius", fmt(g.track_radius),
+			          "must exceed the lateral extent of the world (" + fmt(reach) + " m)");
+	}
+}
 }  // namespace
 
 void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::string&)
@@ -263,104 +362,9 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	checkDerived(c, N, "std_yaw_deg", Eigen::Matrix<double, 1, 1>(std_yaw * 180 / M_PI));
 
 	if (type == ScenarioType::Highway)
-	{
-		const std::string H = "Highway";
-		cfg::rejectUnknownKeys(c, H,
-		                       {"length", "num_lanes", "lane_width", "ego_lane", "num_landmarks",
-		                        "landmark_offset_min", "landmark_offset_max", "num_agents"});
-		THighwayOptions& h = highway;
-		h.length = cfg::readPositive(c, H, "length", 1000, true);
-		h.num_lanes = int(readCount(c, H, "num_lanes", 3, true, 100));
-		if (h.num_lanes < 1) cfg::fail(H, "num_lanes", "0", "need at least one lane");
-		h.lane_width = cfg::readPositive(c, H, "lane_width", 3.5, true);
-		h.ego_lane = readLane(c, H, "ego_lane", h.num_lanes);
-		h.num_landmarks = int(readCount(c, H, "num_landmarks", 40, true, ids::kStaticMax + 1));
-		h.landmark_offset_min = cfg::readNonNegative(c, H, "landmark_offset_min", 3, true);
-		h.landmark_offset_max = cfg::readPositive(c, H, "landmark_offset_max", 30, true);
-		if (h.landmark_offset_max < h.landmark_offset_min)
-			cfg::fail(H, "landmark_offset_max", fmt(h.landmark_offset_max),
-			          "smaller than landmark_offset_min");
-		const long na = readCount(c, H, "num_agents", 3, true, 1000);
-		h.ego = readAgent(c, "Ego", h, true);
-		h.ego.section = "Ego";
-		for (long i = 1; i <= na; ++i)
-			h.agents.push_back(readAgent(c, "Agent" + std::to_string(i), h, false));
-	}
+		readHighway(c, highway);
 	else
-	{
-		const std::string G = "Generated";
-		cfg::rejectUnknownKeys(c, G,
-		                       {"track_radius",
-		                        "ego_speed",
-		                        "num_landmarks",
-		                        "landmark_offset_min",
-		                        "landmark_offset_max",
-		                        "num_lanes",
-		                        "lane_width",
-		                        "num_cars",
-		                        "num_pedestrians",
-		                        "num_rotating",
-		                        "features_per_car",
-		                        "features_per_pedestrian",
-		                        "features_per_rotating",
-		                        "car_length",
-		                        "car_width",
-		                        "pedestrian_width",
-		                        "rotating_radius",
-		                        "car_speed_factor_min",
-		                        "car_speed_factor_max",
-		                        "pedestrian_speed",
-		                        "yaw_rate_max",
-		                        "object_spread"});
-		TGeneratedOptions& g = generated;
-		g.track_radius = cfg::readNonNegative(c, G, "track_radius", 0, true);
-		g.ego_speed = cfg::readPositive(c, G, "ego_speed", 10, true);
-		g.num_landmarks = int(readCount(c, G, "num_landmarks", 200, true, ids::kStaticMax + 1));
-		g.landmark_offset_min = cfg::readNonNegative(c, G, "landmark_offset_min", 3);
-		g.landmark_offset_max = cfg::readPositive(c, G, "landmark_offset_max", 30);
-		if (g.landmark_offset_max < g.landmark_offset_min)
-			cfg::fail(G, "landmark_offset_max", fmt(g.landmark_offset_max),
-			          "smaller than landmark_offset_min");
-		g.num_lanes = int(readCount(c, G, "num_lanes", 3, false, 100));
-		if (g.num_lanes < 1) cfg::fail(G, "num_lanes", "0", "need at least one lane");
-		g.lane_width = cfg::readPositive(c, G, "lane_width", 3.5);
-		const long maxObj = ids::kMaxObject + 1;
-		g.num_cars = int(readCount(c, G, "num_cars", 2, true, maxObj));
-		g.num_pedestrians = int(readCount(c, G, "num_pedestrians", 1, true, maxObj));
-		g.num_rotating = int(readCount(c, G, "num_rotating", 1, true, maxObj));
-		if (long(g.num_cars) + g.num_pedestrians + g.num_rotating > maxObj)
-			cfg::fail(G, "num_cars", std::to_string(g.num_cars), "too many objects in total");
-		const long maxF = ids::kFeaturesPerObject;
-		g.features_per_car = int(readCount(c, G, "features_per_car", 4, false, maxF));
-		g.features_per_pedestrian = int(readCount(c, G, "features_per_pedestrian", 2, false, maxF));
-		g.features_per_rotating = int(readCount(c, G, "features_per_rotating", 3, false, maxF));
-		for (const auto& [k, v] :
-		     {std::pair<const char*, int>{"features_per_car", g.features_per_car},
-		      {"features_per_pedestrian", g.features_per_pedestrian},
-		      {"features_per_rotating", g.features_per_rotating}})
-			if (v < 1) cfg::fail(G, k, std::to_string(v), "an object needs at least one feature");
-		g.car_length = cfg::readPositive(c, G, "car_length", 4.5);
-		g.car_width = cfg::readPositive(c, G, "car_width", 1.8);
-		g.pedestrian_width = cfg::readPositive(c, G, "pedestrian_width", 0.5);
-		g.rotating_radius = cfg::readPositive(c, G, "rotating_radius", 1.0);
-		g.car_speed_factor_min = cfg::readNonNegative(c, G, "car_speed_factor_min", 0.8);
-		g.car_speed_factor_max = cfg::readNonNegative(c, G, "car_speed_factor_max", 1.2);
-		if (g.car_speed_factor_max < g.car_speed_factor_min)
-			cfg::fail(G, "car_speed_factor_max", fmt(g.car_speed_factor_max),
-			          "smaller than car_speed_factor_min");
-		g.pedestrian_speed = cfg::readPositive(c, G, "pedestrian_speed", 1.4);
-		g.yaw_rate_max = cfg::readPositive(c, G, "yaw_rate_max", 0.5);
-		g.object_spread = cfg::readPositive(c, G, "object_spread", 60);
-		if (g.track_radius > 0)
-		{
-			const double reach =
-			    std::max(g.landmark_offset_max,
-			             (g.num_lanes + 1.0) * g.lane_width + g.rotating_radius + 2.0);
-			if (reach >= g.track_radius)
-				cfg::fail(G, "track_radius", fmt(g.track_radius),
-				          "must exceed the lateral extent of the world (" + fmt(reach) + " m)");
-		}
-	}
+		readGenerated(c, generated);
 	validate();
 }
 

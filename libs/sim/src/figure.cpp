@@ -27,14 +27,12 @@ TColor objectColor(size_t i)
 	                           TColor(0, 160, 160), TColor(200, 110, 0), TColor(120, 120, 0)};
 	return c[i % (sizeof(c) / sizeof(c[0]))];
 }
-}  // namespace
 
-void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
-                        const std::string& pngPath, int W, int H)
+/** Bounding box of everything drawn (the road too on the highway). */
+void boundingBox(const TGroundTruth& gt, const TScenarioOptions& o, double& xmin, double& xmax,
+                 double& ymin, double& ymax)
 {
-	gt.checkConsistent();
-	// Bounding box of everything drawn.
-	double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+	xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
 	auto grow = [&](double x, double y)
 	{
 		xmin = std::min(xmin, x), xmax = std::max(xmax, x);
@@ -45,12 +43,18 @@ void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
 	for (const auto& og : gt.objects)
 		for (const auto& F : og.features)
 			for (Eigen::Index j = 0; j < F.cols(); ++j) grow(F(0, j), F(1, j));
-	const bool highway = o.type == ScenarioType::Highway;
-	if (highway)
+	if (o.type == ScenarioType::Highway)
 	{
 		grow(0, o.highway.roadRight());
 		grow(o.highway.length, o.highway.roadLeft());
 	}
+}
+
+/** View of the scene in a W x H image with margins; crops W and H to the drawing. */
+TView fitView(const TGroundTruth& gt, const TScenarioOptions& o, int& W, int& H)
+{
+	double xmin, xmax, ymin, ymax;
+	boundingBox(gt, o, xmin, xmax, ymin, ymax);
 	const int mL = 40, mR = 20, mT = 60, mB = 30;
 	const double bw = std::max(xmax - xmin, 1.0), bh = std::max(ymax - ymin, 1.0);
 	TView v;
@@ -66,44 +70,46 @@ void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
 	v.x0 = xmin - mL / v.sx;
 	v.y0 = ymin - mB / v.sy;
 	v.H = H;
+	return v;
+}
 
-	mrpt::img::CImage img(W, H, mrpt::img::CH_RGB);
-	img.filledRectangle(0, 0, W - 1, H - 1, TColor(255, 255, 255));
-	img.selectTextFont("9x15");
-
-	if (highway)
+void drawRoad(mrpt::img::CImage& img, const TView& v, const THighwayOptions& h)
+{
+	img.filledRectangle(v.px(0), v.py(h.roadLeft()), v.px(h.length), v.py(h.roadRight()),
+	                    TColor(225, 225, 225));
+	for (double y : {h.roadLeft(), h.roadRight()})
+		img.line(v.px(0), v.py(y), v.px(h.length), v.py(y), TColor(90, 90, 90), 2);
+	for (int l = 1; l < h.num_lanes; ++l)
 	{
-		const THighwayOptions& h = o.highway;
-		img.filledRectangle(v.px(0), v.py(h.roadLeft()), v.px(h.length), v.py(h.roadRight()),
-		                    TColor(225, 225, 225));
-		for (double y : {h.roadLeft(), h.roadRight()})
-			img.line(v.px(0), v.py(y), v.px(h.length), v.py(y), TColor(90, 90, 90), 2);
-		for (int l = 1; l < h.num_lanes; ++l)
-		{
-			const double y = h.roadRight() + l * h.lane_width;
-			img.line(v.px(0), v.py(y), v.px(h.length), v.py(y), TColor(150, 150, 150), 1,
-			         mrpt::img::CCanvas::psDash);
-		}
+		const double y = h.roadRight() + l * h.lane_width;
+		img.line(v.px(0), v.py(y), v.px(h.length), v.py(y), TColor(150, 150, 150), 1,
+		         mrpt::img::CCanvas::psDash);
 	}
+}
+
+void drawPolyline(mrpt::img::CImage& img, const TView& v, const std::vector<Eigen::Vector2d>& pts,
+                  TColor c, int w)
+{
+	for (size_t k = 1; k < pts.size(); ++k)
+		img.line(v.px(pts[k - 1][0]), v.py(pts[k - 1][1]), v.px(pts[k][0]), v.py(pts[k][1]), c, w);
+}
+
+/** Landmarks, object tracks (centre path, features at first sighting, start mark), ego path. */
+void drawScene(mrpt::img::CImage& img, const TView& v, const TGroundTruth& gt)
+{
 	for (const auto& [id, p] : gt.landmarks)
 	{
 		const int x = v.px(p[0]), y = v.py(p[1]);
 		img.filledRectangle(x - 3, y - 3, x + 3, y + 3, TColor(250, 210, 0));
 		img.rectangle(x - 3, y - 3, x + 3, y + 3, TColor(120, 100, 0));
 	}
-	auto polyline = [&](const std::vector<Eigen::Vector2d>& pts, TColor c, int w)
-	{
-		for (size_t k = 1; k < pts.size(); ++k)
-			img.line(v.px(pts[k - 1][0]), v.py(pts[k - 1][1]), v.px(pts[k][0]), v.py(pts[k][1]), c,
-			         w);
-	};
 	for (size_t i = 0; i < gt.objects.size(); ++i)
 	{
 		const auto& og = gt.objects[i];
 		const TColor c = objectColor(i);
 		std::vector<Eigen::Vector2d> centre;
 		for (const auto& F : og.features) centre.push_back(F.rowwise().mean());
-		polyline(centre, c, 2);
+		drawPolyline(img, v, centre, c, 2);
 		// Features at the first sighting (the filter's time 0).
 		if (og.first_step >= 0)
 		{
@@ -115,10 +121,15 @@ void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
 	}
 	std::vector<Eigen::Vector2d> ego;
 	for (const auto& x : gt.ego) ego.push_back(x.head<2>());
-	polyline(ego, TColor(220, 0, 0), 3);
+	drawPolyline(img, v, ego, TColor(220, 0, 0), 3);
 	img.drawMark(v.px(0), v.py(0), TColor(220, 0, 0), '+', 8, 2);
+}
 
-	// Legend and scale.
+/** Title line, colour legend and the axis scales. */
+void drawLegend(mrpt::img::CImage& img, const TView& v, const TGroundTruth& gt,
+                const TScenarioOptions& o, int H)
+{
+	const bool highway = o.type == ScenarioType::Highway;
 	char buf[200];
 	std::snprintf(
 	    buf, sizeof(buf),
@@ -143,6 +154,20 @@ void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
 	std::snprintf(buf, sizeof(buf), "x: %.0f m per 100 px   y: %.1f m per 100 px%s", 100 / v.sx,
 	              100 / v.sy, v.sy > v.sx * 1.01 ? "  (lateral axis stretched)" : "");
 	img.textOut(10, H - 18, buf, TColor(60, 60, 60));
+}
+}  // namespace
+
+void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
+                        const std::string& pngPath, int W, int H)
+{
+	gt.checkConsistent();
+	const TView v = fitView(gt, o, W, H);
+	mrpt::img::CImage img(W, H, mrpt::img::CH_RGB);
+	img.filledRectangle(0, 0, W - 1, H - 1, TColor(255, 255, 255));
+	img.selectTextFont("9x15");
+	if (o.type == ScenarioType::Highway) drawRoad(img, v, o.highway);
+	drawScene(img, v, gt);
+	drawLegend(img, v, gt, o, H);
 	if (!img.saveToFile(pngPath))
 		throw std::runtime_error("drawScenarioFigure: cannot write " + pngPath);
 }

@@ -66,33 +66,18 @@ TWorld buildHighway(const TScenarioOptions& o)
 	return w;
 }
 
-TWorld buildGenerated(const TScenarioOptions& o)
+/** -1 or +1 with equal probability (one uniform draw). */
+double randomSide(mrpt::random::CRandomGenerator& rng)
 {
-	const TGeneratedOptions& g = o.generated;
-	TWorld w;
-	w.track.radius = g.track_radius;
-	w.ego.s0 = 0;
-	w.ego.speed = CSmoothProfile(g.ego_speed, {});
-	w.ego.lateral = CSmoothProfile(0, {});
-	mrpt::random::CRandomGenerator rng(o.world_seed);
-	const double T = o.stepTime(o.numSteps() - 1);
-	const double pathLength = g.ego_speed * T;
-	const bool circle = g.track_radius > 0;
-	const double trackLength = circle ? 2 * M_PI * g.track_radius : pathLength + 2 * o.sensor_range;
-	const double trackStart = circle ? 0 : -o.sensor_range;
-	auto side = [&]() { return rng.drawUniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0; };
+	return rng.drawUniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+}
 
-	// Landmarks: uniform along the track (the ego's whole path plus the sensor range on a
-	// straight track, the whole circle otherwise), at a uniform offset on either side.
-	for (int i = 0; i < g.num_landmarks; ++i)
-	{
-		const double s = trackStart + rng.drawUniform(0.0, trackLength);
-		const double d = side() * rng.drawUniform(g.landmark_offset_min, g.landmark_offset_max);
-		w.landmarks.emplace(int32_t(i), w.track.point(s, d));
-	}
-	// Cars: in a lane other than the ego's (lane centres at +-j lane_width), around the ego,
-	// speed ego_speed * factor with a +-10% sine variation (period 20-60 s), weaving by up to
-	// a quarter lane (period 10-30 s).
+/** Cars: in a lane other than the ego's (lane centres at +-j lane_width), around the ego,
+ * speed ego_speed * factor with a +-10% sine variation (period 20-60 s), weaving by up to
+ * a quarter lane (period 10-30 s). */
+void addCars(TWorld& w, const TGeneratedOptions& g, mrpt::random::CRandomGenerator& rng)
+{
+	auto side = [&]() { return randomSide(rng); };
 	const int sideLanes = std::max(1, (g.num_lanes - 1) / 2);
 	for (int i = 0; i < g.num_cars; ++i)
 	{
@@ -115,6 +100,33 @@ TWorld buildGenerated(const TScenarioOptions& o)
 		               : ellipsePoints(g.features_per_car, g.car_length / 2, g.car_width / 2);
 		w.objects.push_back(std::move(obj));
 	}
+}
+
+TWorld buildGenerated(const TScenarioOptions& o)
+{
+	const TGeneratedOptions& g = o.generated;
+	TWorld w;
+	w.track.radius = g.track_radius;
+	w.ego.s0 = 0;
+	w.ego.speed = CSmoothProfile(g.ego_speed, {});
+	w.ego.lateral = CSmoothProfile(0, {});
+	mrpt::random::CRandomGenerator rng(o.world_seed);
+	const double T = o.stepTime(o.numSteps() - 1);
+	const double pathLength = g.ego_speed * T;
+	const bool circle = g.track_radius > 0;
+	const double trackLength = circle ? 2 * M_PI * g.track_radius : pathLength + 2 * o.sensor_range;
+	const double trackStart = circle ? 0 : -o.sensor_range;
+	auto side = [&]() { return randomSide(rng); };
+
+	// Landmarks: uniform along the track (the ego's whole path plus the sensor range on a
+	// straight track, the whole circle otherwise), at a uniform offset on either side.
+	for (int i = 0; i < g.num_landmarks; ++i)
+	{
+		const double s = trackStart + rng.drawUniform(0.0, trackLength);
+		const double d = side() * rng.drawUniform(g.landmark_offset_min, g.landmark_offset_max);
+		w.landmarks.emplace(int32_t(i), w.track.point(s, d));
+	}
+	addCars(w, g, rng);
 	// Pedestrians: cross the road back and forth (d = D sin(w t + phi), D = half the road plus
 	// 2 m, peak speed pedestrian_speed) while drifting 0.3 m/s along it, placed along the
 	// ego's path.

@@ -20,7 +20,9 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/COutputLogger.h>
 
+#include <functional>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -62,5 +64,12 @@ public:
 private:
 	/** --full-covariance, --scene, --video. */
 	void writeOptionalOutputs(const TRawlog& rawlog);
+	/** Writes OUTDIR/name with w and records it in writtenFiles. */
+	void writeOutput(const std::string& name, const std::function<void(std::ostream&)>& w);
+	/** With ground truth: evaluation, metrics.csv/.txt, nees_ego.csv and the printed table;
+	 * without: the NIS only. Then nis.csv. Returns the consistency summary. */
+	eval::TConsistencySummary evaluateAndReport();
+	/** map.png; with ground truth ego_errors.png and nees_ego.png; nis.png. */
+	void drawFigures(const eval::TConsistencySummary& summary);
 };
 }  // namespace dynslam::apps

@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 #include <map>
+#include <set>
 #include <vector>
 
 namespace dynslam::framework
@@ -43,13 +44,13 @@ struct TGaussNewtonOptions
 struct TGaussNewtonResult
 {
 	double cost_before = 0;  ///< cost at x*
-	double max_step = 0;  ///< max |delta| (the convergence measure)
+	double max_step = 0;     ///< max |delta| (the convergence measure)
 	/** Minimum of the linearized cost, C^T C + g^T delta (g = J^T C): for an update on a
 	 * prior, the NIS nu^T (H Sigma H^T + R)^-1 nu. */
 	double cost_linear_min = 0;
 	bool dense = true;
 	Eigen::MatrixXd information;  ///< dense J^T J (dense solver only)
-	Eigen::MatrixXd covariance;  ///< dense (J^T J)^+ (dense solver, compute_covariance)
+	Eigen::MatrixXd covariance;   ///< dense (J^T J)^+ (dense solver, compute_covariance)
 };
 
 class CRunningCost
@@ -98,22 +99,35 @@ public:
 
 	/** Joint covariance of the listed blocks under the cost linearized at the current values
 	 * ((J^T J)^-1 restricted to them). Throws std::runtime_error on a singular system. */
-	Eigen::MatrixXd covariance(
-		const std::vector<TVarKey>& blocks, const TGaussNewtonOptions& opts = {}) const;
+	Eigen::MatrixXd covariance(const std::vector<TVarKey>& blocks,
+	                           const TGaussNewtonOptions& opts = {}) const;
 
 	/** Whitened stacked system of the given terms (all if empty): J (rows x totalDim, storage
 	 * order) and C (rows) with cost = ||C||^2, for tests and the paper's formulas. */
-	void whitenedSystem(
-		Eigen::MatrixXd& J, Eigen::VectorXd& C, const std::vector<size_t>& termIdx = {}) const;
+	void whitenedSystem(Eigen::MatrixXd& J, Eigen::VectorXd& C,
+	                    const std::vector<size_t>& termIdx = {}) const;
 
 private:
 	struct TNormal;
-	void buildNormal(
-		const std::vector<size_t>& termIdx, const std::vector<int>& localOffset,
-		Eigen::MatrixXd& H, Eigen::VectorXd& g, double* cost) const;
+	void buildNormal(const std::vector<size_t>& termIdx, const std::vector<int>& localOffset,
+	                 Eigen::MatrixXd& H, Eigen::VectorXd& g, double* cost) const;
 	std::vector<Eigen::VectorXd> termValues(const CTerm& t) const;
 	void reindex();
 	[[noreturn]] void throwSingular(const Eigen::MatrixXd& Hs, const std::string& where) const;
+	/** Throws the "not constrained by any term" error naming the variable holding index idx. */
+	[[noreturn]] void throwUnconstrained(int idx) const;
+	/** gaussNewtonStep's solve at the current values, dense or sparse normal equations: fills
+	 * g (gradient, sized by the caller), the step delta and res (cost, information, covariance).*/
+	void solveDense(const std::vector<size_t>& all, const TGaussNewtonOptions& opts,
+	                Eigen::VectorXd& g, Eigen::VectorXd& delta, TGaussNewtonResult& res) const;
+	void solveSparse(const std::vector<size_t>& all, const TGaussNewtonOptions& opts,
+	                 Eigen::VectorXd& g, Eigen::VectorXd& delta, TGaussNewtonResult& res) const;
+	/** marginalize()'s bookkeeping: the terms touching the variables mIdx (ascending, appended
+	 * to termIdx) and the other variables those terms touch (kIdx). */
+	void termsTouching(const std::set<size_t>& mIdx, std::vector<size_t>& termIdx,
+	                   std::set<size_t>& kIdx) const;
+	/** Removes the terms at the ascending indices termIdx and the variables varIdx; reindexes. */
+	void eraseTermsAndVariables(const std::vector<size_t>& termIdx, const std::set<size_t>& varIdx);
 
 	std::vector<TVarKey> m_keys;
 	std::vector<Eigen::VectorXd> m_values;
@@ -127,9 +141,8 @@ private:
  *   Omega_K = J_K^T (I - J_M (J_M^T J_M)^-1 J_M^T) J_K,
  *   d_K = -Omega_K^+ J_K^T (I - J_M (J_M^T J_M)^-1 J_M^T) C   (mean = x_K* + d_K).
  * Used by the tests to check CRunningCost::marginalize (Schur complement). */
-void projectorMarginal(
-	const Eigen::MatrixXd& J_K, const Eigen::MatrixXd& J_M, const Eigen::VectorXd& C,
-	Eigen::MatrixXd& Omega_K, Eigen::VectorXd& d_K);
+void projectorMarginal(const Eigen::MatrixXd& J_K, const Eigen::MatrixXd& J_M,
+                       const Eigen::VectorXd& C, Eigen::MatrixXd& Omega_K, Eigen::VectorXd& d_K);
 
 /** Moore-Penrose pseudo-inverse of a symmetric PSD matrix (SelfAdjointEigenSolver;
  * eigenvalues below tol * max are treated as zero). */
