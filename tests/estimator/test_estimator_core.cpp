@@ -24,7 +24,7 @@ TEST(EstimatorRouter, IdRangeRoutesEveryKindAndOwnsTheRegistry)
 {
 	CIdRangeRouter r;
 	const int32_t a0 = ids::objectFeatureId(0, 0), a1 = ids::objectFeatureId(0, 1),
-				  a2 = ids::objectFeatureId(0, 2);
+	              a2 = ids::objectFeatureId(0, 2);
 	auto known = [](int32_t id) { return id == 5; };
 	// Step 0: object 0 first seen with features 0 and 1.
 	TRoutedStep s0 = r.route(0, {rd(5), rd(a0), rd(7), rd(a1)}, known);
@@ -66,8 +66,9 @@ TEST(EstimatorRouter, IdRangeValidationNamesTheReading)
 	}
 	catch (const std::runtime_error& e)
 	{
-		EXPECT_NE(std::string(e.what()).find("who: measurement 1 (landmark ID -1)"), std::string::npos)
-			<< e.what();
+		EXPECT_NE(std::string(e.what()).find("who: measurement 1 (landmark ID -1)"),
+		          std::string::npos)
+		    << e.what();
 	}
 	EXPECT_THROW(r.validate({rd(4), rd(4)}, "who"), std::runtime_error);
 	EXPECT_THROW(makeRouter("classify-not-yet"), std::invalid_argument);
@@ -111,7 +112,7 @@ TEST(EstimatorMotionModel, SmoothingNeedsThreeConsecutiveStepsEndingNow)
 	EXPECT_EQ(m.select(2, 10, {8, 9, 10}, 3).size(), 1u);
 	EXPECT_EQ(m.select(2, 10, {7, 8, 9, 10}, 3).size(), 1u);
 	EXPECT_TRUE(m.select(2, 10, {7, 9, 10}, 3).empty());  // unseen at step 8: a gap
-	EXPECT_TRUE(m.select(2, 10, {8, 9}, 3).empty());  // not seen now
+	EXPECT_TRUE(m.select(2, 10, {8, 9}, 3).empty());      // not seen now
 	EXPECT_TRUE(m.select(2, 10, {7, 8, 10}, 3).empty());
 	const auto pm = m.select(4, 5, {3, 4, 5}, 2);
 	ASSERT_EQ(pm.size(), 1u);
@@ -132,13 +133,13 @@ TEST(EstimatorMotionModel, SmoothingJacobiansMatchNumericalAcrossPi)
 		Eigen::VectorXd all(9);
 		// Angles given wrapped, so near +-pi the differences cross the cut.
 		all << 1, 2, th, 1.2, 2.1, models::wrapToPi(th + 2e-3), 1.5, 2.3,
-			models::wrapToPi(th + 5e-3);
+		    models::wrapToPi(th + 5e-3);
 		auto f = [&](const Eigen::VectorXd& v) {
 			return m.residual(pm, {v.segment(0, 3), v.segment(3, 3), v.segment(6, 3)}, nullptr);
 		};
 		std::vector<Eigen::MatrixXd> J;
 		const Eigen::VectorXd r =
-			m.residual(pm, {all.segment(0, 3), all.segment(3, 3), all.segment(6, 3)}, &J);
+		    m.residual(pm, {all.segment(0, 3), all.segment(3, 3), all.segment(6, 3)}, &J);
 		ASSERT_EQ(J.size(), 3u);
 		Eigen::MatrixXd Jall(3, 9);
 		Jall << J[0], J[1], J[2];

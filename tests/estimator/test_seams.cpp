@@ -2,8 +2,6 @@
  * with nothing else changed (doc/architecture.md): a router with another ID convention, an
  * object motion model of the tests' own (in the EKF and in Alg. 1, which must still agree), and
  * a dense Joseph-form update engine. */
-#include "tiny_scenario.h"
-
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/models/se2.h>
@@ -13,22 +11,24 @@
 #include <Eigen/Cholesky>
 #include <map>
 
+#include "tiny_scenario.h"
+
 using namespace dynslam;
 using namespace dynslam::estimator;
 
 namespace
 {
 const char* kIni =
-	"[DynamicKFSLAM]\n"
-	"measurement_model = cartesian\n"
-	"Sigma_v = [1e-4 1e-4]\n"
-	"motion_noise = action\n"
-	"Sigma_0 = [1e-6 1e-6 1e-8]\n"
-	"Sigma_xi = [0.1 0.1]\n"
-	"[DynamicKFSLAM_KalmanFilter]\n"
-	"method = kfEKFNaive\n"
-	"[Framework]\n"
-	"backend = alg1\n";
+    "[DynamicKFSLAM]\n"
+    "measurement_model = cartesian\n"
+    "Sigma_v = [1e-4 1e-4]\n"
+    "motion_noise = action\n"
+    "Sigma_0 = [1e-6 1e-6 1e-8]\n"
+    "Sigma_xi = [0.1 0.1]\n"
+    "[DynamicKFSLAM_KalmanFilter]\n"
+    "method = kfEKFNaive\n"
+    "[Framework]\n"
+    "backend = alg1\n";
 
 dynslam_test::TinyScenario scenario()
 {
@@ -57,9 +57,8 @@ public:
 		for (const auto& r : rs)
 			if (r.id < 0) throw std::runtime_error(who + ": negative ID");
 	}
-	TRoutedStep route(
-		int step, const std::vector<TReading>& rs,
-		const std::function<bool(int32_t)>& known) override
+	TRoutedStep route(int step, const std::vector<TReading>& rs,
+	                  const std::function<bool(int32_t)>& known) override
 	{
 		TRoutedStep out;
 		for (const auto& r : rs)
@@ -74,8 +73,8 @@ public:
 				m.feature = (r.id - 5000) % 100;
 				const auto role = m_reg.registerReading(m.object, r.id, m.feature, step);
 				m.route = role == FeatureRole::FirstSighting ? Route::ObjectFirstSighting
-							  : role == FeatureRole::TimeT	 ? Route::ObjectTimeT
-															 : Route::Skip;
+				          : role == FeatureRole::TimeT       ? Route::ObjectTimeT
+				                                             : Route::Skip;
 				if (m.route == Route::Skip) ++out.skipped_unknown_object_feature;
 			}
 			out.readings.push_back(m);
@@ -139,8 +138,8 @@ class CConstantPoseModel : public IObjectMotionModel
 public:
 	std::string name() const override { return "constant_pose"; }
 	int posesNeeded() const override { return 2; }
-	std::vector<TPseudoMeasurement> select(
-		int32_t obj, int step, const std::vector<int>& steps, int dim) const override
+	std::vector<TPseudoMeasurement> select(int32_t obj, int step, const std::vector<int>& steps,
+	                                       int dim) const override
 	{
 		const bool now = std::count(steps.begin(), steps.end(), step) == 1;
 		const bool before = std::count(steps.begin(), steps.end(), step - 1) == 1;
@@ -152,20 +151,21 @@ public:
 		m.R = Eigen::MatrixXd::Identity(dim, dim) * 0.05;
 		return {m};
 	}
-	Eigen::VectorXd residual(
-		const TPseudoMeasurement& m, const std::vector<Eigen::VectorXd>& p,
-		std::vector<Eigen::MatrixXd>* J) const override
+	Eigen::VectorXd residual(const TPseudoMeasurement& m, const std::vector<Eigen::VectorXd>& p,
+	                         std::vector<Eigen::MatrixXd>* J) const override
 	{
 		Eigen::VectorXd r = p[1] - p[0];
 		if (m.dim == 3) r[2] = models::wrapToPi(r[2]);
 		if (J)
-			*J = {-Eigen::MatrixXd::Identity(m.dim, m.dim), Eigen::MatrixXd::Identity(m.dim, m.dim)};
+			*J = {-Eigen::MatrixXd::Identity(m.dim, m.dim),
+			      Eigen::MatrixXd::Identity(m.dim, m.dim)};
 		return r;
 	}
 };
 
 /** Max relative difference of the labelled states (means, covariances) of the two filters. */
-std::pair<double, double> compareLabelled(const CDynamicKFSLAM2D& ekf, const framework::CAlg1Backend& alg)
+std::pair<double, double> compareLabelled(const CDynamicKFSLAM2D& ekf,
+                                          const framework::CAlg1Backend& alg)
 {
 	Eigen::VectorXd xe, xa;
 	Eigen::MatrixXd Pe, Pa;
@@ -214,7 +214,8 @@ TEST(Seams, ObjectMotionModelOfTheTestsActsAlikeInTheEkfAndAlg1)
 		worstMean = std::max(worstMean, em);
 		worstCov = std::max(worstCov, ec);
 		applied += ekf.getLastStepReport().smoothing_updates;
-		EXPECT_EQ(ekf.getLastStepReport().smoothing_updates, alg.getLastStepReport().smoothing_updates);
+		EXPECT_EQ(ekf.getLastStepReport().smoothing_updates,
+		          alg.getLastStepReport().smoothing_updates);
 	}
 	EXPECT_GT(applied, 10u);
 	EXPECT_LT(worstMean, 1e-9);
@@ -236,9 +237,9 @@ class CDenseJosephEngine : public IUpdateEngine
 public:
 	int calls = 0;
 	std::string name() const override { return "dense_joseph"; }
-	TUpdateResult update(
-		Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
-		const std::vector<TStaticObservation>& obs, const TUpdateContext& ctx) override
+	TUpdateResult update(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
+	                     const std::vector<TStaticObservation>& obs,
+	                     const TUpdateContext& ctx) override
 	{
 		++calls;
 		TUpdateResult res;
@@ -252,7 +253,7 @@ public:
 			Eigen::Matrix2d Jf;
 			const int i = obs[j].index;
 			const Eigen::Vector2d zh =
-				models::observe(ctx.model, x.head<3>(), x.segment<2>(i), &Jx, &Jf);
+			    models::observe(ctx.model, x.head<3>(), x.segment<2>(i), &Jx, &Jf);
 			nu.segment<2>(2 * j) = models::innovation(ctx.model, obs[j].z, zh);
 			H.block<2, 3>(2 * j, 0) = Jx;
 			H.block<2, 2>(2 * j, i) = Jf;

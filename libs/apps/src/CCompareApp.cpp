@@ -115,6 +115,24 @@ bool CCompareApp::initialize(int argc, const char** argv)
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
 	loadIniFile(iniFile, params);
+	TCompareOverrides o;
+	auto opt = [](const TCLAP::ValueArg<std::string>& a) {
+		return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt;
+	};
+	o.rawlog = opt(argRawlog);
+	o.gt = opt(argGt);
+	o.filters = opt(argFilters);
+	o.out = opt(argOut);
+	o.noGt = argNoGt.getValue();
+	o.noFigures = argNoFig.getValue();
+	o.strict = argStrict.getValue();
+	readSettings(o);
+	if (!outDir.empty()) makeOutputDir(outDir);  // an unusable folder fails before the run
+	return true;
+}
+
+void CCompareApp::readSettings(const TCompareOverrides& o)
+{
 	try
 	{
 		using namespace dynslam::config;
@@ -122,30 +140,29 @@ bool CCompareApp::initialize(int argc, const char** argv)
 		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
 		                   "figures", "out_dir", "progress_every"});
 		data = readDataSettings(params, kSection, folderOf(iniFile));
-		if (argRawlog.isSet())
+		if (o.rawlog)
 		{
 			// The INI's ground truth belongs to its rawlog: look beside the new one instead.
-			data.rawlog = argRawlog.getValue();
+			data.rawlog = *o.rawlog;
 			data.groundTruth = "auto";
 		}
-		if (argGt.isSet()) data.groundTruth = argGt.getValue();
-		if (argNoGt.getValue()) data.groundTruth.clear();
+		if (o.gt) data.groundTruth = *o.gt;
+		if (o.noGt) data.groundTruth.clear();
 		if (data.rawlog.empty())
 			throw std::invalid_argument(
 			    "dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
 
-		const std::string fl = argFilters.isSet() ? argFilters.getValue()
-		                                          : readString(params, kSection, "filters", "");
+		const std::string fl = o.filters ? *o.filters : readString(params, kSection, "filters", "");
 		if (!fl.empty()) filters = parseFilterList(fl);
-		figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+		figures = readBool(params, kSection, "figures", true) && !o.noFigures;
 		progressEvery = int(readInt(params, kSection, "progress_every", 0));
 		if (progressEvery < 0)
 			fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
 		outDir = readString(params, kSection, "out_dir", "");
-		if (argOut.isSet()) outDir = argOut.getValue();
+		if (o.out) outDir = *o.out;
 		if (fullCovariance && outDir.empty())
 			throw std::invalid_argument("--full-covariance needs --out DIR (the files go there)");
-		for (const auto& w : checkSharedSections(params, iniFile, argStrict.getValue()))
+		for (const auto& w : checkSharedSections(params, iniFile, o.strict))
 			MRPT_LOG_WARN(w);
 		for (const auto& f : filters)
 			makeBackend(backendOf(f), params);  // fail early on bad options
@@ -154,8 +171,6 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	{
 		throw std::invalid_argument(inConfigFile(iniFile, e.what()));  // name the INI file
 	}
-	if (!outDir.empty()) makeOutputDir(outDir);  // an unusable folder fails before the run
-	return true;
 }
 
 void CCompareApp::run()

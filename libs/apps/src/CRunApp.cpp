@@ -69,6 +69,24 @@ bool CRunApp::initialize(int argc, const char** argv)
 
 	iniFile = argIni.getValue();
 	loadIniFile(iniFile, params);
+	TRunOverrides o;
+	auto opt = [](const TCLAP::ValueArg<std::string>& a) {
+		return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt;
+	};
+	o.rawlog = opt(argRawlog);
+	o.gt = opt(argGt);
+	o.backend = opt(argBackend);
+	o.out = opt(argOut);
+	o.noGt = argNoGt.getValue();
+	o.noFigures = argNoFig.getValue();
+	o.strict = argStrict.getValue();
+	readSettings(o);
+	makeOutputDir(outDir);  // an unusable folder fails before the run
+	return true;
+}
+
+void CRunApp::readSettings(const TRunOverrides& o)
+{
 	try
 	{
 		using namespace dynslam::config;
@@ -76,19 +94,19 @@ bool CRunApp::initialize(int argc, const char** argv)
 		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "backend",
 		                   "out_dir", "figures", "progress_every"});
 		const TDataSettings d = readDataSettings(params, kSection, folderOf(iniFile));
-		rawlogFile = argRawlog.isSet() ? argRawlog.getValue() : d.rawlog;
+		rawlogFile = o.rawlog ? *o.rawlog : d.rawlog;
 		groundTruth = d.groundTruth;
-		if (argRawlog.isSet())
+		if (o.rawlog)
 			groundTruth = "auto";  // the INI's ground truth belongs to its rawlog
-		if (argGt.isSet()) groundTruth = argGt.getValue();
-		if (argNoGt.getValue()) groundTruth.clear();
+		if (o.gt) groundTruth = *o.gt;
+		if (o.noGt) groundTruth.clear();
 		scenarioFile = d.scenario;
 		noiseFromScenario = d.noiseFromScenario;
 		backend = readString(params, kSection, "backend", "ekf");
-		if (argBackend.isSet()) backend = argBackend.getValue();
+		if (o.backend) backend = *o.backend;
 		outDir = readString(params, kSection, "out_dir", outDir);
-		if (argOut.isSet()) outDir = argOut.getValue();
-		figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+		if (o.out) outDir = *o.out;
+		figures = readBool(params, kSection, "figures", true) && !o.noFigures;
 		progressEvery = int(readInt(params, kSection, "progress_every", 0));
 		if (progressEvery < 0)
 			fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
@@ -96,7 +114,7 @@ bool CRunApp::initialize(int argc, const char** argv)
 			throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " +
 			                            iniFile + ")");
 		// Fail early on bad back-end options (before reading a long rawlog).
-		for (const auto& w : checkSharedSections(params, iniFile, argStrict.getValue()))
+		for (const auto& w : checkSharedSections(params, iniFile, o.strict))
 			MRPT_LOG_WARN(w);
 		makeBackend(backend, params);
 	}
@@ -104,8 +122,6 @@ bool CRunApp::initialize(int argc, const char** argv)
 	{
 		throw std::invalid_argument(inConfigFile(iniFile, e.what()));  // name the INI file
 	}
-	makeOutputDir(outDir);  // an unusable folder fails before the run
-	return true;
 }
 
 void CRunApp::run()

@@ -19,7 +19,8 @@ estimator::TPoseRecord toRecord(const TObjectPoseEstimate& e)
 {
 	const auto d = e.mean.size();
 	if ((d != 2 && d != 3) || e.cov.rows() != d || e.cov.cols() != d)
-		throw std::invalid_argument("toRecord: a pose has 2 or 3 entries and a matching covariance");
+		throw std::invalid_argument(
+		    "toRecord: a pose has 2 or 3 entries and a matching covariance");
 	estimator::TPoseRecord r;
 	r.step = e.step;
 	r.dim = int(d);
@@ -46,8 +47,7 @@ std::map<int32_t, TObjectTrack> tracksFromRegistry(const estimator::CObjectRegis
 void sortTrackPoses(std::map<int32_t, TObjectTrack>& tracks)
 {
 	for (auto& [obj, tr] : tracks)
-		std::stable_sort(tr.poses.begin(), tr.poses.end(), [](const auto& a, const auto& b) {
-			return a.step < b.step;
-		});
+		std::stable_sort(tr.poses.begin(), tr.poses.end(),
+		                 [](const auto& a, const auto& b) { return a.step < b.step; });
 }
 }  // namespace dynslam

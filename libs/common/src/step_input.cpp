@@ -1,5 +1,4 @@
 #include <dynslam/step_input.h>
-
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
@@ -17,23 +16,22 @@ void checkOdometryCov(const Eigen::Matrix3d& U, const std::string& who)
 {
 	const Eigen::Matrix3d Us = 0.5 * (U + U.transpose());
 	if ((U - Us).cwiseAbs().maxCoeff() > 1e-9 * std::max(1.0, U.cwiseAbs().maxCoeff()) ||
-		Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Us).eigenvalues().minCoeff() <
-			-1e-12 * std::max(1.0, U.norm()))
-		throw std::runtime_error(
-			who + ": odometry covariance is not symmetric positive semi-definite");
+	    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Us).eigenvalues().minCoeff() <
+	        -1e-12 * std::max(1.0, U.norm()))
+		throw std::runtime_error(who +
+		                         ": odometry covariance is not symmetric positive semi-definite");
 }
 }  // namespace
 
-estimator::TStepInput parseStepInput(
-	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF,
-	const TParseOptions& opts, const std::string& who)
+estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& action,
+                                     const mrpt::obs::CSensoryFrame::Ptr& SF,
+                                     const TParseOptions& opts, const std::string& who)
 {
 	if (!action) throw std::runtime_error(who + ": null action collection");
 	const auto mov = action->getBestMovementEstimation();
 	if (!mov)
-		throw std::runtime_error(
-			who + ": the action collection holds no CActionRobotMovement2D (" +
-			std::to_string(action->size()) + " action(s) of another type)");
+		throw std::runtime_error(who + ": the action collection holds no CActionRobotMovement2D (" +
+		                         std::to_string(action->size()) + " action(s) of another type)");
 	const mrpt::poses::CPosePDFGaussian inc(*mov->poseChange);
 	estimator::TStepInput in;
 	in.u = Eigen::Vector3d(inc.mean.x(), inc.mean.y(), inc.mean.phi());
@@ -46,19 +44,19 @@ estimator::TStepInput parseStepInput(
 	if (!obs) return in;
 	const auto& sp = obs->sensorLocationOnRobot;
 	if (std::abs(sp.x()) + std::abs(sp.y()) + std::abs(sp.z()) + std::abs(sp.yaw()) +
-			std::abs(sp.pitch()) + std::abs(sp.roll()) >
-		0)
+	        std::abs(sp.pitch()) + std::abs(sp.roll()) >
+	    0)
 		throw std::runtime_error(
-			who +
-			": sensorLocationOnRobot must be the identity (the models place the sensor at the "
-			"robot's origin)");
+		    who +
+		    ": sensorLocationOnRobot must be the identity (the models place the sensor at the "
+		    "robot's origin)");
 	in.max_range = obs->maxSensorDistance;
 	in.readings.reserve(obs->sensedData.size());
 	for (size_t i = 0; i < obs->sensedData.size(); ++i)
 	{
 		const auto& m = obs->sensedData[i];
 		const std::string where = "measurement " + std::to_string(i) + " (landmark ID " +
-								  std::to_string(m.landmarkID) + ")";
+		                          std::to_string(m.landmarkID) + ")";
 		if (!std::isfinite(m.range) || !std::isfinite(m.yaw) || !std::isfinite(m.pitch))
 			throw std::runtime_error(who + ": NaN or Inf in " + where);
 		if (m.pitch != 0)
@@ -66,8 +64,7 @@ estimator::TStepInput parseStepInput(
 		if (!(m.range >= 0)) throw std::runtime_error(who + ": negative range in " + where);
 		if (opts.model == models::MeasurementModel::RangeBearing && m.range == 0)
 			throw std::runtime_error(who + ": zero range in " + where + " (bearing undefined)");
-		in.readings.push_back(
-			{m.landmarkID, models::fromRangeBearing(opts.model, m.range, m.yaw)});
+		in.readings.push_back({m.landmarkID, models::fromRangeBearing(opts.model, m.range, m.yaw)});
 	}
 	return in;
 }

@@ -64,19 +64,18 @@ void CIdRangeRouter::validate(const std::vector<TReading>& readings, const std::
 	{
 		const int32_t id = readings[i].id;
 		const std::string where =
-			"measurement " + std::to_string(i) + " (landmark ID " + std::to_string(id) + ")";
+		    "measurement " + std::to_string(i) + " (landmark ID " + std::to_string(id) + ")";
 		if (ids::classify(id) == ids::IdKind::Invalid)
 			throw std::runtime_error(
-				who + ": " + where +
-				" is in no known ID range (static 0..99999, object features >= 100000; see "
-				"dynslam/landmark_ids.h)");
+			    who + ": " + where +
+			    " is in no known ID range (static 0..99999, object features >= 100000; see "
+			    "dynslam/landmark_ids.h)");
 		if (!seen.insert(id).second) throw std::runtime_error(who + ": duplicate " + where);
 	}
 }
 
-TRoutedStep CIdRangeRouter::route(
-	int step, const std::vector<TReading>& readings,
-	const std::function<bool(int32_t)>& isKnownStatic)
+TRoutedStep CIdRangeRouter::route(int step, const std::vector<TReading>& readings,
+                                  const std::function<bool(int32_t)>& isKnownStatic)
 {
 	TRoutedStep out;
 	out.readings.reserve(readings.size());

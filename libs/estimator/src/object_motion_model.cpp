@@ -6,21 +6,21 @@
 
 namespace dynslam::estimator
 {
-Eigen::VectorXd CNoObjectMotion::residual(
-	const TPseudoMeasurement&, const std::vector<Eigen::VectorXd>&,
-	std::vector<Eigen::MatrixXd>*) const
+Eigen::VectorXd CNoObjectMotion::residual(const TPseudoMeasurement&,
+                                          const std::vector<Eigen::VectorXd>&,
+                                          std::vector<Eigen::MatrixXd>*) const
 {
 	throw std::logic_error("CNoObjectMotion: has no pseudo-measurements");
 }
 
-std::vector<TPseudoMeasurement> CPaperSmoothing::select(
-	int32_t object, int step, const std::vector<int>& poseSteps, int dim) const
+std::vector<TPseudoMeasurement> CPaperSmoothing::select(int32_t object, int step,
+                                                        const std::vector<int>& poseSteps,
+                                                        int dim) const
 {
 	// The three poses must be of consecutive steps ending now (an object unseen for a step
 	// has no pose then: no smoothing across the gap).
-	const auto has = [&](int s) {
-		return std::find(poseSteps.begin(), poseSteps.end(), s) != poseSteps.end();
-	};
+	const auto has = [&](int s)
+	{ return std::find(poseSteps.begin(), poseSteps.end(), s) != poseSteps.end(); };
 	if (!has(step) || !has(step - 1) || !has(step - 2)) return {};
 	TPseudoMeasurement m;
 	m.object = object;
@@ -30,9 +30,9 @@ std::vector<TPseudoMeasurement> CPaperSmoothing::select(
 	return {m};
 }
 
-Eigen::VectorXd CPaperSmoothing::residual(
-	const TPseudoMeasurement& m, const std::vector<Eigen::VectorXd>& poses,
-	std::vector<Eigen::MatrixXd>* J) const
+Eigen::VectorXd CPaperSmoothing::residual(const TPseudoMeasurement& m,
+                                          const std::vector<Eigen::VectorXd>& poses,
+                                          std::vector<Eigen::MatrixXd>* J) const
 {
 	if (poses.size() != 3) throw std::invalid_argument("CPaperSmoothing: needs three poses");
 	if (!J) return models::smoothingResidual(poses[0], poses[1], poses[2]);
@@ -41,8 +41,8 @@ Eigen::VectorXd CPaperSmoothing::residual(
 	return models::smoothingResidual(poses[0], poses[1], poses[2], &(*J)[0], &(*J)[1], &(*J)[2]);
 }
 
-std::unique_ptr<IObjectMotionModel> makeObjectMotionModel(
-	bool smoothing, const Eigen::Matrix3d& Sigma_s)
+std::unique_ptr<IObjectMotionModel> makeObjectMotionModel(bool smoothing,
+                                                          const Eigen::Matrix3d& Sigma_s)
 {
 	if (smoothing) return std::make_unique<CPaperSmoothing>(Sigma_s);
 	return std::make_unique<CNoObjectMotion>();

@@ -33,8 +33,8 @@ void CPaddedLayout::clear()
 void CPaddedLayout::append(const TBlock& b)
 {
 	if (b.dim < 1 || b.dim > 4)
-		throw std::invalid_argument(
-			"CPaddedLayout: a block has 1..4 entries, not " + std::to_string(b.dim));
+		throw std::invalid_argument("CPaddedLayout: a block has 1..4 entries, not " +
+		                            std::to_string(b.dim));
 	m_first.push_back(storageDim());
 	for (int s = 0; s < b.slots(); ++s) m_blockAtSlot.push_back(m_blocks.size());
 	m_blocks.push_back(b);
@@ -51,7 +51,8 @@ std::vector<int> CPaddedLayout::padIndices() const
 {
 	std::vector<int> out;
 	for (size_t b = 0; b < m_blocks.size(); ++b)
-		for (int i = m_blocks[b].dim; i < 2 * m_blocks[b].slots(); ++i) out.push_back(m_first[b] + i);
+		for (int i = m_blocks[b].dim; i < 2 * m_blocks[b].slots(); ++i)
+			out.push_back(m_first[b] + i);
 	return out;
 }
 

@@ -10,9 +10,10 @@ double gateThreshold2Dof(double p)
 	return p > 0 ? -2.0 * std::log(1.0 - p) : std::numeric_limits<double>::infinity();
 }
 
-TUpdateResult CSparseUpdateEngine::update(
-	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
-	const std::vector<TStaticObservation>& obs, const TUpdateContext& ctx)
+TUpdateResult CSparseUpdateEngine::update(Eigen::Ref<Eigen::VectorXd> x,
+                                          Eigen::Ref<ekf::RowMatrixXd> P,
+                                          const std::vector<TStaticObservation>& obs,
+                                          const TUpdateContext& ctx)
 {
 	TUpdateResult res;
 	const Eigen::Vector3d ego = x.head<3>();
@@ -26,7 +27,7 @@ TUpdateResult CSparseUpdateEngine::update(
 		models::Matrix23d J_z_x;
 		Eigen::Matrix2d J_z_f;
 		const Eigen::Vector2d zhat =
-			models::observe(ctx.model, ego, Eigen::Vector2d(x[si], x[si + 1]), &J_z_x, &J_z_f);
+		    models::observe(ctx.model, ego, Eigen::Vector2d(x[si], x[si + 1]), &J_z_x, &J_z_f);
 		const Eigen::Vector2d nu = models::innovation(ctx.model, o.z, zhat);
 		if (ctx.jacobians) ctx.jacobians(o.id, ego, J_z_x, J_z_f);
 		if (std::isfinite(ctx.gate_threshold))

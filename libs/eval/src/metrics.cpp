@@ -70,15 +70,12 @@ void checkGroundTruth(const TGroundTruth& gt)
 	}
 }
 
-TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est)
+namespace
 {
-	checkEstimates(est);
-	checkGroundTruth(gt);
-	TRunMetrics m;
-	m.ms_per_step = est.ms_per_step;
+// Ego: every estimated step inside the ground truth; ATE unaligned and SE(2)-aligned.
+void scoreEgo(const TGroundTruth& gt, const TRunEstimates& est, TRunMetrics& m)
+{
 	const int nSteps = static_cast<int>(gt.numSteps());
-
-	// Ego: every estimated step inside the ground truth.
 	TSq ego;
 	double sumSqPos = 0;
 	std::vector<Eigen::Vector2d> estXY, truthXY;
@@ -103,8 +100,11 @@ TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est)
 		m.ate = std::sqrt(sumSqPos / static_cast<double>(ego.x.size()));
 		m.ate_aligned = alignSE2(estXY, truthXY).rms;
 	}
+}
 
-	// Static map: final estimates of IDs present in the ground truth.
+// Static map: final estimates of IDs present in the ground truth.
+void scoreStaticMap(const TGroundTruth& gt, const TRunEstimates& est, TRunMetrics& m)
+{
 	TSq lm;
 	std::set<int32_t> scored;
 	for (const auto& l : est.landmarks)
@@ -121,49 +121,63 @@ TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est)
 	}
 	m.static_map = lm.finish();
 	m.landmarks_missing = gt.landmarks.size() - scored.size();
+}
 
-	// Objects.
+// One object: its time-0 features and its poses.
+TObjectMetrics scoreObject(const TObjectGroundTruth& o, const TRunEstimates& est, int nSteps, TRunMetrics& m)
+{
+	TObjectMetrics om;
+	om.object = o.object;
+	om.translation_only = o.translationOnly();
+	TSq feat;
+	std::set<int32_t> featScored;
+	for (const auto& f : est.object_features)
+	{
+		if (f.object != o.object) continue;
+		if (o.first_step < 0 || f.feature < 0 || f.feature >= o.num_features)
+		{
+			++m.object_estimates_unmatched;
+			continue;
+		}
+		const Eigen::Vector2d truth = o.features[o.first_step].col(f.feature);
+		feat.x.push_back(f.mean[0] - truth[0]);
+		feat.y.push_back(f.mean[1] - truth[1]);
+		featScored.insert(f.feature);
+	}
+	om.features = feat.finish();
+	om.features_missing = static_cast<size_t>(o.num_features) - featScored.size();
+	TSq pose;
+	for (const auto& p : est.object_poses)
+	{
+		if (p.object != o.object) continue;
+		if (p.step < 0 || p.step >= nSteps || !o.pose[p.step].allFinite())
+		{
+			++om.poses_skipped;
+			continue;
+		}
+		const Eigen::Vector3d& truth = o.pose[p.step];
+		pose.x.push_back(p.mean[0] - truth[0]);
+		pose.y.push_back(p.mean[1] - truth[1]);
+		if (p.mean.size() == 3) pose.theta.push_back(models::wrapToPi(p.mean[2] - truth[2]));
+	}
+	om.poses = pose.finish();
+	return om;
+}
+}  // namespace
+
+TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est)
+{
+	checkEstimates(est);
+	checkGroundTruth(gt);
+	TRunMetrics m;
+	m.ms_per_step = est.ms_per_step;
+	scoreEgo(gt, est, m);
+	scoreStaticMap(gt, est, m);
 	std::set<int32_t> known;
 	for (const auto& o : gt.objects)
 	{
 		known.insert(o.object);
-		TObjectMetrics om;
-		om.object = o.object;
-		om.translation_only = o.translationOnly();
-		TSq feat;
-		std::set<int32_t> featScored;
-		for (const auto& f : est.object_features)
-		{
-			if (f.object != o.object) continue;
-			if (o.first_step < 0 || f.feature < 0 || f.feature >= o.num_features)
-			{
-				++m.object_estimates_unmatched;
-				continue;
-			}
-			const Eigen::Vector2d truth = o.features[o.first_step].col(f.feature);
-			feat.x.push_back(f.mean[0] - truth[0]);
-			feat.y.push_back(f.mean[1] - truth[1]);
-			featScored.insert(f.feature);
-		}
-		om.features = feat.finish();
-		om.features_missing = static_cast<size_t>(o.num_features) - featScored.size();
-
-		TSq pose;
-		for (const auto& p : est.object_poses)
-		{
-			if (p.object != o.object) continue;
-			if (p.step < 0 || p.step >= nSteps || !o.pose[p.step].allFinite())
-			{
-				++om.poses_skipped;
-				continue;
-			}
-			const Eigen::Vector3d& truth = o.pose[p.step];
-			pose.x.push_back(p.mean[0] - truth[0]);
-			pose.y.push_back(p.mean[1] - truth[1]);
-			if (p.mean.size() == 3) pose.theta.push_back(models::wrapToPi(p.mean[2] - truth[2]));
-		}
-		om.poses = pose.finish();
-		m.objects.push_back(om);
+		m.objects.push_back(scoreObject(o, est, static_cast<int>(gt.numSteps()), m));
 	}
 	for (const auto& f : est.object_features)
 		if (!known.count(f.object)) ++m.object_estimates_unmatched;

@@ -223,6 +223,45 @@ void CWindowBackend::addObjects(const estimator::TRoutedStep& in, const TVarKey&
 	}
 }
 
+namespace
+{
+/** The CubeSLAM-like measurement of an object's body pose from the features seen now (points
+ * `pts` with covariances `covs`, `seen` their index in `body`): T = (c0 + xi_t, xi_theta) with
+ * its covariance Gamma2 diag(covs) Gamma2^T, or the point itself for a one-feature object.
+ * False if the rotation is undetermined. */
+bool fitBodyPose(
+	const Eigen::Matrix2Xd& body, const std::vector<int>& seen,
+	const std::vector<Eigen::Vector2d>& pts, const std::vector<Eigen::Matrix2d>& covs,
+	Eigen::VectorXd& T, Eigen::MatrixXd& ST)
+{
+	const size_t m = pts.size();
+	if (body.cols() == 1)
+	{
+		T = pts[0];
+		ST = covs[0];
+		return true;
+	}
+	Eigen::Matrix2Xd zt(2, m);
+	for (size_t i = 0; i < m; ++i) zt.col(Eigen::Index(i)) = pts[i];
+	Eigen::MatrixXd G1, G2;
+	Eigen::Vector3d xi;
+	try
+	{
+		xi = models::objectPoseInverse(body, zt, seen, &G1, &G2);
+	}
+	catch (const std::domain_error&)
+	{
+		return false;
+	}
+	const Eigen::Vector2d c0 = body.rowwise().mean();
+	T = Eigen::Vector3d(c0[0] + xi[0], c0[1] + xi[1], xi[2]);
+	ST = Eigen::MatrixXd::Zero(3, 3);
+	for (size_t i = 0; i < m; ++i)
+		ST += G2.middleCols(2 * i, 2) * covs[i] * G2.middleCols(2 * i, 2).transpose();
+	return true;
+}
+}  // namespace
+
 void CWindowBackend::addCubeObjects(const estimator::TRoutedStep& in, const TVarKey& ego)
 {
 	CRunningCost& c = objectCost();
@@ -270,31 +309,10 @@ void CWindowBackend::addCubeObjects(const estimator::TRoutedStep& in, const TVar
 		}
 		Eigen::VectorXd T;
 		Eigen::MatrixXd ST;
-		if (n == 1)
+		if (!fitBodyPose(body, seen, pts, covs, T, ST))
 		{
-			T = pts[0];
-			ST = covs[0];
-		}
-		else
-		{
-			Eigen::Matrix2Xd zt(2, m);
-			for (size_t i = 0; i < m; ++i) zt.col(Eigen::Index(i)) = pts[i];
-			Eigen::MatrixXd G1, G2;
-			Eigen::Vector3d xi;
-			try
-			{
-				xi = models::objectPoseInverse(body, zt, seen, &G1, &G2);
-			}
-			catch (const std::domain_error&)
-			{
-				++m_report.skipped_pose_degenerate;
-				continue;
-			}
-			const Eigen::Vector2d c0 = body.rowwise().mean();
-			T = Eigen::Vector3d(c0[0] + xi[0], c0[1] + xi[1], xi[2]);
-			ST = Eigen::MatrixXd::Zero(3, 3);
-			for (size_t i = 0; i < m; ++i)
-				ST += G2.middleCols(2 * i, 2) * covs[i] * G2.middleCols(2 * i, 2).transpose();
+			++m_report.skipped_pose_degenerate;
+			continue;
 		}
 		const TVarKey k = TVarKey::objectBodyPose(obj, m_step);
 		Eigen::VectorXd init(T.size());

@@ -8,7 +8,6 @@
  * std::runtime_error, prefixed by `who`, before anything is changed. */
 #include <dynslam/estimator/readings.h>
 #include <dynslam/models/measurement.h>
-
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 
@@ -24,7 +23,7 @@ struct TParseOptions
 	bool odometry_cov_used = true;
 };
 
-estimator::TStepInput parseStepInput(
-	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF,
-	const TParseOptions& opts, const std::string& who);
+estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& action,
+                                     const mrpt::obs::CSensoryFrame::Ptr& SF,
+                                     const TParseOptions& opts, const std::string& who);
 }  // namespace dynslam

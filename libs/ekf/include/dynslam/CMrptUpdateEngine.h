@@ -16,10 +16,9 @@ public:
 	explicit CMrptUpdateEngine(CDynamicKFSLAM2D& kf) : m_kf(kf) {}
 	std::string name() const override { return "mrpt"; }
 	/** x and P must be the filter's own storage (MRPT updates it in place). */
-	estimator::TUpdateResult update(
-		Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
-		const std::vector<estimator::TStaticObservation>& obs,
-		const estimator::TUpdateContext& ctx) override;
+	estimator::TUpdateResult update(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
+	                                const std::vector<estimator::TStaticObservation>& obs,
+	                                const estimator::TUpdateContext& ctx) override;
 
 private:
 	CDynamicKFSLAM2D& m_kf;

@@ -72,6 +72,14 @@ public:
 	std::vector<std::string> writtenFiles;
 
 private:
+	/** What the command line overrides in the INI's [Compare] section. */
+	struct TCompareOverrides
+	{
+		std::optional<std::string> rawlog, gt, filters, out;
+		bool noGt = false, noFigures = false, strict = false;
+	};
+	/** Reads [Compare] and checks every filter's options, with the command line's overrides. */
+	void readSettings(const TCompareOverrides& o);
 	TRawlog m_rawlog;  ///< kept for the snapshot figure
 	void writeOutputs(const std::string& optionsDump);
 	void drawFigures();

@@ -62,6 +62,14 @@ public:
 	std::vector<std::string> writtenFiles;
 
 private:
+	/** What the command line overrides in the INI's [Run] section. */
+	struct TRunOverrides
+	{
+		std::optional<std::string> rawlog, gt, backend, out;
+		bool noGt = false, noFigures = false, strict = false;
+	};
+	/** Reads [Run] and checks the back-end's options, with the command line's overrides. */
+	void readSettings(const TRunOverrides& o);
 	/** --full-covariance, --scene, --video. */
 	void writeOptionalOutputs(const TRawlog& rawlog);
 	/** Writes OUTDIR/name with w and records it in writtenFiles. */

@@ -14,9 +14,9 @@ namespace dynslam::estimator
 struct TDropOptions
 {
 	bool drop_time_t_features = true;
-	int keep_last_poses = 1;  ///< K >= 1
+	int keep_last_poses = 1;                 ///< K >= 1
 	int drop_static_after_unseen_steps = 0;  ///< N; 0 = never
-	bool record_dropped = true;  ///< keep the last estimate of what is dropped
+	bool record_dropped = true;              ///< keep the last estimate of what is dropped
 };
 
 class CDropPolicy

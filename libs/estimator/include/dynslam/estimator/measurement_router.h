@@ -18,11 +18,11 @@ namespace dynslam::estimator
 {
 enum class Route : uint8_t
 {
-	StaticKnown,  ///< a static landmark in the state: updates it (Alg. 5)
-	StaticNew,  ///< a static landmark not in the state: initialises it (Alg. 3)
+	StaticKnown,          ///< a static landmark in the state: updates it (Alg. 5)
+	StaticNew,            ///< a static landmark not in the state: initialises it (Alg. 3)
 	ObjectFirstSighting,  ///< a feature of an object whose time 0 is this step: its f_0
-	ObjectTimeT,  ///< a known feature of an object first seen earlier: its f_t
-	Skip  ///< not used (counted in TRoutedStep)
+	ObjectTimeT,          ///< a known feature of an object first seen earlier: its f_t
+	Skip                  ///< not used (counted in TRoutedStep)
 };
 const char* toString(Route r);
 
@@ -30,7 +30,7 @@ struct TRoutedReading
 {
 	TReading reading;
 	Route route = Route::Skip;
-	int32_t object = -1;  ///< object readings: the object
+	int32_t object = -1;   ///< object readings: the object
 	int32_t feature = -1;  ///< object readings: the feature index within the object
 };
 
@@ -60,9 +60,8 @@ public:
 	virtual void validate(const std::vector<TReading>& readings, const std::string& who) const = 0;
 	/** Routes the readings of `step` (validated). isKnownStatic(id) says whether static
 	 * landmark `id` is in the state. Registers new objects and first-sighting features. */
-	virtual TRoutedStep route(
-		int step, const std::vector<TReading>& readings,
-		const std::function<bool(int32_t)>& isKnownStatic) = 0;
+	virtual TRoutedStep route(int step, const std::vector<TReading>& readings,
+	                          const std::function<bool(int32_t)>& isKnownStatic) = 0;
 	virtual const CObjectRegistry& registry() const = 0;
 	virtual CObjectRegistry& registry() = 0;
 	/** The ID of feature `feature` of object `object` in this router's convention. */
@@ -77,9 +76,8 @@ class CIdRangeRouter : public IMeasurementRouter
 public:
 	std::string name() const override { return "ids"; }
 	void validate(const std::vector<TReading>& readings, const std::string& who) const override;
-	TRoutedStep route(
-		int step, const std::vector<TReading>& readings,
-		const std::function<bool(int32_t)>& isKnownStatic) override;
+	TRoutedStep route(int step, const std::vector<TReading>& readings,
+	                  const std::function<bool(int32_t)>& isKnownStatic) override;
 	const CObjectRegistry& registry() const override { return m_registry; }
 	CObjectRegistry& registry() override { return m_registry; }
 	int32_t featureId(int32_t object, int32_t feature) const override;

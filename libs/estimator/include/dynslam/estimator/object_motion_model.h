@@ -33,12 +33,13 @@ public:
 	virtual int posesNeeded() const = 0;
 	/** This step's pseudo-measurements on object `object`, whose poses in the state are at
 	 * `poseSteps` (ascending), each of `dim` entries. */
-	virtual std::vector<TPseudoMeasurement> select(
-		int32_t object, int step, const std::vector<int>& poseSteps, int dim) const = 0;
+	virtual std::vector<TPseudoMeasurement> select(int32_t object, int step,
+	                                               const std::vector<int>& poseSteps,
+	                                               int dim) const = 0;
 	/** r at the poses (one vector per entry of m.steps) and, if J is given, J_r_pose for each. */
-	virtual Eigen::VectorXd residual(
-		const TPseudoMeasurement& m, const std::vector<Eigen::VectorXd>& poses,
-		std::vector<Eigen::MatrixXd>* J) const = 0;
+	virtual Eigen::VectorXd residual(const TPseudoMeasurement& m,
+	                                 const std::vector<Eigen::VectorXd>& poses,
+	                                 std::vector<Eigen::MatrixXd>* J) const = 0;
 };
 
 /** No motion model (the paper's default). */
@@ -47,14 +48,13 @@ class CNoObjectMotion : public IObjectMotionModel
 public:
 	std::string name() const override { return "none"; }
 	int posesNeeded() const override { return 1; }
-	std::vector<TPseudoMeasurement> select(
-		int32_t, int, const std::vector<int>&, int) const override
+	std::vector<TPseudoMeasurement> select(int32_t, int, const std::vector<int>&,
+	                                       int) const override
 	{
 		return {};
 	}
-	Eigen::VectorXd residual(
-		const TPseudoMeasurement&, const std::vector<Eigen::VectorXd>&,
-		std::vector<Eigen::MatrixXd>*) const override;
+	Eigen::VectorXd residual(const TPseudoMeasurement&, const std::vector<Eigen::VectorXd>&,
+	                         std::vector<Eigen::MatrixXd>*) const override;
 };
 
 /** The paper's smoothing (Alg. 6): s(xi_{t-2}, xi_{t-1}, xi_t) = 0 + n_s, n_s ~ N(0, Sigma_s),
@@ -66,17 +66,17 @@ public:
 	explicit CPaperSmoothing(const Eigen::Matrix3d& Sigma_s) : m_Sigma_s(Sigma_s) {}
 	std::string name() const override { return "paper_smoothing"; }
 	int posesNeeded() const override { return 3; }
-	std::vector<TPseudoMeasurement> select(
-		int32_t object, int step, const std::vector<int>& poseSteps, int dim) const override;
-	Eigen::VectorXd residual(
-		const TPseudoMeasurement& m, const std::vector<Eigen::VectorXd>& poses,
-		std::vector<Eigen::MatrixXd>* J) const override;
+	std::vector<TPseudoMeasurement> select(int32_t object, int step,
+	                                       const std::vector<int>& poseSteps,
+	                                       int dim) const override;
+	Eigen::VectorXd residual(const TPseudoMeasurement& m, const std::vector<Eigen::VectorXd>& poses,
+	                         std::vector<Eigen::MatrixXd>* J) const override;
 
 private:
 	Eigen::Matrix3d m_Sigma_s;
 };
 
 /** The model of the options: smoothing on -> CPaperSmoothing(Sigma_s), off -> none. */
-std::unique_ptr<IObjectMotionModel> makeObjectMotionModel(
-	bool smoothing, const Eigen::Matrix3d& Sigma_s);
+std::unique_ptr<IObjectMotionModel> makeObjectMotionModel(bool smoothing,
+                                                          const Eigen::Matrix3d& Sigma_s);
 }  // namespace dynslam::estimator

@@ -24,8 +24,8 @@ struct TPoseRecord
 struct TObjectEntry
 {
 	int first_step = -1;
-	std::vector<int32_t> feature_ids;  ///< features seen at time 0, in observation order
-	std::vector<int32_t> feature_index;  ///< their feature index within the object
+	std::vector<int32_t> feature_ids;        ///< features seen at time 0, in observation order
+	std::vector<int32_t> feature_index;      ///< their feature index within the object
 	std::vector<TPoseRecord> dropped_poses;  ///< ascending step
 	/** Index of feature `id` in feature_ids, or -1 if it is not in the feature set. */
 	int indexOf(int32_t id) const;
@@ -37,8 +37,8 @@ struct TObjectEntry
 enum class FeatureRole
 {
 	FirstSighting,  ///< the object's time 0 is this step: the reading defines f_0
-	TimeT,  ///< a known feature of an object first seen earlier: f_t
-	Unknown  ///< not in the object's feature set: no f_0, skipped
+	TimeT,          ///< a known feature of an object first seen earlier: f_t
+	Unknown         ///< not in the object's feature set: no f_0, skipped
 };
 
 class CObjectRegistry

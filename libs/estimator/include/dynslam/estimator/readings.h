@@ -21,7 +21,7 @@ struct TStepInput
 {
 	Eigen::Vector3d u = Eigen::Vector3d::Zero();  ///< odometry increment (robot frame)
 	Eigen::Matrix3d U = Eigen::Matrix3d::Zero();  ///< its covariance (from the action)
-	std::vector<TReading> readings;  ///< in observation order, IDs unique
-	double max_range = 0;  ///< the sensor's range [m] (0: unknown)
+	std::vector<TReading> readings;               ///< in observation order, IDs unique
+	double max_range = 0;                         ///< the sensor's range [m] (0: unknown)
 };
 }  // namespace dynslam::estimator

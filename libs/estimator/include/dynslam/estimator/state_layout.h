@@ -20,19 +20,19 @@ enum class BlockKind : uint8_t
 	StaticLandmark,  ///< f = (x, y)
 	ObjectFeature0,  ///< feature of a moving object at its first sighting (time 0)
 	ObjectFeatureT,  ///< feature of a moving object now (time t)
-	ObjectPose,  ///< xi_t = (dx, dy, dtheta), or (dx, dy) for one-feature objects
-	ObjectVelocity  ///< reserved for object motion models (vx, vy, omega)
+	ObjectPose,      ///< xi_t = (dx, dy, dtheta), or (dx, dy) for one-feature objects
+	ObjectVelocity   ///< reserved for object motion models (vx, vy, omega)
 };
 const char* toString(BlockKind k);
 
 struct TBlock
 {
 	BlockKind kind = BlockKind::StaticLandmark;
-	int32_t id = -1;  ///< landmark / feature ID (features), -1 otherwise
-	int32_t object = -1;  ///< the object (object blocks)
+	int32_t id = -1;       ///< landmark / feature ID (features), -1 otherwise
+	int32_t object = -1;   ///< the object (object blocks)
 	int32_t feature = -1;  ///< the feature index within the object (features)
-	int step = -1;  ///< step of a pose or of a time-t feature; creation step otherwise
-	int dim = 2;  ///< entries (without the pad)
+	int step = -1;         ///< step of a pose or of a time-t feature; creation step otherwise
+	int dim = 2;           ///< entries (without the pad)
 	/** 2-dof storage slots it occupies. */
 	int slots() const { return (dim + 1) / 2; }
 };

@@ -34,8 +34,8 @@ struct TUpdateContext
 	/** Optional: replaces the Jacobians J_z_x, J_z_f of landmark `id` at ego pose `ego`
 	 * (first-estimate Jacobians); the innovation stays at the current estimate. */
 	std::function<void(int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x,
-					   Eigen::Matrix2d& J_z_f)>
-		jacobians;
+	                   Eigen::Matrix2d& J_z_f)>
+	    jacobians;
 };
 
 struct TUpdateResult
@@ -51,9 +51,9 @@ public:
 	virtual ~IUpdateEngine() = default;
 	virtual std::string name() const = 0;
 	/** Updates (x, P) in place with the readings; the ego pose is x[0..2]. */
-	virtual TUpdateResult update(
-		Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
-		const std::vector<TStaticObservation>& obs, const TUpdateContext& ctx) = 0;
+	virtual TUpdateResult update(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
+	                             const std::vector<TStaticObservation>& obs,
+	                             const TUpdateContext& ctx) = 0;
 };
 
 /** The sparse symmetric update (ekf::sparseUpdate): O(n^2 k) for k readings. */
@@ -61,9 +61,9 @@ class CSparseUpdateEngine : public IUpdateEngine
 {
 public:
 	std::string name() const override { return "sparse"; }
-	TUpdateResult update(
-		Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
-		const std::vector<TStaticObservation>& obs, const TUpdateContext& ctx) override;
+	TUpdateResult update(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
+	                     const std::vector<TStaticObservation>& obs,
+	                     const TUpdateContext& ctx) override;
 };
 
 /** Chi-square quantile with 2 dof in closed form (F(x) = 1 - exp(-x/2)) of probability p;
