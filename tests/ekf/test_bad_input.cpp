@@ -30,7 +30,8 @@ struct Fixture
 		for (size_t k = 0; k < 3; ++k) f.processActionObservation(sc.actions[k], sc.frames[k]);
 	}
 	/** A frame with one range-bearing observation holding the given measurements. */
-	static mrpt::obs::CSensoryFrame::Ptr frame(const std::vector<CObservationBearingRange::TMeasurement>& ms)
+	static mrpt::obs::CSensoryFrame::Ptr frame(
+	    const std::vector<CObservationBearingRange::TMeasurement>& ms)
 	{
 		auto obs = CObservationBearingRange::Create();
 		obs->maxSensorDistance = 12;
@@ -39,7 +40,8 @@ struct Fixture
 		sf->insert(obs);
 		return sf;
 	}
-	static CObservationBearingRange::TMeasurement meas(int32_t id, float r, float yaw, float pitch = 0)
+	static CObservationBearingRange::TMeasurement meas(int32_t id, float r, float yaw,
+	                                                   float pitch = 0)
 	{
 		CObservationBearingRange::TMeasurement m;
 		m.landmarkID = id;
@@ -49,9 +51,8 @@ struct Fixture
 		return m;
 	}
 	/** Expects a throw whose message contains `what`, and an unchanged filter. */
-	void expectRejected(
-		const mrpt::obs::CActionCollection::Ptr& a, const mrpt::obs::CSensoryFrame::Ptr& sf,
-		const std::string& what)
+	void expectRejected(const mrpt::obs::CActionCollection::Ptr& a,
+	                    const mrpt::obs::CSensoryFrame::Ptr& sf, const std::string& what)
 	{
 		const Eigen::VectorXd x0 = f.fullMean().asEigen();
 		const Eigen::MatrixXd P0 = f.fullCov().asEigen();
@@ -72,7 +73,8 @@ struct Fixture
 		EXPECT_EQ(f.stepCount(), step0);
 	}
 };
-const auto zeroAction = [] {
+const auto zeroAction = []
+{
 	return dynslam_test::makeAction(Eigen::Vector3d(0.1, 0, 0), Eigen::Matrix3d::Identity() * 1e-6);
 };
 }  // namespace
@@ -80,31 +82,36 @@ const auto zeroAction = [] {
 TEST(DynamicBadInput, NanOrInfInObservation)
 {
 	Fixture t;
-	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(1, std::nanf(""), 0.1f)}), "NaN or Inf");
-	t.expectRejected(
-		zeroAction(), Fixture::frame({Fixture::meas(1, 3, std::numeric_limits<float>::infinity())}),
-		"NaN or Inf");
+	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(1, std::nanf(""), 0.1f)}),
+	                 "NaN or Inf");
+	t.expectRejected(zeroAction(),
+	                 Fixture::frame({Fixture::meas(1, 3, std::numeric_limits<float>::infinity())}),
+	                 "NaN or Inf");
 }
 
 TEST(DynamicBadInput, NanInOdometry)
 {
 	Fixture t;
-	auto a = dynslam_test::makeAction(Eigen::Vector3d(std::nan(""), 0, 0), Eigen::Matrix3d::Identity() * 1e-6);
+	auto a = dynslam_test::makeAction(Eigen::Vector3d(std::nan(""), 0, 0),
+	                                  Eigen::Matrix3d::Identity() * 1e-6);
 	t.expectRejected(a, Fixture::frame({}), "not finite");
 }
 
 TEST(DynamicBadInput, DuplicateIdsInOneObservation)
 {
 	Fixture t;
-	t.expectRejected(
-		zeroAction(), Fixture::frame({Fixture::meas(3, 5, 0.1f), Fixture::meas(3, 6, 0.2f)}), "duplicate");
+	t.expectRejected(zeroAction(),
+	                 Fixture::frame({Fixture::meas(3, 5, 0.1f), Fixture::meas(3, 6, 0.2f)}),
+	                 "duplicate");
 }
 
 TEST(DynamicBadInput, UnknownIdRange)
 {
 	Fixture t;
-	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(-1, 5, 0.1f)}), "no known ID range");
-	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(-7, 5, 0.1f)}), "no known ID range");
+	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(-1, 5, 0.1f)}),
+	                 "no known ID range");
+	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(-7, 5, 0.1f)}),
+	                 "no known ID range");
 }
 
 TEST(DynamicBadInput, NonZeroPitchAndZeroRange)
@@ -121,7 +128,8 @@ TEST(DynamicBadInput, WrongActionType)
 	mrpt::obs::CActionRobotMovement3D m3;
 	acts->insert(m3);
 	t.expectRejected(acts, Fixture::frame({}), "no CActionRobotMovement2D");
-	t.expectRejected(mrpt::obs::CActionCollection::Create(), Fixture::frame({}), "no CActionRobotMovement2D");
+	t.expectRejected(mrpt::obs::CActionCollection::Create(), Fixture::frame({}),
+	                 "no CActionRobotMovement2D");
 	t.expectRejected(nullptr, Fixture::frame({}), "null action");
 	t.expectRejected(zeroAction(), nullptr, "null sensory frame");
 }
@@ -145,7 +153,8 @@ TEST(DynamicBadInput, ObjectWithIdenticalFeaturesIsSkippedAndCounted)
 	for (int k = 0; k < 4; ++k)
 	{
 		std::vector<CObservationBearingRange::TMeasurement> ms{Fixture::meas(1, 4, 0.3f)};
-		for (int j = 0; j < 3; ++j) ms.push_back(Fixture::meas(ids::objectFeatureId(5, j), 6 + 0.1f * k, -0.2f));
+		for (int j = 0; j < 3; ++j)
+			ms.push_back(Fixture::meas(ids::objectFeatureId(5, j), 6 + 0.1f * k, -0.2f));
 		f.processActionObservation(zeroAction(), Fixture::frame(ms));
 		skipped += f.getLastStepReport().skipped_pose_degenerate;
 		EXPECT_TRUE(f.fullCov().asEigen().allFinite());
@@ -169,7 +178,9 @@ TEST(DynamicBadInput, CollinearFeaturesAreFineIn2D)
 			const Eigen::Vector2d rb = models::cartesianToRangeBearing(p);
 			ms.push_back(Fixture::meas(ids::objectFeatureId(2, j), float(rb[0]), float(rb[1])));
 		}
-		f.processActionObservation(dynslam_test::makeAction(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()), Fixture::frame(ms));
+		f.processActionObservation(
+		    dynslam_test::makeAction(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()),
+		    Fixture::frame(ms));
 		EXPECT_EQ(f.getLastStepReport().skipped_pose_degenerate, 0u);
 	}
 	const auto poses = f.getObjectTracks().at(2).poses;
@@ -189,12 +200,12 @@ TEST(DynamicBadInput, FeatureNotSeenAtTimeZeroIsSkippedAndCounted)
 	f.reset();
 	const auto a = dynslam_test::makeAction(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero());
 	f.processActionObservation(
-		a, Fixture::frame({Fixture::meas(ids::objectFeatureId(1, 0), 5, 0.1f),
-						   Fixture::meas(ids::objectFeatureId(1, 1), 5, 0.3f)}));
+	    a, Fixture::frame({Fixture::meas(ids::objectFeatureId(1, 0), 5, 0.1f),
+	                       Fixture::meas(ids::objectFeatureId(1, 1), 5, 0.3f)}));
 	f.processActionObservation(
-		a, Fixture::frame({Fixture::meas(ids::objectFeatureId(1, 0), 5, 0.1f),
-						   Fixture::meas(ids::objectFeatureId(1, 1), 5, 0.3f),
-						   Fixture::meas(ids::objectFeatureId(1, 2), 5, 0.5f)}));
+	    a, Fixture::frame({Fixture::meas(ids::objectFeatureId(1, 0), 5, 0.1f),
+	                       Fixture::meas(ids::objectFeatureId(1, 1), 5, 0.3f),
+	                       Fixture::meas(ids::objectFeatureId(1, 2), 5, 0.5f)}));
 	EXPECT_EQ(f.getLastStepReport().skipped_unknown_object_feature, 1u);
 	EXPECT_EQ(f.getLastStepReport().object_poses_added, 1u);
 }
@@ -202,10 +213,11 @@ TEST(DynamicBadInput, FeatureNotSeenAtTimeZeroIsSkippedAndCounted)
 TEST(DynamicBadInput, IdAboveLastObjectIsInvalid)
 {
 	static_assert(ids::classify(INT32_MAX) == ids::IdKind::Invalid);
-	static_assert(ids::classify(ids::kObjectBase + ids::kMaxObject * ids::kFeaturesPerObject + 999) ==
-				  ids::IdKind::ObjectFeature);
+	static_assert(ids::classify(ids::kObjectBase + ids::kMaxObject * ids::kFeaturesPerObject +
+	                            999) == ids::IdKind::ObjectFeature);
 	Fixture t;
-	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(INT32_MAX, 5, 0.1f)}), "no known ID range");
+	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(INT32_MAX, 5, 0.1f)}),
+	                 "no known ID range");
 }
 
 TEST(DynamicBadInput, NumericalFailureMidStepIsReportedAndBlocksUntilReset)
@@ -244,6 +256,7 @@ TEST(DynamicBadInput, NumericalFailureMidStepIsReportedAndBlocksUntilReset)
 	}
 	f.options.Sigma_v = o.Sigma_rb;
 	f.reset();
-	for (size_t k = 0; k < sc.actions.size(); ++k) f.processActionObservation(sc.actions[k], sc.frames[k]);
+	for (size_t k = 0; k < sc.actions.size(); ++k)
+		f.processActionObservation(sc.actions[k], sc.frames[k]);
 	EXPECT_TRUE(f.fullCov().asEigen().allFinite());
 }

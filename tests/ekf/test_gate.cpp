@@ -10,7 +10,8 @@ using namespace dynslam;
 
 namespace
 {
-mrpt::obs::CSensoryFrame::Ptr copyFrame(const mrpt::obs::CSensoryFrame::Ptr& sf, int dropIdx, float addRange)
+mrpt::obs::CSensoryFrame::Ptr copyFrame(const mrpt::obs::CSensoryFrame::Ptr& sf, int dropIdx,
+                                        float addRange)
 {
 	auto obs = sf->getObservationByClass<mrpt::obs::CObservationBearingRange>();
 	auto o2 = mrpt::obs::CObservationBearingRange::Create(*obs);
@@ -64,7 +65,8 @@ TEST(DynamicGate, OutlierRejectedAndEqualToRunWithoutIt)
 		}
 		EXPECT_EQ(gated, 1u) << "sparse=" << sparse;
 		EXPECT_EQ(gatedClean, 0u) << "no inlier of the clean data is gated (p = 0.999)";
-		const Eigen::VectorXd a = withOutlier.fullMean().asEigen(), b = without.fullMean().asEigen();
+		const Eigen::VectorXd a = withOutlier.fullMean().asEigen(),
+		                      b = without.fullMean().asEigen();
 		ASSERT_EQ(a.size(), b.size());
 		EXPECT_LT((a - b).cwiseAbs().maxCoeff(), 1e-12);
 		// Without the gate the outlier pulls the ego away.

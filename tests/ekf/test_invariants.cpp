@@ -18,8 +18,8 @@ void checkInvariants(const CDynamicKFSLAM2D& f, size_t step)
 	const double scale = std::max(1.0, P.cwiseAbs().maxCoeff());
 	EXPECT_LE((P - P.transpose()).cwiseAbs().maxCoeff(), 1e-12 * scale) << "step " << step;
 	const double lmin = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (P + P.transpose()))
-							.eigenvalues()
-							.minCoeff();
+	                        .eigenvalues()
+	                        .minCoeff();
 	EXPECT_GE(lmin, -1e-10 * scale) << "step " << step;
 	for (const size_t i : f.padIndices())
 	{
@@ -27,7 +27,10 @@ void checkInvariants(const CDynamicKFSLAM2D& f, size_t step)
 		EXPECT_EQ(f.fullMean()[i], 0.0);
 		for (Eigen::Index j = 0; j < P.rows(); ++j)
 		{
-			if (j != Eigen::Index(i)) { ASSERT_EQ(P(i, j), 0.0) << "pad correlated, step " << step; }
+			if (j != Eigen::Index(i))
+			{
+				ASSERT_EQ(P(i, j), 0.0) << "pad correlated, step " << step;
+			}
 		}
 	}
 }
@@ -36,55 +39,60 @@ void checkInvariants(const CDynamicKFSLAM2D& f, size_t step)
 TEST(DynamicInvariants, CovarianceSymmetricPsdAndPadsClean)
 {
 	for (bool sparse : {true, false})
-	for (bool smoothing : {false, true})
-		for (bool dropT : {true, false})
-		{
-			dynslam_test::TinyScenarioOptions o;
-			o.objects = 3;
-			o.features_per_object = 3;
-			o.cartesian_noise = true;
-			o.steps = 35;
-			const auto sc = dynslam_test::makeTinyScenario(o);
-			CDynamicKFSLAM2D f;
-			f.options.measurement_model = models::MeasurementModel::Cartesian;
-			f.options.Sigma_v = o.Sigma_v;
-			f.options.Sigma_0 = o.Sigma_w;
-			f.options.smoothing = smoothing;
-			f.options.keep_last_poses = smoothing ? 3 : 1;
-			f.options.drop_time_t_features = dropT;
-			f.options.sparse_static_update = sparse;
-			f.reset();
-			size_t poses = 0, smooth = 0;
-			for (size_t k = 0; k < sc.actions.size(); ++k)
+		for (bool smoothing : {false, true})
+			for (bool dropT : {true, false})
 			{
-				f.processActionObservation(sc.actions[k], sc.frames[k]);
-				checkInvariants(f, k);
-				poses += f.getLastStepReport().object_poses_added;
-				smooth += f.getLastStepReport().smoothing_updates;
-				// At most K poses per object stay in the state.
-				std::map<int32_t, int> inState;
-				for (const auto& s : f.getSlots())
-					if (s.kind == SlotKind::ObjectPoseA) ++inState[s.object];
-				for (const auto& [obj, n] : inState) EXPECT_LE(n, f.options.keep_last_poses);
-				if (dropT)
+				dynslam_test::TinyScenarioOptions o;
+				o.objects = 3;
+				o.features_per_object = 3;
+				o.cartesian_noise = true;
+				o.steps = 35;
+				const auto sc = dynslam_test::makeTinyScenario(o);
+				CDynamicKFSLAM2D f;
+				f.options.measurement_model = models::MeasurementModel::Cartesian;
+				f.options.Sigma_v = o.Sigma_v;
+				f.options.Sigma_0 = o.Sigma_w;
+				f.options.smoothing = smoothing;
+				f.options.keep_last_poses = smoothing ? 3 : 1;
+				f.options.drop_time_t_features = dropT;
+				f.options.sparse_static_update = sparse;
+				f.reset();
+				size_t poses = 0, smooth = 0;
+				for (size_t k = 0; k < sc.actions.size(); ++k)
 				{
-					for (const auto& s : f.getSlots()) EXPECT_NE(s.kind, SlotKind::ObjectFeatureT);
+					f.processActionObservation(sc.actions[k], sc.frames[k]);
+					checkInvariants(f, k);
+					poses += f.getLastStepReport().object_poses_added;
+					smooth += f.getLastStepReport().smoothing_updates;
+					// At most K poses per object stay in the state.
+					std::map<int32_t, int> inState;
+					for (const auto& s : f.getSlots())
+						if (s.kind == SlotKind::ObjectPoseA) ++inState[s.object];
+					for (const auto& [obj, n] : inState) EXPECT_LE(n, f.options.keep_last_poses);
+					if (dropT)
+					{
+						for (const auto& s : f.getSlots())
+							EXPECT_NE(s.kind, SlotKind::ObjectFeatureT);
+					}
+				}
+				EXPECT_GT(poses, 20u);
+				if (smoothing)
+				{
+					EXPECT_GT(smooth, 10u);
+				}
+				// Every object's history: one pose per step it was seen after its first sighting.
+				for (const auto& [obj, tr] : f.getObjectTracks())
+				{
+					EXPECT_EQ(tr.num_features, 3);
+					for (size_t i = 1; i < tr.poses.size(); ++i)
+						EXPECT_LT(tr.poses[i - 1].step, tr.poses[i].step);
+					for (const auto& p : tr.poses)
+					{
+						EXPECT_EQ(p.mean.size(), 3);
+						EXPECT_TRUE(p.cov.allFinite());
+					}
 				}
 			}
-			EXPECT_GT(poses, 20u);
-			if (smoothing) { EXPECT_GT(smooth, 10u); }
-			// Every object's history: one pose per step it was seen after its first sighting.
-			for (const auto& [obj, tr] : f.getObjectTracks())
-			{
-				EXPECT_EQ(tr.num_features, 3);
-				for (size_t i = 1; i < tr.poses.size(); ++i) EXPECT_LT(tr.poses[i - 1].step, tr.poses[i].step);
-				for (const auto& p : tr.poses)
-				{
-					EXPECT_EQ(p.mean.size(), 3);
-					EXPECT_TRUE(p.cov.allFinite());
-				}
-			}
-		}
 }
 
 TEST(DynamicInvariants, ObjectPosesTrackGroundTruthNoiseFree)
@@ -100,7 +108,8 @@ TEST(DynamicInvariants, ObjectPosesTrackGroundTruthNoiseFree)
 	f.options.measurement_model = models::MeasurementModel::Cartesian;
 	f.options.Sigma_v = o.Sigma_v;
 	f.reset();
-	for (size_t k = 0; k < sc.actions.size(); ++k) f.processActionObservation(sc.actions[k], sc.frames[k]);
+	for (size_t k = 0; k < sc.actions.size(); ++k)
+		f.processActionObservation(sc.actions[k], sc.frames[k]);
 	const auto tracks = f.getObjectTracks();
 	ASSERT_EQ(tracks.size(), 2u);
 	for (const auto& [obj, tr] : tracks)
@@ -108,7 +117,8 @@ TEST(DynamicInvariants, ObjectPosesTrackGroundTruthNoiseFree)
 		{
 			// The tiny scenario rotates object a by 0.03 (a + 1) rad per step.
 			const int dk = p.step - tr.first_step;
-			EXPECT_NEAR(p.mean[2], 0.03 * (obj + 1) * dk, 1e-5) << "object " << obj << " step " << p.step;
+			EXPECT_NEAR(p.mean[2], 0.03 * (obj + 1) * dk, 1e-5)
+			    << "object " << obj << " step " << p.step;
 		}
 	const auto ego = f.getEgoPose();
 	EXPECT_NEAR(ego.mean.x(), sc.ego.back()[0], 1e-4);

@@ -58,10 +58,13 @@ TEST(DynamicOptions, GoodFileLoads)
 
 TEST(DynamicOptions, RequiredKeysThrowNamingThem)
 {
-	EXPECT_NE(loadError(replaced("measurement_model", "")).find("measurement_model: required"), std::string::npos);
+	EXPECT_NE(loadError(replaced("measurement_model", "")).find("measurement_model: required"),
+	          std::string::npos);
 	EXPECT_NE(loadError(replaced("Sigma_v", "")).find("Sigma_v: required"), std::string::npos);
 	// motion_noise = config makes Sigma_w required
-	EXPECT_NE(loadError(replaced("motion_noise", "motion_noise = config")).find("Sigma_w: required"), std::string::npos);
+	EXPECT_NE(
+	    loadError(replaced("motion_noise", "motion_noise = config")).find("Sigma_w: required"),
+	    std::string::npos);
 }
 
 TEST(DynamicOptions, InvalidValuesNameSectionKeyAndValue)

@@ -2,9 +2,9 @@
  * same action/observation sequence: ego pose, landmarks and the full covariance. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
+#include <mrpt/slam/CRangeBearingKFSLAM2D.h>
 
 #include <iostream>
-#include <mrpt/slam/CRangeBearingKFSLAM2D.h>
 
 #include "tiny_scenario.h"
 
@@ -21,9 +21,8 @@ dynslam_test::TinyScenarioOptions options(unsigned seed)
 	return o;
 }
 
-void runBoth(
-	mrpt::bayes::TKFMethod method, const dynslam_test::TinyScenarioOptions& o, double* worstX,
-	double* worstP, bool sparse = false)
+void runBoth(mrpt::bayes::TKFMethod method, const dynslam_test::TinyScenarioOptions& o,
+             double* worstX, double* worstP, bool sparse = false)
 {
 	const auto sc = dynslam_test::makeTinyScenario(o);
 
@@ -62,8 +61,10 @@ void runBoth(
 		ASSERT_EQ(size_t(x.size()), size_t(dyn.fullMean().size())) << "step " << k;
 		const Eigen::VectorXd dx = x.asEigen() - dyn.fullMean().asEigen();
 		const Eigen::MatrixXd dP = P.asEigen() - dyn.fullCov().asEigen();
-		*worstX = std::max(*worstX, dx.cwiseAbs().maxCoeff() / std::max(1.0, x.asEigen().cwiseAbs().maxCoeff()));
-		*worstP = std::max(*worstP, dP.cwiseAbs().maxCoeff() / std::max(1e-300, P.asEigen().cwiseAbs().maxCoeff()));
+		*worstX = std::max(
+		    *worstX, dx.cwiseAbs().maxCoeff() / std::max(1.0, x.asEigen().cwiseAbs().maxCoeff()));
+		*worstP = std::max(*worstP, dP.cwiseAbs().maxCoeff() /
+		                                std::max(1e-300, P.asEigen().cwiseAbs().maxCoeff()));
 		// Same landmark IDs in the same slots.
 		for (const auto& [slot, id] : ids) EXPECT_EQ(dyn.getSlots().at(slot).id, id);
 	}
@@ -111,8 +112,8 @@ TEST(DynamicVsMrpt, UnevenCorrelatedOdometryNoiseAtNonZeroHeading)
 		o.Sigma_w << 4e-4, 1.5e-4, 2e-5, 1.5e-4, 1e-4, -1e-5, 2e-5, -1e-5, 1e-5;
 		double ex, ep;
 		runBoth(mrpt::bayes::kfEKFNaive, o, &ex, &ep, sparse);
-		std::cout << "uneven correlated odometry noise (sparse " << sparse << "): worst relative |dx| "
-				  << ex << ", |dP| " << ep << "\n";
+		std::cout << "uneven correlated odometry noise (sparse " << sparse
+		          << "): worst relative |dx| " << ex << ", |dP| " << ep << "\n";
 		EXPECT_LT(ex, 1e-9);
 		EXPECT_LT(ep, 1e-9);
 	}
@@ -133,7 +134,7 @@ TEST(DynamicVsMrpt, SparseStaticUpdateEqualsMrptUpdate)
 		for (CDynamicKFSLAM2D* f : {&a, &b})
 		{
 			f->options.measurement_model =
-				cart ? models::MeasurementModel::Cartesian : models::MeasurementModel::RangeBearing;
+			    cart ? models::MeasurementModel::Cartesian : models::MeasurementModel::RangeBearing;
 			f->options.Sigma_v = cart ? o.Sigma_v : o.Sigma_rb;
 			f->options.Sigma_0 = o.Sigma_w;
 			f->KF_options.method = mrpt::bayes::kfEKFNaive;
@@ -151,12 +152,13 @@ TEST(DynamicVsMrpt, SparseStaticUpdateEqualsMrptUpdate)
 			const Eigen::MatrixXd Pa = a.fullCov().asEigen(), Pb = b.fullCov().asEigen();
 			worst = std::max(worst, (Pa - Pb).cwiseAbs().maxCoeff() / Pa.cwiseAbs().maxCoeff());
 			worst = std::max(
-				worst, (a.fullMean().asEigen() - b.fullMean().asEigen()).cwiseAbs().maxCoeff() /
-						   std::max(1.0, a.fullMean().asEigen().cwiseAbs().maxCoeff()));
+			    worst, (a.fullMean().asEigen() - b.fullMean().asEigen()).cwiseAbs().maxCoeff() /
+			               std::max(1.0, a.fullMean().asEigen().cwiseAbs().maxCoeff()));
 			EXPECT_NEAR(a.getLastStepReport().nis_static, b.getLastStepReport().nis_static,
-						1e-7 * std::max(1.0, a.getLastStepReport().nis_static));
+			            1e-7 * std::max(1.0, a.getLastStepReport().nis_static));
 		}
-		std::cout << (cart ? "cartesian" : "range-bearing") << ": sparse vs MRPT worst relative " << worst << "\n";
+		std::cout << (cart ? "cartesian" : "range-bearing") << ": sparse vs MRPT worst relative "
+		          << worst << "\n";
 		EXPECT_LT(worst, 1e-9);
 	}
 }

@@ -28,7 +28,7 @@ struct TinyScenarioOptions
 	Eigen::Vector3d u = Eigen::Vector3d(0.5, 0.0, 0.05);  ///< true increment per step
 	Eigen::Matrix3d Sigma_w = Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal();
 	bool cartesian_noise = false;  ///< false: range-bearing noise with Sigma_rb
-	Eigen::Matrix2d Sigma_v = Eigen::Matrix2d::Identity() * 1e-4;  ///< Cartesian noise
+	Eigen::Matrix2d Sigma_v = Eigen::Matrix2d::Identity() * 1e-4;         ///< Cartesian noise
 	Eigen::Matrix2d Sigma_rb = Eigen::Vector2d(1e-4, 1e-6).asDiagonal();  ///< range-bearing noise
 	unsigned seed = 1;
 	bool noise = true;
@@ -51,13 +51,15 @@ inline Eigen::VectorXd gaussian(std::mt19937& g, const Eigen::MatrixXd& S)
 	return es.eigenvectors() * es.eigenvalues().cwiseMax(0).cwiseSqrt().asDiagonal() * e;
 }
 
-inline mrpt::obs::CActionCollection::Ptr makeAction(const Eigen::Vector3d& u, const Eigen::Matrix3d& C)
+inline mrpt::obs::CActionCollection::Ptr makeAction(const Eigen::Vector3d& u,
+                                                    const Eigen::Matrix3d& C)
 {
 	mrpt::obs::CActionRobotMovement2D mov;
 	mrpt::math::CMatrixDouble33 cov;
 	for (int i = 0; i < 3; ++i)
 		for (int j = 0; j < 3; ++j) cov(i, j) = C(i, j);
-	mov.poseChange = mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(u[0], u[1], u[2]), cov);
+	mov.poseChange =
+	    mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(u[0], u[1], u[2]), cov);
 	mov.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
 	auto acts = mrpt::obs::CActionCollection::Create();
 	acts->insert(mov);
@@ -87,7 +89,8 @@ inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
 		ob.w = 0.03 * (a + 1);
 		ob.off.resize(2, o.features_per_object);
 		for (int k = 0; k < o.features_per_object; ++k)
-			ob.off.col(k) = Eigen::Vector2d(std::cos(2.1 * k + a), std::sin(2.1 * k + a)) * (0.8 + 0.2 * k);
+			ob.off.col(k) =
+			    Eigen::Vector2d(std::cos(2.1 * k + a), std::sin(2.1 * k + a)) * (0.8 + 0.2 * k);
 		objs.push_back(ob);
 	}
 	Eigen::Vector3d x = Eigen::Vector3d::Zero();
@@ -98,7 +101,8 @@ inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
 		if (k > 0)
 		{
 			x = models::composePose(x, o.u);
-			meas_u = o.u + (o.noise ? Eigen::Vector3d(gaussian(g, o.Sigma_w)) : Eigen::Vector3d::Zero());
+			meas_u =
+			    o.u + (o.noise ? Eigen::Vector3d(gaussian(g, o.Sigma_w)) : Eigen::Vector3d::Zero());
 			cov = o.Sigma_w;
 		}
 		sc.ego.push_back(x);
@@ -107,7 +111,8 @@ inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
 		obs->sensorLabel = "RB";
 		obs->maxSensorDistance = float(o.range);
 		obs->fieldOfView_yaw = float(2 * M_PI);
-		auto add = [&](int32_t id, const Eigen::Vector2d& f) {
+		auto add = [&](int32_t id, const Eigen::Vector2d& f)
+		{
 			Eigen::Vector2d rb;
 			if (o.cartesian_noise)
 			{
@@ -135,7 +140,8 @@ inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
 			const Eigen::Vector2d c = ob.c + ob.v * k;
 			if ((c - x.head<2>()).norm() > o.range) continue;
 			const Eigen::Matrix2d R = models::rot2(ob.w * k);
-			for (int f = 0; f < ob.off.cols(); ++f) add(ids::objectFeatureId(a, f), c + R * ob.off.col(f));
+			for (int f = 0; f < ob.off.cols(); ++f)
+				add(ids::objectFeatureId(a, f), c + R * ob.off.col(f));
 		}
 		auto sf = mrpt::obs::CSensoryFrame::Create();
 		sf->insert(obs);

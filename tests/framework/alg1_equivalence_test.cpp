@@ -2,8 +2,6 @@
  * the dynamic EKF (CDynamicKFSLAM2D, a CKalmanFilterCapable subclass) at every step, on the
  * highway scenario and on generated scenarios: mean and covariance within 1e-9 relative
  * (max |A - B| / max |B|), after removing the EKF's pad entries and matching entries by label. */
-#include "framework_test_utils.h"
-
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/models/se2.h>
@@ -14,6 +12,8 @@
 #include <iostream>
 #include <map>
 
+#include "framework_test_utils.h"
+
 using namespace dynslam;
 using namespace dynslam::framework;
 
@@ -22,16 +22,16 @@ namespace
 std::string modelIni(const std::string& extra)
 {
 	return "[DynamicKFSLAM]\n"
-		   "measurement_model = cartesian\n"
-		   "Sigma_v = [1e-5 1e-5]\n"
-		   "motion_noise = action\n"
-		   "Sigma_0 = [1e-6 1e-6 1e-8]\n"
-		   "Sigma_xi = [0.1 0.1]\n" +
-		   extra +
-		   "[DynamicKFSLAM_KalmanFilter]\n"
-		   "method = kfEKFNaive\n"
-		   "[Framework]\n"
-		   "backend = alg1\n";
+	       "measurement_model = cartesian\n"
+	       "Sigma_v = [1e-5 1e-5]\n"
+	       "motion_noise = action\n"
+	       "Sigma_0 = [1e-6 1e-6 1e-8]\n"
+	       "Sigma_xi = [0.1 0.1]\n" +
+	       extra +
+	       "[DynamicKFSLAM_KalmanFilter]\n"
+	       "method = kfEKFNaive\n"
+	       "[Framework]\n"
+	       "backend = alg1\n";
 }
 
 struct TWorst
@@ -89,10 +89,11 @@ TWorst runBoth(const sim::TScenarioOptions& so, uint64_t seed, const std::string
 		w.dropped_time_t += ra.dropped_time_t;
 		EXPECT_EQ(ra.smoothing_updates, ekf.getLastStepReport().smoothing_updates);
 		EXPECT_EQ(ra.dropped_static, ekf.getLastStepReport().dropped_static);
-		EXPECT_EQ(alg.getLastStepReport().object_poses_added, ekf.getLastStepReport().object_poses_added);
+		EXPECT_EQ(alg.getLastStepReport().object_poses_added,
+		          ekf.getLastStepReport().object_poses_added);
 		EXPECT_EQ(alg.getLastStepReport().dropped_poses, ekf.getLastStepReport().dropped_poses);
 		EXPECT_NEAR(alg.getLastStepReport().nis_static, ekf.getLastStepReport().nis_static,
-			1e-6 * std::max(1.0, ekf.getLastStepReport().nis_static));
+		            1e-6 * std::max(1.0, ekf.getLastStepReport().nis_static));
 	}
 	return w;
 }
@@ -107,7 +108,7 @@ sim::TScenarioOptions scenario(const std::string& file, int steps)
 TWorst report(const char* what, const TWorst& w)
 {
 	std::cout << "[alg1 vs EKF] " << what << ": " << w.steps << " steps, worst mean rel. error "
-			  << w.mean << ", worst covariance rel. error " << w.cov << "\n";
+	          << w.mean << ", worst covariance rel. error " << w.cov << "\n";
 	EXPECT_GT(w.steps, 0);
 	EXPECT_LT(w.mean, 1e-9) << what;
 	EXPECT_LT(w.cov, 1e-9) << what;
@@ -126,25 +127,27 @@ TEST(Alg1, WholeRunEquivalenceGeneratedScenarios)
 	const auto so = scenario("generated_small_scenario.ini", 18);
 	report("generated, defaults", runBoth(so, 2, ""));
 	const TWorst keep =
-		report("generated, keep time-t features", runBoth(so, 3, "drop_time_t_features = false\n"));
+	    report("generated, keep time-t features", runBoth(so, 3, "drop_time_t_features = false\n"));
 	EXPECT_GT(keep.dropped_time_t, 0u);  // stale f_t replaced (marginalized) when seen again
-	const TWorst sm = report("generated, smoothing, K = 3",
-		runBoth(so, 4, "smoothing = true\nSigma_s = [1e-2 1e-2 1e-3]\nkeep_last_poses = 3\n"));
+	const TWorst sm = report(
+	    "generated, smoothing, K = 3",
+	    runBoth(so, 4, "smoothing = true\nSigma_s = [1e-2 1e-2 1e-3]\nkeep_last_poses = 3\n"));
 	EXPECT_GT(sm.smoothing, 0u);
 	const TWorst dr = report("generated, static drop after 2 unseen steps",
-		runBoth(so, 5, "drop_static_after_unseen_steps = 2\n"));
+	                         runBoth(so, 5, "drop_static_after_unseen_steps = 2\n"));
 	EXPECT_GT(dr.dropped_static, 0u);
 }
 
 TEST(Alg1, WholeRunEquivalenceRangeBearingAndConfigNoise)
 {
 	auto so = scenario("generated_small_scenario.ini", 18);
-	report("generated, range-bearing, Sigma_w from config",
-		runBoth(so, 6,
-			"measurement_model = range_bearing\nSigma_v = [1e-4 1e-6]\nmotion_noise = config\n"
-			"Sigma_w = [1e-5 1e-5 1e-7]\n"));
+	report(
+	    "generated, range-bearing, Sigma_w from config",
+	    runBoth(so, 6,
+	            "measurement_model = range_bearing\nSigma_v = [1e-4 1e-6]\nmotion_noise = config\n"
+	            "Sigma_w = [1e-5 1e-5 1e-7]\n"));
 	report("generated, MRPT's skip of the prediction on an empty map",
-		runBoth(so, 7, "skip_prediction_on_empty_map = true\n"));
+	       runBoth(so, 7, "skip_prediction_on_empty_map = true\n"));
 }
 
 TEST(Alg1, BadInputWindowSizeZeroAndSingularPrior)

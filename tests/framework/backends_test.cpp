@@ -17,14 +17,14 @@ using namespace dynslam::framework;
 namespace
 {
 const char* kIni =
-	"[DynamicKFSLAM]\n"
-	"measurement_model = cartesian\n"
-	"Sigma_v = [1e-5 1e-5]\n"
-	"motion_noise = action\n"
-	"Sigma_0 = [1e-6 1e-6 1e-8]\n"
-	"Sigma_xi = [0.1 0.1]\n"
-	"[Framework]\n"
-	"window_size = 5\n";
+    "[DynamicKFSLAM]\n"
+    "measurement_model = cartesian\n"
+    "Sigma_v = [1e-5 1e-5]\n"
+    "motion_noise = action\n"
+    "Sigma_0 = [1e-6 1e-6 1e-8]\n"
+    "Sigma_xi = [0.1 0.1]\n"
+    "[Framework]\n"
+    "window_size = 5\n";
 
 struct TErrors
 {
@@ -61,12 +61,12 @@ TErrors run(const std::string& kind, int steps, const std::string& extra = "")
 	if (const auto* w = dynamic_cast<const CWindowBackend*>(be.get()))
 	{
 		std::cout << "[backend] " << kind << ": " << w->lastIterations()
-				  << " GN iterations at the last step, " << w->cost().totalDim() << " unknowns\n";
+		          << " GN iterations at the last step, " << w->cost().totalDim() << " unknowns\n";
 		EXPECT_LT(w->lastIterations(), 10) << kind << ": GN did not converge in max_iterations";
 	}
 	std::cout << "[backend] " << kind << ": max ego error " << e.ego << " m, max landmark error "
-			  << e.map << " m, max object translation error " << e.pose << " m over " << e.poses
-			  << " poses\n";
+	          << e.map << " m, max object translation error " << e.pose << " m over " << e.poses
+	          << " poses\n";
 	return e;
 }
 }  // namespace
@@ -92,9 +92,9 @@ TEST(Backends, OptionVariantsRun)
 	// Measured (20 steps): ego 0.0067 m, landmark 0.0096 m, object translation 0.0105 m for
 	// all three; 40 poses. Thresholds about 3x.
 	for (const auto& [kind, extra] : std::vector<std::pair<std::string, std::string>>{
-			 {"dynaslam2", "pose_residual = pose_space\nsolver = dense\n"},
-			 {"vdo", "solver = sparse\n"},
-			 {"cubeslam", "window_size = 1\n"}})
+	         {"dynaslam2", "pose_residual = pose_space\nsolver = dense\n"},
+	         {"vdo", "solver = sparse\n"},
+	         {"cubeslam", "window_size = 1\n"}})
 	{
 		const TErrors e = run(kind, 20, extra);
 		EXPECT_LT(e.ego, 0.02) << kind << " " << extra;

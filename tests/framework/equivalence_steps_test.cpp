@@ -1,8 +1,6 @@
 /** Theorems 4.1, 4.2 and A.1-A.5: each step of Alg. 1 (a Gauss-Newton or marginalization step
  * on the running cost) equals the matching step of the standard dynamic EKF (ekf_steps.h), on
  * small random states; mean and covariance within 1e-9 relative (max |A-B| / max |B|). */
-#include "framework_test_utils.h"
-
 #include <dynslam/ekf_steps.h>
 #include <dynslam/framework/running_cost.h>
 #include <dynslam/models/measurement.h>
@@ -12,6 +10,8 @@
 
 #include <iostream>
 #include <random>
+
+#include "framework_test_utils.h"
 
 using namespace dynslam::framework;
 using dynslam::ekf::RowMatrixXd;
@@ -52,7 +52,8 @@ TRandomState randomState(unsigned seed, double eigLo = 1e-4, double eigHi = 1e-1
 	TRandomState s;
 	s.x.resize(0);
 	s.add(TVarKey::ego(5), Eigen::Vector3d(1 + N(rng), 2 + N(rng), 0.3 * N(rng)));
-	for (int l = 10; l < 13; ++l) s.add(TVarKey::landmark(l), Eigen::Vector2d(5 * N(rng), 5 * N(rng)));
+	for (int l = 10; l < 13; ++l)
+		s.add(TVarKey::landmark(l), Eigen::Vector2d(5 * N(rng), 5 * N(rng)));
 	Eigen::Matrix2Xd f0(2, 3);
 	f0 << 8, 9.5, 8.2, 1, 1.3, 2.4;
 	const Eigen::Vector3d xi(1 + 0.1 * N(rng), 0.5 + 0.1 * N(rng), 0.2 + 0.05 * N(rng));
@@ -64,7 +65,8 @@ TRandomState randomState(unsigned seed, double eigLo = 1e-4, double eigHi = 1e-1
 	s.add(TVarKey::objectFeature(1, 0, 5), Eigen::Vector2d(-3.2, 3.5));
 	for (int t = 3; t < 6; ++t)
 		s.add(TVarKey::objectPose(0, t),
-			Eigen::Vector3d(0.3 * t + 0.1 * N(rng), 0.1 * t + 0.1 * N(rng), 0.05 * t + 0.02 * N(rng)));
+		      Eigen::Vector3d(0.3 * t + 0.1 * N(rng), 0.1 * t + 0.1 * N(rng),
+		                      0.05 * t + 0.02 * N(rng)));
 	for (int t = 3; t < 6; ++t)
 		s.add(TVarKey::objectPose(2, t), Eigen::Vector2d(0.2 * t + 0.1 * N(rng), 0.1 * N(rng)));
 	s.P = dynslam_test::randomSpd(rng, int(s.x.size()), eigLo, eigHi);
@@ -84,9 +86,8 @@ void append(Eigen::VectorXd& x, Eigen::MatrixXd& P, const dynslam::ekf::Augmenta
 }
 
 /** Records and checks the relative errors of a step. */
-void expectEqual(
-	const char* what, const Eigen::VectorXd& xf, const Eigen::MatrixXd& Pf, const Eigen::VectorXd& xe,
-	const Eigen::MatrixXd& Pe)
+void expectEqual(const char* what, const Eigen::VectorXd& xf, const Eigen::MatrixXd& Pf,
+                 const Eigen::VectorXd& xe, const Eigen::MatrixXd& Pe)
 {
 	const double em = relErr(xf, xe), ec = relErr(Pf, Pe);
 	std::cout << "[equivalence] " << what << ": mean " << em << ", covariance " << ec << "\n";
@@ -103,12 +104,14 @@ TEST(StepEquivalence, FeatureAugmentationEquivalenceTheoremA1)
 		for (unsigned seed : {1u, 2u, 3u})
 		{
 			const TRandomState s = randomState(seed);
-			const Eigen::Matrix2d R = model == MeasurementModel::Cartesian
-										  ? Eigen::Matrix2d(Eigen::Vector2d(1e-3, 2e-3).asDiagonal())
-										  : Eigen::Matrix2d(Eigen::Vector2d(1e-3, 1e-5).asDiagonal());
-			const std::vector<Eigen::Vector2d> z = model == MeasurementModel::Cartesian
-													   ? std::vector<Eigen::Vector2d>{{3, 1}, {-2, 4}}
-													   : std::vector<Eigen::Vector2d>{{5, 0.3}, {7, -2.5}};
+			const Eigen::Matrix2d R =
+			    model == MeasurementModel::Cartesian
+			        ? Eigen::Matrix2d(Eigen::Vector2d(1e-3, 2e-3).asDiagonal())
+			        : Eigen::Matrix2d(Eigen::Vector2d(1e-3, 1e-5).asDiagonal());
+			const std::vector<Eigen::Vector2d> z =
+			    model == MeasurementModel::Cartesian
+			        ? std::vector<Eigen::Vector2d>{{3, 1}, {-2, 4}}
+			        : std::vector<Eigen::Vector2d>{{5, 0.3}, {7, -2.5}};
 			CRunningCost c = s.cost();
 			const Eigen::Vector3d ego = s.x.head<3>();
 			for (size_t i = 0; i < z.size(); ++i)
@@ -121,7 +124,9 @@ TEST(StepEquivalence, FeatureAugmentationEquivalenceTheoremA1)
 
 			Eigen::VectorXd xe = s.x;
 			Eigen::MatrixXd Pe = s.P;
-			append(xe, Pe, dynslam::ekf::featureAugmentation(model, ego, RowMatrixXd(s.P.topRows(3)), z, R));
+			append(
+			    xe, Pe,
+			    dynslam::ekf::featureAugmentation(model, ego, RowMatrixXd(s.P.topRows(3)), z, R));
 			expectEqual("A.1 feature augmentation", c.stackedValues(), r.covariance, xe, Pe);
 		}
 }
@@ -149,8 +154,8 @@ TEST(StepEquivalence, ObjectPoseAugmentationEquivalenceTheorem41)
 			std::vector<int> f0_idx, ft_idx;
 			for (const auto& key : k.f0) f0_idx.push_back(s.idx.at(key));
 			for (const auto& key : k.ft) ft_idx.push_back(s.idx.at(key));
-			const auto aug =
-				dynslam::ekf::objectPoseAugmentation(s.x, RowMatrixXd(s.P), f0_idx, ft_idx, tc.seen, Sxi);
+			const auto aug = dynslam::ekf::objectPoseAugmentation(s.x, RowMatrixXd(s.P), f0_idx,
+			                                                      ft_idx, tc.seen, Sxi);
 
 			CRunningCost c = s.cost();
 			c.addVariable(k.pose, aug.mean);  // gamma(f0, ft): the linearization point of Alg. 1
@@ -159,7 +164,8 @@ TEST(StepEquivalence, ObjectPoseAugmentationEquivalenceTheorem41)
 			Eigen::VectorXd xe = s.x;
 			Eigen::MatrixXd Pe = s.P;
 			append(xe, Pe, aug);
-			expectEqual("4.1 object pose augmentation (pose space)", c.stackedValues(), r.covariance, xe, Pe);
+			expectEqual("4.1 object pose augmentation (pose space)", c.stackedValues(),
+			            r.covariance, xe, Pe);
 		}
 }
 
@@ -186,8 +192,8 @@ TEST(StepEquivalence, FeatureSpaceObjectPoseResidualEquivalenceOnlyForOneFeature
 				f0_idx.push_back(s.idx.at(k.f0.back()));
 				ft_idx.push_back(s.idx.at(k.ft.back()));
 			}
-			const auto aug =
-				dynslam::ekf::objectPoseAugmentation(s.x, RowMatrixXd(s.P), f0_idx, ft_idx, k.seen, Sxi);
+			const auto aug = dynslam::ekf::objectPoseAugmentation(s.x, RowMatrixXd(s.P), f0_idx,
+			                                                      ft_idx, k.seen, Sxi);
 			CRunningCost c = s.cost();
 			c.addVariable(k.pose, aug.mean);
 			c.addTerm(std::make_shared<CObjectPoseFeatureTerm>(k, Sxi));
@@ -196,8 +202,9 @@ TEST(StepEquivalence, FeatureSpaceObjectPoseResidualEquivalenceOnlyForOneFeature
 			Eigen::MatrixXd Pe = s.P;
 			append(xe, Pe, aug);
 			const double e = std::max(relErr(c.stackedValues(), xe), relErr(r.covariance, Pe));
-			std::cout << "[feature-space residual] n = " << n << ": mean " << relErr(c.stackedValues(), xe)
-					  << ", covariance " << relErr(r.covariance, Pe) << " (relative to Alg. 4)\n";
+			std::cout << "[feature-space residual] n = " << n << ": mean "
+			          << relErr(c.stackedValues(), xe) << ", covariance "
+			          << relErr(r.covariance, Pe) << " (relative to Alg. 4)\n";
 			if (n == 1)
 				worstOneFeature = std::max(worstOneFeature, e);
 			else
@@ -259,14 +266,15 @@ TEST(StepEquivalence, SmoothingUpdateEquivalenceTheorem42)
 			const int d = obj == 0 ? 3 : 2;
 			const Eigen::MatrixXd Ss = Eigen::MatrixXd::Identity(d, d) * 1e-2;
 			CRunningCost c = s.cost();
-			c.addTerm(std::make_shared<CSmoothingTerm>(
-				TVarKey::objectPose(obj, 3), TVarKey::objectPose(obj, 4), TVarKey::objectPose(obj, 5), Ss));
+			c.addTerm(std::make_shared<CSmoothingTerm>(TVarKey::objectPose(obj, 3),
+			                                           TVarKey::objectPose(obj, 4),
+			                                           TVarKey::objectPose(obj, 5), Ss));
 			const auto r = c.gaussNewtonStep();
 			Eigen::VectorXd xe = s.x;
 			RowMatrixXd Pe = s.P;
-			dynslam::ekf::smoothingUpdate(
-				xe, Pe, s.idx.at(TVarKey::objectPose(obj, 3)), s.idx.at(TVarKey::objectPose(obj, 4)),
-				s.idx.at(TVarKey::objectPose(obj, 5)), Ss);
+			dynslam::ekf::smoothingUpdate(xe, Pe, s.idx.at(TVarKey::objectPose(obj, 3)),
+			                              s.idx.at(TVarKey::objectPose(obj, 4)),
+			                              s.idx.at(TVarKey::objectPose(obj, 5)), Ss);
 			xe[2] = dynslam::models::wrapToPi(xe[2]);
 			expectEqual("4.2 smoothing update", c.stackedValues(), r.covariance, xe, Pe);
 		}
@@ -319,12 +327,13 @@ TEST(StepEquivalence, AugmentationAndUpdateEquivalenceBadlyScaled)
 	CRunningCost c = s.cost();
 	const Eigen::Vector2d z(30, 4);
 	c.addVariable(TVarKey::landmark(30), dynslam::models::cartesianInverse(s.x.head<3>(), z));
-	c.addTerm(std::make_shared<CMeasurementTerm>(5, TVarKey::landmark(30), z, MeasurementModel::Cartesian, R));
+	c.addTerm(std::make_shared<CMeasurementTerm>(5, TVarKey::landmark(30), z,
+	                                             MeasurementModel::Cartesian, R));
 	const auto r = c.gaussNewtonStep();
 	Eigen::VectorXd xe = s.x;
 	Eigen::MatrixXd Pe = s.P;
 	append(xe, Pe,
-		dynslam::ekf::featureAugmentation(
-			MeasurementModel::Cartesian, s.x.head<3>(), RowMatrixXd(s.P.topRows(3)), {z}, R));
+	       dynslam::ekf::featureAugmentation(MeasurementModel::Cartesian, s.x.head<3>(),
+	                                         RowMatrixXd(s.P.topRows(3)), {z}, R));
 	expectEqual("A.1 badly scaled", c.stackedValues(), r.covariance, xe, Pe);
 }

@@ -34,8 +34,8 @@ inline Eigen::MatrixXd randomSpd(std::mt19937& rng, int n, double lo, double hi)
 
 /** A cost with the variables `keys` (values stacked in x) and one Gaussian prior N(x, P). */
 inline dynslam::framework::CRunningCost costFromGaussian(
-	const std::vector<dynslam::framework::TVarKey>& keys, const std::vector<int>& dims,
-	const Eigen::VectorXd& x, const Eigen::MatrixXd& P)
+    const std::vector<dynslam::framework::TVarKey>& keys, const std::vector<int>& dims,
+    const Eigen::VectorXd& x, const Eigen::MatrixXd& P)
 {
 	dynslam::framework::CRunningCost c;
 	int off = 0;

@@ -1,13 +1,13 @@
 /** The running cost's operations: Gauss-Newton on a linear problem, marginalization (Schur
  * complement = the paper's projector formula), drop, and bad input. */
-#include "framework_test_utils.h"
-
 #include <dynslam/framework/running_cost.h>
 #include <dynslam/models/measurement.h>
 #include <dynslam/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "framework_test_utils.h"
 
 using namespace dynslam::framework;
 using dynslam_test::relErr;
@@ -18,8 +18,9 @@ namespace
 class CLinearTerm : public CTerm
 {
 public:
-	CLinearTerm(std::vector<TVarKey> k, std::vector<Eigen::MatrixXd> A, Eigen::VectorXd b, Eigen::MatrixXd W)
-		: CTerm(std::move(k)), m_A(std::move(A)), m_b(std::move(b)), m_W(std::move(W))
+	CLinearTerm(std::vector<TVarKey> k, std::vector<Eigen::MatrixXd> A, Eigen::VectorXd b,
+	            Eigen::MatrixXd W)
+	    : CTerm(std::move(k)), m_A(std::move(A)), m_b(std::move(b)), m_W(std::move(W))
 	{
 	}
 	std::string name() const override { return "linear"; }
@@ -63,20 +64,20 @@ CRunningCost smallSlam(std::mt19937& rng)
 	for (int l = 0; l < 5; ++l)
 		c.addVariable(TVarKey::landmark(l), Eigen::Vector2d(1.5 * l, 3 + 0.5 * N(rng)));
 	c.addTerm(CPriorTerm::fromCovariance(
-		{TVarKey::ego(0)}, {3}, c.value(TVarKey::ego(0)) + Eigen::Vector3d(0.01, 0, 0),
-		Eigen::Matrix3d(Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal())));
+	    {TVarKey::ego(0)}, {3}, c.value(TVarKey::ego(0)) + Eigen::Vector3d(0.01, 0, 0),
+	    Eigen::Matrix3d(Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal())));
 	for (int t = 0; t + 1 < 4; ++t)
 		c.addTerm(std::make_shared<COdometryTerm>(
-			t, t + 1, u, Eigen::Matrix3d(Eigen::Vector3d(1e-3, 1e-3, 1e-4).asDiagonal())));
+		    t, t + 1, u, Eigen::Matrix3d(Eigen::Vector3d(1e-3, 1e-3, 1e-4).asDiagonal())));
 	for (int t = 0; t < 4; ++t)
 		for (int l = 0; l < 5; ++l)
 		{
-			const Eigen::Vector2d z =
-				dynslam::models::cartesianObserve(c.value(TVarKey::ego(t)), c.value(TVarKey::landmark(l))) +
-				0.01 * Eigen::Vector2d(N(rng), N(rng));
+			const Eigen::Vector2d z = dynslam::models::cartesianObserve(
+			                              c.value(TVarKey::ego(t)), c.value(TVarKey::landmark(l))) +
+			                          0.01 * Eigen::Vector2d(N(rng), N(rng));
 			c.addTerm(std::make_shared<CMeasurementTerm>(
-				t, TVarKey::landmark(l), z, dynslam::models::MeasurementModel::Cartesian,
-				Eigen::Matrix2d::Identity() * 1e-4));
+			    t, TVarKey::landmark(l), z, dynslam::models::MeasurementModel::Cartesian,
+			    Eigen::Matrix2d::Identity() * 1e-4));
 		}
 	return c;
 }
@@ -88,7 +89,8 @@ TEST(RunningCost, GaussNewtonOnLinearProblemConvergesInOneStep)
 	for (auto solver : {SolverKind::Dense, SolverKind::Sparse})
 	{
 		CRunningCost c;
-		const std::vector<TVarKey> k{TVarKey::landmark(0), TVarKey::landmark(1), TVarKey::landmark(2)};
+		const std::vector<TVarKey> k{TVarKey::landmark(0), TVarKey::landmark(1),
+		                             TVarKey::landmark(2)};
 		for (const auto& key : k) c.addVariable(key, Eigen::Vector2d(5, -3));
 		// Stacked least squares: rows of [A0 A1 A2] x = b
 		Eigen::MatrixXd Abig = Eigen::MatrixXd::Zero(0, 6), Wbig = Eigen::MatrixXd::Zero(0, 0);
@@ -222,9 +224,9 @@ TEST(RunningCost, BadInputVariableReferencedBeforeItExists)
 	c.addVariable(TVarKey::ego(0), Eigen::Vector3d::Zero());
 	try
 	{
-		c.addTerm(std::make_shared<CMeasurementTerm>(
-			0, TVarKey::landmark(4), Eigen::Vector2d(1, 1), dynslam::models::MeasurementModel::Cartesian,
-			Eigen::Matrix2d::Identity()));
+		c.addTerm(std::make_shared<CMeasurementTerm>(0, TVarKey::landmark(4), Eigen::Vector2d(1, 1),
+		                                             dynslam::models::MeasurementModel::Cartesian,
+		                                             Eigen::Matrix2d::Identity()));
 		FAIL() << "no exception";
 	}
 	catch (const std::invalid_argument& e)
@@ -233,8 +235,8 @@ TEST(RunningCost, BadInputVariableReferencedBeforeItExists)
 	}
 	EXPECT_THROW(c.value(TVarKey::ego(1)), std::out_of_range);
 	EXPECT_THROW(c.addVariable(TVarKey::ego(0), Eigen::Vector3d::Zero()), std::invalid_argument);
-	EXPECT_THROW(
-		c.addVariable(TVarKey::ego(2), Eigen::Vector3d(0, std::nan(""), 0)), std::invalid_argument);
+	EXPECT_THROW(c.addVariable(TVarKey::ego(2), Eigen::Vector3d(0, std::nan(""), 0)),
+	             std::invalid_argument);
 	EXPECT_THROW(c.marginalize({TVarKey::ego(5)}), std::out_of_range);
 }
 
@@ -248,10 +250,11 @@ TEST(RunningCost, BadInputSingularSystemUnobservableObjectPose)
 	const TVarKey xi = TVarKey::objectPose(1, 3);
 	for (const auto& k : {a0, a1, b0, b1}) c.addVariable(k, Eigen::Vector2d(2, 1));
 	c.addVariable(xi, Eigen::Vector3d::Zero());
-	c.addTerm(CPriorTerm::fromCovariance(
-		{a0, a1, b0, b1}, {2, 2, 2, 2}, Eigen::VectorXd::Constant(8, 1.0).cwiseProduct(
-											 Eigen::VectorXd(Eigen::Vector2d(2, 1).replicate(4, 1))),
-		Eigen::MatrixXd::Identity(8, 8) * 1e-2));
+	c.addTerm(
+	    CPriorTerm::fromCovariance({a0, a1, b0, b1}, {2, 2, 2, 2},
+	                               Eigen::VectorXd::Constant(8, 1.0).cwiseProduct(
+	                                   Eigen::VectorXd(Eigen::Vector2d(2, 1).replicate(4, 1))),
+	                               Eigen::MatrixXd::Identity(8, 8) * 1e-2));
 	TObjectPoseKeys k{xi, {a0, a1}, {b0, b1}, {0, 1}};
 	c.addTerm(std::make_shared<CObjectPoseFeatureTerm>(k, Eigen::Matrix2d::Identity() * 0.1));
 	try

@@ -116,9 +116,8 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
 	loadIniFile(iniFile, params);
 	TCompareOverrides o;
-	auto opt = [](const TCLAP::ValueArg<std::string>& a) {
-		return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt;
-	};
+	auto opt = [](const TCLAP::ValueArg<std::string>& a)
+	{ return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt; };
 	o.rawlog = opt(argRawlog);
 	o.gt = opt(argGt);
 	o.filters = opt(argFilters);
@@ -162,8 +161,7 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 		if (o.out) outDir = *o.out;
 		if (fullCovariance && outDir.empty())
 			throw std::invalid_argument("--full-covariance needs --out DIR (the files go there)");
-		for (const auto& w : checkSharedSections(params, iniFile, o.strict))
-			MRPT_LOG_WARN(w);
+		for (const auto& w : checkSharedSections(params, iniFile, o.strict)) MRPT_LOG_WARN(w);
 		for (const auto& f : filters)
 			makeBackend(backendOf(f), params);  // fail early on bad options
 	}

@@ -70,9 +70,8 @@ bool CRunApp::initialize(int argc, const char** argv)
 	iniFile = argIni.getValue();
 	loadIniFile(iniFile, params);
 	TRunOverrides o;
-	auto opt = [](const TCLAP::ValueArg<std::string>& a) {
-		return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt;
-	};
+	auto opt = [](const TCLAP::ValueArg<std::string>& a)
+	{ return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt; };
 	o.rawlog = opt(argRawlog);
 	o.gt = opt(argGt);
 	o.backend = opt(argBackend);
@@ -96,8 +95,7 @@ void CRunApp::readSettings(const TRunOverrides& o)
 		const TDataSettings d = readDataSettings(params, kSection, folderOf(iniFile));
 		rawlogFile = o.rawlog ? *o.rawlog : d.rawlog;
 		groundTruth = d.groundTruth;
-		if (o.rawlog)
-			groundTruth = "auto";  // the INI's ground truth belongs to its rawlog
+		if (o.rawlog) groundTruth = "auto";  // the INI's ground truth belongs to its rawlog
 		if (o.gt) groundTruth = *o.gt;
 		if (o.noGt) groundTruth.clear();
 		scenarioFile = d.scenario;
@@ -114,8 +112,7 @@ void CRunApp::readSettings(const TRunOverrides& o)
 			throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " +
 			                            iniFile + ")");
 		// Fail early on bad back-end options (before reading a long rawlog).
-		for (const auto& w : checkSharedSections(params, iniFile, o.strict))
-			MRPT_LOG_WARN(w);
+		for (const auto& w : checkSharedSections(params, iniFile, o.strict)) MRPT_LOG_WARN(w);
 		makeBackend(backend, params);
 	}
 	catch (const std::invalid_argument& e)

@@ -20,7 +20,8 @@ std::string trim(const std::string& s)
 }
 std::string lower(std::string s)
 {
-	std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return std::tolower(ch); });
+	std::transform(s.begin(), s.end(), s.begin(),
+	               [](unsigned char ch) { return std::tolower(ch); });
 	return s;
 }
 /** The raw value, or "" if missing. MRPT strips comments after '//' and ';'? It keeps
@@ -44,8 +45,8 @@ bool parseDouble(const std::string& s, double& out)
 	is >> std::ws;
 	return is.eof();
 }
-std::vector<double> parseNumbers(
-	const std::string& section, const std::string& key, const std::string& value)
+std::vector<double> parseNumbers(const std::string& section, const std::string& key,
+                                 const std::string& value)
 {
 	std::string s = value;
 	for (char& ch : s)
@@ -64,9 +65,8 @@ std::vector<double> parseNumbers(
 }  // namespace
 
 /** False if the key is missing and optional; throws if it is missing and required. */
-static bool present(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	bool required)
+static bool present(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                    const std::string& key, bool required)
 {
 	if (c.keyExists(section, key)) return true;
 	if (required)
@@ -74,9 +74,8 @@ static bool present(
 	return false;
 }
 
-void fail(
-	const std::string& section, const std::string& key, const std::string& value,
-	const std::string& what)
+void fail(const std::string& section, const std::string& key, const std::string& value,
+          const std::string& what)
 {
 	throw std::invalid_argument("[" + section + "] " + key + " = '" + value + "': " + what);
 }
@@ -86,8 +85,8 @@ bool has(const mrpt::config::CConfigFileBase& c, const std::string& section, con
 	return c.keyExists(section, key);
 }
 
-std::string requireString(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key)
+std::string requireString(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                          const std::string& key)
 {
 	present(c, section, key, true);
 	const std::string v = raw(c, section, key);
@@ -95,9 +94,8 @@ std::string requireString(
 	return v;
 }
 
-double readDouble(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	double def, bool required)
+double readDouble(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                  const std::string& key, double def, bool required)
 {
 	if (!present(c, section, key, required)) return def;
 	const std::string v = raw(c, section, key);
@@ -107,9 +105,8 @@ double readDouble(
 	return d;
 }
 
-long readInt(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	long def, bool required)
+long readInt(const mrpt::config::CConfigFileBase& c, const std::string& section,
+             const std::string& key, long def, bool required)
 {
 	const double d = readDouble(c, section, key, double(def), required);
 	if (d != std::floor(d) || std::abs(d) > 9e15)
@@ -117,9 +114,8 @@ long readInt(
 	return long(d);
 }
 
-bool readBool(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	bool def, bool required)
+bool readBool(const mrpt::config::CConfigFileBase& c, const std::string& section,
+              const std::string& key, bool def, bool required)
 {
 	if (!present(c, section, key, required)) return def;
 	const std::string v = lower(raw(c, section, key));
@@ -128,42 +124,38 @@ bool readBool(
 	fail(section, key, v, "not a boolean (true/false)");
 }
 
-std::string readString(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	const std::string& def, bool required)
+std::string readString(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                       const std::string& key, const std::string& def, bool required)
 {
 	if (!present(c, section, key, required)) return def;
 	return raw(c, section, key);
 }
 
-double readPositive(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	double def, bool required)
+double readPositive(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                    const std::string& key, double def, bool required)
 {
 	const double d = readDouble(c, section, key, def, required);
 	if (!(d > 0)) fail(section, key, raw(c, section, key), "must be > 0");
 	return d;
 }
 
-double readNonNegative(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	double def, bool required)
+double readNonNegative(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                       const std::string& key, double def, bool required)
 {
 	const double d = readDouble(c, section, key, def, required);
 	if (!(d >= 0)) fail(section, key, raw(c, section, key), "must be >= 0");
 	return d;
 }
 
-Eigen::VectorXd readVector(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	const Eigen::VectorXd& def, int n, bool required)
+Eigen::VectorXd readVector(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                           const std::string& key, const Eigen::VectorXd& def, int n, bool required)
 {
 	if (!present(c, section, key, required)) return def;
 	const std::string v = raw(c, section, key);
 	const auto nums = parseNumbers(section, key, v);
 	if (int(nums.size()) != n)
-		fail(section, key, v, "expected " + std::to_string(n) + " numbers, got " +
-								  std::to_string(nums.size()));
+		fail(section, key, v,
+		     "expected " + std::to_string(n) + " numbers, got " + std::to_string(nums.size()));
 	Eigen::VectorXd out(n);
 	for (int i = 0; i < n; ++i)
 	{
@@ -173,9 +165,9 @@ Eigen::VectorXd readVector(
 	return out;
 }
 
-Eigen::MatrixXd readCovariance(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	const Eigen::MatrixXd& def, int dim, bool required, bool allowSingular)
+Eigen::MatrixXd readCovariance(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                               const std::string& key, const Eigen::MatrixXd& def, int dim,
+                               bool required, bool allowSingular)
 {
 	if (!present(c, section, key, required)) return def;
 	const std::string v = raw(c, section, key);
@@ -187,9 +179,10 @@ Eigen::MatrixXd readCovariance(
 		for (int i = 0; i < dim; ++i)
 			for (int j = 0; j < dim; ++j) M(i, j) = nums[i * dim + j];
 	else
-		fail(section, key, v, "expected a " + std::to_string(dim) + "x" + std::to_string(dim) +
-								  " covariance: " + std::to_string(dim) + " diagonal entries or " +
-								  std::to_string(dim * dim) + " entries");
+		fail(section, key, v,
+		     "expected a " + std::to_string(dim) + "x" + std::to_string(dim) +
+		         " covariance: " + std::to_string(dim) + " diagonal entries or " +
+		         std::to_string(dim * dim) + " entries");
 	if (!M.allFinite()) fail(section, key, v, "not finite");
 	if ((M - M.transpose()).cwiseAbs().maxCoeff() > 1e-12 * std::max(1.0, M.cwiseAbs().maxCoeff()))
 		fail(section, key, v, "covariance is not symmetric");
@@ -197,14 +190,14 @@ Eigen::MatrixXd readCovariance(
 	const double lmin = es.eigenvalues().minCoeff();
 	if (allowSingular ? lmin < 0 : !(lmin > 0))
 		fail(section, key, v,
-			 std::string("covariance is not positive ") + (allowSingular ? "semi-" : "") +
-				 "definite (smallest eigenvalue " + std::to_string(lmin) + ")");
+		     std::string("covariance is not positive ") + (allowSingular ? "semi-" : "") +
+		         "definite (smallest eigenvalue " + std::to_string(lmin) + ")");
 	return M;
 }
 
-int readChoice(
-	const mrpt::config::CConfigFileBase& c, const std::string& section, const std::string& key,
-	const std::vector<std::string>& choices, int def, bool required)
+int readChoice(const mrpt::config::CConfigFileBase& c, const std::string& section,
+               const std::string& key, const std::vector<std::string>& choices, int def,
+               bool required)
 {
 	if (!present(c, section, key, required)) return def;
 	const std::string v = raw(c, section, key);
@@ -215,16 +208,14 @@ int readChoice(
 	fail(section, key, v, "unknown value (expected one of: " + list + ")");
 }
 
-void rejectUnknownKeys(
-	const mrpt::config::CConfigFileBase& c, const std::string& section,
-	const std::vector<std::string>& known)
+void rejectUnknownKeys(const mrpt::config::CConfigFileBase& c, const std::string& section,
+                       const std::vector<std::string>& known)
 {
 	std::vector<std::string> keys;
 	c.getAllKeys(section, keys);
 	for (const auto& k : keys)
 		if (std::find(known.begin(), known.end(), k) == known.end())
-			throw std::invalid_argument(
-				"[" + section + "] " + k + ": unknown key (misspelled?)");
+			throw std::invalid_argument("[" + section + "] " + k + ": unknown key (misspelled?)");
 }
 
 std::string formatMatrix(const Eigen::MatrixXd& m)

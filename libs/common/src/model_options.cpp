@@ -14,14 +14,30 @@ namespace dynslam
 void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
-	rejectUnknownKeys(
-	    c, s,
-	    {"measurement_model", "Sigma_v", "motion_noise", "Sigma_w", "initial_pose", "Sigma_0",
-	     "Sigma_xi", "smoothing", "Sigma_s", "drop_time_t_features", "keep_last_poses",
-	     "drop_static_after_unseen_steps", "skip_prediction_on_empty_map", "static_update",
-	     "innovation_gate", "first_estimate_jacobians", "record_dropped", "outlier_method",
-	     "robust_kernel_c", "robust_iterations", "recovery_count", "recovery_inflation",
-	     "recovery_min_updates"});
+	rejectUnknownKeys(c, s,
+	                  {"measurement_model",
+	                   "Sigma_v",
+	                   "motion_noise",
+	                   "Sigma_w",
+	                   "initial_pose",
+	                   "Sigma_0",
+	                   "Sigma_xi",
+	                   "smoothing",
+	                   "Sigma_s",
+	                   "drop_time_t_features",
+	                   "keep_last_poses",
+	                   "drop_static_after_unseen_steps",
+	                   "skip_prediction_on_empty_map",
+	                   "static_update",
+	                   "innovation_gate",
+	                   "first_estimate_jacobians",
+	                   "record_dropped",
+	                   "outlier_method",
+	                   "robust_kernel_c",
+	                   "robust_iterations",
+	                   "recovery_count",
+	                   "recovery_inflation",
+	                   "recovery_min_updates"});
 	measurement_model =
 	    readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 	        ? models::MeasurementModel::Cartesian
@@ -80,8 +96,8 @@ void TModelOptions::validate() const
 		throw std::invalid_argument("innovation_gate = " + std::to_string(innovation_gate) +
 		                            ": must be a probability in [0, 1) (0 = no gate)");
 	if (outlier_method != "gate" && !sparse_static_update)
-		throw std::invalid_argument(
-		    "outlier_method = " + outlier_method + ": needs static_update = sparse");
+		throw std::invalid_argument("outlier_method = " + outlier_method +
+		                            ": needs static_update = sparse");
 	if (outlier_method == "gate_recovery" && innovation_gate == 0)
 		throw std::invalid_argument(
 		    "outlier_method = gate_recovery: needs a gate (innovation_gate > 0)");
@@ -89,9 +105,10 @@ void TModelOptions::validate() const
 		throw std::invalid_argument("robust_kernel_c must be > 0 and robust_iterations >= 1");
 	if (recovery_count < 1 || !(recovery_inflation > 1) || recovery_min_updates < 0)
 		throw std::invalid_argument(
-		    "recovery_count = " + std::to_string(recovery_count) + ", recovery_inflation = " +
-		    std::to_string(recovery_inflation) + ", recovery_min_updates = " +
-		    std::to_string(recovery_min_updates) + ": need >= 1, > 1 and >= 0");
+		    "recovery_count = " + std::to_string(recovery_count) +
+		    ", recovery_inflation = " + std::to_string(recovery_inflation) +
+		    ", recovery_min_updates = " + std::to_string(recovery_min_updates) +
+		    ": need >= 1, > 1 and >= 0");
 }
 
 void TModelOptions::dumpToTextStream(std::ostream& out) const

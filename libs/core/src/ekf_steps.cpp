@@ -299,7 +299,8 @@ double smoothingUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
 		throw std::invalid_argument("smoothingUpdate: Sigma_s must be 2x2 or 3x3");
 	return pseudoMeasurementUpdate(
 	    x, P, {a, b, c}, d,
-	    [](const std::vector<Eigen::VectorXd>& v, std::vector<Eigen::MatrixXd>* J) {
+	    [](const std::vector<Eigen::VectorXd>& v, std::vector<Eigen::MatrixXd>* J)
+	    {
 		    J->resize(3);
 		    return models::smoothingResidual(v[0], v[1], v[2], &(*J)[0], &(*J)[1], &(*J)[2]);
 	    },

@@ -28,9 +28,8 @@ Eigen::Matrix2d rot2Derivative(double theta)
 	return D;
 }
 
-Eigen::Vector3d composePose(
-	const Eigen::Vector3d& x, const Eigen::Vector3d& u, Eigen::Matrix3d* J_out_x,
-	Eigen::Matrix3d* J_out_u)
+Eigen::Vector3d composePose(const Eigen::Vector3d& x, const Eigen::Vector3d& u,
+                            Eigen::Matrix3d* J_out_x, Eigen::Matrix3d* J_out_u)
 {
 	const double c = std::cos(x[2]), s = std::sin(x[2]);
 	Eigen::Vector3d out;
@@ -40,14 +39,14 @@ Eigen::Vector3d composePose(
 	if (J_out_x)
 	{
 		*J_out_x << 1, 0, -s * u[0] - c * u[1],  //
-			0, 1, c * u[0] - s * u[1],  //
-			0, 0, 1;
+		    0, 1, c * u[0] - s * u[1],           //
+		    0, 0, 1;
 	}
 	if (J_out_u)
 	{
 		*J_out_u << c, -s, 0,  //
-			s, c, 0,  //
-			0, 0, 1;
+		    s, c, 0,           //
+		    0, 0, 1;
 	}
 	return out;
 }

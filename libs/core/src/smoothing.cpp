@@ -5,9 +5,9 @@
 
 namespace dynslam::models
 {
-Eigen::VectorXd smoothingResidual(
-	const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& c,
-	Eigen::MatrixXd* J_s_a, Eigen::MatrixXd* J_s_b, Eigen::MatrixXd* J_s_c)
+Eigen::VectorXd smoothingResidual(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                                  const Eigen::VectorXd& c, Eigen::MatrixXd* J_s_a,
+                                  Eigen::MatrixXd* J_s_b, Eigen::MatrixXd* J_s_c)
 {
 	const Eigen::Index d = a.size();
 	if ((d != 2 && d != 3) || b.size() != d || c.size() != d)

@@ -5,10 +5,9 @@
  * model: CDynamicKFSLAM2D_objects.cpp. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/CMrptUpdateEngine.h>
-#include <dynslam/estimator/robust_update_engines.h>
 #include <dynslam/ekf_steps.h>
+#include <dynslam/estimator/robust_update_engines.h>
 #include <dynslam/models/se2.h>
-
 #include <mrpt/system/string_utils.h>
 
 #include <set>
@@ -76,13 +75,12 @@ void CDynamicKFSLAM2D::reset()
 		const auto& m = options.outlier_method;
 		if (m == "huber" || m == "cauchy")
 			m_engine = std::make_unique<estimator::CRobustUpdateEngine>(
-				m == "huber" ? estimator::RobustKernel::Huber : estimator::RobustKernel::Cauchy,
-				options.robust_kernel_c, options.robust_iterations);
+			    m == "huber" ? estimator::RobustKernel::Huber : estimator::RobustKernel::Cauchy,
+			    options.robust_kernel_c, options.robust_iterations);
 		else if (m == "gate_recovery")
 			m_engine = std::make_unique<estimator::CGateRecoveryUpdateEngine>(
-				estimator::TGateRecoveryParams{
-					options.recovery_count, options.recovery_inflation,
-					options.recovery_min_updates});
+			    estimator::TGateRecoveryParams{options.recovery_count, options.recovery_inflation,
+			                                   options.recovery_min_updates});
 		else if (options.sparse_static_update)
 			m_engine = std::make_unique<estimator::CSparseUpdateEngine>();
 		else
@@ -104,7 +102,8 @@ void CDynamicKFSLAM2D::reset()
 	m_lastF.reset();
 }
 
-void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini, const std::string& section)
+void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini,
+                                   const std::string& section)
 {
 	options.loadFromConfigFile(ini, section);
 	// Check `method` before MRPT parses it: MRPT's read_enum casts any value that starts with a
@@ -114,9 +113,9 @@ void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini, con
 	const std::string method = mrpt::system::trim(ini.read_string(kf, "method", "kfEKFNaive"));
 	if (method != "kfEKFNaive" && method != "kfEKFAlaDavison" && method != "0" && method != "1")
 		throw std::invalid_argument(
-			"[" + kf + "] method = " + method +
-			": only kfEKFNaive and kfEKFAlaDavison are supported (MRPT's kfIKF is not "
-			"implemented and kfIKFFull does not re-linearise)");
+		    "[" + kf + "] method = " + method +
+		    ": only kfEKFNaive and kfEKFAlaDavison are supported (MRPT's kfIKF is not "
+		    "implemented and kfIKFFull does not re-linearise)");
 	KF_options.loadFromConfigFile(ini, kf);
 	reset();
 }
@@ -124,13 +123,13 @@ void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini, con
 // ------------------------------------------------------------------------------------------
 // The step
 // ------------------------------------------------------------------------------------------
-void CDynamicKFSLAM2D::processActionObservation(
-	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
+void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
+                                                const mrpt::obs::CSensoryFrame::Ptr& SF)
 {
 	static const std::string who = "CDynamicKFSLAM2D";
 	if (m_failed)
 		throw std::runtime_error(
-			who + ": an earlier step failed numerically; call reset() before going on");
+		    who + ": an earlier step failed numerically; call reset() before going on");
 	// Parse and validate: throws before anything is changed.
 	estimator::TStepInput in = parseStepInput(action, SF, options.parseOptions(), who);
 	m_router->validate(in.readings, who);
@@ -140,8 +139,8 @@ void CDynamicKFSLAM2D::processActionObservation(
 	m_report.step = m_step;
 	try
 	{
-		m_routed = m_router->route(
-			m_step, m_in.readings, [this](int32_t id) { return m_staticBlock.count(id) != 0; });
+		m_routed = m_router->route(m_step, m_in.readings,
+		                           [this](int32_t id) { return m_staticBlock.count(id) != 0; });
 		m_report.skipped_unknown_object_feature = m_routed.skipped_unknown_object_feature;
 		propagateEgo();  // Alg. 7
 		staticUpdate();  // Alg. 5
@@ -150,7 +149,7 @@ void CDynamicKFSLAM2D::processActionObservation(
 		// New entries, the object motion model and drops, committed together (one covariance
 		// rewrite; two with a motion model, which needs the new poses in the state first).
 		TPending plan;
-		planFeatures(plan);  // Alg. 3
+		planFeatures(plan);     // Alg. 3
 		planObjectPoses(plan);  // Alg. 4
 		if (m_motion->name() != "none")
 		{
@@ -167,9 +166,8 @@ void CDynamicKFSLAM2D::processActionObservation(
 		// definite with extreme noise settings) leaves the state half-updated: never go on
 		// silently from there.
 		m_failed = true;
-		throw std::runtime_error(
-			who + ": step " + std::to_string(m_step) +
-			" failed, the filter must be reset(): " + std::string(e.what()));
+		throw std::runtime_error(who + ": step " + std::to_string(m_step) +
+		                         " failed, the filter must be reset(): " + std::string(e.what()));
 	}
 }
 
@@ -198,11 +196,11 @@ estimator::TUpdateContext CDynamicKFSLAM2D::updateContext() const
 	ctx.model = options.measurement_model;
 	ctx.R = options.Sigma_v;
 	ctx.gate_threshold = options.outlier_method == "none"
-							 ? std::numeric_limits<double>::infinity()
-							 : estimator::gateThreshold2Dof(options.innovation_gate);
+	                         ? std::numeric_limits<double>::infinity()
+	                         : estimator::gateThreshold2Dof(options.innovation_gate);
 	if (options.first_estimate_jacobians)
 		ctx.jacobians = [this](int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& Jx,
-							   Eigen::Matrix2d& Jf) { firstEstimateJacobians(id, ego, Jx, Jf); };
+		                       Eigen::Matrix2d& Jf) { firstEstimateJacobians(id, ego, Jx, Jf); };
 	return ctx;
 }
 
@@ -210,8 +208,7 @@ void CDynamicKFSLAM2D::staticUpdate()
 {
 	std::vector<estimator::TStaticObservation> obs;
 	for (const auto& m : m_routed.with(estimator::Route::StaticKnown))
-		obs.push_back(
-			{m.reading.id, m.reading.z, m_layout.first(m_staticBlock.at(m.reading.id))});
+		obs.push_back({m.reading.id, m.reading.z, m_layout.first(m_staticBlock.at(m.reading.id))});
 	auto x = m_xkk.asEigen();
 	auto P = m_pkk.asEigen();
 	const estimator::TUpdateResult r = m_engine->update(x, P, obs, updateContext());
@@ -243,8 +240,9 @@ void CDynamicKFSLAM2D::recordFirstEstimates()
 		it = inState.count(it->first) ? std::next(it) : m_firstEstimate.erase(it);
 }
 
-void CDynamicKFSLAM2D::firstEstimateJacobians(
-	int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x, Eigen::Matrix2d& J_z_f) const
+void CDynamicKFSLAM2D::firstEstimateJacobians(int32_t id, const Eigen::Vector3d& ego,
+                                              models::Matrix23d& J_z_x,
+                                              Eigen::Matrix2d& J_z_f) const
 {
 	const auto it = m_firstEstimate.find(id);
 	if (it == m_firstEstimate.end()) return;

@@ -13,8 +13,8 @@
 namespace dynslam
 {
 estimator::TUpdateResult CMrptUpdateEngine::update(
-	Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
-	const std::vector<estimator::TStaticObservation>& obs, const estimator::TUpdateContext& ctx)
+    Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
+    const std::vector<estimator::TStaticObservation>& obs, const estimator::TUpdateContext& ctx)
 {
 	if (x.data() != &m_kf.m_xkk[0] || P.data() != &m_kf.m_pkk(0, 0))
 		throw std::invalid_argument("CMrptUpdateEngine: works on its filter's own storage only");
@@ -22,7 +22,7 @@ estimator::TUpdateResult CMrptUpdateEngine::update(
 }
 
 estimator::TUpdateResult CDynamicKFSLAM2D::runMrptUpdate(
-	const std::vector<estimator::TStaticObservation>& obs, const estimator::TUpdateContext& ctx)
+    const std::vector<estimator::TStaticObservation>& obs, const estimator::TUpdateContext& ctx)
 {
 	m_mrptObs = obs;
 	m_mrptCtx = ctx;
@@ -37,7 +37,8 @@ void CDynamicKFSLAM2D::OnGetAction(KFArray_ACT& u) const
 	for (int i = 0; i < 3; ++i) u[i] = m_in.u[i];
 }
 
-void CDynamicKFSLAM2D::OnTransitionModel(const KFArray_ACT&, KFArray_VEH&, bool& out_skipPrediction) const
+void CDynamicKFSLAM2D::OnTransitionModel(const KFArray_ACT&, KFArray_VEH&,
+                                         bool& out_skipPrediction) const
 {
 	// The prediction (Alg. 7) is ekf::propagate, done before the update for every engine.
 	out_skipPrediction = true;
@@ -55,16 +56,16 @@ void CDynamicKFSLAM2D::OnTransitionNoise(KFMatrix_VxV& Q) const
 	// Noise on the robot-frame increment, mapped by J_out_u = blkdiag(R(theta), 1): this is
 	// CPosePDFGaussian::rotateCov(theta), as in CRangeBearingKFSLAM2D.
 	Eigen::Matrix3d J_out_u;
-	models::composePose(
-		Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]), Eigen::Vector3d::Zero(), nullptr, &J_out_u);
+	models::composePose(Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]), Eigen::Vector3d::Zero(),
+	                    nullptr, &J_out_u);
 	const Eigen::Matrix3d& S = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
 	Q = J_out_u * S * J_out_u.transpose();
 }
 
 void CDynamicKFSLAM2D::OnGetObservationNoise(KFMatrix_OxO& R) const { R = m_mrptCtx.R; }
 
-void CDynamicKFSLAM2D::OnPreComputingPredictions(
-	const vector_KFArray_OBS&, std::vector<size_t>& out_idx) const
+void CDynamicKFSLAM2D::OnPreComputingPredictions(const vector_KFArray_OBS&,
+                                                 std::vector<size_t>& out_idx) const
 {
 	// IDs are known: predict exactly the tracked static landmarks read in this step.
 	out_idx.clear();
@@ -74,8 +75,8 @@ void CDynamicKFSLAM2D::OnPreComputingPredictions(
 namespace
 {
 /** h() that never throws (MRPT may predict slots that are not read). */
-Eigen::Vector2d safeObserve(
-	models::MeasurementModel model, const Eigen::Vector3d& x, const Eigen::Vector2d& f)
+Eigen::Vector2d safeObserve(models::MeasurementModel model, const Eigen::Vector3d& x,
+                            const Eigen::Vector2d& f)
 {
 	if (model == models::MeasurementModel::RangeBearing && (f - x.head<2>()).squaredNorm() == 0)
 		return Eigen::Vector2d::Zero();
@@ -83,8 +84,8 @@ Eigen::Vector2d safeObserve(
 }
 }  // namespace
 
-void CDynamicKFSLAM2D::OnObservationModel(
-	const std::vector<size_t>& idx, vector_KFArray_OBS& out) const
+void CDynamicKFSLAM2D::OnObservationModel(const std::vector<size_t>& idx,
+                                          vector_KFArray_OBS& out) const
 {
 	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
 	out.resize(idx.size());
@@ -95,7 +96,7 @@ void CDynamicKFSLAM2D::OnObservationModel(
 		if (s >= m_slots.size() || m_slots[s].kind != SlotKind::StaticLandmark) continue;
 		const int k = m_layout.first(m_layout.blockAtSlot(s));
 		const Eigen::Vector2d z =
-			safeObserve(m_mrptCtx.model, ego, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
+		    safeObserve(m_mrptCtx.model, ego, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
 		out[i][0] = z[0];
 		out[i][1] = z[1];
 	}
@@ -118,15 +119,15 @@ void CDynamicKFSLAM2D::OnObservationJacobians(size_t s, KFMatrix_OxV& Hx, KFMatr
 
 void CDynamicKFSLAM2D::OnSubstractObservationVectors(KFArray_OBS& A, const KFArray_OBS& B) const
 {
-	const Eigen::Vector2d d = models::innovation(
-		m_mrptCtx.model, Eigen::Vector2d(A[0], A[1]), Eigen::Vector2d(B[0], B[1]));
+	const Eigen::Vector2d d = models::innovation(m_mrptCtx.model, Eigen::Vector2d(A[0], A[1]),
+	                                             Eigen::Vector2d(B[0], B[1]));
 	A[0] = d[0];
 	A[1] = d[1];
 }
 
 void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
-	vector_KFArray_OBS& Z, std::vector<int>& da, const vector_KFArray_OBS& all_predictions,
-	const KFMatrix& S, const std::vector<size_t>& lm_indices_in_S, const KFMatrix_OxO&)
+    vector_KFArray_OBS& Z, std::vector<int>& da, const vector_KFArray_OBS& all_predictions,
+    const KFMatrix& S, const std::vector<size_t>& lm_indices_in_S, const KFMatrix_OxO&)
 {
 	Z.clear();
 	da.clear();
@@ -135,11 +136,11 @@ void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 	for (const auto& o : m_mrptObs)
 	{
 		const size_t slot = m_layout.slotOf(m_staticBlock.at(o.id));
-		const size_t q = size_t(
-			std::find(lm_indices_in_S.begin(), lm_indices_in_S.end(), slot) -
-			lm_indices_in_S.begin());
-		const Eigen::Vector2d nu = models::innovation(
-			m_mrptCtx.model, o.z, Eigen::Vector2d(all_predictions[slot][0], all_predictions[slot][1]));
+		const size_t q = size_t(std::find(lm_indices_in_S.begin(), lm_indices_in_S.end(), slot) -
+		                        lm_indices_in_S.begin());
+		const Eigen::Vector2d nu =
+		    models::innovation(m_mrptCtx.model, o.z,
+		                       Eigen::Vector2d(all_predictions[slot][0], all_predictions[slot][1]));
 		const Eigen::Matrix2d Sqq = S.asEigen().block<2, 2>(2 * q, 2 * q);
 		if (nu.dot(Sqq.ldlt().solve(nu)) > m_mrptCtx.gate_threshold)
 		{
@@ -163,14 +164,14 @@ void CDynamicKFSLAM2D::OnGetObservationsAndDataAssociation(
 	m_mrptResult.nis = nu.dot(Ssub.ldlt().solve(nu));
 }
 
-void CDynamicKFSLAM2D::OnInverseObservationModel(
-	const KFArray_OBS& in_z, KFArray_FEAT& yn, KFMatrix_FxV& dyn_dxv, KFMatrix_FxO& dyn_dhn) const
+void CDynamicKFSLAM2D::OnInverseObservationModel(const KFArray_OBS& in_z, KFArray_FEAT& yn,
+                                                 KFMatrix_FxV& dyn_dxv, KFMatrix_FxO& dyn_dhn) const
 {
 	models::Matrix23d J_f_x;
 	Eigen::Matrix2d J_f_z;
 	const Eigen::Vector2d f = models::inverseObserve(
-		options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
-		Eigen::Vector2d(in_z[0], in_z[1]), &J_f_x, &J_f_z);
+	    options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
+	    Eigen::Vector2d(in_z[0], in_z[1]), &J_f_x, &J_f_z);
 	yn[0] = f[0];
 	yn[1] = f[1];
 	dyn_dxv = J_f_x;
@@ -180,7 +181,8 @@ void CDynamicKFSLAM2D::OnInverseObservationModel(
 void CDynamicKFSLAM2D::OnNewLandmarkAddedToMap(size_t, size_t)
 {
 	// MRPT is never handed a new landmark (da == -1): the filter augments them itself.
-	throw std::logic_error("CDynamicKFSLAM2D: MRPT added a landmark; the slot table has one writer");
+	throw std::logic_error(
+	    "CDynamicKFSLAM2D: MRPT added a landmark; the slot table has one writer");
 }
 
 void CDynamicKFSLAM2D::OnNormalizeStateVector()

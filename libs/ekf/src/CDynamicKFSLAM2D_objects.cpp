@@ -21,8 +21,8 @@ namespace
 struct TObjectBlocks
 {
 	std::map<int32_t, size_t> f0;  ///< feature ID -> its time-0 block
-	std::vector<size_t> ft;  ///< time-t feature blocks of the current step
-	std::vector<size_t> poses;  ///< pose blocks, ascending step
+	std::vector<size_t> ft;        ///< time-t feature blocks of the current step
+	std::vector<size_t> poses;     ///< pose blocks, ascending step
 };
 std::map<int32_t, TObjectBlocks> indexObjects(const estimator::CPaddedLayout& L, int step)
 {
@@ -87,7 +87,7 @@ void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 	{
 		const bool first = m.route == Route::ObjectFirstSighting;
 		plan.blocks.push_back(
-			featureBlock(first ? BlockKind::ObjectFeature0 : BlockKind::ObjectFeatureT, m, m_step));
+		    featureBlock(first ? BlockKind::ObjectFeature0 : BlockKind::ObjectFeatureT, m, m_step));
 		z.push_back(m.reading.z);
 		++(first ? m_report.object_features_new : m_report.object_features_t);
 	}
@@ -171,9 +171,8 @@ void CDynamicKFSLAM2D::applyObjectMotion()
 			auto P = m_pkk.asEigen();
 			ekf::pseudoMeasurementUpdate(
 			    x, P, base, d,
-			    [&](const std::vector<Eigen::VectorXd>& v, std::vector<Eigen::MatrixXd>* J) {
-				    return m_motion->residual(pm, v, J);
-			    },
+			    [&](const std::vector<Eigen::VectorXd>& v, std::vector<Eigen::MatrixXd>* J)
+			    { return m_motion->residual(pm, v, J); },
 			    pm.R);
 			++m_report.smoothing_updates;
 		}
@@ -227,7 +226,8 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
 		const TBlock& t = m_layout[b];
-		if (t.kind != BlockKind::StaticLandmark || !m_drop.staticDue(t.id, m_step, t.step)) continue;
+		if (t.kind != BlockKind::StaticLandmark || !m_drop.staticDue(t.id, m_step, t.step))
+			continue;
 		const std::vector<int> idx = m_layout.indices(b);
 		TStaticLandmarkEstimate e;
 		e.id = t.id;

@@ -118,7 +118,8 @@ void CDynamicKFSLAM2D::onLayoutChanged()
 				s.id = -1;
 				break;
 			case BlockKind::ObjectVelocity:
-				throw std::logic_error("CDynamicKFSLAM2D: object velocities are not in this filter");
+				throw std::logic_error(
+				    "CDynamicKFSLAM2D: object velocities are not in this filter");
 		}
 		m_slots.push_back(s);
 		if (t.kind == BlockKind::ObjectPose && t.dim == 3)
@@ -144,8 +145,8 @@ void appendLabels(const TBlock& t, std::vector<std::string>& labels)
 		case BlockKind::ObjectFeatureT:
 		{
 			const bool t0 = t.kind == BlockKind::ObjectFeature0;
-			const std::string f = o + ".f" + std::to_string(t.feature) +
-								  (t0 ? ".t0" : ".t" + std::to_string(t.step));
+			const std::string f =
+			    o + ".f" + std::to_string(t.feature) + (t0 ? ".t0" : ".t" + std::to_string(t.step));
 			labels.push_back(f + ".x");
 			labels.push_back(f + ".y");
 			break;
@@ -166,8 +167,8 @@ void appendLabels(const TBlock& t, std::vector<std::string>& labels)
 }
 }  // namespace
 
-void CDynamicKFSLAM2D::getStateWithoutPads(
-	Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>* labels) const
+void CDynamicKFSLAM2D::getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& P,
+                                           std::vector<std::string>* labels) const
 {
 	const std::vector<int> keep = ekf::keptIndices(int(m_xkk.size()), m_layout.padIndices());
 	x = m_xkk.asEigen()(keep);

@@ -124,7 +124,8 @@ void scoreStaticMap(const TGroundTruth& gt, const TRunEstimates& est, TRunMetric
 }
 
 // One object: its time-0 features and its poses.
-TObjectMetrics scoreObject(const TObjectGroundTruth& o, const TRunEstimates& est, int nSteps, TRunMetrics& m)
+TObjectMetrics scoreObject(const TObjectGroundTruth& o, const TRunEstimates& est, int nSteps,
+                           TRunMetrics& m)
 {
 	TObjectMetrics om;
 	om.object = o.object;

@@ -139,9 +139,9 @@ void writeRunRecords(std::ostream& os, const TRunRecordFile& f)
 		os << "run " << r.level << ' ' << r.run << ' ' << r.seed << ' ' << r.steps << '\n';
 		rmseLine(os, "ego", m.ego);
 		rmseLine(os, "static_map", m.static_map);
-		os << "scalars " << hx(m.ate) << ' ' << hx(m.ate_aligned) << ' ' << m.ego_skipped << ' ' << m.landmarks_missing << ' '
-		   << m.landmarks_unmatched << ' ' << m.object_estimates_unmatched << ' '
-		   << hx(m.ms_per_step) << '\n';
+		os << "scalars " << hx(m.ate) << ' ' << hx(m.ate_aligned) << ' ' << m.ego_skipped << ' '
+		   << m.landmarks_missing << ' ' << m.landmarks_unmatched << ' '
+		   << m.object_estimates_unmatched << ' ' << hx(m.ms_per_step) << '\n';
 		for (const auto& o : m.objects)
 		{
 			os << "object " << o.object << ' ' << int(o.translation_only) << ' '

@@ -1,9 +1,9 @@
 #include <dynslam/backend_results.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/framework/object_pose_step.h>
-#include <dynslam/step_input.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/step_input.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -24,7 +24,7 @@ void CAlg1Backend::reset()
 	m_ego = TVarKey::ego(-1);
 	m_cost.addVariable(m_ego, m_opts.model.initial_pose);
 	m_cost.addTerm(
-		CPriorTerm::fromCovariance({m_ego}, {3}, m_opts.model.initial_pose, m_opts.model.Sigma_0));
+	    CPriorTerm::fromCovariance({m_ego}, {3}, m_opts.model.initial_pose, m_opts.model.Sigma_0));
 	m_step = -1;
 	if (!m_userRouter) m_router = estimator::makeRouter("ids");
 	m_router->reset();
@@ -71,8 +71,8 @@ bool CAlg1Backend::isTimeT(const TVarKey& k) const
 	return k.kind == VarKind::ObjectFeature && m_router->registry().isTimeT(k.id, k.step);
 }
 
-void CAlg1Backend::processActionObservation(
-	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
+void CAlg1Backend::processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
+                                            const mrpt::obs::CSensoryFrame::Ptr& SF)
 {
 	static const std::string who = "CAlg1Backend";
 	const estimator::TStepInput in = parseStepInput(action, SF, m_opts.model.parseOptions(), who);
@@ -81,13 +81,13 @@ void CAlg1Backend::processActionObservation(
 	m_report = TStepReport();
 	m_report.step = m_step;
 	const estimator::TRoutedStep routed = m_router->route(
-		m_step, in.readings, [this](int32_t id) { return m_cost.has(TVarKey::landmark(id)); });
+	    m_step, in.readings, [this](int32_t id) { return m_cost.has(TVarKey::landmark(id)); });
 	m_report.skipped_unknown_object_feature = routed.skipped_unknown_object_feature;
-	propagate(in);  // Alg. 7 / Theorem A.5
-	staticSteps(routed);  // Alg. 5 / A.3, then Alg. 3 / A.1
+	propagate(in);                      // Alg. 7 / Theorem A.5
+	staticSteps(routed);                // Alg. 5 / A.3, then Alg. 3 / A.1
 	objectFeatureAugmentation(routed);  // Alg. 3 / A.1 (objects)
-	objectPoseAugmentation();  // Alg. 4 / Theorem 4.1
-	objectMotion();  // Alg. 6 / Theorem 4.2 (optional)
+	objectPoseAugmentation();           // Alg. 4 / Theorem 4.1
+	objectMotion();                     // Alg. 6 / Theorem 4.2 (optional)
 	drops();
 }
 
@@ -112,7 +112,8 @@ void CAlg1Backend::propagate(const estimator::TStepInput& in)
 		const Eigen::MatrixXd Omega = Tinv.transpose() * prior->information() * Tinv;
 		CRunningCost c;
 		for (const auto& k : m_cost.keys())
-			c.addVariable(k == m_ego ? next : k, k == m_ego ? Eigen::VectorXd(pred) : m_cost.value(k));
+			c.addVariable(k == m_ego ? next : k,
+			              k == m_ego ? Eigen::VectorXd(pred) : m_cost.value(k));
 		m_cost = c;
 		m_ego = next;
 		m_cost.collapseToPrior(0.5 * (Omega + Omega.transpose()));
@@ -120,8 +121,8 @@ void CAlg1Backend::propagate(const estimator::TStepInput& in)
 	}
 	if (Eigen::LLT<Eigen::Matrix3d>(Su).info() != Eigen::Success)
 		throw std::runtime_error(
-			"CAlg1Backend: the odometry covariance is singular but not zero; the framework "
-			"needs it positive definite (or exactly zero)");
+		    "CAlg1Backend: the odometry covariance is singular but not zero; the framework "
+		    "needs it positive definite (or exactly zero)");
 	m_cost.addVariable(next, pred);
 	m_cost.addTerm(std::make_shared<COdometryTerm>(m_ego.step, m_step, in.u, Su));
 	m_cost.marginalize({m_ego});
@@ -138,7 +139,7 @@ void CAlg1Backend::staticSteps(const estimator::TRoutedStep& in)
 	{
 		for (const auto& m : tracked)
 			m_cost.addTerm(std::make_shared<CMeasurementTerm>(
-				m_ego.step, TVarKey::landmark(m.id), m.z, mo.measurement_model, mo.Sigma_v));
+			    m_ego.step, TVarKey::landmark(m.id), m.z, mo.measurement_model, mo.Sigma_v));
 		const auto r = gnAndCollapse();
 		m_report.static_updates = tracked.size();
 		m_report.nis_static = r.cost_linear_min;
@@ -151,8 +152,8 @@ void CAlg1Backend::staticSteps(const estimator::TRoutedStep& in)
 		{
 			const TVarKey k = TVarKey::landmark(m.id);
 			m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.z));
-			m_cost.addTerm(
-				std::make_shared<CMeasurementTerm>(m_ego.step, k, m.z, mo.measurement_model, mo.Sigma_v));
+			m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_ego.step, k, m.z,
+			                                                  mo.measurement_model, mo.Sigma_v));
 		}
 		gnAndCollapse();
 		m_report.static_new = fresh.size();
@@ -190,8 +191,8 @@ void CAlg1Backend::objectFeatureAugmentation(const estimator::TRoutedStep& in)
 			m_newTimeT.push_back(k);
 		}
 		m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.reading.z));
-		m_cost.addTerm(std::make_shared<CMeasurementTerm>(
-			m_ego.step, k, m.reading.z, mo.measurement_model, mo.Sigma_v));
+		m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_ego.step, k, m.reading.z,
+		                                                  mo.measurement_model, mo.Sigma_v));
 	}
 	if (!objects.empty()) gnAndCollapse();
 }
@@ -202,9 +203,9 @@ void CAlg1Backend::objectPoseAugmentation()
 	for (const auto& [obj, o] : m_router->registry().objects())
 	{
 		TObjectPoseKeys k;
-		const PoseStep r = addObjectPose(
-			m_cost, obj, o.first_step, o.feature_index, m_newTimeT, m_step,
-			m_opts.pose_residual == PoseResidual::PoseSpace, m_opts.model.Sigma_xi, k);
+		const PoseStep r = addObjectPose(m_cost, obj, o.first_step, o.feature_index, m_newTimeT,
+		                                 m_step, m_opts.pose_residual == PoseResidual::PoseSpace,
+		                                 m_opts.model.Sigma_xi, k);
 		if (r == PoseStep::NotSeen) continue;
 		if (r == PoseStep::Degenerate)
 		{
@@ -264,18 +265,18 @@ void CAlg1Backend::drops()
 		}
 	}
 	for (const auto& k : m_cost.keys())
-		{
-			if (k.kind != VarKind::StaticLandmark || !m_drop.staticDue(k.id, m_step, k.step)) continue;
-			TStaticLandmarkEstimate e;
-			e.id = k.id;
-			e.mean = m_cost.value(k);
-			e.cov = marginalCov(k);
-			e.in_state = false;
-			if (m_drop.record()) m_droppedStatic.push_back(e);
-			m_drop.forget(k.id);
-			M.push_back(k);
-			++m_report.dropped_static;
-		}
+	{
+		if (k.kind != VarKind::StaticLandmark || !m_drop.staticDue(k.id, m_step, k.step)) continue;
+		TStaticLandmarkEstimate e;
+		e.id = k.id;
+		e.mean = m_cost.value(k);
+		e.cov = marginalCov(k);
+		e.in_state = false;
+		if (m_drop.record()) m_droppedStatic.push_back(e);
+		m_drop.forget(k.id);
+		M.push_back(k);
+		++m_report.dropped_static;
+	}
 	if (!M.empty()) m_cost.marginalize(M);
 }
 
@@ -343,8 +344,8 @@ std::map<int32_t, TObjectTrack> CAlg1Backend::getObjectTracks() const
 	return out;
 }
 
-void CAlg1Backend::getLabelledState(
-	Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>& labels) const
+void CAlg1Backend::getLabelledState(Eigen::VectorXd& x, Eigen::MatrixXd& P,
+                                    std::vector<std::string>& labels) const
 {
 	TGaussNewtonOptions o;
 	o.solver = SolverKind::Dense;
@@ -366,7 +367,7 @@ void CAlg1Backend::getLabelledState(
 			case VarKind::ObjectFeature:
 			{
 				const std::string f = ob + ".f" + std::to_string(k.feature) +
-									  (isTimeT(k) ? ".t" + std::to_string(k.step) : ".t0");
+				                      (isTimeT(k) ? ".t" + std::to_string(k.step) : ".t0");
 				labels.push_back(f + ".x");
 				labels.push_back(f + ".y");
 				break;

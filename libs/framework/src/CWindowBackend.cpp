@@ -1,9 +1,9 @@
 #include <dynslam/backend_results.h>
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/object_pose_step.h>
-#include <dynslam/step_input.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/step_input.h>
 
 #include <algorithm>
 #include <set>
@@ -19,10 +19,7 @@ CWindowBackend::CWindowBackend(const TBackendOptions& opts) : m_opts(opts)
 	reset();
 }
 
-bool CWindowBackend::coupled() const
-{
-	return m_opts.backend.rfind("clusterslam", 0) != 0;
-}
+bool CWindowBackend::coupled() const { return m_opts.backend.rfind("clusterslam", 0) != 0; }
 
 void CWindowBackend::reset()
 {
@@ -51,21 +48,22 @@ TGaussNewtonOptions CWindowBackend::gnOptions() const
 {
 	TGaussNewtonOptions o;
 	o.solver = m_opts.solver == 1 ? SolverKind::Dense
-									  : (m_opts.solver == 2 ? SolverKind::Sparse : SolverKind::Auto);
+	                              : (m_opts.solver == 2 ? SolverKind::Sparse : SolverKind::Auto);
 	o.compute_covariance = false;
 	return o;
 }
 
 Eigen::Matrix2d CWindowBackend::pointCov(const Eigen::Vector2d& z) const
 {
-	if (m_opts.model.measurement_model == models::MeasurementModel::Cartesian) return m_opts.model.Sigma_v;
+	if (m_opts.model.measurement_model == models::MeasurementModel::Cartesian)
+		return m_opts.model.Sigma_v;
 	Eigen::Matrix2d J;
 	models::rangeBearingToCartesian(z, &J);
 	return J * m_opts.model.Sigma_v * J.transpose();
 }
 
-void CWindowBackend::processActionObservation(
-	const mrpt::obs::CActionCollection::Ptr& action, const mrpt::obs::CSensoryFrame::Ptr& SF)
+void CWindowBackend::processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
+                                              const mrpt::obs::CSensoryFrame::Ptr& SF)
 {
 	const auto& mo = m_opts.model;
 	static const std::string who = "CWindowBackend";
@@ -75,7 +73,7 @@ void CWindowBackend::processActionObservation(
 	m_report = TStepReport();
 	m_report.step = m_step;
 	const estimator::TRoutedStep routed = m_router->route(
-		m_step, in.readings, [this](int32_t id) { return m_cost.has(TVarKey::landmark(id)); });
+	    m_step, in.readings, [this](int32_t id) { return m_cost.has(TVarKey::landmark(id)); });
 	m_report.skipped_unknown_object_feature = routed.skipped_unknown_object_feature;
 	const TVarKey ego = TVarKey::ego(m_step);
 	const Eigen::Matrix3d Su = mo.motion_noise_from_action ? in.U : mo.Sigma_w;
@@ -85,7 +83,8 @@ void CWindowBackend::processActionObservation(
 		Eigen::Matrix3d G;
 		const Eigen::Vector3d x0 = models::composePose(mo.initial_pose, in.u, nullptr, &G);
 		m_cost.addVariable(ego, x0);
-		m_cost.addTerm(CPriorTerm::fromCovariance({ego}, {3}, x0, mo.Sigma_0 + G * Su * G.transpose()));
+		m_cost.addTerm(
+		    CPriorTerm::fromCovariance({ego}, {3}, x0, mo.Sigma_0 + G * Su * G.transpose()));
 	}
 	else
 	{
@@ -100,12 +99,14 @@ void CWindowBackend::processActionObservation(
 		const TVarKey k = TVarKey::landmark(m.id);
 		if (r.route == estimator::Route::StaticNew)
 		{
-			m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, m_cost.value(ego), m.z));
+			m_cost.addVariable(
+			    k, models::inverseObserve(mo.measurement_model, m_cost.value(ego), m.z));
 			++m_report.static_new;
 		}
 		else
 			++m_report.static_updates;
-		m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_step, k, m.z, mo.measurement_model, mo.Sigma_v));
+		m_cost.addTerm(
+		    std::make_shared<CMeasurementTerm>(m_step, k, m.z, mo.measurement_model, mo.Sigma_v));
 		m_drop.noteSeen(m.id, m_step);
 	}
 	// 3. objects
@@ -127,7 +128,7 @@ void CWindowBackend::processActionObservation(
 		std::vector<TVarKey> ft;
 		for (const auto& k : objectCost().keys())
 			if (k.kind == VarKind::ObjectFeature && k.step == m_step &&
-				m_router->registry().isTimeT(k.id, m_step))
+			    m_router->registry().isTimeT(k.id, m_step))
 				ft.push_back(k);
 		if (!ft.empty())
 		{
@@ -194,15 +195,15 @@ void CWindowBackend::addObjects(const estimator::TRoutedStep& in, const TVarKey&
 			++m_report.object_features_t;
 		}
 		c.addVariable(k, models::inverseObserve(mo.measurement_model, x, r.reading.z));
-		c.addTerm(std::make_shared<CMeasurementTerm>(
-			m_step, k, r.reading.z, mo.measurement_model, mo.Sigma_v));
+		c.addTerm(std::make_shared<CMeasurementTerm>(m_step, k, r.reading.z, mo.measurement_model,
+		                                             mo.Sigma_v));
 	}
 	for (const auto& [obj, o] : m_router->registry().objects())
 	{
 		TObjectPoseKeys k;
-		const PoseStep r = addObjectPose(
-			c, obj, o.first_step, o.feature_index, newT, m_step,
-			m_opts.pose_residual == PoseResidual::PoseSpace, mo.Sigma_xi, k);
+		const PoseStep r =
+		    addObjectPose(c, obj, o.first_step, o.feature_index, newT, m_step,
+		                  m_opts.pose_residual == PoseResidual::PoseSpace, mo.Sigma_xi, k);
 		if (r == PoseStep::NotSeen) continue;
 		if (r == PoseStep::Degenerate)
 		{
@@ -229,10 +230,9 @@ namespace
  * `pts` with covariances `covs`, `seen` their index in `body`): T = (c0 + xi_t, xi_theta) with
  * its covariance Gamma2 diag(covs) Gamma2^T, or the point itself for a one-feature object.
  * False if the rotation is undetermined. */
-bool fitBodyPose(
-	const Eigen::Matrix2Xd& body, const std::vector<int>& seen,
-	const std::vector<Eigen::Vector2d>& pts, const std::vector<Eigen::Matrix2d>& covs,
-	Eigen::VectorXd& T, Eigen::MatrixXd& ST)
+bool fitBodyPose(const Eigen::Matrix2Xd& body, const std::vector<int>& seen,
+                 const std::vector<Eigen::Vector2d>& pts, const std::vector<Eigen::Matrix2d>& covs,
+                 Eigen::VectorXd& T, Eigen::MatrixXd& ST)
 {
 	const size_t m = pts.size();
 	if (body.cols() == 1)
@@ -271,9 +271,9 @@ void CWindowBackend::addCubeObjects(const estimator::TRoutedStep& in, const TVar
 	for (const auto& r : in.objects())
 	{
 		const Eigen::Vector2d p =
-			m_opts.model.measurement_model == models::MeasurementModel::Cartesian
-				? r.reading.z
-				: models::rangeBearingToCartesian(r.reading.z);
+		    m_opts.model.measurement_model == models::MeasurementModel::Cartesian
+		        ? r.reading.z
+		        : models::rangeBearingToCartesian(r.reading.z);
 		per[r.object].push_back({r.reading.id, p});
 	}
 	for (const auto& [obj, meas] : per)
@@ -296,9 +296,10 @@ void CWindowBackend::addCubeObjects(const estimator::TRoutedStep& in, const TVar
 		{
 			seen.push_back(o.indexOf(id));
 			pts.push_back(p);
-			covs.push_back(pointCov(Eigen::Vector2d(
-				m_opts.model.measurement_model == models::MeasurementModel::Cartesian ? p
-																					  : models::cartesianToRangeBearing(p))));
+			covs.push_back(pointCov(Eigen::Vector2d(m_opts.model.measurement_model ==
+			                                                models::MeasurementModel::Cartesian
+			                                            ? p
+			                                            : models::cartesianToRangeBearing(p))));
 		}
 		const size_t n = o.feature_ids.size(), m = pts.size();
 		if (m == 0) continue;
@@ -338,7 +339,8 @@ TObjectPoseEstimate CWindowBackend::poseEstimate(int32_t obj, int step) const
 		return e;
 	}
 	const estimator::TObjectEntry& o = m_router->registry().at(obj);
-	const TVarKey k0 = TVarKey::objectBodyPose(obj, o.first_step), kt = TVarKey::objectBodyPose(obj, step);
+	const TVarKey k0 = TVarKey::objectBodyPose(obj, o.first_step),
+	              kt = TVarKey::objectBodyPose(obj, step);
 	const Eigen::VectorXd a = c.value(k0), b = c.value(kt);
 	const Eigen::Index d = a.size();
 	e.mean = blockMinus(VarKind::ObjectBodyPose, b, a);
@@ -362,10 +364,10 @@ void CWindowBackend::slideWindow()
 	for (const auto& [obj, o] : m_router->registry().objects())
 	{
 		const TVarKey pk = cube() ? TVarKey::objectBodyPose(obj, oldest - 1)
-								  : TVarKey::objectPose(obj, oldest - 1);
+		                          : TVarKey::objectPose(obj, oldest - 1);
 		if (!oc.has(pk) || (cube() && oldest - 1 == o.first_step)) continue;
-		m_router->registry().recordDroppedPose(
-			obj, toRecord(poseEstimate(obj, oldest - 1)), m_drop.record());
+		m_router->registry().recordDroppedPose(obj, toRecord(poseEstimate(obj, oldest - 1)),
+		                                       m_drop.record());
 		M.push_back(pk);
 		++m_report.dropped_poses;
 	}

@@ -105,7 +105,7 @@ std::map<int32_t, TObjectTrack> CWindowBackend::getObjectTracks() const
 		TObjectTrack& tr = out[obj];
 		for (const auto& k : c.keys())
 			if (k.id == obj && (cube() ? k.kind == VarKind::ObjectBodyPose && k.step != o.first_step
-									   : k.kind == VarKind::ObjectPose))
+			                           : k.kind == VarKind::ObjectPose))
 				tr.poses.push_back(poseEstimate(obj, k.step));
 	}
 	sortTrackPoses(out);

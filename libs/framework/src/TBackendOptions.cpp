@@ -9,8 +9,12 @@ namespace dynslam::framework
 {
 const std::vector<std::string>& backendKinds()
 {
-	static const std::vector<std::string> k{
-		"alg1", "vdo", "dynaslam2", "cubeslam", "clusterslam_decoupled", "clusterslam_semidecoupled"};
+	static const std::vector<std::string> k{"alg1",
+	                                        "vdo",
+	                                        "dynaslam2",
+	                                        "cubeslam",
+	                                        "clusterslam_decoupled",
+	                                        "clusterslam_semidecoupled"};
 	return k;
 }
 
@@ -44,17 +48,16 @@ TBackendOptions defaultBackendOptions(const std::string& kind)
 	return o;
 }
 
-void TBackendOptions::loadFromConfigFile(
-	const mrpt::config::CConfigFileBase& c, const std::string& s)
+void TBackendOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                         const std::string& s)
 {
 	using namespace dynslam::config;
-	rejectUnknownKeys(
-		c, s,
-		{"backend", "model_section", "window_size", "max_iterations", "tolerance", "pose_residual",
-		 "object_features", "solver"});
+	rejectUnknownKeys(c, s,
+	                  {"backend", "model_section", "window_size", "max_iterations", "tolerance",
+	                   "pose_residual", "object_features", "solver"});
 	// backend: optional when the caller already chose the kind (defaultBackendOptions(kind)).
 	const int current = int(std::find(backendKinds().begin(), backendKinds().end(), backend) -
-							backendKinds().begin());
+	                        backendKinds().begin());
 	const int k = readChoice(c, s, "backend", backendKinds(), current);
 	*this = defaultBackendOptions(backendKinds()[k]);
 	model_section = readString(c, s, "model_section", model_section);
@@ -74,11 +77,11 @@ void TBackendOptions::loadFromConfigFile(
 		fail(s, "max_iterations", std::to_string(max_iterations), "must be >= 1");
 	tolerance = readPositive(c, s, "tolerance", tolerance);
 	pose_residual = readChoice(c, s, "pose_residual", {"pose_space", "feature_space"},
-						pose_residual == PoseResidual::PoseSpace ? 0 : 1) == 0
-						? PoseResidual::PoseSpace
-						: PoseResidual::FeatureSpace;
+	                           pose_residual == PoseResidual::PoseSpace ? 0 : 1) == 0
+	                    ? PoseResidual::PoseSpace
+	                    : PoseResidual::FeatureSpace;
 	object_features = TBackendOptions::FeaturePolicy(
-		readChoice(c, s, "object_features", {"keep", "marginalize", "drop"}, int(object_features)));
+	    readChoice(c, s, "object_features", {"keep", "marginalize", "drop"}, int(object_features)));
 	solver = readChoice(c, s, "solver", {"auto", "dense", "sparse"}, solver);
 	model.loadFromConfigFile(c, model_section);
 	try
@@ -94,19 +97,19 @@ void TBackendOptions::loadFromConfigFile(
 void TBackendOptions::validate() const
 {
 	if (window_size == 0 || window_size < -1)
-		throw std::invalid_argument(
-			"window_size = " + std::to_string(window_size) + ": must be >= 1 (or 'all')");
+		throw std::invalid_argument("window_size = " + std::to_string(window_size) +
+		                            ": must be >= 1 (or 'all')");
 	if (max_iterations < 1) throw std::invalid_argument("max_iterations must be >= 1");
 	if (object_features == FeaturePolicy::Drop)
 		throw std::invalid_argument(
-			"object_features = drop: dropping f_t removes every term touching it, including the "
-			"only residual on the object pose xi_t, which would be left unobservable; use "
-			"marginalize (keeps its information) or keep");
+		    "object_features = drop: dropping f_t removes every term touching it, including the "
+		    "only residual on the object pose xi_t, which would be left unobservable; use "
+		    "marginalize (keeps its information) or keep");
 	if (!(tolerance > 0)) throw std::invalid_argument("tolerance must be > 0");
 	if (model.Sigma_0.determinant() <= 0)
 		throw std::invalid_argument(
-			"the framework needs a positive-definite Sigma_0 ([" + model_section +
-			"] Sigma_0): its running cost starts with ||x_0 - mu_0||^2_{Sigma_0^-1}");
+		    "the framework needs a positive-definite Sigma_0 ([" + model_section +
+		    "] Sigma_0): its running cost starts with ||x_0 - mu_0||^2_{Sigma_0^-1}");
 	model.validate();
 }
 
@@ -115,12 +118,12 @@ void TBackendOptions::dumpToTextStream(std::ostream& out) const
 	out << "\n----------- [dynslam::framework::TBackendOptions] ------------\n\n";
 	out << "backend         = " << backend << "\n";
 	out << "model_section   = " << model_section << "\n";
-	out << "window_size     = " << (window_size < 0 ? std::string("all") : std::to_string(window_size))
-		<< "\n";
+	out << "window_size     = "
+	    << (window_size < 0 ? std::string("all") : std::to_string(window_size)) << "\n";
 	out << "max_iterations  = " << max_iterations << "\n";
 	out << "tolerance       = " << tolerance << "\n";
 	out << "pose_residual   = "
-		<< (pose_residual == PoseResidual::PoseSpace ? "pose_space" : "feature_space") << "\n";
+	    << (pose_residual == PoseResidual::PoseSpace ? "pose_space" : "feature_space") << "\n";
 	static const char* fp[] = {"keep", "marginalize", "drop"};
 	out << "object_features = " << fp[int(object_features)] << "\n";
 	static const char* sv[] = {"auto", "dense", "sparse"};

@@ -12,14 +12,15 @@ std::unique_ptr<ISlamBackend> makeBackend(const TBackendOptions& opts)
 	return std::make_unique<CWindowBackend>(opts);
 }
 
-std::unique_ptr<ISlamBackend> makeBackend(
-	const std::string& kind, const mrpt::config::CConfigFileBase& ini, const std::string& section)
+std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
+                                          const mrpt::config::CConfigFileBase& ini,
+                                          const std::string& section)
 {
 	TBackendOptions o = defaultBackendOptions(kind);
 	o.loadFromConfigFile(ini, section);
 	if (o.backend != kind)
-		throw std::invalid_argument(
-			"[" + section + "] backend = " + o.backend + " differs from the requested kind " + kind);
+		throw std::invalid_argument("[" + section + "] backend = " + o.backend +
+		                            " differs from the requested kind " + kind);
 	return makeBackend(o);
 }
 }  // namespace dynslam::framework

@@ -7,10 +7,10 @@
 
 namespace dynslam::framework
 {
-PoseStep addObjectPose(
-	CRunningCost& c, int32_t obj, int first_step, const std::vector<int32_t>& features,
-	const std::vector<TVarKey>& newT, int step, bool poseSpace, const Eigen::Matrix2d& Sigma_xi,
-	TObjectPoseKeys& k)
+PoseStep addObjectPose(CRunningCost& c, int32_t obj, int first_step,
+                       const std::vector<int32_t>& features, const std::vector<TVarKey>& newT,
+                       int step, bool poseSpace, const Eigen::Matrix2d& Sigma_xi,
+                       TObjectPoseKeys& k)
 {
 	k = TObjectPoseKeys();
 	for (const auto& key : newT)
@@ -18,7 +18,7 @@ PoseStep addObjectPose(
 		{
 			k.ft.push_back(key);
 			k.seen.push_back(
-				int(std::find(features.begin(), features.end(), key.feature) - features.begin()));
+			    int(std::find(features.begin(), features.end(), key.feature) - features.begin()));
 		}
 	const size_t n = features.size(), m = k.ft.size();
 	if (m == 0) return PoseStep::NotSeen;
@@ -34,7 +34,7 @@ PoseStep addObjectPose(
 	try
 	{
 		xi = n == 1 ? Eigen::VectorXd(models::objectTranslationInverse(f0.col(0), ft.col(0)))
-					: Eigen::VectorXd(models::objectPoseInverse(f0, ft, k.seen));
+		            : Eigen::VectorXd(models::objectPoseInverse(f0, ft, k.seen));
 	}
 	catch (const std::domain_error&)
 	{

@@ -11,10 +11,9 @@ namespace detail
 {
 /** Calls add(rowOffset, colOffset, block) for every block J_i^T W J_j of a linearized term and
  * addG(offset, J_i^T W r); offsets are local (-1: block not in the system, skipped). */
-inline void scatterTerm(
-	const CTerm& term, const TLinearization& L, const std::vector<int>& off,
-	const std::function<void(int, int, const Eigen::MatrixXd&)>& add,
-	const std::function<void(int, const Eigen::VectorXd&)>& addG)
+inline void scatterTerm(const CTerm& term, const TLinearization& L, const std::vector<int>& off,
+                        const std::function<void(int, int, const Eigen::MatrixXd&)>& add,
+                        const std::function<void(int, const Eigen::VectorXd&)>& addG)
 {
 	const size_t k = term.keys().size();
 	const Eigen::VectorXd Wr = L.W * L.r;
@@ -29,8 +28,7 @@ inline void scatterTerm(
 			const int di = prior->dims()[i];
 			addG(off[i], Wr.segment(po[i], di));
 			for (size_t j = 0; j < k; ++j)
-				if (off[j] >= 0)
-					add(off[i], off[j], L.W.block(po[i], po[j], di, prior->dims()[j]));
+				if (off[j] >= 0) add(off[i], off[j], L.W.block(po[i], po[j], di, prior->dims()[j]));
 		}
 		return;
 	}

@@ -26,28 +26,28 @@ bool CTerm::touches(const TVarKey& k) const
 }
 
 // ---------------------------------------------------------------------------------------
-CPriorTerm::CPriorTerm(
-	std::vector<TVarKey> keys, std::vector<int> dims, Eigen::VectorXd mean,
-	Eigen::MatrixXd information)
-	: CTerm(std::move(keys)), m_dims(std::move(dims)), m_mean(std::move(mean)),
-	  m_info(std::move(information))
+CPriorTerm::CPriorTerm(std::vector<TVarKey> keys, std::vector<int> dims, Eigen::VectorXd mean,
+                       Eigen::MatrixXd information)
+    : CTerm(std::move(keys)),
+      m_dims(std::move(dims)),
+      m_mean(std::move(mean)),
+      m_info(std::move(information))
 {
 	int n = 0;
 	for (int d : m_dims) n += d;
 	if (m_dims.size() != m_keys.size() || m_mean.size() != n || m_info.rows() != n ||
-		m_info.cols() != n)
+	    m_info.cols() != n)
 		throw std::invalid_argument("CPriorTerm: inconsistent sizes");
 	if (!m_mean.allFinite() || !m_info.allFinite())
 		throw std::invalid_argument("CPriorTerm: mean or information not finite");
 }
 
-std::shared_ptr<CPriorTerm> CPriorTerm::fromCovariance(
-	std::vector<TVarKey> keys, std::vector<int> dims, Eigen::VectorXd mean,
-	const Eigen::MatrixXd& covariance)
+std::shared_ptr<CPriorTerm> CPriorTerm::fromCovariance(std::vector<TVarKey> keys,
+                                                       std::vector<int> dims, Eigen::VectorXd mean,
+                                                       const Eigen::MatrixXd& covariance)
 {
-	return std::make_shared<CPriorTerm>(
-		std::move(keys), std::move(dims), std::move(mean),
-		spdInverse(covariance, "CPriorTerm::fromCovariance"));
+	return std::make_shared<CPriorTerm>(std::move(keys), std::move(dims), std::move(mean),
+	                                    spdInverse(covariance, "CPriorTerm::fromCovariance"));
 }
 
 TLinearization CPriorTerm::linearize(const std::vector<Eigen::VectorXd>& x) const
@@ -70,9 +70,9 @@ TLinearization CPriorTerm::linearize(const std::vector<Eigen::VectorXd>& x) cons
 }
 
 // ---------------------------------------------------------------------------------------
-COdometryTerm::COdometryTerm(
-	int t_from, int t_to, const Eigen::Vector3d& u, const Eigen::Matrix3d& Sigma_u)
-	: CTerm({TVarKey::ego(t_from), TVarKey::ego(t_to)}), m_u(u), m_Sigma_u(Sigma_u)
+COdometryTerm::COdometryTerm(int t_from, int t_to, const Eigen::Vector3d& u,
+                             const Eigen::Matrix3d& Sigma_u)
+    : CTerm({TVarKey::ego(t_from), TVarKey::ego(t_to)}), m_u(u), m_Sigma_u(Sigma_u)
 {
 	spdInverse(Sigma_u, "COdometryTerm: Sigma_u");
 }
@@ -89,11 +89,12 @@ TLinearization COdometryTerm::linearize(const std::vector<Eigen::VectorXd>& x) c
 }
 
 // ---------------------------------------------------------------------------------------
-CMeasurementTerm::CMeasurementTerm(
-	int t, const TVarKey& feature, const Eigen::Vector2d& z, models::MeasurementModel model,
-	const Eigen::Matrix2d& Sigma_v)
-	: CTerm({TVarKey::ego(t), feature}), m_z(z), m_model(model),
-	  m_info(spdInverse(Sigma_v, "CMeasurementTerm: Sigma_v"))
+CMeasurementTerm::CMeasurementTerm(int t, const TVarKey& feature, const Eigen::Vector2d& z,
+                                   models::MeasurementModel model, const Eigen::Matrix2d& Sigma_v)
+    : CTerm({TVarKey::ego(t), feature}),
+      m_z(z),
+      m_model(model),
+      m_info(spdInverse(Sigma_v, "CMeasurementTerm: Sigma_v"))
 {
 }
 
@@ -126,10 +127,13 @@ std::vector<TVarKey> poseKeys(const TObjectPoseKeys& k)
 }
 }  // namespace
 
-CObjectPoseFeatureTerm::CObjectPoseFeatureTerm(
-	const TObjectPoseKeys& k, const Eigen::Matrix2d& Sigma_xi)
-	: CTerm(poseKeys(k)), m_n(k.f0.size()), m_m(k.ft.size()), m_seen(k.seen),
-	  m_info(spdInverse(Sigma_xi, "CObjectPoseFeatureTerm: Sigma_xi"))
+CObjectPoseFeatureTerm::CObjectPoseFeatureTerm(const TObjectPoseKeys& k,
+                                               const Eigen::Matrix2d& Sigma_xi)
+    : CTerm(poseKeys(k)),
+      m_n(k.f0.size()),
+      m_m(k.ft.size()),
+      m_seen(k.seen),
+      m_info(spdInverse(Sigma_xi, "CObjectPoseFeatureTerm: Sigma_xi"))
 {
 }
 
@@ -172,7 +176,7 @@ TLinearization CObjectPoseFeatureTerm::linearize(const std::vector<Eigen::Vector
 
 // ---------------------------------------------------------------------------------------
 CObjectPosePoseTerm::CObjectPosePoseTerm(const TObjectPoseKeys& k, const Eigen::Matrix2d& Sigma_xi)
-	: CTerm(poseKeys(k)), m_n(k.f0.size()), m_m(k.ft.size()), m_seen(k.seen), m_Sigma_xi(Sigma_xi)
+    : CTerm(poseKeys(k)), m_n(k.f0.size()), m_m(k.ft.size()), m_seen(k.seen), m_Sigma_xi(Sigma_xi)
 {
 	spdInverse(Sigma_xi, "CObjectPosePoseTerm: Sigma_xi");
 }
@@ -187,7 +191,8 @@ TLinearization CObjectPosePoseTerm::linearize(const std::vector<Eigen::VectorXd>
 	Eigen::MatrixXd G1, G2;
 	if (d == 2)
 	{
-		if (m_n != 1 || m_m != 1) throw std::invalid_argument("translation-only pose needs one feature");
+		if (m_n != 1 || m_m != 1)
+			throw std::invalid_argument("translation-only pose needs one feature");
 		Eigen::Matrix2d g1, g2;
 		xi = models::objectTranslationInverse(f0.col(0), ft.col(0), &g1, &g2);
 		G1 = g1;
@@ -210,9 +215,9 @@ TLinearization CObjectPosePoseTerm::linearize(const std::vector<Eigen::VectorXd>
 }
 
 // ---------------------------------------------------------------------------------------
-CSmoothingTerm::CSmoothingTerm(
-	const TVarKey& a, const TVarKey& b, const TVarKey& c, const Eigen::MatrixXd& Sigma_s)
-	: CTerm({a, b, c}), m_info(spdInverse(Sigma_s, "CSmoothingTerm: Sigma_s"))
+CSmoothingTerm::CSmoothingTerm(const TVarKey& a, const TVarKey& b, const TVarKey& c,
+                               const Eigen::MatrixXd& Sigma_s)
+    : CTerm({a, b, c}), m_info(spdInverse(Sigma_s, "CSmoothingTerm: Sigma_s"))
 {
 }
 
@@ -238,11 +243,12 @@ std::vector<TVarKey> poseKeys(const estimator::TPseudoMeasurement& m)
 }
 }  // namespace
 
-CMotionModelTerm::CMotionModelTerm(
-	std::shared_ptr<const estimator::IObjectMotionModel> model,
-	const estimator::TPseudoMeasurement& m)
-	: CTerm(poseKeys(m)), m_model(std::move(model)), m_meas(m),
-	  m_info(spdInverse(m.R, "CMotionModelTerm: R"))
+CMotionModelTerm::CMotionModelTerm(std::shared_ptr<const estimator::IObjectMotionModel> model,
+                                   const estimator::TPseudoMeasurement& m)
+    : CTerm(poseKeys(m)),
+      m_model(std::move(model)),
+      m_meas(m),
+      m_info(spdInverse(m.R, "CMotionModelTerm: R"))
 {
 	if (!m_model) throw std::invalid_argument("CMotionModelTerm: null model");
 }
@@ -259,10 +265,12 @@ TLinearization CMotionModelTerm::linearize(const std::vector<Eigen::VectorXd>& x
 }
 
 // ---------------------------------------------------------------------------------------
-CBodyPoseMeasurementTerm::CBodyPoseMeasurementTerm(
-	int t, const TVarKey& body, const Eigen::VectorXd& T, const Eigen::MatrixXd& Sigma_T)
-	: CTerm({TVarKey::ego(t), body}), m_T(T),
-	  m_info(spdInverse(Sigma_T, "CBodyPoseMeasurementTerm: Sigma_T"))
+CBodyPoseMeasurementTerm::CBodyPoseMeasurementTerm(int t, const TVarKey& body,
+                                                   const Eigen::VectorXd& T,
+                                                   const Eigen::MatrixXd& Sigma_T)
+    : CTerm({TVarKey::ego(t), body}),
+      m_T(T),
+      m_info(spdInverse(Sigma_T, "CBodyPoseMeasurementTerm: Sigma_T"))
 {
 	if (T.size() != 2 && T.size() != 3)
 		throw std::invalid_argument("CBodyPoseMeasurementTerm: T must have 2 or 3 entries");

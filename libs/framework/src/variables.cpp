@@ -16,7 +16,7 @@ std::string toString(const TVarKey& k)
 			return "landmark " + std::to_string(k.id);
 		case VarKind::ObjectFeature:
 			return "f[obj " + std::to_string(k.id) + ", k " + std::to_string(k.feature) + ", t " +
-				   t + "]";
+			       t + "]";
 		case VarKind::ObjectPose:
 			return "xi[obj " + std::to_string(k.id) + ", t " + t + "]";
 		case VarKind::ObjectBodyPose:

@@ -110,9 +110,9 @@ int main()
 		    "mrclam: unicycleArc");
 		// estimator, kitti
 		dynslam::estimator::CIdRangeRouter router;
-		const auto routed = router.route(
-		    0, {{dynslam::ids::objectFeatureId(2, 0), Eigen::Vector2d(1, 0)}},
-		    [](int32_t) { return false; });
+		const auto routed =
+		    router.route(0, {{dynslam::ids::objectFeatureId(2, 0), Eigen::Vector2d(1, 0)}},
+		                 [](int32_t) { return false; });
 		ok &= check(routed.readings.size() == 1 &&
 		                routed.readings[0].route == dynslam::estimator::Route::ObjectFirstSighting,
 		            "estimator: CIdRangeRouter");

@@ -14,8 +14,8 @@ namespace dynslam_test
 {
 /** Central-difference Jacobian of f at x, with step h. */
 inline Eigen::MatrixXd numericJacobian(
-	const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x,
-	double h = 1e-6)
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x,
+    double h = 1e-6)
 {
 	const Eigen::VectorXd f0 = f(x);
 	Eigen::MatrixXd J(f0.size(), x.size());
@@ -37,15 +37,15 @@ inline double relativeError(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B)
 
 /** gtest assertion: analytic J agrees with the numeric Jacobian of f at x to tol. */
 inline ::testing::AssertionResult jacobianMatches(
-	const Eigen::MatrixXd& J_analytic,
-	const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x,
-	double tol = 1e-6, double h = 1e-6)
+    const Eigen::MatrixXd& J_analytic,
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x,
+    double tol = 1e-6, double h = 1e-6)
 {
 	const Eigen::MatrixXd J_num = numericJacobian(f, x, h);
 	if (J_num.rows() != J_analytic.rows() || J_num.cols() != J_analytic.cols())
 		return ::testing::AssertionFailure()
-			   << "size mismatch: analytic " << J_analytic.rows() << "x" << J_analytic.cols()
-			   << " numeric " << J_num.rows() << "x" << J_num.cols();
+		       << "size mismatch: analytic " << J_analytic.rows() << "x" << J_analytic.cols()
+		       << " numeric " << J_num.rows() << "x" << J_num.cols();
 	const double e = relativeError(J_analytic, J_num);
 	if (e <= tol) return ::testing::AssertionSuccess();
 	std::ostringstream ss;

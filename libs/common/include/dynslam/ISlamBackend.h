@@ -28,7 +28,7 @@ struct TObjectFeatureEstimate
 {
 	int32_t object, feature, id;
 	bool at_time0;  ///< true: f_0 (first sighting); false: f_t
-	int step;  ///< step of the estimate (first sighting step for f_0)
+	int step;       ///< step of the estimate (first sighting step for f_0)
 	Eigen::Vector2d mean;
 	Eigen::Matrix2d cov;
 };
@@ -37,15 +37,15 @@ struct TObjectPoseEstimate
 {
 	int step;
 	Eigen::VectorXd mean;  ///< (dx, dy, dtheta), or (dx, dy) for one-feature objects
-	Eigen::MatrixXd cov;  ///< marginal covariance
-	bool in_state;  ///< false: dropped, recorded with its marginal covariance at drop time
+	Eigen::MatrixXd cov;   ///< marginal covariance
+	bool in_state;         ///< false: dropped, recorded with its marginal covariance at drop time
 };
 
 /** Everything known of one moving object. */
 struct TObjectTrack
 {
 	int32_t object;
-	int first_step;  ///< the object's time 0
+	int first_step;    ///< the object's time 0
 	int num_features;  ///< features seen at the first sighting (the object's feature set)
 	std::vector<TObjectPoseEstimate> poses;  ///< ascending step: dropped ones, then in-state ones
 };
@@ -57,10 +57,11 @@ struct TStepReport
 	size_t static_updates = 0, static_new = 0;
 	size_t object_features_new = 0, object_features_t = 0, object_poses_added = 0;
 	size_t smoothing_updates = 0;
-	size_t skipped_unknown_object_feature = 0;  ///< feature of a known object not seen at its time 0
+	size_t skipped_unknown_object_feature =
+	    0;                               ///< feature of a known object not seen at its time 0
 	size_t skipped_pose_degenerate = 0;  ///< gamma undetermined (one feature seen, coinciding)
 	size_t dropped_static = 0, dropped_poses = 0, dropped_time_t = 0;
-	size_t gated_out = 0;  ///< static measurements rejected by the innovation gate
+	size_t gated_out = 0;   ///< static measurements rejected by the innovation gate
 	double nis_static = 0;  ///< NIS of the static update (0 if none)
 	size_t nis_static_dof = 0;
 };
@@ -73,12 +74,11 @@ public:
 	/** Short name used in tables and file names, e.g. "dynamic_ekf". */
 	virtual std::string name() const = 0;
 	/** One step: odometry action into this step, then the observations of this step. */
-	virtual void processActionObservation(
-		const mrpt::obs::CActionCollection::Ptr& action,
-		const mrpt::obs::CSensoryFrame::Ptr& SF) = 0;
+	virtual void processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
+	                                      const mrpt::obs::CSensoryFrame::Ptr& SF) = 0;
 	virtual mrpt::poses::CPosePDFGaussian getEgoPose() const = 0;
 	virtual std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
-		bool includeDropped = true) const = 0;
+	    bool includeDropped = true) const = 0;
 	virtual std::vector<TObjectFeatureEstimate> getObjectFeatures() const = 0;
 	virtual std::map<int32_t, TObjectTrack> getObjectTracks() const = 0;
 	virtual const TStepReport& getLastStepReport() const = 0;

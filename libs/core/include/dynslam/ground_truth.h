@@ -30,16 +30,16 @@ struct TObjectGroundTruth
 	int first_step = -1;  ///< first step at which the object is observed (its time 0); -1: never
 	std::vector<Eigen::Matrix2Xd> features;  ///< per step: 2 x num_features world positions
 	std::vector<Eigen::Vector3d> pose;  ///< per step: xi relative to first sighting (NaN before)
-	std::vector<uint8_t> visible;  ///< per step: 1 if observed at that step
+	std::vector<uint8_t> visible;       ///< per step: 1 if observed at that step
 	bool translationOnly() const { return num_features == 1; }
 };
 
 struct TGroundTruth
 {
-	std::vector<double> t;  ///< per step [s]
-	std::vector<Eigen::Vector3d> ego;  ///< per step: x, y, theta
+	std::vector<double> t;                         ///< per step [s]
+	std::vector<Eigen::Vector3d> ego;              ///< per step: x, y, theta
 	std::map<int32_t, Eigen::Vector2d> landmarks;  ///< static landmark ID -> position
-	std::vector<TObjectGroundTruth> objects;  ///< ordered by object index
+	std::vector<TObjectGroundTruth> objects;       ///< ordered by object index
 	size_t numSteps() const { return ego.size(); }
 	/** Throws std::runtime_error if per-step vectors disagree in length. */
 	void checkConsistent() const;

@@ -45,7 +45,6 @@
 #include <dynslam/model_options.h>
 #include <dynslam/models/measurement.h>
 #include <dynslam/step_input.h>
-
 #include <mrpt/bayes/CKalmanFilterCapable.h>
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -69,8 +68,8 @@ enum class SlotKind : uint8_t
 	StaticLandmark,
 	ObjectFeature0,  ///< feature of a moving object at its first sighting (time 0)
 	ObjectFeatureT,  ///< feature of a moving object at the current time t
-	ObjectPoseA,  ///< [dx, dy] of an object pose xi_t
-	ObjectPoseB  ///< [dtheta, pad] of an object pose xi_t
+	ObjectPoseA,     ///< [dx, dy] of an object pose xi_t
+	ObjectPoseB      ///< [dtheta, pad] of an object pose xi_t
 };
 const char* toString(SlotKind k);
 
@@ -78,14 +77,13 @@ const char* toString(SlotKind k);
 struct TSlot
 {
 	SlotKind kind;
-	int32_t id = -1;  ///< landmark ID (static / object features), -1 for poses
-	int32_t object = -1;  ///< object index (object slots)
+	int32_t id = -1;       ///< landmark ID (static / object features), -1 for poses
+	int32_t object = -1;   ///< object index (object slots)
 	int32_t feature = -1;  ///< feature index within the object (object features)
-	int step = -1;  ///< time step of xi (poses) or of the measurement (time-t features)
+	int step = -1;         ///< time step of xi (poses) or of the measurement (time-t features)
 };
 
-class CDynamicKFSLAM2D : public mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>,
-						 public ISlamBackend
+class CDynamicKFSLAM2D : public mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>, public ISlamBackend
 {
 public:
 	using Base = mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>;
@@ -107,14 +105,13 @@ public:
 
 	/** Loads `options` from [section] and `KF_options` from [section_KalmanFilter], validates
 	 * and resets. Required keys throw when missing. */
-	void loadOptions(
-		const mrpt::config::CConfigFileBase& ini, const std::string& section = "DynamicKFSLAM");
+	void loadOptions(const mrpt::config::CConfigFileBase& ini,
+	                 const std::string& section = "DynamicKFSLAM");
 
 	/** One filter step (see the file comment). Throws std::runtime_error on bad input (wrong
 	 * action type, NaN/Inf, duplicate or invalid IDs), leaving the filter unchanged. */
-	void processActionObservation(
-		const mrpt::obs::CActionCollection::Ptr& action,
-		const mrpt::obs::CSensoryFrame::Ptr& SF) override;
+	void processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
+	                              const mrpt::obs::CSensoryFrame::Ptr& SF) override;
 	std::string name() const override { return "dynamic_ekf"; }
 	/** The seams of the step (doc/architecture.md): by default the options' implementations
 	 * (made by reset()); one set here is kept by reset() and loadOptions(). Call reset() after
@@ -129,7 +126,8 @@ public:
 	// --- results --------------------------------------------------------------
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
 	/** Static landmarks in the state, then (if includeDropped) the dropped ones. */
-	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(bool includeDropped = true) const override;
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
+	    bool includeDropped = true) const override;
 	/** Object features in the state (time 0 and, if kept, time t). */
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
 	/** Every object's pose history: dropped poses (recorded) and poses in the state. */
@@ -139,8 +137,8 @@ public:
 	/** The layout as MRPT's 2-dof slots (a 3-dof pose is ObjectPoseA + ObjectPoseB). */
 	const std::vector<TSlot>& getSlots() const { return m_slots; }
 	/** Mean and covariance without pad entries; labels[i] names entry i. */
-	void getStateWithoutPads(
-		Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>* labels = nullptr) const;
+	void getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& P,
+	                         std::vector<std::string>* labels = nullptr) const;
 	/** State vector index of the pad entries (for checks). */
 	std::vector<size_t> padIndices() const;
 	const TStepReport& getLastStepReport() const override { return m_report; }
@@ -161,28 +159,28 @@ public:
 protected:
 	// --- CKalmanFilterCapable hooks ------------------------------------------------
 	void OnGetAction(KFArray_ACT& out_u) const override;
-	void OnTransitionModel(
-		const KFArray_ACT& in_u, KFArray_VEH& inout_x, bool& out_skipPrediction) const override;
+	void OnTransitionModel(const KFArray_ACT& in_u, KFArray_VEH& inout_x,
+	                       bool& out_skipPrediction) const override;
 	void OnTransitionJacobian(KFMatrix_VxV& out_F) const override;
 	void OnTransitionNoise(KFMatrix_VxV& out_Q) const override;
 	void OnGetObservationNoise(KFMatrix_OxO& out_R) const override;
-	void OnGetObservationsAndDataAssociation(
-		vector_KFArray_OBS& out_z, std::vector<int>& out_data_association,
-		const vector_KFArray_OBS& in_all_predictions, const KFMatrix& in_S,
-		const std::vector<size_t>& in_lm_indices_in_S, const KFMatrix_OxO& in_R) override;
-	void OnObservationModel(
-		const std::vector<size_t>& idx_landmarks_to_predict,
-		vector_KFArray_OBS& out_predictions) const override;
-	void OnObservationJacobians(
-		size_t idx_landmark_to_predict, KFMatrix_OxV& Hx, KFMatrix_OxF& Hy) const override;
+	void OnGetObservationsAndDataAssociation(vector_KFArray_OBS& out_z,
+	                                         std::vector<int>& out_data_association,
+	                                         const vector_KFArray_OBS& in_all_predictions,
+	                                         const KFMatrix& in_S,
+	                                         const std::vector<size_t>& in_lm_indices_in_S,
+	                                         const KFMatrix_OxO& in_R) override;
+	void OnObservationModel(const std::vector<size_t>& idx_landmarks_to_predict,
+	                        vector_KFArray_OBS& out_predictions) const override;
+	void OnObservationJacobians(size_t idx_landmark_to_predict, KFMatrix_OxV& Hx,
+	                            KFMatrix_OxF& Hy) const override;
 	void OnSubstractObservationVectors(KFArray_OBS& A, const KFArray_OBS& B) const override;
-	void OnPreComputingPredictions(
-		const vector_KFArray_OBS& in_all_prediction_means,
-		std::vector<size_t>& out_LM_indices_to_predict) const override;
+	void OnPreComputingPredictions(const vector_KFArray_OBS& in_all_prediction_means,
+	                               std::vector<size_t>& out_LM_indices_to_predict) const override;
 	using Base::OnInverseObservationModel;
-	void OnInverseObservationModel(
-		const KFArray_OBS& in_z, KFArray_FEAT& out_yn, KFMatrix_FxV& out_dyn_dxv,
-		KFMatrix_FxO& out_dyn_dhn) const override;
+	void OnInverseObservationModel(const KFArray_OBS& in_z, KFArray_FEAT& out_yn,
+	                               KFMatrix_FxV& out_dyn_dxv,
+	                               KFMatrix_FxO& out_dyn_dhn) const override;
 	void OnNewLandmarkAddedToMap(size_t in_obsIdx, size_t in_idxNewFeat) override;
 	void OnNormalizeStateVector() override;
 
@@ -193,12 +191,11 @@ private:
 	void recordFirstEstimates();
 	/** Replaces J_z_x, J_z_f of static landmark `id` by those at (ego, its first estimate);
 	 * unchanged if it has none. */
-	void firstEstimateJacobians(
-		int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x,
-		Eigen::Matrix2d& J_z_f) const;
+	void firstEstimateJacobians(int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x,
+	                            Eigen::Matrix2d& J_z_f) const;
 	std::map<int32_t, Eigen::Vector2d> m_firstEstimate;  ///< landmark ID -> first estimate
-	std::optional<Eigen::Vector3d> m_predictedEgo;  ///< x_{k|k-1} of the last step
-	std::optional<Eigen::Matrix3d> m_lastF;  ///< F of the last prediction
+	std::optional<Eigen::Vector3d> m_predictedEgo;       ///< x_{k|k-1} of the last step
+	std::optional<Eigen::Matrix3d> m_lastF;              ///< F of the last prediction
 
 	friend class CMrptUpdateEngine;
 	/** Alg. 7: the ego prediction by ekf::propagate (skipped on an empty map if
@@ -207,8 +204,8 @@ private:
 	/** Alg. 5 by the update engine, with the tracked static readings of the step. */
 	void staticUpdate();
 	/** MRPT's update (CMrptUpdateEngine): runOneKalmanIteration with the prediction skipped. */
-	estimator::TUpdateResult runMrptUpdate(
-		const std::vector<estimator::TStaticObservation>& obs, const estimator::TUpdateContext& ctx);
+	estimator::TUpdateResult runMrptUpdate(const std::vector<estimator::TStaticObservation>& obs,
+	                                       const estimator::TUpdateContext& ctx);
 	estimator::TUpdateContext updateContext() const;
 	/** What a step adds and drops, before it is written to the state: the new features as an
 	 * augmentation a of the current state, the object poses as an augmentation b of the state
@@ -222,9 +219,9 @@ private:
 	};
 	/** The layout of the state extended by the plan. */
 	estimator::CPaddedLayout extendedLayout(const TPending& plan) const;
-	void planFeatures(TPending& plan);  // Alg. 3: new static landmarks, objects
+	void planFeatures(TPending& plan);     // Alg. 3: new static landmarks, objects
 	void planObjectPoses(TPending& plan);  // Alg. 4, on the state extended by plan
-	void planDrops(TPending& plan);  // drop policies, recording what they drop
+	void planDrops(TPending& plan);        // drop policies, recording what they drop
 	/** Writes plan to the state: x, P (one rewrite; reallocated only if the size changes) and
 	 * the slot tables; clears plan. */
 	void commit(TPending& plan);
@@ -249,12 +246,12 @@ private:
 
 	// slot table and indices
 	estimator::CPaddedLayout m_layout;  ///< the typed state after the ego (commit() writes it)
-	std::vector<TSlot> m_slots;  ///< derived: the layout as MRPT's 2-dof slots
+	std::vector<TSlot> m_slots;         ///< derived: the layout as MRPT's 2-dof slots
 	std::map<int32_t, size_t> m_staticBlock;  ///< derived: landmark ID -> block
 	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
 	int m_step = -1;
 	TStepReport m_report;
 	bool m_failed = false;  ///< a step threw midway: refuse to go on until reset()
-	KFMatrix m_pkkSpare;  ///< commit() writes the new covariance here, then swaps it with m_pkk
+	KFMatrix m_pkkSpare;    ///< commit() writes the new covariance here, then swaps it with m_pkk
 };
 }  // namespace dynslam

@@ -18,13 +18,13 @@ namespace dynslam::apps
 {
 struct TBackendTableOptions
 {
-	std::string scenario_ini;  ///< e.g. config/highway.ini
+	std::string scenario_ini;          ///< e.g. config/highway.ini
 	std::string noise_level = "w2v2";  ///< eq. (5)-(7) grid
-	int runs = 3;  ///< Monte Carlo runs (noise seeds 1..runs)
-	int steps = -1;  ///< -1: the scenario's
-	int window_size = 10;  ///< W of the windowed back-ends
-	double sigma_xi = 0.1;  ///< Sigma_xi = sigma_xi I (paper: 0.1)
-	std::vector<std::string> kinds;  ///< empty: "dynamic_ekf" and every backendKinds()
+	int runs = 3;                      ///< Monte Carlo runs (noise seeds 1..runs)
+	int steps = -1;                    ///< -1: the scenario's
+	int window_size = 10;              ///< W of the windowed back-ends
+	double sigma_xi = 0.1;             ///< Sigma_xi = sigma_xi I (paper: 0.1)
+	std::vector<std::string> kinds;    ///< empty: "dynamic_ekf" and every backendKinds()
 };
 
 struct TBackendTableRow
@@ -33,7 +33,7 @@ struct TBackendTableRow
 	int runs = 0, failures = 0;
 	std::string failure;  ///< first failure message
 	double ego_x = 0, ego_y = 0, ego_theta = 0, map_x = 0, map_y = 0, feat_x = 0, feat_y = 0,
-		   pose_x = 0, pose_y = 0, pose_theta = 0;
+	       pose_x = 0, pose_y = 0, pose_theta = 0;
 	double anees_ego = 0, anees_pose = 0;
 	/** Ego RMSE (x, y) of the final trajectory (smoothed / fixed-lag; = online for filters). */
 	double final_x = 0, final_y = 0;

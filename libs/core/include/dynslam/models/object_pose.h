@@ -26,9 +26,9 @@ namespace dynslam::models
 {
 /** g^o(xi, f0): returns f_t (2 x n). J_ft_xi: d vec(ft)/d xi (2n x 3); J_ft_f0:
  * d vec(ft)/d vec(f0) (2n x 2n). */
-Eigen::Matrix2Xd objectPoseMap(
-	const Eigen::Vector3d& xi, const Eigen::Matrix2Xd& f0, Eigen::MatrixXd* J_ft_xi = nullptr,
-	Eigen::MatrixXd* J_ft_f0 = nullptr);
+Eigen::Matrix2Xd objectPoseMap(const Eigen::Vector3d& xi, const Eigen::Matrix2Xd& f0,
+                               Eigen::MatrixXd* J_ft_xi = nullptr,
+                               Eigen::MatrixXd* J_ft_f0 = nullptr);
 
 /** gamma(f0, ft): closed-form 2-D Procrustes fit of the object pose.
  * @param f0 all n time-0 features (2 x n).
@@ -41,12 +41,13 @@ Eigen::Matrix2Xd objectPoseMap(
  * @throws std::domain_error when the rotation is undetermined: fewer than 2 seen features, or
  *         the seen features all coincide (at time 0 or at time t). Collinear features are
  *         fine in 2-D: they determine the rotation. */
-Eigen::Vector3d objectPoseInverse(
-	const Eigen::Matrix2Xd& f0, const Eigen::Matrix2Xd& ft, const std::vector<int>& seen = {},
-	Eigen::MatrixXd* Gamma1 = nullptr, Eigen::MatrixXd* Gamma2 = nullptr);
+Eigen::Vector3d objectPoseInverse(const Eigen::Matrix2Xd& f0, const Eigen::Matrix2Xd& ft,
+                                  const std::vector<int>& seen = {},
+                                  Eigen::MatrixXd* Gamma1 = nullptr,
+                                  Eigen::MatrixXd* Gamma2 = nullptr);
 
 /** Translation-only pose of a one-feature object: xi = ft - f0, with Gamma1 = -I, Gamma2 = I. */
-Eigen::Vector2d objectTranslationInverse(
-	const Eigen::Vector2d& f0, const Eigen::Vector2d& ft, Eigen::Matrix2d* Gamma1 = nullptr,
-	Eigen::Matrix2d* Gamma2 = nullptr);
+Eigen::Vector2d objectTranslationInverse(const Eigen::Vector2d& f0, const Eigen::Vector2d& ft,
+                                         Eigen::Matrix2d* Gamma1 = nullptr,
+                                         Eigen::Matrix2d* Gamma2 = nullptr);
 }  // namespace dynslam::models

@@ -20,9 +20,8 @@ Eigen::Matrix2d rot2Derivative(double theta);
 
 /** Pose composition out = x (+) u, angle wrapped.
  * J_out_x = d out / d x (3x3), J_out_u = d out / d u (3x3). */
-Eigen::Vector3d composePose(
-	const Eigen::Vector3d& x, const Eigen::Vector3d& u, Eigen::Matrix3d* J_out_x = nullptr,
-	Eigen::Matrix3d* J_out_u = nullptr);
+Eigen::Vector3d composePose(const Eigen::Vector3d& x, const Eigen::Vector3d& u,
+                            Eigen::Matrix3d* J_out_x = nullptr, Eigen::Matrix3d* J_out_u = nullptr);
 
 /** Inverse composition u = b (-) a (the increment that takes a to b), angle wrapped. */
 Eigen::Vector3d poseDifference(const Eigen::Vector3d& b, const Eigen::Vector3d& a);

@@ -15,8 +15,8 @@
 namespace dynslam::models
 {
 /** s(a, b, c) for poses of dimension d = a.size() (2 or 3); J_s_a = I, J_s_b = -2I, J_s_c = I. */
-Eigen::VectorXd smoothingResidual(
-	const Eigen::VectorXd& xi_tm2, const Eigen::VectorXd& xi_tm1, const Eigen::VectorXd& xi_t,
-	Eigen::MatrixXd* J_s_tm2 = nullptr, Eigen::MatrixXd* J_s_tm1 = nullptr,
-	Eigen::MatrixXd* J_s_t = nullptr);
+Eigen::VectorXd smoothingResidual(const Eigen::VectorXd& xi_tm2, const Eigen::VectorXd& xi_tm1,
+                                  const Eigen::VectorXd& xi_t, Eigen::MatrixXd* J_s_tm2 = nullptr,
+                                  Eigen::MatrixXd* J_s_tm1 = nullptr,
+                                  Eigen::MatrixXd* J_s_t = nullptr);
 }  // namespace dynslam::models

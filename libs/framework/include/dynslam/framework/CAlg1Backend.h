@@ -19,11 +19,11 @@
  * After every GN step the cost is replaced by ||x - mu||^2_{J^T J} (Alg. 1: "cost <- ...").
  * The state is kept in information form; covariances are computed when asked for. */
 #include <dynslam/ISlamBackend.h>
-#include <dynslam/framework/TBackendOptions.h>
-#include <dynslam/framework/running_cost.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
+#include <dynslam/framework/TBackendOptions.h>
+#include <dynslam/framework/running_cost.h>
 
 #include <map>
 #include <memory>
@@ -38,12 +38,12 @@ public:
 	/** Throws std::invalid_argument if the options are invalid (validate()). */
 	explicit CAlg1Backend(const TBackendOptions& opts);
 	void reset();
-	void processActionObservation(
-		const mrpt::obs::CActionCollection::Ptr& action,
-		const mrpt::obs::CSensoryFrame::Ptr& SF) override;
+	void processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
+	                              const mrpt::obs::CSensoryFrame::Ptr& SF) override;
 	std::string name() const override { return "alg1"; }
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
-	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(bool includeDropped = true) const override;
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
+	    bool includeDropped = true) const override;
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
 	const TStepReport& getLastStepReport() const override { return m_report; }
@@ -51,8 +51,8 @@ public:
 	/** Mean, covariance and labels of the whole state in storage order; the labels are those
 	 * of CDynamicKFSLAM2D::getStateWithoutPads (e.g. "ego.x", "lm3.y", "obj1.f2.t0.x",
 	 * "obj1.xi7.dtheta"), so both can be compared entry by entry. */
-	void getLabelledState(
-		Eigen::VectorXd& x, Eigen::MatrixXd& P, std::vector<std::string>& labels) const;
+	void getLabelledState(Eigen::VectorXd& x, Eigen::MatrixXd& P,
+	                      std::vector<std::string>& labels) const;
 	const CRunningCost& cost() const { return m_cost; }
 	const TBackendOptions& options() const { return m_opts; }
 	const estimator::IMeasurementRouter& router() const { return *m_router; }

@@ -16,11 +16,11 @@
  * Ego poses older than the window are marginalized; object poses leave with them and are
  * recorded with their last estimate. */
 #include <dynslam/ISlamBackend.h>
-#include <dynslam/framework/TBackendOptions.h>
-#include <dynslam/framework/running_cost.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
+#include <dynslam/framework/TBackendOptions.h>
+#include <dynslam/framework/running_cost.h>
 
 #include <map>
 #include <memory>
@@ -34,12 +34,12 @@ class CWindowBackend : public ISlamBackend
 public:
 	explicit CWindowBackend(const TBackendOptions& opts);
 	void reset();
-	void processActionObservation(
-		const mrpt::obs::CActionCollection::Ptr& action,
-		const mrpt::obs::CSensoryFrame::Ptr& SF) override;
+	void processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
+	                              const mrpt::obs::CSensoryFrame::Ptr& SF) override;
 	std::string name() const override { return m_opts.backend; }
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
-	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(bool includeDropped = true) const override;
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
+	    bool includeDropped = true) const override;
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
 	const TStepReport& getLastStepReport() const override { return m_report; }
@@ -50,7 +50,6 @@ public:
 	std::map<int, Eigen::Vector3d> finalTrajectory() const;
 
 private:
-
 	bool coupled() const;
 	bool cube() const { return m_opts.backend == "cubeslam"; }
 	CRunningCost& objectCost() { return coupled() ? m_cost : m_objCost; }

@@ -5,7 +5,6 @@
  * read from the section named by `model_section` (default [DynamicKFSLAM]), so one INI
  * configures the EKF and every back-end alike. */
 #include <dynslam/model_options.h>
-
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <string>
@@ -15,7 +14,7 @@ namespace dynslam::framework
 /** The object-pose residual (doc/framework.md, "The object-pose residual"). */
 enum class PoseResidual
 {
-	PoseSpace,  ///< xi (-) gamma(f0, ft), Gamma2 diag(Sigma_xi) Gamma2^T: exactly Alg. 4
+	PoseSpace,    ///< xi (-) gamma(f0, ft), Gamma2 diag(Sigma_xi) Gamma2^T: exactly Alg. 4
 	FeatureSpace  ///< f_t - g^o(xi, f0), Sigma_xi per feature: the paper's Theorem 4.1 form
 };
 
@@ -24,8 +23,8 @@ struct TBackendOptions : public mrpt::config::CLoadableOptions
 	/** Reads [section]: backend, model_section, window_size, max_iterations, tolerance,
 	 * pose_residual, object_features, solver; then the model from [model_section]. Unknown
 	 * keys and invalid values throw std::invalid_argument naming [section] key = value. */
-	void loadFromConfigFile(
-		const mrpt::config::CConfigFileBase& source, const std::string& section) override;
+	void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+	                        const std::string& section) override;
 	void dumpToTextStream(std::ostream& out) const override;
 	/** Throws std::invalid_argument naming the offending option. */
 	void validate() const;

@@ -5,7 +5,6 @@
  * clusterslam_semidecoupled (CWindowBackend). */
 #include <dynslam/ISlamBackend.h>
 #include <dynslam/framework/TBackendOptions.h>
-
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <memory>
@@ -15,8 +14,9 @@ namespace dynslam::framework
 {
 /** The options: the kind's defaults, overridden by [section] (which may omit `backend`; if it
  * names another kind, std::invalid_argument). The model comes from [model_section]. */
-std::unique_ptr<ISlamBackend> makeBackend(
-	const std::string& kind, const mrpt::config::CConfigFileBase& ini, const std::string& section);
+std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
+                                          const mrpt::config::CConfigFileBase& ini,
+                                          const std::string& section);
 /** From ready options (opts.backend selects the class). */
 std::unique_ptr<ISlamBackend> makeBackend(const TBackendOptions& opts);
 }  // namespace dynslam::framework

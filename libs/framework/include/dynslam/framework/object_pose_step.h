@@ -14,8 +14,8 @@ namespace dynslam::framework
 /** What addObjectPose did. */
 enum class PoseStep
 {
-	Added,  ///< xi_t added with its residual
-	NotSeen,  ///< no time-t feature of the object in newT
+	Added,      ///< xi_t added with its residual
+	NotSeen,    ///< no time-t feature of the object in newT
 	Degenerate  ///< rotation undetermined (one feature of a rigid object, coinciding features)
 };
 
@@ -26,8 +26,8 @@ enum class PoseStep
  * (`first_step`), in the registry's order (estimator::TObjectEntry::feature_index).
  * @param newT the time-t feature variables added this step (any objects).
  * @param k out: the keys of the new term (k.pose is the new variable when Added). */
-PoseStep addObjectPose(
-	CRunningCost& c, int32_t obj, int first_step, const std::vector<int32_t>& features,
-	const std::vector<TVarKey>& newT, int step, bool poseSpace, const Eigen::Matrix2d& Sigma_xi,
-	TObjectPoseKeys& k);
+PoseStep addObjectPose(CRunningCost& c, int32_t obj, int first_step,
+                       const std::vector<int32_t>& features, const std::vector<TVarKey>& newT,
+                       int step, bool poseSpace, const Eigen::Matrix2d& Sigma_xi,
+                       TObjectPoseKeys& k);
 }  // namespace dynslam::framework

@@ -14,8 +14,8 @@
  * | COdometryTerm           | x_{t+1} (-) (x_t (+) u)                | (G Sigma_u G^T)^-1     |
  * | CMeasurementTerm        | z - h(x_t, f)  (bearing wrapped)       | Sigma_v^-1             |
  * | CObjectPoseFeatureTerm  | f_t - g^o(xi_t, f_0)  (paper, 2m rows) | diag(Sigma_xi^-1)      |
- * | CObjectPosePoseTerm     | xi_t (-) gamma(f_0, f_t)  (d rows)     | (Gamma2 diag(Sigma_xi) Gamma2^T)^-1 |
- * | CSmoothingTerm          | s(xi_{t-2}, xi_{t-1}, xi_t)            | Sigma_s^-1             |
+ * | CObjectPosePoseTerm     | xi_t (-) gamma(f_0, f_t)  (d rows)     | (Gamma2 diag(Sigma_xi)
+ * Gamma2^T)^-1 | | CSmoothingTerm          | s(xi_{t-2}, xi_{t-1}, xi_t)            | Sigma_s^-1 |
  * | CMotionModelTerm        | r of an object motion model's pseudo-measurement | R^-1         |
  * | CBodyPoseMeasurementTerm| (x_t^-1 (+) O_t) (-) T  (CubeSLAM-like) | Sigma_T^-1            |
  *
@@ -63,13 +63,12 @@ class CPriorTerm : public CTerm
 {
 public:
 	/** @param dims block sizes; mean stacked in key order; information PSD. */
-	CPriorTerm(
-		std::vector<TVarKey> keys, std::vector<int> dims, Eigen::VectorXd mean,
-		Eigen::MatrixXd information);
+	CPriorTerm(std::vector<TVarKey> keys, std::vector<int> dims, Eigen::VectorXd mean,
+	           Eigen::MatrixXd information);
 	/** From a covariance (must be positive definite; throws std::invalid_argument otherwise). */
-	static std::shared_ptr<CPriorTerm> fromCovariance(
-		std::vector<TVarKey> keys, std::vector<int> dims, Eigen::VectorXd mean,
-		const Eigen::MatrixXd& covariance);
+	static std::shared_ptr<CPriorTerm> fromCovariance(std::vector<TVarKey> keys,
+	                                                  std::vector<int> dims, Eigen::VectorXd mean,
+	                                                  const Eigen::MatrixXd& covariance);
 	std::string name() const override { return "prior"; }
 	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
 	const Eigen::VectorXd& mean() const { return m_mean; }
@@ -101,9 +100,8 @@ private:
 class CMeasurementTerm : public CTerm
 {
 public:
-	CMeasurementTerm(
-		int t, const TVarKey& feature, const Eigen::Vector2d& z, models::MeasurementModel model,
-		const Eigen::Matrix2d& Sigma_v);
+	CMeasurementTerm(int t, const TVarKey& feature, const Eigen::Vector2d& z,
+	                 models::MeasurementModel model, const Eigen::Matrix2d& Sigma_v);
 	std::string name() const override { return "measurement"; }
 	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
 
@@ -116,10 +114,10 @@ private:
 /** Keys of one object-pose residual: xi_t, its n time-0 features and m seen time-t features. */
 struct TObjectPoseKeys
 {
-	TVarKey pose;  ///< ObjectPose, dim 3 (or 2 if n == 1)
+	TVarKey pose;             ///< ObjectPose, dim 3 (or 2 if n == 1)
 	std::vector<TVarKey> f0;  ///< all n time-0 features
 	std::vector<TVarKey> ft;  ///< the m features seen at time t
-	std::vector<int> seen;  ///< seen[i] = index into f0 of ft[i]
+	std::vector<int> seen;    ///< seen[i] = index into f0 of ft[i]
 };
 
 /** The paper's object-pose residual in feature space (Section II step 2, Theorem 4.1):
@@ -158,9 +156,8 @@ private:
 class CSmoothingTerm : public CTerm
 {
 public:
-	CSmoothingTerm(
-		const TVarKey& xi_tm2, const TVarKey& xi_tm1, const TVarKey& xi_t,
-		const Eigen::MatrixXd& Sigma_s);
+	CSmoothingTerm(const TVarKey& xi_tm2, const TVarKey& xi_tm1, const TVarKey& xi_t,
+	               const Eigen::MatrixXd& Sigma_s);
 	std::string name() const override { return "smoothing"; }
 	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
 
@@ -174,9 +171,8 @@ private:
 class CMotionModelTerm : public CTerm
 {
 public:
-	CMotionModelTerm(
-		std::shared_ptr<const estimator::IObjectMotionModel> model,
-		const estimator::TPseudoMeasurement& m);
+	CMotionModelTerm(std::shared_ptr<const estimator::IObjectMotionModel> model,
+	                 const estimator::TPseudoMeasurement& m);
 	std::string name() const override { return "motion_model:" + m_model->name(); }
 	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
 
@@ -193,8 +189,8 @@ private:
 class CBodyPoseMeasurementTerm : public CTerm
 {
 public:
-	CBodyPoseMeasurementTerm(
-		int t, const TVarKey& body, const Eigen::VectorXd& T, const Eigen::MatrixXd& Sigma_T);
+	CBodyPoseMeasurementTerm(int t, const TVarKey& body, const Eigen::VectorXd& T,
+	                         const Eigen::MatrixXd& Sigma_T);
 	std::string name() const override { return "body_pose_measurement"; }
 	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
 

@@ -7,8 +7,9 @@
  * | EgoPose         | step t                     | 3   | 2 (theta)   |
  * | StaticLandmark  | id                         | 2   | -           |
  * | ObjectFeature   | object a, feature k, step tau | 2 | -          |
- * | ObjectPose      | object a, step t (xi_t, relative to the object's time 0) | 3 (2 for one-feature objects) | 2 if dim 3 |
- * | ObjectBodyPose  | object a, step t (global pose of the object's body frame; CubeSLAM-like) | 3 (or 2) | 2 if dim 3 |
+ * | ObjectPose      | object a, step t (xi_t, relative to the object's time 0) | 3 (2 for
+ * one-feature objects) | 2 if dim 3 | | ObjectBodyPose  | object a, step t (global pose of the
+ * object's body frame; CubeSLAM-like) | 3 (or 2) | 2 if dim 3 |
  *
  * A variable's value is a VectorXd; angle entries are kept wrapped to (-pi, pi]. */
 #include <Eigen/Core>
@@ -30,9 +31,9 @@ enum class VarKind : uint8_t
 struct TVarKey
 {
 	VarKind kind = VarKind::EgoPose;
-	int32_t id = -1;  ///< static landmark ID, or object index; -1 for ego poses
+	int32_t id = -1;       ///< static landmark ID, or object index; -1 for ego poses
 	int32_t feature = -1;  ///< feature index within the object (object features)
-	int step = -1;  ///< time step (ego and object poses, object features); -1 for landmarks
+	int step = -1;         ///< time step (ego and object poses, object features); -1 for landmarks
 
 	static TVarKey ego(int t) { return {VarKind::EgoPose, -1, -1, t}; }
 	static TVarKey landmark(int32_t id) { return {VarKind::StaticLandmark, id, -1, -1}; }
