@@ -112,7 +112,12 @@ TEST(RobustEngines, AnInjectedOutlierIsDownWeightedOrRejected)
 		const auto& w = e.lastWeights();
 		EXPECT_LT(w[2], 0.15) << e.name();
 		for (size_t i = 0; i < w.size(); ++i)
-			if (i != 2) EXPECT_GT(w[i], 0.5) << e.name() << " " << i;
+		{
+			if (i != 2)
+			{
+				EXPECT_GT(w[i], 0.5) << e.name() << " " << i;
+			}
+		}
 		EXPECT_LT((s.x - ref.x).head<3>().norm(), 0.25 * damage) << e.name();
 	}
 	auto g = withOutlier();

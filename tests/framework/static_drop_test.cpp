@@ -78,7 +78,10 @@ TEST(StaticDrop, ExactStepInEveryBackend)
 		// The recorded estimate is the landmark's last one, near the truth.
 		for (const auto& l : be->getStaticLandmarks(true))
 		{
-			if (l.id == 7) EXPECT_LT((l.mean - lm7).norm(), 0.05);
+			if (l.id == 7)
+			{
+				EXPECT_LT((l.mean - lm7).norm(), 0.05);
+			}
 		}
 	}
 }

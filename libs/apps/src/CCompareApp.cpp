@@ -116,7 +116,7 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
 	loadIniFile(iniFile, params);
 	TCompareOverrides o;
-	auto opt = [](const TCLAP::ValueArg<std::string>& a)
+	auto opt = [](TCLAP::ValueArg<std::string>& a)
 	{ return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt; };
 	o.rawlog = opt(argRawlog);
 	o.gt = opt(argGt);

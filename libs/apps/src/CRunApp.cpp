@@ -70,7 +70,7 @@ bool CRunApp::initialize(int argc, const char** argv)
 	iniFile = argIni.getValue();
 	loadIniFile(iniFile, params);
 	TRunOverrides o;
-	auto opt = [](const TCLAP::ValueArg<std::string>& a)
+	auto opt = [](TCLAP::ValueArg<std::string>& a)
 	{ return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt; };
 	o.rawlog = opt(argRawlog);
 	o.gt = opt(argGt);

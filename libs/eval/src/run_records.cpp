@@ -162,7 +162,7 @@ void writeRunRecords(std::ostream& os, const TRunRecordFile& f)
 
 TRunRecordFile readRunRecords(std::istream& is, const std::string& name)
 {
-	TReader rd{is, name};
+	TReader rd{is, name, 0, {}, {}};
 	TRunRecordFile f;
 	rd.expect("dynslam-montecarlo-runs");
 	if (rd.str() != "1") rd.fail("unsupported version");
