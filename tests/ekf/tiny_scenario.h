@@ -66,24 +66,21 @@ inline mrpt::obs::CActionCollection::Ptr makeAction(const Eigen::Vector3d& u,
 	return acts;
 }
 
-inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
+/** An object of the tiny scenario: centre, velocity, rotation rate, rigid feature offsets. */
+struct TinyObject
 {
-	using namespace dynslam;
-	std::mt19937 g(o.seed);
-	std::uniform_real_distribution<double> U(-14, 14);
-	TinyScenario sc;
-	for (int i = 0; i < o.landmarks; ++i) sc.landmarks[i] = Eigen::Vector2d(U(g), U(g) + 10);
-	// Objects: centre, velocity, rotation rate, rigid feature offsets.
-	struct Obj
-	{
-		Eigen::Vector2d c, v;
-		double w;
-		Eigen::Matrix2Xd off;
-	};
-	std::vector<Obj> objs;
+	Eigen::Vector2d c, v;
+	double w;
+	Eigen::Matrix2Xd off;
+};
+
+inline std::vector<TinyObject> makeTinyObjects(const TinyScenarioOptions& o, std::mt19937& g,
+                                               std::uniform_real_distribution<double>& U)
+{
+	std::vector<TinyObject> objs;
 	for (int a = 0; a < o.objects; ++a)
 	{
-		Obj ob;
+		TinyObject ob;
 		ob.c = Eigen::Vector2d(U(g) * 0.5, 10 + U(g) * 0.5);
 		ob.v = Eigen::Vector2d(0.2 + 0.1 * a, -0.1);
 		ob.w = 0.03 * (a + 1);
@@ -93,6 +90,17 @@ inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
 			    Eigen::Vector2d(std::cos(2.1 * k + a), std::sin(2.1 * k + a)) * (0.8 + 0.2 * k);
 		objs.push_back(ob);
 	}
+	return objs;
+}
+
+inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
+{
+	using namespace dynslam;
+	std::mt19937 g(o.seed);
+	std::uniform_real_distribution<double> U(-14, 14);
+	TinyScenario sc;
+	for (int i = 0; i < o.landmarks; ++i) sc.landmarks[i] = Eigen::Vector2d(U(g), U(g) + 10);
+	const std::vector<TinyObject> objs = makeTinyObjects(o, g, U);
 	Eigen::Vector3d x = Eigen::Vector3d::Zero();
 	for (int k = 0; k < o.steps; ++k)
 	{
@@ -136,7 +144,7 @@ inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
 			if ((f - x.head<2>()).norm() <= o.range) add(id, f);
 		for (int a = 0; a < int(objs.size()); ++a)
 		{
-			const Obj& ob = objs[a];
+			const TinyObject& ob = objs[a];
 			const Eigen::Vector2d c = ob.c + ob.v * k;
 			if ((c - x.head<2>()).norm() > o.range) continue;
 			const Eigen::Matrix2d R = models::rot2(ob.w * k);
