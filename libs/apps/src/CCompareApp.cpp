@@ -116,12 +116,10 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
 	loadIniFile(iniFile, params);
 	TCompareOverrides o;
-	auto opt = [](TCLAP::ValueArg<std::string>& a)
-	{ return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt; };
-	o.rawlog = opt(argRawlog);
-	o.gt = opt(argGt);
-	o.filters = opt(argFilters);
-	o.out = opt(argOut);
+	o.rawlog = detail::valueIfSet(argRawlog);
+	o.gt = detail::valueIfSet(argGt);
+	o.filters = detail::valueIfSet(argFilters);
+	o.out = detail::valueIfSet(argOut);
 	o.noGt = argNoGt.getValue();
 	o.noFigures = argNoFig.getValue();
 	o.strict = argStrict.getValue();

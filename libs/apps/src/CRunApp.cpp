@@ -70,12 +70,10 @@ bool CRunApp::initialize(int argc, const char** argv)
 	iniFile = argIni.getValue();
 	loadIniFile(iniFile, params);
 	TRunOverrides o;
-	auto opt = [](TCLAP::ValueArg<std::string>& a)
-	{ return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt; };
-	o.rawlog = opt(argRawlog);
-	o.gt = opt(argGt);
-	o.backend = opt(argBackend);
-	o.out = opt(argOut);
+	o.rawlog = detail::valueIfSet(argRawlog);
+	o.gt = detail::valueIfSet(argGt);
+	o.backend = detail::valueIfSet(argBackend);
+	o.out = detail::valueIfSet(argOut);
 	o.noGt = argNoGt.getValue();
 	o.noFigures = argNoFig.getValue();
 	o.strict = argStrict.getValue();

@@ -3,6 +3,7 @@
 // which returns false both for --help/--version and for errors (after printing them).
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -20,5 +21,10 @@ inline bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, const char** argv,
 		if (a == "-h" || a == "--help" || a == "--version") return false;
 	}
 	throw std::invalid_argument(app + ": bad command line (see " + app + " --help)");
+}
+/** The value of an optional argument, or nothing if it was not given (INI overrides). */
+inline std::optional<std::string> valueIfSet(TCLAP::ValueArg<std::string>& a)
+{
+	return a.isSet() ? std::optional<std::string>(a.getValue()) : std::nullopt;
 }
 }  // namespace dynslam::apps::detail
