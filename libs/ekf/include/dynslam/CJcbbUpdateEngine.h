@@ -13,7 +13,7 @@
  *     pairings (ties: the smallest joint Mahalanobis distance). A reading left unassociated,
  *     or associated to another reading's landmark (its ID disagrees with its position), is
  *     rejected. MRPT 2.5.8's JCBB does NOT test the joint compatibility of a hypothesis (its
- *     recursion only counts pairings; checked: it associates a pair whose joint NIS is 62.5
+ *     recursion only counts pairings; checked: it associates a pair whose joint NIS is 58
  *     against chi2inv(0.99, 4) = 13.3, tests/ekf/test_jcbb.cpp), so:
  *  2. the joint chi-square test, by branch and bound over the readings stage 1 kept that also
  *     pass the individual gate (exact quantile): the largest subset A whose joint NIS
