@@ -230,6 +230,12 @@ TEST(Jcbb, EmptyStepIsANoOpAndBadConfidenceIsAClearError)
 		}
 	}
 	EXPECT_THROW(CJcbbUpdateEngine(0.99, 0), std::invalid_argument);
+	// A search cut by max_nodes keeps the best subset found so far (here: none yet), counted.
+	auto t = randomScene(models::MeasurementModel::Cartesian);
+	CJcbbUpdateEngine cut(0.999, 3);
+	EXPECT_EQ(cut.update(t.x, t.P, t.obs, t.ctx).updates, 0u);
+	EXPECT_EQ(cut.searchesTruncated(), 1u);
+	EXPECT_EQ(jcbb.searchesTruncated(), 0u);
 }
 
 TEST(Jcbb, TheIniKeySelectsItAndNeedsAConfidence)

@@ -16,7 +16,8 @@
  *     recursion only counts pairings; checked: it associates a pair whose joint NIS is 58
  *     against chi2inv(0.99, 4) = 13.3, tests/ekf/test_jcbb.cpp), so:
  *  2. the joint chi-square test, by branch and bound over the readings stage 1 kept that also
- *     pass the individual gate (exact quantile): the largest subset A whose joint NIS
+ *     pass the individual gate (exact quantile; MRPT's chi2inv is Wilson-Hilferty, looser:
+ *     14.13 against 13.82 at 0.999, 2 dof): the largest subset A whose joint NIS
  *     nu_A^T S_AA^-1 nu_A <= chi2Quantile(confidence, 2 |A|), built in observation order and
  *     jointly compatible at every step of the branch (Neira and Tardos 2001); among subsets of
  *     that size the smallest joint NIS (ties: the first found, earlier readings first).
@@ -25,7 +26,8 @@
  * The accepted readings are then used by CSparseUpdateEngine (no gate); the others are
  * counted as TUpdateResult::gated_out. The accepted set is always a subset of what the
  * individual gate at the same confidence accepts, and equal to it when the step is jointly
- * compatible (then the result equals the gated sparse update). ctx.gate_threshold is not
+ * compatible and no reading is closer (jointly) to another reading's landmark than to its own
+ * (then the result equals the gated sparse update). ctx.gate_threshold is not
  * used: the confidence is the engine's. An empty step is a no-op (nothing changed, zero
  * counts). Complexity: O(2^k) nodes at worst for k readings; O(k) when the step is jointly
  * compatible, O(k^2) with one outlier. */
