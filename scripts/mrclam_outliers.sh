@@ -24,7 +24,7 @@ find_exe() {
 }
 IMPORT=$(find_exe dynslam-mrclam)
 COMPARE=$(find_exe dynslam-compare)
-METHODS=${METHODS:-"gate none huber cauchy gate_recovery"}
+METHODS=${METHODS:-"gate none huber cauchy gate_recovery jcbb"}
 mkdir -p "$OUT"
 echo "robot,method,ate,ate_aligned,ego_anees" > "$OUT/outliers.csv"
 for N in ${ROBOTS:-1 2 3 4 5}; do

@@ -216,7 +216,8 @@ TEST(RobustEngines, OneIniKeySelectsTheEngineAndBadValuesAreClearErrors)
 	EXPECT_EQ(engineOf("outlier_method = gate_recovery\ninnovation_gate = 0.999\n"),
 	          "gate_recovery");
 	for (const char* bad :
-	     {"outlier_method = jcbb\n", "outlier_method = huber\nrobust_kernel_c = 0\n",
+	     {"outlier_method = jcbb\n",  // no confidence: innovation_gate = 0 (test_jcbb.cpp)
+	      "outlier_method = huber\nrobust_kernel_c = 0\n",
 	      "outlier_method = cauchy\nrobust_kernel_c = -2\n", "robust_iterations = 0\n",
 	      "outlier_method = gate_recovery\n",  // no gate to recover from
 	      "outlier_method = gate_recovery\ninnovation_gate = 0.99\nrecovery_count = 0\n",

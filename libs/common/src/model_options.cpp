@@ -61,7 +61,8 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	innovation_gate = readNonNegative(c, s, "innovation_gate", innovation_gate);
 	first_estimate_jacobians = readBool(c, s, "first_estimate_jacobians", first_estimate_jacobians);
 	record_dropped = readBool(c, s, "record_dropped", record_dropped);
-	const std::vector<std::string> methods{"gate", "none", "huber", "cauchy", "gate_recovery"};
+	const std::vector<std::string> methods{"gate",   "none",          "huber",
+	                                       "cauchy", "gate_recovery", "jcbb"};
 	outlier_method = methods[size_t(readChoice(c, s, "outlier_method", methods, 0))];
 	robust_kernel_c = readPositive(c, s, "robust_kernel_c", robust_kernel_c);
 	robust_iterations = int(readInt(c, s, "robust_iterations", robust_iterations));
@@ -101,6 +102,10 @@ void TModelOptions::validate() const
 	if (outlier_method == "gate_recovery" && innovation_gate == 0)
 		throw std::invalid_argument(
 		    "outlier_method = gate_recovery: needs a gate (innovation_gate > 0)");
+	if (outlier_method == "jcbb" && innovation_gate == 0)
+		throw std::invalid_argument(
+		    "outlier_method = jcbb: needs the confidence of its individual "
+		    "and joint chi-square tests (innovation_gate in (0, 1))");
 	if (!(robust_kernel_c > 0) || robust_iterations < 1)
 		throw std::invalid_argument("robust_kernel_c must be > 0 and robust_iterations >= 1");
 	if (recovery_count < 1 || !(recovery_inflation > 1) || recovery_min_updates < 0)

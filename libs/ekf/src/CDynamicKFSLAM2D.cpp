@@ -4,6 +4,7 @@
  * MRPT's update engine: CDynamicKFSLAM2D_mrpt.cpp. Augmentations, drops and the object motion
  * model: CDynamicKFSLAM2D_objects.cpp. */
 #include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/CJcbbUpdateEngine.h>
 #include <dynslam/CMrptUpdateEngine.h>
 #include <dynslam/ekf_steps.h>
 #include <dynslam/estimator/robust_update_engines.h>
@@ -81,6 +82,8 @@ void CDynamicKFSLAM2D::reset()
 			m_engine = std::make_unique<estimator::CGateRecoveryUpdateEngine>(
 			    estimator::TGateRecoveryParams{options.recovery_count, options.recovery_inflation,
 			                                   options.recovery_min_updates});
+		else if (m == "jcbb")
+			m_engine = std::make_unique<CJcbbUpdateEngine>(options.innovation_gate);
 		else if (options.sparse_static_update)
 			m_engine = std::make_unique<estimator::CSparseUpdateEngine>();
 		else

@@ -73,7 +73,10 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * of Sigma_v] and at most robust_iterations updates; no gate), gate_recovery (the gate
 	 * with innovation_gate > 0 plus ego-covariance inflation by recovery_inflation after
 	 * recovery_count consecutive rejections of a landmark with >= recovery_min_updates
-	 * accepted readings). Methods other than gate need static_update = sparse. */
+	 * accepted readings), jcbb (joint compatibility of the step's readings at the confidence
+	 * innovation_gate > 0: MRPT's JCBB plus the joint chi-square test, CJcbbUpdateEngine in
+	 * libs/ekf). Methods other than gate need static_update = sparse. Used by the EKF only:
+	 * the framework back-ends (libs/framework) neither gate nor use outlier_method. */
 	std::string outlier_method = "gate";
 	double robust_kernel_c = 2.0;
 	int robust_iterations = 5;
