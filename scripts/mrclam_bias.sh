@@ -9,7 +9,9 @@
 # Writes OUT_DIR/robotN/<variant>/metrics.csv and OUT_DIR/bias.csv
 # (robot,variant,ate,ate_aligned,ego_anees). Development only: no test needs it.
 # VARIANTS (default "gate rate huber huber_rate"): gate = as shipped; rate = + odometry_bias =
-# rate; huber = outlier_method = huber; huber_rate = both. RATE_RW overrides bias_rate_rw.
+# rate; rate_scale = + odometry_bias = rate_scale (scale prior std 5 %, random walk
+# 0.001 / sqrt(s)); huber = outlier_method = huber; huber_rate = both. RATE_RW overrides
+# bias_rate_rw.
 set -euo pipefail
 if [[ $# -lt 1 ]]; then
 	sed -n '2,13p' "$0"
@@ -46,6 +48,9 @@ for N in ${ROBOTS:-1 2 3 4 5}; do
 	for V in $VARIANTS; do
 		keys=""
 		[[ $V == *rate* ]] && keys="$BIAS_KEYS"
+		[[ $V == *rate_scale* ]] && keys="${BIAS_KEYS/odometry_bias = rate/odometry_bias = rate_scale}
+bias_scale_std0 = 0.05
+bias_scale_rw = 0.001"
 		[[ $V == huber* ]] && keys="$keys
 outlier_method = huber"
 		# the [DynamicKFSLAM] section gets the keys; everything else as shipped
