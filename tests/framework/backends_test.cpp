@@ -117,4 +117,22 @@ TEST(Backends, BadOptions)
 	EXPECT_THROW(makeBackend("dynaslam2", drop, "Framework"), std::invalid_argument);
 	mrpt::config::CConfigFileMemory bad(std::string(kIni) + "pose_residual = both\n");
 	EXPECT_THROW(makeBackend("vdo", bad, "Framework"), std::invalid_argument);
+	// The odometry bias block is the dynamic EKF's only (issue 17): a clear error here.
+	for (const char* kind : {"dynaslam2", "vdo"})
+	{
+		TBackendOptions b = defaultBackendOptions(kind);
+		b.model.Sigma_0 = Eigen::Matrix3d::Identity() * 1e-6;  // valid otherwise
+		EXPECT_NO_THROW(makeBackend(b)) << kind;
+		b.model.odometry_bias.mode = "rate";
+		try
+		{
+			makeBackend(b);
+			ADD_FAILURE() << kind << ": odometry_bias = rate accepted";
+		}
+		catch (const std::invalid_argument& e)
+		{
+			EXPECT_NE(std::string(e.what()).find("odometry_bias = rate"), std::string::npos)
+			    << e.what();
+		}
+	}
 }

@@ -16,6 +16,12 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	using namespace dynslam::config;
 	rejectUnknownKeys(c, s,
 	                  {"measurement_model",
+	                   "odometry_bias",
+	                   "odometry_dt",
+	                   "bias_rate_std0",
+	                   "bias_rate_rw",
+	                   "bias_scale_std0",
+	                   "bias_scale_rw",
 	                   "Sigma_v",
 	                   "motion_noise",
 	                   "Sigma_w",
@@ -69,6 +75,7 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	recovery_count = int(readInt(c, s, "recovery_count", recovery_count));
 	recovery_inflation = readDouble(c, s, "recovery_inflation", recovery_inflation);
 	recovery_min_updates = int(readInt(c, s, "recovery_min_updates", recovery_min_updates));
+	odometry_bias.load(c, s);
 	try
 	{
 		validate();
@@ -147,6 +154,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "first_estimate_jacobians       = " << (first_estimate_jacobians ? "true" : "false")
 	    << "\n";
 	out << "record_dropped                 = " << (record_dropped ? "true" : "false") << "\n";
+	odometry_bias.dump(out);
 }
 TParseOptions TModelOptions::parseOptions() const
 {

@@ -2,6 +2,7 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
+#include <mrpt/system/datetime.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -36,6 +37,7 @@ estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& ac
 	estimator::TStepInput in;
 	in.u = Eigen::Vector3d(inc.mean.x(), inc.mean.y(), inc.mean.phi());
 	in.U = inc.cov.asEigen();
+	if (mov->timestamp != INVALID_TIMESTAMP) in.stamp = mrpt::Clock::toDouble(mov->timestamp);
 	if (!in.u.allFinite() || !in.U.allFinite())
 		throw std::runtime_error(who + ": odometry increment or covariance not finite");
 	if (opts.odometry_cov_used) checkOdometryCov(in.U, who);

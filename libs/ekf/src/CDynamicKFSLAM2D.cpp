@@ -6,11 +6,13 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/CJcbbUpdateEngine.h>
 #include <dynslam/CMrptUpdateEngine.h>
+#include <dynslam/ekf_odometry_bias.h>
 #include <dynslam/ekf_steps.h>
 #include <dynslam/estimator/robust_update_engines.h>
 #include <dynslam/models/se2.h>
 #include <mrpt/system/string_utils.h>
 
+#include <limits>
 #include <set>
 #include <stdexcept>
 
@@ -30,6 +32,8 @@ const char* toString(SlotKind k)
 			return "object_pose_a";
 		case SlotKind::ObjectPoseB:
 			return "object_pose_b";
+		case SlotKind::OdometryBias:
+			return "odometry_bias";
 	}
 	return "?";
 }
@@ -93,6 +97,7 @@ void CDynamicKFSLAM2D::reset()
 		m_motion = estimator::makeObjectMotionModel(options.smoothing, options.Sigma_s);
 	m_drop = estimator::CDropPolicy(options.dropOptions());
 	m_layout.clear();
+	if (options.odometry_bias.enabled()) addOdometryBiasBlock();
 	onLayoutChanged();
 	m_droppedStatic.clear();
 	m_in = estimator::TStepInput();
@@ -103,6 +108,7 @@ void CDynamicKFSLAM2D::reset()
 	m_firstEstimate.clear();
 	m_predictedEgo.reset();
 	m_lastF.reset();
+	m_lastStamp = std::numeric_limits<double>::quiet_NaN();
 }
 
 void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini,
@@ -176,7 +182,8 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 
 void CDynamicKFSLAM2D::propagateEgo()
 {
-	const bool skip = options.skip_prediction_on_empty_map && m_xkk.size() == 3;
+	const bool skip = options.skip_prediction_on_empty_map && mapEmpty();
+	const double dt = odometryDt();
 	m_lastF.reset();
 	if (!skip)
 	{
@@ -185,7 +192,12 @@ void CDynamicKFSLAM2D::propagateEgo()
 		auto P = m_pkk.asEigen();
 		const bool fej = options.first_estimate_jacobians && m_predictedEgo;
 		Eigen::Matrix3d F;
-		ekf::propagate(x, P, m_in.u, S, fej ? &*m_predictedEgo : nullptr, &F);
+		const Eigen::Vector3d* fejPrev = fej ? &*m_predictedEgo : nullptr;
+		if (options.odometry_bias.enabled())  // the bias block is block 0
+			ekf::propagateWithBias(x, P, m_in.u, S, options.odometry_bias.block(m_layout.first(0)),
+			                       dt, fejPrev, &F);
+		else
+			ekf::propagate(x, P, m_in.u, S, fejPrev, &F);
 		m_lastF = F;
 		OnNormalizeStateVector();
 	}

@@ -120,6 +120,9 @@ void CDynamicKFSLAM2D::onLayoutChanged()
 			case BlockKind::ObjectVelocity:
 				throw std::logic_error(
 				    "CDynamicKFSLAM2D: object velocities are not in this filter");
+			case BlockKind::OdometryBias:
+				s.kind = SlotKind::OdometryBias;
+				break;
 		}
 		m_slots.push_back(s);
 		if (t.kind == BlockKind::ObjectPose && t.dim == 3)
@@ -162,6 +165,10 @@ void appendLabels(const TBlock& t, std::vector<std::string>& labels)
 		case BlockKind::ObjectVelocity:
 			for (int i = 0; i < t.dim; ++i)
 				labels.push_back(o + ".v" + std::to_string(t.step) + "." + std::to_string(i));
+			break;
+		case BlockKind::OdometryBias:
+			labels.push_back("odo.b_w");
+			if (t.dim == 2) labels.push_back("odo.s");
 			break;
 	}
 }

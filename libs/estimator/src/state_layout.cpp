@@ -19,6 +19,8 @@ const char* toString(BlockKind k)
 			return "object_pose";
 		case BlockKind::ObjectVelocity:
 			return "object_velocity";
+		case BlockKind::OdometryBias:
+			return "odometry_bias";
 	}
 	return "?";
 }

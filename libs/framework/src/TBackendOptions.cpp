@@ -110,6 +110,11 @@ void TBackendOptions::validate() const
 		throw std::invalid_argument(
 		    "the framework needs a positive-definite Sigma_0 ([" + model_section +
 		    "] Sigma_0): its running cost starts with ||x_0 - mu_0||^2_{Sigma_0^-1}");
+	if (model.odometry_bias.enabled())
+		throw std::invalid_argument(
+		    "[" + model_section + "] odometry_bias = " + model.odometry_bias.mode +
+		    ": online odometry bias estimation is implemented in the dynamic EKF only "
+		    "(CDynamicKFSLAM2D); the framework back-ends need odometry_bias = none");
 	model.validate();
 }
 

@@ -324,8 +324,11 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	                  : models::MeasurementModel::RangeBearing;
 	typical_range = cfg::readPositive(c, SE, "typical_range", sensor_range / 2);
 
-	cfg::rejectUnknownKeys(
-	    c, N, {"level", "sigma_w", "sigma_v", "sigma_0", "std_range", "std_yaw", "std_yaw_deg"});
+	cfg::rejectUnknownKeys(c, N,
+	                       {"level", "sigma_w", "sigma_v", "sigma_0", "std_range", "std_yaw",
+	                        "std_yaw_deg", "odometry_rate_bias_deg_s", "odometry_scale_error"});
+	odometry_rate_bias = cfg::readDouble(c, N, "odometry_rate_bias_deg_s", 0) * M_PI / 180;
+	odometry_scale_error = cfg::readDouble(c, N, "odometry_scale_error", 0);
 	const std::string lvl = cfg::requireString(c, N, "level");
 	if (lower(lvl) == "custom")
 	{
@@ -375,6 +378,9 @@ void TScenarioOptions::validate() const
 	if (!(sensor_range > 0)) throw std::invalid_argument("[Sensor] range must be > 0");
 	if (!Sigma_w.allFinite() || !Sigma_v.allFinite() || !Sigma_0.allFinite())
 		throw std::invalid_argument("[Noise] covariances must be finite");
+	if (!std::isfinite(odometry_rate_bias) || !(std::abs(odometry_scale_error) < 1))
+		throw std::invalid_argument(
+		    "[Noise] odometry_rate_bias_deg_s must be finite and odometry_scale_error in (-1, 1)");
 }
 
 TScenarioOptions loadScenario(const std::string& iniPath)

@@ -150,6 +150,10 @@ void TScenarioOptions::dumpToTextStream(std::ostream& o) const
 	o << "std_range = " << fmt(std_range) << "\n";
 	o << "std_yaw = " << fmt(std_yaw) << "\n";
 	o << "std_yaw_deg = " << fmt(std_yaw * 180 / M_PI) << "\n";
+	if (odometry_rate_bias != 0)
+		o << "odometry_rate_bias_deg_s = " << fmt(odometry_rate_bias * 180 / M_PI) << "\n";
+	if (odometry_scale_error != 0)
+		o << "odometry_scale_error = " << fmt(odometry_scale_error) << "\n";
 	if (type == ScenarioType::Highway)
 	{
 		const THighwayOptions& h = highway;

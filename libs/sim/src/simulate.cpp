@@ -80,7 +80,13 @@ public:
 		Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
 		if (k > 0)
 		{
-			u = models::poseDifference(x, m_gt.ego[k - 1]) + m_Lw * draw3();
+			u = models::poseDifference(x, m_gt.ego[k - 1]);
+			if (m_o.odometry_rate_bias != 0 || m_o.odometry_scale_error != 0)
+			{  // a biased reading of the true increment (TScenarioOptions::odometry_rate_bias)
+				u.head<2>() /= 1 - m_o.odometry_scale_error;
+				u[2] += m_o.odometry_rate_bias * m_o.dt;
+			}
+			u += m_Lw * draw3();
 			u[2] = models::wrapToPi(u[2]);
 			cov = m_o.Sigma_w;
 		}

@@ -7,6 +7,7 @@
  * (framework::TBackendOptions::model), so it lives below both, in dynslam::common. */
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/models/measurement.h>
+#include <dynslam/odometry_bias_options.h>
 #include <dynslam/step_input.h>
 #include <mrpt/config/CLoadableOptions.h>
 
@@ -97,5 +98,8 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * linearized system then keeps the 3-dof unobservable subspace (global translation
 	 * and rotation) of the true one. See doc/results.md. */
 	bool first_estimate_jacobians = false;
+	/** Online odometry bias estimation (issue 17): odometry_bias = none | rate | rate_scale
+	 * and its keys, dynslam/odometry_bias_options.h. Only the dynamic EKF supports it. */
+	TOdometryBiasOptions odometry_bias;
 };
 }  // namespace dynslam

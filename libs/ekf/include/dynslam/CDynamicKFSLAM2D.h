@@ -69,7 +69,8 @@ enum class SlotKind : uint8_t
 	ObjectFeature0,  ///< feature of a moving object at its first sighting (time 0)
 	ObjectFeatureT,  ///< feature of a moving object at the current time t
 	ObjectPoseA,     ///< [dx, dy] of an object pose xi_t
-	ObjectPoseB      ///< [dtheta, pad] of an object pose xi_t
+	ObjectPoseB,     ///< [dtheta, pad] of an object pose xi_t
+	OdometryBias     ///< [b_w, pad] or [b_w, s] (odometry_bias != none; the first slot)
 };
 const char* toString(SlotKind k);
 
@@ -155,6 +156,9 @@ public:
 	/** The transition Jacobian F of the last step's prediction (Alg. 7; with first-estimate
 	 * Jacobians, the modified one); empty if the prediction was skipped. */
 	const std::optional<Eigen::Matrix3d>& lastTransitionJacobian() const { return m_lastF; }
+	/** odometry_bias != none: the bias estimate, (b_w) or (b_w, s), and its covariance
+	 * (dynslam/models/odometry_bias.h); empty otherwise. */
+	std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> getOdometryBias() const;
 
 protected:
 	// --- CKalmanFilterCapable hooks ------------------------------------------------
@@ -196,6 +200,15 @@ private:
 	std::map<int32_t, Eigen::Vector2d> m_firstEstimate;  ///< landmark ID -> first estimate
 	std::optional<Eigen::Vector3d> m_predictedEgo;       ///< x_{k|k-1} of the last step
 	std::optional<Eigen::Matrix3d> m_lastF;              ///< F of the last prediction
+
+	// odometry bias (options.odometry_bias, CDynamicKFSLAM2D_bias.cpp)
+	/** Appends the bias block (the first block, never dropped) with its prior. */
+	void addOdometryBiasBlock();
+	/** The step's duration: the actions' timestamp difference, else options' odometry_dt. */
+	double odometryDt();
+	/** Whether the map holds nothing but the bias block. */
+	bool mapEmpty() const;
+	double m_lastStamp = 0;  ///< the last action's timestamp [s] (NaN: none)
 
 	friend class CMrptUpdateEngine;
 	/** Alg. 7: the ego prediction by ekf::propagate (skipped on an empty map if

@@ -6,6 +6,7 @@
  * IMeasurementRouter. */
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace dynslam::estimator
@@ -23,5 +24,7 @@ struct TStepInput
 	Eigen::Matrix3d U = Eigen::Matrix3d::Zero();  ///< its covariance (from the action)
 	std::vector<TReading> readings;               ///< in observation order, IDs unique
 	double max_range = 0;                         ///< the sensor's range [m] (0: unknown)
+	/** The action's timestamp [s] (NaN: none); gives the step's dt to the odometry bias. */
+	double stamp = std::numeric_limits<double>::quiet_NaN();
 };
 }  // namespace dynslam::estimator

@@ -21,7 +21,8 @@ enum class BlockKind : uint8_t
 	ObjectFeature0,  ///< feature of a moving object at its first sighting (time 0)
 	ObjectFeatureT,  ///< feature of a moving object now (time t)
 	ObjectPose,      ///< xi_t = (dx, dy, dtheta), or (dx, dy) for one-feature objects
-	ObjectVelocity   ///< reserved for object motion models (vx, vy, omega)
+	ObjectVelocity,  ///< reserved for object motion models (vx, vy, omega)
+	OdometryBias     ///< (b_w) or (b_w, s): odometry bias (dynslam/models/odometry_bias.h)
 };
 const char* toString(BlockKind k);
 

@@ -111,6 +111,13 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 	Eigen::Matrix2d Sigma_v = Eigen::Matrix2d::Zero();  ///< Cartesian model
 	Eigen::Matrix3d Sigma_0 = Eigen::Matrix3d::Zero();  ///< = Sigma_w (filter prior)
 	double std_range = 0, std_yaw = 0;  ///< range_bearing model: the noise; cartesian: equivalent
+	/** A constant odometry bias (issue 17; ground truth unchanged): the reading of the true
+	 * increment (dx, dy, dtheta) over dt is (dx / (1 - s), dy / (1 - s), dtheta + b_w dt)
+	 * before the noise, the inverse of dynslam/models/odometry_bias.h. Keys
+	 * odometry_rate_bias_deg_s (b_w [deg/s], default 0) and odometry_scale_error (s, in
+	 * (-1, 1), default 0); written by dumpToTextStream only when non-zero. */
+	double odometry_rate_bias = 0;  ///< b_w [rad/s]
+	double odometry_scale_error = 0;
 
 	THighwayOptions highway;
 	TGeneratedOptions generated;
