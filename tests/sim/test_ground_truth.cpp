@@ -243,18 +243,18 @@ TEST(SimGroundTruth, LandmarkGapsRemoveOnlyTheLandmarksInside)
 	// Read from the INI, written back by the dump, bad lists rejected naming the key.
 	const TScenarioOptions t = configOptions("tunnel.ini");
 	ASSERT_EQ(t.landmark_gaps.size(), 1u);
-	EXPECT_EQ(t.landmark_gaps[0], std::make_pair(350.0, 650.0));
+	EXPECT_EQ(t.landmark_gaps[0], std::make_pair(200.0, 800.0));
 	std::ostringstream dump;
 	t.dumpToTextStream(dump);
 	EXPECT_EQ(loadScenarioFromText(dump.str()).landmark_gaps, t.landmark_gaps);
 	std::string bad = dump.str();
-	const auto at = bad.find("landmark_gaps = [350 650]");
+	const auto at = bad.find("landmark_gaps = [200 800]");
 	ASSERT_NE(at, std::string::npos) << bad;
-	for (const char* v : {"landmark_gaps = [350]", "landmark_gaps = [650 350]",
-	                      "landmark_gaps = [350 x]"})
+	for (const char* v :
+	     {"landmark_gaps = [350]", "landmark_gaps = [650 350]", "landmark_gaps = [350 x]"})
 	{
 		std::string b = bad;
-		b.replace(at, std::string("landmark_gaps = [350 650]").size(), v);
+		b.replace(at, std::string("landmark_gaps = [200 800]").size(), v);
 		try
 		{
 			loadScenarioFromText(b);
