@@ -11,6 +11,31 @@ namespace dynslam
 // ------------------------------------------------------------------------------------------
 // Options
 // ------------------------------------------------------------------------------------------
+namespace
+{
+/** object_model and the cv_* keys (issue 13); paper_smoothing is smoothing = true. */
+void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	using namespace dynslam::config;
+	const std::vector<std::string> objectModels{"paper", "paper_smoothing", "cv"};
+	o.object_model = objectModels[size_t(readChoice(c, s, "object_model", objectModels, 0))];
+	if (o.object_model == "paper_smoothing")
+	{
+		if (c.keyExists(s, "smoothing") && !o.smoothing)
+			throw std::invalid_argument(
+			    "[" + s + "] object_model = paper_smoothing contradicts smoothing = false");
+		o.smoothing = true;
+	}
+	else if (o.object_model == "paper" && o.smoothing)
+		o.object_model = "paper_smoothing";
+	const bool cvModel = o.object_model == "cv";
+	o.cv.dt = readPositive(c, s, "cv_dt", o.cv.dt, cvModel);
+	o.cv.accel_psd = readVector(c, s, "cv_accel_psd", o.cv.accel_psd, 3);
+	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
+	o.cv_gate = readNonNegative(c, s, "cv_gate", o.cv_gate);
+}
+}  // namespace
+
 void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
@@ -54,22 +79,7 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	Sigma_0 = readCovariance(c, s, "Sigma_0", Sigma_0, 3, false, true);
 	Sigma_xi = readCovariance(c, s, "Sigma_xi", Sigma_xi, 2);
 	smoothing = readBool(c, s, "smoothing", smoothing);
-	const std::vector<std::string> objectModels{"paper", "paper_smoothing", "cv"};
-	object_model = objectModels[size_t(readChoice(c, s, "object_model", objectModels, 0))];
-	if (object_model == "paper_smoothing")
-	{
-		if (c.keyExists(s, "smoothing") && !smoothing)
-			throw std::invalid_argument(
-			    "[" + s + "] object_model = paper_smoothing contradicts smoothing = false");
-		smoothing = true;
-	}
-	else if (object_model == "paper" && smoothing)
-		object_model = "paper_smoothing";
-	const bool cvModel = object_model == "cv";
-	cv.dt = readPositive(c, s, "cv_dt", cv.dt, cvModel);
-	cv.accel_psd = readVector(c, s, "cv_accel_psd", cv.accel_psd, 3);
-	cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", cv.velocity_prior_std, 3);
-	cv_gate = readNonNegative(c, s, "cv_gate", cv_gate);
+	loadObjectModel(*this, c, s);
 	Sigma_s = readCovariance(c, s, "Sigma_s", Sigma_s, 3, smoothing);
 	drop_time_t_features = readBool(c, s, "drop_time_t_features", drop_time_t_features);
 	keep_last_poses = int(readInt(c, s, "keep_last_poses", keep_last_poses));
