@@ -32,6 +32,7 @@ struct TinyScenarioOptions
 	Eigen::Matrix2d Sigma_rb = Eigen::Vector2d(1e-4, 1e-6).asDiagonal();  ///< range-bearing noise
 	unsigned seed = 1;
 	bool noise = true;
+	double object_turn_rate = 0.03;  ///< object a turns by (a + 1) times this per step [rad]
 };
 
 struct TinyScenario
@@ -83,7 +84,7 @@ inline std::vector<TinyObject> makeTinyObjects(const TinyScenarioOptions& o, std
 		TinyObject ob;
 		ob.c = Eigen::Vector2d(U(g) * 0.5, 10 + U(g) * 0.5);
 		ob.v = Eigen::Vector2d(0.2 + 0.1 * a, -0.1);
-		ob.w = 0.03 * (a + 1);
+		ob.w = o.object_turn_rate * (a + 1);
 		ob.off.resize(2, o.features_per_object);
 		for (int k = 0; k < o.features_per_object; ++k)
 			ob.off.col(k) =

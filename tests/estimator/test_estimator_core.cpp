@@ -1,11 +1,13 @@
 /** The estimator core's bookkeeping (libs/estimator), pure Eigen: the ID-range router and the
  * object registry, the drop policy's exact rule, and the paper's smoothing as an object motion
  * model (Jacobians against numerical differentiation, the consecutive-steps rule). */
+#include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/estimator/state_layout.h>
 #include <dynslam/landmark_ids.h>
+#include <dynslam/models/object_motion.h>
 #include <dynslam/models/se2.h>
 #include <dynslam_test/numeric_jacobian.h>
 #include <gtest/gtest.h>
@@ -184,4 +186,40 @@ TEST(EstimatorLayout, TypedBlocksMapToPaddedSlots)
 	bad.dim = 5;
 	EXPECT_THROW(L.append(bad), std::invalid_argument);
 	EXPECT_THROW(L.keptStorage({true}), std::invalid_argument);
+}
+
+TEST(EstimatorMotionModel, ConstantVelocityPredictsWithItsProcessNoise)
+{
+	using dynslam::estimator::CConstantVelocity;
+	using dynslam::estimator::TCvParams;
+	TCvParams p;
+	p.dt = 0.5;
+	p.accel_psd = Eigen::Vector3d(0.2, 0.3, 0.01);
+	p.velocity_prior_std = Eigen::Vector3d(0.5, 0.6, 0.05);
+	const CConstantVelocity cv(p);
+	EXPECT_EQ(cv.velocityDim(3), 3);
+	EXPECT_EQ(cv.velocityDim(2), 2);
+	Eigen::VectorXd s(6);
+	s << 1, 2, 3.1, 4, 5, 0.2;
+	Eigen::MatrixXd F, Q;
+	const Eigen::VectorXd out = cv.predict(s, &F, &Q);
+	EXPECT_NEAR(out[0], 1 + 0.5 * 4, 1e-15);
+	EXPECT_NEAR(out[2], dynslam::models::wrapToPi(3.1 + 0.1), 1e-15);
+	Eigen::MatrixXd Fexp;
+	dynslam::models::cvPredict(s, 0.5, &Fexp);
+	EXPECT_EQ(F, Fexp);
+	// Q is the white-acceleration noise of the parameters (not zero, not the identity).
+	EXPECT_TRUE(Q.isApprox(dynslam::models::cvProcessNoise(p.accel_psd, 0.5)));
+	EXPECT_GT(Q(3, 3), 0.0);
+	Eigen::MatrixXd J, Sigma;
+	const Eigen::VectorXd v = cv.initialVelocity(Eigen::Vector2d(1, 2), 2, &J, &Sigma);
+	EXPECT_TRUE(v.isApprox(Eigen::Vector2d(1, 2) / 1.0));
+	EXPECT_TRUE(Sigma.isApprox(Eigen::Vector2d(0.25, 0.36).asDiagonal().toDenseMatrix()));
+	EXPECT_THROW(cv.initialVelocity(Eigen::Vector2d(1, 2), 0, &J, &Sigma), std::invalid_argument);
+	TCvParams bad = p;
+	bad.velocity_prior_std[1] = 0;  // not positive definite
+	EXPECT_THROW(CConstantVelocity{bad}, std::invalid_argument);
+	bad = p;
+	bad.dt = 0;
+	EXPECT_THROW(CConstantVelocity{bad}, std::invalid_argument);
 }

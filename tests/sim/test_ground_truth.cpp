@@ -6,6 +6,8 @@
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "sim_test_utils.h"
 
 using namespace dynslam::sim;
@@ -209,4 +211,58 @@ TEST(SimGroundTruth, GeneratedScenarios)
 	for (const auto& x : gc.ego)
 		EXPECT_NEAR((x.head<2>() - Eigen::Vector2d(0, c.generated.track_radius)).norm(),
 		            c.generated.track_radius, 1e-9);
+}
+
+TEST(SimGroundTruth, LandmarkGapsRemoveOnlyTheLandmarksInside)
+{
+	// Highway (x along the road) and a straight generated track (x = arc length - its start):
+	// the landmarks outside the gaps are exactly those without gaps (same draws).
+	for (const char* file : {"highway.ini", "generated_small_scenario.ini"})
+	{
+		TScenarioOptions o = configOptions(file);
+		const dynslam::TGroundTruth all = buildGroundTruth(o);
+		o.landmark_gaps = {{200, 450}, {600, 650}};
+		const dynslam::TGroundTruth gapped = buildGroundTruth(o);
+		size_t inside = 0;
+		for (const auto& [id, f] : all.landmarks)
+		{
+			if (o.inLandmarkGap(f[0]))
+			{
+				++inside;
+				EXPECT_EQ(gapped.landmarks.count(id), 0u) << file << " landmark " << id;
+			}
+			else
+			{
+				ASSERT_EQ(gapped.landmarks.count(id), 1u) << file << " landmark " << id;
+				EXPECT_EQ(gapped.landmarks.at(id), f);
+			}
+		}
+		EXPECT_GT(inside, 0u) << file;
+		EXPECT_EQ(gapped.landmarks.size(), all.landmarks.size() - inside) << file;
+	}
+	// Read from the INI, written back by the dump, bad lists rejected naming the key.
+	const TScenarioOptions t = configOptions("tunnel.ini");
+	ASSERT_EQ(t.landmark_gaps.size(), 1u);
+	EXPECT_EQ(t.landmark_gaps[0], std::make_pair(200.0, 800.0));
+	std::ostringstream dump;
+	t.dumpToTextStream(dump);
+	EXPECT_EQ(loadScenarioFromText(dump.str()).landmark_gaps, t.landmark_gaps);
+	std::string bad = dump.str();
+	const auto at = bad.find("landmark_gaps = [200 800]");
+	ASSERT_NE(at, std::string::npos) << bad;
+	for (const char* v :
+	     {"landmark_gaps = [350]", "landmark_gaps = [650 350]", "landmark_gaps = [350 x]"})
+	{
+		std::string b = bad;
+		b.replace(at, std::string("landmark_gaps = [200 800]").size(), v);
+		try
+		{
+			loadScenarioFromText(b);
+			ADD_FAILURE() << v << " accepted";
+		}
+		catch (const std::invalid_argument& e)
+		{
+			EXPECT_NE(std::string(e.what()).find("landmark_gaps"), std::string::npos) << e.what();
+		}
+	}
 }

@@ -24,10 +24,23 @@ const char* kDefaultIni = "config/compare_highway.ini";
 std::string backendOf(const std::string& filter) { return filter == "dynamic" ? "ekf" : filter; }
 
 /** Fixed colours per filter, whatever the subset: static_all red, static only orange, dynamic
- * blue (eval::seriesColor). */
+ * blue, dynamic_cv green, dynamic_smoothing purple (eval::seriesColor). */
 size_t filterColorIndex(const std::string& n)
 {
-	return n == "static_all" ? 0 : n == "static_landmarks_only" ? 3 : 1;
+	return n == "static_all"              ? 0
+	       : n == "static_landmarks_only" ? 3
+	       : n == "dynamic_cv"            ? 2
+	       : n == "dynamic_smoothing"     ? 4
+	                                      : 1;
+}
+
+/** Every filter [Compare] filters may list: the default ones, then the dynamic EKF with the
+ * other object models (issue 13; makeBackend). */
+const std::vector<std::string>& knownFilters()
+{
+	static const std::vector<std::string> f{"static_all", "static_landmarks_only", "dynamic",
+	                                        "dynamic_cv", "dynamic_smoothing"};
+	return f;
 }
 
 /** From this many steps on, each filter logs ten progress lines. */
@@ -47,12 +60,14 @@ namespace
 std::vector<std::string> parseFilterList(const std::string& fl)
 {
 	using dynslam::config::fail;
-	const auto& all = CCompareApp::allFilters();
+	const auto& all = knownFilters();
 	std::vector<std::string> filters = splitList(fl);
 	for (const auto& f : filters)
 		if (std::find(all.begin(), all.end(), f) == all.end())
 			fail(kSection, "filters", fl,
-			     "unknown filter '" + f + "' (known: static_all, static_landmarks_only, dynamic)");
+			     "unknown filter '" + f +
+			         "' (known: static_all, static_landmarks_only, dynamic, dynamic_cv, "
+			         "dynamic_smoothing)");
 	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
 	return filters;
 }

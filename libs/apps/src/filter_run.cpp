@@ -14,6 +14,28 @@
 
 namespace dynslam::apps
 {
+namespace
+{
+/** dynslam-compare's filters dynamic_cv / dynamic_smoothing: the [DynamicKFSLAM] filter with
+ * another object model. cv needs cv_dt in the section (no silent default for the step
+ * length); paper_smoothing keeps at least the 3 poses it needs. */
+void overrideObjectModel(CDynamicKFSLAM2D& f, const mrpt::config::CConfigFileBase& ini,
+                         const std::string& model)
+{
+	if (model == "cv" && !ini.keyExists("DynamicKFSLAM", "cv_dt"))
+		throw std::invalid_argument(
+		    "[DynamicKFSLAM] cv_dt: required by the filter dynamic_cv (seconds per step)");
+	if (model == "paper_smoothing" && !ini.keyExists("DynamicKFSLAM", "Sigma_s"))
+		throw std::invalid_argument(
+		    "[DynamicKFSLAM] Sigma_s: required by the filter dynamic_smoothing");
+	f.options.object_model = model;
+	f.options.smoothing = model == "paper_smoothing";
+	if (f.options.smoothing) f.options.keep_last_poses = std::max(3, f.options.keep_last_poses);
+	f.options.validate();
+	f.reset();
+}
+}  // namespace
+
 const std::vector<std::string>& backendKinds()
 {
 	static const std::vector<std::string> k = []
@@ -29,10 +51,12 @@ std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
                                           const mrpt::config::CConfigFileBase& ini,
                                           std::ostream* optionsDump)
 {
-	if (kind == "ekf" || kind == "dynamic")
+	if (kind == "ekf" || kind == "dynamic" || kind == "dynamic_cv" || kind == "dynamic_smoothing")
 	{
 		auto f = std::make_unique<CDynamicKFSLAM2D>();
 		f->loadOptions(ini, "DynamicKFSLAM");
+		if (kind == "dynamic_cv" || kind == "dynamic_smoothing")
+			overrideObjectModel(*f, ini, kind == "dynamic_cv" ? "cv" : "paper_smoothing");
 		if (optionsDump)
 		{
 			*optionsDump << "# [DynamicKFSLAM] (CDynamicKFSLAM2D::TOptions)";

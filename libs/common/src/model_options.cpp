@@ -11,6 +11,31 @@ namespace dynslam
 // ------------------------------------------------------------------------------------------
 // Options
 // ------------------------------------------------------------------------------------------
+namespace
+{
+/** object_model and the cv_* keys (issue 13); paper_smoothing is smoothing = true. */
+void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	using namespace dynslam::config;
+	const std::vector<std::string> objectModels{"paper", "paper_smoothing", "cv"};
+	o.object_model = objectModels[size_t(readChoice(c, s, "object_model", objectModels, 0))];
+	if (o.object_model == "paper_smoothing")
+	{
+		if (c.keyExists(s, "smoothing") && !o.smoothing)
+			throw std::invalid_argument(
+			    "[" + s + "] object_model = paper_smoothing contradicts smoothing = false");
+		o.smoothing = true;
+	}
+	else if (o.object_model == "paper" && o.smoothing)
+		o.object_model = "paper_smoothing";
+	const bool cvModel = o.object_model == "cv";
+	o.cv.dt = readPositive(c, s, "cv_dt", o.cv.dt, cvModel);
+	o.cv.accel_psd = readVector(c, s, "cv_accel_psd", o.cv.accel_psd, 3);
+	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
+	o.cv_gate = readNonNegative(c, s, "cv_gate", o.cv_gate);
+}
+}  // namespace
+
 void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
@@ -43,7 +68,12 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	                   "robust_iterations",
 	                   "recovery_count",
 	                   "recovery_inflation",
-	                   "recovery_min_updates"});
+	                   "recovery_min_updates",
+	                   "object_model",
+	                   "cv_dt",
+	                   "cv_accel_psd",
+	                   "cv_velocity_prior_std",
+	                   "cv_gate"});
 	measurement_model =
 	    readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 	        ? models::MeasurementModel::Cartesian
@@ -55,6 +85,7 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	Sigma_0 = readCovariance(c, s, "Sigma_0", Sigma_0, 3, false, true);
 	Sigma_xi = readCovariance(c, s, "Sigma_xi", Sigma_xi, 2);
 	smoothing = readBool(c, s, "smoothing", smoothing);
+	loadObjectModel(*this, c, s);
 	Sigma_s = readCovariance(c, s, "Sigma_s", Sigma_s, 3, smoothing);
 	drop_time_t_features = readBool(c, s, "drop_time_t_features", drop_time_t_features);
 	keep_last_poses = int(readInt(c, s, "keep_last_poses", keep_last_poses));
@@ -95,6 +126,17 @@ void TModelOptions::validate() const
 		throw std::invalid_argument(
 		    "keep_last_poses = " + std::to_string(keep_last_poses) +
 		    ": smoothing needs the last 3 object poses (keep_last_poses >= 3)");
+	if (object_model != "paper" && object_model != "paper_smoothing" && object_model != "cv")
+		throw std::invalid_argument("object_model = " + object_model +
+		                            ": must be paper, paper_smoothing or cv");
+	if (object_model == "cv" && smoothing)
+		throw std::invalid_argument(
+		    "object_model = cv: the paper's smoothing (smoothing = true) "
+		    "is a different object model");
+	if (!(cv_gate >= 0 && cv_gate < 1))
+		throw std::invalid_argument("cv_gate = " + std::to_string(cv_gate) +
+		                            ": must be a probability in [0, 1) (0 = no gate)");
+	cv.validate();
 	if (drop_static_after_unseen_steps < 0)
 		throw std::invalid_argument(
 		    "drop_static_after_unseen_steps = " + std::to_string(drop_static_after_unseen_steps) +
@@ -137,6 +179,12 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "Sigma_xi                       = " << formatMatrix(Sigma_xi) << "\n";
 	out << "smoothing                      = " << (smoothing ? "true" : "false") << "\n";
 	out << "Sigma_s                        = " << formatMatrix(Sigma_s) << "\n";
+	out << "object_model                   = " << object_model << "\n";
+	out << "cv_dt                          = " << cv.dt << "\n";
+	out << "cv_accel_psd                   = " << formatMatrix(cv.accel_psd.transpose()) << "\n";
+	out << "cv_velocity_prior_std          = " << formatMatrix(cv.velocity_prior_std.transpose())
+	    << "\n";
+	out << "cv_gate                        = " << cv_gate << "\n";
 	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
 	out << "keep_last_poses                = " << keep_last_poses << "\n";
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";

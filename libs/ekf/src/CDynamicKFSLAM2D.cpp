@@ -8,6 +8,7 @@
 #include <dynslam/CMrptUpdateEngine.h>
 #include <dynslam/ekf_odometry_bias.h>
 #include <dynslam/ekf_steps.h>
+#include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/robust_update_engines.h>
 #include <dynslam/models/se2.h>
 #include <mrpt/system/string_utils.h>
@@ -32,6 +33,10 @@ const char* toString(SlotKind k)
 			return "object_pose_a";
 		case SlotKind::ObjectPoseB:
 			return "object_pose_b";
+		case SlotKind::ObjectVelocityA:
+			return "object_velocity_a";
+		case SlotKind::ObjectVelocityB:
+			return "object_velocity_b";
 		case SlotKind::OdometryBias:
 			return "odometry_bias";
 	}
@@ -93,7 +98,13 @@ void CDynamicKFSLAM2D::reset()
 		else
 			m_engine = std::make_unique<CMrptUpdateEngine>(*this);
 	}
-	if (!m_userMotion)
+	if (!m_userMotion && options.object_model == "cv")
+	{
+		estimator::TCvParams cv = options.cv;
+		cv.gate = estimator::gateThreshold2Dof(options.cv_gate);
+		m_motion = std::make_unique<estimator::CConstantVelocity>(cv);
+	}
+	else if (!m_userMotion)
 		m_motion = estimator::makeObjectMotionModel(options.smoothing, options.Sigma_s);
 	m_drop = estimator::CDropPolicy(options.dropOptions());
 	m_layout.clear();
@@ -151,8 +162,10 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		m_routed = m_router->route(m_step, m_in.readings,
 		                           [this](int32_t id) { return m_staticBlock.count(id) != 0; });
 		m_report.skipped_unknown_object_feature = m_routed.skipped_unknown_object_feature;
-		propagateEgo();  // Alg. 7
-		staticUpdate();  // Alg. 5
+		propagateEgo();          // Alg. 7
+		predictObjects();        // object-centric motion models only (cv)
+		staticUpdate();          // Alg. 5
+		objectFeatureUpdates();  // object-centric motion models only (cv)
 		for (const auto& m : m_routed.statics()) m_drop.noteSeen(m.reading.id, m_step);
 
 		// New entries, the object motion model and drops, committed together (one covariance
@@ -163,7 +176,8 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		if (m_motion->name() != "none")
 		{
 			commit(plan);
-			applyObjectMotion();  // Alg. 6
+			applyObjectMotion();         // Alg. 6
+			planObjectVelocities(plan);  // object-centric motion models only (cv)
 		}
 		planDrops(plan);
 		commit(plan);

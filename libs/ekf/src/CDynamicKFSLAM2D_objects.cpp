@@ -83,8 +83,11 @@ void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 		z.push_back(m.reading.z);
 		++m_report.static_new;
 	}
+	// Objects with a velocity (object-centric models) were updated by their readings.
+	const std::set<int32_t> withState = objectsWithVelocity();
 	for (const auto& m : m_routed.objects())
 	{
+		if (withState.count(m.object)) continue;
 		const bool first = m.route == Route::ObjectFirstSighting;
 		plan.blocks.push_back(
 		    featureBlock(first ? BlockKind::ObjectFeature0 : BlockKind::ObjectFeatureT, m, m_step));

@@ -118,8 +118,9 @@ void CDynamicKFSLAM2D::onLayoutChanged()
 				s.id = -1;
 				break;
 			case BlockKind::ObjectVelocity:
-				throw std::logic_error(
-				    "CDynamicKFSLAM2D: object velocities are not in this filter");
+				s.kind = SlotKind::ObjectVelocityA;
+				s.id = -1;
+				break;
 			case BlockKind::OdometryBias:
 				s.kind = SlotKind::OdometryBias;
 				break;
@@ -128,6 +129,11 @@ void CDynamicKFSLAM2D::onLayoutChanged()
 		if (t.kind == BlockKind::ObjectPose && t.dim == 3)
 		{
 			s.kind = SlotKind::ObjectPoseB;  // [dtheta, pad]
+			m_slots.push_back(s);
+		}
+		if (t.kind == BlockKind::ObjectVelocity && t.dim == 3)
+		{
+			s.kind = SlotKind::ObjectVelocityB;  // [omega, pad]
 			m_slots.push_back(s);
 		}
 	}

@@ -2,10 +2,25 @@
 #include <dynslam/models/smoothing.h>
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace dynslam::estimator
 {
+Eigen::VectorXd IObjectMotionModel::predict(const Eigen::VectorXd&, Eigen::MatrixXd*,
+                                            Eigen::MatrixXd*) const
+{
+	throw std::logic_error(name() + ": has no object state to predict");
+}
+
+Eigen::VectorXd IObjectMotionModel::initialVelocity(const Eigen::VectorXd&, int, Eigen::MatrixXd*,
+                                                    Eigen::MatrixXd*) const
+{
+	throw std::logic_error(name() + ": has no object velocity");
+}
+
+double IObjectMotionModel::readingGate() const { return std::numeric_limits<double>::infinity(); }
+
 Eigen::VectorXd CNoObjectMotion::residual(const TPseudoMeasurement&,
                                           const std::vector<Eigen::VectorXd>&,
                                           std::vector<Eigen::MatrixXd>*) const

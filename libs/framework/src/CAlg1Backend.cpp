@@ -28,6 +28,10 @@ void CAlg1Backend::reset()
 	m_step = -1;
 	if (!m_userRouter) m_router = estimator::makeRouter("ids");
 	m_router->reset();
+	if (m_opts.model.object_model == "cv")
+		throw std::invalid_argument(
+		    "[DynamicKFSLAM] object_model = cv: not implemented in the framework's back-ends "
+		    "(the dynamic EKF only, issue 13)");
 	if (!m_userMotion)
 		m_motion = estimator::makeObjectMotionModel(m_opts.model.smoothing, m_opts.model.Sigma_s);
 	m_drop = estimator::CDropPolicy(m_opts.model.dropOptions());

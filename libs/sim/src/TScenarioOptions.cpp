@@ -31,8 +31,10 @@ std::string lower(std::string s)
 	return s;
 }
 
-std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec,
-                             const std::string& key)
+/** The numbers of a list such as `[a b; c d]` (brackets, commas, semicolons ignored); empty if
+ * the key is missing. */
+std::vector<double> readNumberList(const CConfigFileBase& c, const std::string& sec,
+                                   const std::string& key)
 {
 	const std::string v = cfg::readString(c, sec, key, "");
 	std::string s = v;
@@ -49,6 +51,32 @@ std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec,
 			cfg::fail(sec, key, v, "'" + tok + "' is not a finite number");
 		nums.push_back(d);
 	}
+	return nums;
+}
+
+/** landmark_gaps: pairs [start end; ...] with start < end. */
+std::vector<std::pair<double, double>> readGaps(const CConfigFileBase& c, const std::string& sec,
+                                                const std::string& key)
+{
+	const std::vector<double> nums = readNumberList(c, sec, key);
+	const std::string v = cfg::readString(c, sec, key, "");
+	if (nums.size() % 2 != 0)
+		cfg::fail(sec, key, v,
+		          "expected pairs (start end), got " + std::to_string(nums.size()) + " numbers");
+	std::vector<std::pair<double, double>> gaps;
+	for (size_t i = 0; i < nums.size(); i += 2)
+	{
+		if (!(nums[i] < nums[i + 1])) cfg::fail(sec, key, v, "a gap needs start < end");
+		gaps.emplace_back(nums[i], nums[i + 1]);
+	}
+	return gaps;
+}
+
+std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec,
+                             const std::string& key)
+{
+	const std::string v = cfg::readString(c, sec, key, "");
+	const std::vector<double> nums = readNumberList(c, sec, key);
 	if (nums.size() % 3 != 0)
 		cfg::fail(sec, key, v,
 		          "expected triples (t_start duration target), got " + std::to_string(nums.size()) +
@@ -302,7 +330,8 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	*this = TScenarioOptions();
 	const std::string S = "Scenario", SE = "Sensor", N = "Noise";
 	cfg::rejectUnknownKeys(
-	    c, S, {"type", "name", "dt", "steps", "world_seed", "noise_seed", "start_time"});
+	    c, S,
+	    {"type", "name", "dt", "steps", "world_seed", "noise_seed", "start_time", "landmark_gaps"});
 	type = cfg::readChoice(c, S, "type", {"highway", "generated"}, 0, true) == 0
 	           ? ScenarioType::Highway
 	           : ScenarioType::Generated;
@@ -315,6 +344,7 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	world_seed = readSeed(c, S, "world_seed");
 	noise_seed = readSeed(c, S, "noise_seed");
 	start_time = cfg::readNonNegative(c, S, "start_time", 1.6e9);
+	landmark_gaps = readGaps(c, S, "landmark_gaps");
 
 	cfg::rejectUnknownKeys(c, SE, {"range", "label", "noise_model", "typical_range"});
 	sensor_range = cfg::readPositive(c, SE, "range", 55, true);

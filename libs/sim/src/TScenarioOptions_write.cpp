@@ -137,6 +137,14 @@ void TScenarioOptions::dumpToTextStream(std::ostream& o) const
 	o << "world_seed = " << world_seed << "\n";
 	o << "noise_seed = " << noise_seed << "\n";
 	o << "start_time = " << fmt(start_time) << "\n";
+	if (!landmark_gaps.empty())
+	{
+		o << "landmark_gaps = [";
+		for (size_t i = 0; i < landmark_gaps.size(); ++i)
+			o << (i ? "; " : "") << fmt(landmark_gaps[i].first) << " "
+			  << fmt(landmark_gaps[i].second);
+		o << "]\n";
+	}
 	o << "\n[Sensor]\n";
 	o << "range = " << fmt(sensor_range) << "\n";
 	o << "label = " << sensor_label << "\n";

@@ -61,7 +61,7 @@ TWorld buildHighway(const TScenarioOptions& o)
 		const double x = rng.drawUniform(0.0, h.length);
 		const double off = rng.drawUniform(h.landmark_offset_min, h.landmark_offset_max);
 		const double y = (i % 2 == 0) ? h.roadLeft() + off : h.roadRight() - off;
-		w.landmarks.emplace(int32_t(i), Eigen::Vector2d(x, y));
+		if (!o.inLandmarkGap(x)) w.landmarks.emplace(int32_t(i), Eigen::Vector2d(x, y));
 	}
 	return w;
 }
@@ -124,7 +124,7 @@ TWorld buildGenerated(const TScenarioOptions& o)
 	{
 		const double s = trackStart + rng.drawUniform(0.0, trackLength);
 		const double d = side() * rng.drawUniform(g.landmark_offset_min, g.landmark_offset_max);
-		w.landmarks.emplace(int32_t(i), w.track.point(s, d));
+		if (!o.inLandmarkGap(s)) w.landmarks.emplace(int32_t(i), w.track.point(s, d));
 	}
 	addCars(w, g, rng);
 	// Pedestrians: cross the road back and forth (d = D sin(w t + phi), D = half the road plus

@@ -5,6 +5,7 @@
  * [DynamicKFSLAM] of the INI files. Shared by every back-end: the dynamic EKF
  * (CDynamicKFSLAM2D::TOptions is this struct) and the framework's configurations
  * (framework::TBackendOptions::model), so it lives below both, in dynslam::common. */
+#include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/models/measurement.h>
 #include <dynslam/odometry_bias_options.h>
@@ -45,6 +46,19 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	Eigen::Matrix2d Sigma_xi = Eigen::Matrix2d::Identity() * 0.1;
 	bool smoothing = false;  ///< Alg. 6 on/off (paper: off on the highway)
 	Eigen::Matrix3d Sigma_s = Eigen::Matrix3d::Identity() * 1e-2;  ///< smoothing covariance
+	/** object_model (issue 13; doc/state-layout.md "Object-centric motion models"): paper
+	 * (default: objects follow their features, Alg. 3-4, smoothing per `smoothing`),
+	 * paper_smoothing (= paper with smoothing = true), cv (constant velocity: each object's pose
+	 * and world-frame velocity are predicted every step and its sightings update ego, pose and
+	 * body-frame features together; EKF only). */
+	std::string object_model = "paper";
+	/** cv: cv_dt [s per step] (required with cv), cv_accel_psd (white-acceleration spectral
+	 * densities ax, ay, alpha), cv_velocity_prior_std (vx, vy, omega; > 0), cv_gate (chi-square
+	 * probability of the per-reading gate on object readings, 0 = no gate; a gated reading is
+	 * not used and counted in TStepReport::object_gated_out, the object coasts on its
+	 * prediction). */
+	estimator::TCvParams cv;
+	double cv_gate = 0;
 	bool drop_time_t_features = true;  ///< drop f_t after pose augmentation
 	int keep_last_poses = 1;           ///< K >= 1 object poses kept per object (3 with smoothing)
 	/** Drop static landmarks unseen for this many steps (0 = never). Off by default:

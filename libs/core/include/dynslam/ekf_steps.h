@@ -136,6 +136,14 @@ void propagate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const E
                const Eigen::Vector3d* fej_previous_prediction = nullptr,
                Eigen::Matrix3d* J_out_x_used = nullptr);
 
+/** Prediction of the entries idx of the state by a transition whose Jacobian is F
+ * (|idx| x |idx|) and process noise Q (object motion models, models/object_motion.h):
+ *   x[idx] = x_new, P[idx,:] <- F P[idx,:], P[:,idx] <- P[:,idx] F^T, P[idx,idx] += Q.
+ * O(n |idx|^2); the other entries are unchanged. Entries outside idx keep their exact
+ * values; P stays exactly symmetric. */
+void predictSubset(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
+                   const std::vector<int>& idx, const Eigen::VectorXd& x_new,
+                   const Eigen::MatrixXd& F, const Eigen::MatrixXd& Q);
 /** The indices 0..n-1 that are not in `remove` (any order, duplicates allowed), ascending. */
 std::vector<int> keptIndices(int n, const std::vector<int>& remove);
 

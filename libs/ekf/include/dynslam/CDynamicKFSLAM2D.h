@@ -56,6 +56,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -66,11 +67,13 @@ namespace dynslam
 enum class SlotKind : uint8_t
 {
 	StaticLandmark,
-	ObjectFeature0,  ///< feature of a moving object at its first sighting (time 0)
-	ObjectFeatureT,  ///< feature of a moving object at the current time t
-	ObjectPoseA,     ///< [dx, dy] of an object pose xi_t
-	ObjectPoseB,     ///< [dtheta, pad] of an object pose xi_t
-	OdometryBias     ///< [b_w, pad] or [b_w, s] (odometry_bias != none; the first slot)
+	ObjectFeature0,   ///< feature of a moving object at its first sighting (time 0)
+	ObjectFeatureT,   ///< feature of a moving object at the current time t
+	ObjectPoseA,      ///< [dx, dy] of an object pose xi_t
+	ObjectPoseB,      ///< [dtheta, pad] of an object pose xi_t
+	ObjectVelocityA,  ///< [vx, vy] of an object velocity (object_model = cv)
+	ObjectVelocityB,  ///< [omega, pad] of an object velocity (object_model = cv)
+	OdometryBias      ///< [b_w, pad] or [b_w, s] (odometry_bias != none; the first slot)
 };
 const char* toString(SlotKind k);
 
@@ -239,6 +242,16 @@ private:
 	 * the slot tables; clears plan. */
 	void commit(TPending& plan);
 	void applyObjectMotion();  // the object motion model's pseudo-measurements (Alg. 6)
+	// object-centric motion models (velocityDim() > 0, e.g. cv; CDynamicKFSLAM2D_cv.cpp)
+	/** Predicts every object with a velocity over one step (its last pose is recorded first). */
+	void predictObjects();
+	/** Sightings of features of objects with a velocity: measurement updates of ego, pose and
+	 * body-frame features (gated by the model's readingGate()). */
+	void objectFeatureUpdates();
+	/** Velocity blocks for the objects whose first pose was added in this step. */
+	void planObjectVelocities(TPending& plan);
+	/** Objects that have a velocity block (their readings are updates, not time-t features). */
+	std::set<int32_t> objectsWithVelocity() const;
 	/** Rebuilds what is derived from the layout: the slot view and the static-landmark index. */
 	void onLayoutChanged();
 

@@ -8,6 +8,7 @@
  * follow their features) and the paper's smoothing (Alg. 6). */
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,6 +41,24 @@ public:
 	virtual Eigen::VectorXd residual(const TPseudoMeasurement& m,
 	                                 const std::vector<Eigen::VectorXd>& poses,
 	                                 std::vector<Eigen::MatrixXd>* J) const = 0;
+
+	// --- Object-centric models (issue 13). The defaults are the paper's formulation: no
+	// object state beyond the poses, objects predicted by nothing, their sightings define
+	// time-t features (Alg. 3) and poses (Alg. 4). A model with velocityDim() > 0 gives each
+	// object, once it has its first pose, a velocity block (BlockKind::ObjectVelocity); then the
+	// object's pose and velocity are predicted every step (predict) and every sighting of one of
+	// its features is a measurement update of ego, pose and body-frame features together.
+	/** Entries of the velocity block of an object with a pose of poseDim entries (0: none). */
+	virtual int velocityDim(int /*poseDim*/) const { return 0; }
+	/** One step's transition of s = [pose; velocity]: returns s', J_out_s and Q. */
+	virtual Eigen::VectorXd predict(const Eigen::VectorXd& s, Eigen::MatrixXd* J_out_s,
+	                                Eigen::MatrixXd* Q) const;
+	/** The velocity of an object from its first pose xi, `steps` steps after its time 0:
+	 * v = f(xi), J_v_xi, and the prior covariance added to it (the initialisation noise). */
+	virtual Eigen::VectorXd initialVelocity(const Eigen::VectorXd& xi, int steps,
+	                                        Eigen::MatrixXd* J_v_xi, Eigen::MatrixXd* Sigma) const;
+	/** Chi-square threshold (2 dof) of the gate on object readings (infinity: no gate). */
+	virtual double readingGate() const;
 };
 
 /** No motion model (the paper's default). */

@@ -21,7 +21,7 @@ enum class BlockKind : uint8_t
 	ObjectFeature0,  ///< feature of a moving object at its first sighting (time 0)
 	ObjectFeatureT,  ///< feature of a moving object now (time t)
 	ObjectPose,      ///< xi_t = (dx, dy, dtheta), or (dx, dy) for one-feature objects
-	ObjectVelocity,  ///< reserved for object motion models (vx, vy, omega)
+	ObjectVelocity,  ///< object velocity of object-centric motion models (vx, vy[, omega])
 	OdometryBias     ///< (b_w) or (b_w, s): odometry bias (dynslam/models/odometry_bias.h)
 };
 const char* toString(BlockKind k);
@@ -64,6 +64,8 @@ public:
 	std::vector<int> padIndices() const;
 	/** Storage indices kept when the flagged blocks are removed (ego included, ascending). */
 	std::vector<int> keptStorage(const std::vector<bool>& remove) const;
+	/** Sets the step of block b (an object pose predicted in place by a motion model). */
+	void setStep(size_t b, int step) { m_blocks.at(b).step = step; }
 	/** Removes the flagged blocks (one flag per block); the others keep their order. */
 	void removeBlocks(const std::vector<bool>& remove);
 

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dynslam::sim
@@ -98,6 +99,17 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 	uint32_t world_seed = 1;       ///< landmark placement, generated objects
 	uint32_t noise_seed = 1;       ///< odometry and measurement noise
 	double start_time = 1.6e9;     ///< timestamp of step 0 [s since 1970]; t_k = start + k dt
+	/** Stretches [start, end] in metres along the road (highway: x; generated: arc length
+	 * along the track) without static landmarks (a tunnel, an open road): landmarks drawn
+	 * there are removed; the draws of the others are unchanged. */
+	std::vector<std::pair<double, double>> landmark_gaps;
+	/** True if position s along the road lies in a landmark gap. */
+	bool inLandmarkGap(double s) const
+	{
+		for (const auto& [a, b] : landmark_gaps)
+			if (s >= a && s <= b) return true;
+		return false;
+	}
 
 	// [Sensor]
 	double sensor_range = 55;  ///< [m]; static landmarks by true range, objects by centroid

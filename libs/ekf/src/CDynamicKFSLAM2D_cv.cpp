@@ -1,0 +1,204 @@
+/** CDynamicKFSLAM2D: the steps of object-centric motion models (IObjectMotionModel with
+ * velocityDim() > 0, e.g. estimator::CConstantVelocity, `object_model = cv`; issue 13):
+ * prediction of every object's pose and velocity, measurement updates of ego, object pose and
+ * body-frame features by every sighting of an object feature, and the velocity of a new object
+ * from its first two sightings (doc/state-layout.md "Object-centric motion models"). With the
+ * paper's models (velocityDim() == 0) every function here does nothing. */
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf_steps.h>
+#include <dynslam/models/object_motion.h>
+#include <dynslam/models/se2.h>
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <stdexcept>
+
+namespace dynslam
+{
+using estimator::BlockKind;
+using estimator::TBlock;
+
+namespace
+{
+/** An object's state blocks: its newest pose and its velocity (if any). */
+struct TObjectState
+{
+	size_t pose = SIZE_MAX, velocity = SIZE_MAX;
+};
+std::map<int32_t, TObjectState> objectStates(const estimator::CPaddedLayout& L)
+{
+	std::map<int32_t, TObjectState> out;
+	for (size_t b = 0; b < L.size(); ++b)
+	{
+		if (L[b].kind == BlockKind::ObjectPose) out[L[b].object].pose = b;  // ascending step
+		if (L[b].kind == BlockKind::ObjectVelocity) out[L[b].object].velocity = b;
+	}
+	return out;
+}
+
+std::vector<int> concat(std::vector<int> a, const std::vector<int>& b)
+{
+	a.insert(a.end(), b.begin(), b.end());
+	return a;
+}
+}  // namespace
+
+std::set<int32_t> CDynamicKFSLAM2D::objectsWithVelocity() const
+{
+	std::set<int32_t> out;
+	for (const TBlock& t : m_layout.blocks())
+		if (t.kind == BlockKind::ObjectVelocity) out.insert(t.object);
+	return out;
+}
+
+void CDynamicKFSLAM2D::predictObjects()
+{
+	if (m_motion->velocityDim(3) == 0 && m_motion->velocityDim(2) == 0) return;
+	auto x = m_xkk.asEigen();
+	auto P = m_pkk.asEigen();
+	for (const auto& [obj, st] : objectStates(m_layout))
+	{
+		if (st.velocity == SIZE_MAX) continue;
+		if (st.pose == SIZE_MAX)
+			throw std::logic_error("CDynamicKFSLAM2D: an object velocity without a pose");
+		const std::vector<int> ip = m_layout.indices(st.pose);
+		// The pose of the previous step is replaced by the prediction: recorded like a drop.
+		estimator::TPoseRecord e;
+		e.step = m_layout[st.pose].step;
+		e.dim = int(ip.size());
+		e.mean.head(e.dim) = x(ip);
+		e.cov.topLeftCorner(e.dim, e.dim) = ekf::marginal(P, ip);
+		m_router->registry().recordDroppedPose(obj, e, m_drop.record());
+
+		const std::vector<int> idx = concat(ip, m_layout.indices(st.velocity));
+		Eigen::MatrixXd F, Q;
+		const Eigen::VectorXd s = m_motion->predict(x(idx), &F, &Q);
+		ekf::predictSubset(x, P, idx, s, F, Q);
+		m_layout.setStep(st.pose, m_step);
+	}
+	onLayoutChanged();
+}
+
+void CDynamicKFSLAM2D::objectFeatureUpdates()
+{
+	const std::map<int32_t, TObjectState> states = objectStates(m_layout);
+	std::map<int32_t, std::vector<estimator::TRoutedReading>> byObject;
+	for (const auto& m : m_routed.with(estimator::Route::ObjectTimeT))
+	{
+		const auto it = states.find(m.object);
+		if (it != states.end() && it->second.velocity != SIZE_MAX) byObject[m.object].push_back(m);
+	}
+	if (byObject.empty()) return;
+	// f0 blocks by feature ID
+	std::map<int32_t, size_t> f0Block;
+	for (size_t b = 0; b < m_layout.size(); ++b)
+		if (m_layout[b].kind == BlockKind::ObjectFeature0) f0Block[m_layout[b].id] = b;
+	auto x = m_xkk.asEigen();
+	auto P = m_pkk.asEigen();
+	const double gate = m_motion->readingGate();
+	for (const auto& [obj, readings] : byObject)
+	{
+		const estimator::TObjectEntry& info = m_router->registry().at(obj);
+		const int n = int(info.feature_ids.size());
+		const std::vector<int> ip = m_layout.indices(states.at(obj).pose);
+		std::vector<int> idx = concat({0, 1, 2}, ip);
+		for (const int32_t id : info.feature_ids)
+			idx = concat(idx, m_layout.indices(f0Block.at(id)));
+		Eigen::Matrix2Xd f0(2, n);
+		for (int k = 0; k < n; ++k) f0.col(k) = x.segment(idx[3 + ip.size() + 2 * k], 2);
+		const Eigen::Vector3d ego = x.head<3>();
+		const Eigen::VectorXd xi = x(ip);
+		const Eigen::MatrixXd Pii = P(idx, idx);
+		const int d = int(ip.size());
+		std::vector<Eigen::MatrixXd> Hs;
+		std::vector<Eigen::Vector2d> nus;
+		for (const auto& m : readings)
+		{
+			models::Matrix23d J_z_x;
+			Eigen::MatrixXd J_z_xi, J_z_f0;
+			const Eigen::Vector2d zhat =
+			    models::observeObjectFeature(options.measurement_model, ego, xi, f0,
+			                                 info.indexOf(m.reading.id), &J_z_x, &J_z_xi, &J_z_f0);
+			Eigen::MatrixXd H(2, idx.size());
+			H << J_z_x, J_z_xi, J_z_f0;
+			const Eigen::Vector2d nu =
+			    models::innovation(options.measurement_model, m.reading.z, zhat);
+			if (std::isfinite(gate))
+			{
+				const Eigen::Matrix2d S = H * Pii * H.transpose() + options.Sigma_v;
+				if (nu.dot(S.ldlt().solve(nu)) > gate)
+				{
+					++m_report.object_gated_out;
+					continue;
+				}
+			}
+			Hs.push_back(H);
+			nus.push_back(nu);
+		}
+		if (Hs.empty()) continue;  // every reading gated out: the object coasts on its prediction
+		const Eigen::Index m = Eigen::Index(Hs.size());
+		Eigen::MatrixXd H(2 * m, idx.size()), R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+		Eigen::VectorXd nu(2 * m);
+		for (Eigen::Index r = 0; r < m; ++r)
+		{
+			H.middleRows(2 * r, 2) = Hs[size_t(r)];
+			nu.segment(2 * r, 2) = nus[size_t(r)];
+			R.block(2 * r, 2 * r, 2, 2) = options.Sigma_v;
+		}
+		ekf::sparseUpdate(x, P, idx, H, nu, R);
+		if (d == 3) x[ip[2]] = models::wrapToPi(x[ip[2]]);
+		OnNormalizeStateVector();
+		m_report.object_feature_updates += size_t(m);
+	}
+}
+
+void CDynamicKFSLAM2D::planObjectVelocities(TPending& plan)
+{
+	if (m_motion->velocityDim(3) == 0 && m_motion->velocityDim(2) == 0) return;
+	const Eigen::Index n = m_xkk.size();
+	std::vector<Eigen::MatrixXd> Gs;  // rows of G (the velocity as a function of the state)
+	std::vector<Eigen::VectorXd> means;
+	std::vector<Eigen::MatrixXd> priors;
+	for (const auto& [obj, st] : objectStates(m_layout))
+	{
+		if (st.velocity != SIZE_MAX || st.pose == SIZE_MAX || m_layout[st.pose].step != m_step)
+			continue;
+		const int steps = m_step - m_router->registry().at(obj).first_step;
+		const std::vector<int> ip = m_layout.indices(st.pose);
+		const int d = m_motion->velocityDim(int(ip.size()));
+		if (d == 0) continue;
+		Eigen::MatrixXd J_v_xi, Sigma;
+		const Eigen::VectorXd v =
+		    m_motion->initialVelocity(m_xkk.asEigen()(ip), steps, &J_v_xi, &Sigma);
+		TBlock b;
+		b.kind = BlockKind::ObjectVelocity;
+		b.object = obj;
+		b.step = m_step;
+		b.dim = d;
+		Eigen::MatrixXd G = Eigen::MatrixXd::Zero(2 * b.slots(), n);
+		G(Eigen::seqN(0, d), ip) = J_v_xi;
+		Eigen::VectorXd mean = Eigen::VectorXd::Zero(2 * b.slots());
+		mean.head(d) = v;
+		Eigen::MatrixXd prior = Eigen::MatrixXd::Identity(2 * b.slots(), 2 * b.slots());  // pads: 1
+		prior.topLeftCorner(d, d) = Sigma;
+		Gs.push_back(G);
+		means.push_back(mean);
+		priors.push_back(prior);
+		plan.blocks.push_back(b);
+	}
+	if (Gs.empty()) return;
+	Eigen::Index m = 0;
+	for (const auto& G : Gs) m += G.rows();
+	Eigen::MatrixXd G(m, n), prior = Eigen::MatrixXd::Zero(m, m);
+	Eigen::VectorXd mean(m);
+	for (size_t i = 0, r = 0; i < Gs.size(); r += size_t(Gs[i].rows()), ++i)
+	{
+		G.middleRows(Eigen::Index(r), Gs[i].rows()) = Gs[i];
+		mean.segment(Eigen::Index(r), Gs[i].rows()) = means[i];
+		prior.block(Eigen::Index(r), Eigen::Index(r), Gs[i].rows(), Gs[i].rows()) = priors[i];
+	}
+	plan.a.mean = mean;
+	plan.a.cross = G * m_pkk.asEigen();
+	plan.a.cov = plan.a.cross * G.transpose() + prior;
+}
+}  // namespace dynslam

@@ -1,0 +1,48 @@
+#pragma once
+/** @file constant_velocity.h
+ * The constant-velocity object motion model (issue 13, `object_model = cv`): an object's
+ * state is its pose and its world-frame velocity (models/object_motion.h), predicted every
+ * step; its sightings update ego, pose and body-frame features together. Objects help the
+ * ego: a car driving steadily beside it is a reference where static landmarks are scarce. */
+#include <dynslam/estimator/object_motion_model.h>
+
+namespace dynslam::estimator
+{
+struct TCvParams
+{
+	double dt = 0.5;  ///< seconds per step [s]
+	/** White-acceleration spectral densities (ax, ay, alpha) [m^2/s^3, m^2/s^3, rad^2/s^3]. */
+	Eigen::Vector3d accel_psd = Eigen::Vector3d(0.1, 0.1, 0.01);
+	/** Std of the initialisation noise of the velocity (vx, vy, omega) [m/s, m/s, rad/s]. */
+	Eigen::Vector3d velocity_prior_std = Eigen::Vector3d(1.0, 1.0, 0.1);
+	/** Chi-square threshold (2 dof) of the gate on object readings (infinity: no gate). */
+	double gate = std::numeric_limits<double>::infinity();
+	/** Throws std::invalid_argument naming the parameter. */
+	void validate() const;
+};
+
+class CConstantVelocity : public IObjectMotionModel
+{
+public:
+	explicit CConstantVelocity(const TCvParams& p);
+	std::string name() const override { return "cv"; }
+	int posesNeeded() const override { return 1; }
+	std::vector<TPseudoMeasurement> select(int32_t, int, const std::vector<int>&,
+	                                       int) const override
+	{
+		return {};
+	}
+	Eigen::VectorXd residual(const TPseudoMeasurement&, const std::vector<Eigen::VectorXd>&,
+	                         std::vector<Eigen::MatrixXd>*) const override;
+	int velocityDim(int poseDim) const override { return poseDim; }
+	Eigen::VectorXd predict(const Eigen::VectorXd& s, Eigen::MatrixXd* J_out_s,
+	                        Eigen::MatrixXd* Q) const override;
+	Eigen::VectorXd initialVelocity(const Eigen::VectorXd& xi, int steps, Eigen::MatrixXd* J_v_xi,
+	                                Eigen::MatrixXd* Sigma) const override;
+	double readingGate() const override { return m_p.gate; }
+	const TCvParams& params() const { return m_p; }
+
+private:
+	TCvParams m_p;
+};
+}  // namespace dynslam::estimator
