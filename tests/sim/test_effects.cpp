@@ -285,6 +285,20 @@ TEST(SimEffects, ParkedCarDrivesOffAndMovingCarStops)
 	EXPECT_NEAR((f5[stop].col(0) - f5[stop].col(1)).norm(), (f5[0].col(0) - f5[0].col(1)).norm(),
 	            1e-9);
 	EXPECT_NEAR(f5[stop](1, 0) - f5[stop](1, 2), f5[0](1, 0) - f5[0](1, 2), 1e-9);  // no flip
+	// Speeds whose ramps do not cancel exactly in floating point (13.1 -> 12.7 -> 0): the
+	// body still rests exactly, heading kept (without the hold it drifts and turns by pi).
+	{
+		std::ostringstream ini;
+		o.dumpToTextStream(ini);
+		std::string t = dynslam_test::setIniKey(ini.str(), "Agent6", "speed", "13.1");
+		t = dynslam_test::setIniKey(t, "Agent6", "speed_changes", "[10 3 12.7]");
+		const TGroundTruth g2 = buildGroundTruth(loadScenarioFromText(t));
+		const auto& f = g2.objects[5].features;
+		for (size_t k = stop; k < g2.numSteps(); ++k)
+			EXPECT_EQ((f[k] - f[stop]).norm(), 0.0) << "step " << k;
+		EXPECT_NEAR(f.back()(0, 0) - f.back()(0, 2), f[0](0, 0) - f[0](0, 2), 1e-9)
+		    << "the car turned round at rest";
+	}
 	// The true class flips at the onset and at the stop.
 	const TSimulatedRun run = simulate(o);
 	size_t n3s = 0, n3m = 0, n4 = 0, n5s = 0, n5m = 0;
