@@ -2,6 +2,7 @@
 #include <dynslam/eval/class_metrics.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace dynslam;
@@ -140,6 +141,7 @@ TEST(ClassMetrics, DetectionDelayAfterOnset)
 	const TDelaySummary f = detectionDelays(m, {dS, dM}, true);
 	ASSERT_EQ(f.onsets.size(), 1u);
 	EXPECT_EQ(f.onsets[0].delay, 1);
+	EXPECT_EQ(detectionDelays(m, {dM, dM}, true).onsets.at(0).delay, 0);  // at the onset itself
 }
 
 TEST(ClassMetrics, GroupingAri)
@@ -165,4 +167,37 @@ TEST(ClassMetrics, WrongStaticLandmarks)
 	EXPECT_EQ(w.wrong, 2u);
 	EXPECT_EQ(w.unknown, 1u);
 	EXPECT_EQ(w.wrong_ids, (std::vector<int32_t>{2, 3}));
+}
+
+TEST(ClassMetrics, FromTheShippedClassFile)
+{
+	// The ID-range rule as a classifier on the shipped highway (its agents always move).
+	const auto t =
+	    readClassGroundTruth(std::string(DYNSLAM_DATASETS_DIR) + "/highway_gt_classes.csv");
+	ASSERT_EQ(t.size(), 1552u);
+	std::vector<Decision> d;
+	std::vector<int64_t> groups;
+	std::vector<int32_t> allIds;
+	for (const auto& r : t)
+	{
+		const bool object = r.id >= 100000;
+		d.push_back(object ? dM : dS);
+		groups.push_back(object ? (r.id - 100000) / 1000 : -1);
+		allIds.push_back(r.id);
+	}
+	const TBinaryScores s = perReadingScores(t, d);
+	EXPECT_EQ(s.tp + s.fn, 620u);  // object readings: 1552 - 932 static
+	EXPECT_DOUBLE_EQ(s.f1, 1.0);
+	EXPECT_DOUBLE_EQ(perTrackScores(t, d).f1, 1.0);
+	EXPECT_DOUBLE_EQ(groupingAri(t, groups), 1.0);
+	// static_all's map holds every ID: the 10 object features are wrong static landmarks.
+	std::sort(allIds.begin(), allIds.end());
+	allIds.erase(std::unique(allIds.begin(), allIds.end()), allIds.end());
+	const TWrongStatic w = wrongStaticLandmarks(t, allIds);
+	EXPECT_EQ(w.wrong, 10u);
+	EXPECT_EQ(w.unknown, 0u);
+	// Everything decided static: recall 0, precision undefined.
+	const TBinaryScores z = perReadingScores(t, std::vector<Decision>(t.size(), dS));
+	EXPECT_DOUBLE_EQ(z.recall, 0.0);
+	EXPECT_TRUE(std::isnan(z.precision));
 }
