@@ -115,3 +115,39 @@ TEST(StaticBaseline, FactoryKnowsEveryKind)
 		EXPECT_NE(std::string(e.what()).find("unknown back-end 'ukf'"), std::string::npos);
 	}
 }
+
+TEST(StaticBaseline, MixedUnknownAndLabelledIdsAreAnErrorNamingTheReading)
+{
+	// Issue 12: clutter with clutter_ids = unknown (-1) next to labelled readings. MRPT's
+	// CRangeBearingKFSLAM2D would throw "Duplicated `key`" a few steps later from its bimap.
+	const TRawlog r = loadRawlog(apps_test::dataset("highway.rawlog"));
+	mrpt::config::CConfigFileMemory ini(kIni);
+	CStaticBaselineBackend all(CStaticBaselineBackend::Mode::AllFeatures);
+	all.loadOptions(ini);
+	all.processActionObservation(r.actions[0], r.frames[0]);
+	auto obs = std::make_shared<mrpt::obs::CObservationBearingRange>(
+	    *r.frames[1]->getObservationByClass<mrpt::obs::CObservationBearingRange>());
+	obs->sensedData[2].landmarkID = -1;
+	auto sf = mrpt::obs::CSensoryFrame::Create();
+	sf->insert(obs);
+	try
+	{
+		all.processActionObservation(r.actions[1], sf);
+		ADD_FAILURE() << "a -1 ID among labelled readings was accepted";
+	}
+	catch (const std::runtime_error& e)
+	{
+		EXPECT_NE(std::string(e.what()).find("step 1: measurement 2 (landmark ID -1)"),
+		          std::string::npos)
+		    << e.what();
+	}
+	// static_landmarks_only removes the -1 reading and counts it.
+	CStaticBaselineBackend only(CStaticBaselineBackend::Mode::StaticOnly);
+	only.loadOptions(ini);
+	only.processActionObservation(r.actions[0], r.frames[0]);
+	const size_t before = only.removedReadings();
+	only.processActionObservation(r.actions[1], sf);
+	size_t objects = 0;
+	for (const auto& m : obs->sensedData) objects += ids::isObjectFeature(m.landmarkID);
+	EXPECT_EQ(only.removedReadings() - before, objects + 1);
+}

@@ -207,6 +207,8 @@ TEST(SimRawlog, DatasetRegeneratesIdentically)
 		          dynslam_test::readFile(ds + "/highway" + s))
 		    << "datasets/highway" << s << " differs from a fresh regeneration";
 	EXPECT_EQ(gunzip(out + "/highway.rawlog"), gunzip(ds + "/highway.rawlog"));
+	EXPECT_EQ(dynslam_test::readFile(out + "/highway_gt_classes.csv"),
+	          dynslam_test::readFile(ds + "/highway_gt_classes.csv"));
 	// The shipped ground truth reads back.
 	const dynslam::TGroundTruth gt = dynslam::readGroundTruth(ds, "highway");
 	EXPECT_EQ(gt.numSteps(), 121u);

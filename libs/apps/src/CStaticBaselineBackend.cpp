@@ -43,6 +43,7 @@ void CStaticBaselineBackend::loadOptions(const mrpt::config::CConfigFileBase& in
 	m_filter->reset();
 	m_report = TStepReport();
 	m_removed = 0;
+	m_seenId = m_seenUnknown = false;
 }
 
 void CStaticBaselineBackend::dumpOptions(std::ostream& out) const
@@ -79,6 +80,8 @@ void CStaticBaselineBackend::processActionObservation(
 		sf = mrpt::obs::CSensoryFrame::Create();
 		sf->insert(filtered);
 	}
+	else
+		checkIdsNotMixed(*obs, m_report.step + 1);
 	m_filter->processActionObservation(act, sf);
 
 	const int step = m_report.step + 1;
@@ -86,6 +89,25 @@ void CStaticBaselineBackend::processActionObservation(
 	m_report.step = step;
 	m_report.static_new = m_filter->getLastDataAssociation().newly_inserted_landmarks.size();
 	m_report.static_updates = readings >= m_report.static_new ? readings - m_report.static_new : 0;
+}
+
+void CStaticBaselineBackend::checkIdsNotMixed(const mrpt::obs::CObservationBearingRange& obs,
+                                              int step)
+{
+	// MRPT's CRangeBearingKFSLAM2D keeps a bimap landmark ID <-> index: a second new landmark
+	// with ID -1 (association unknown, e.g. clutter) next to labelled readings throws
+	// "Duplicated `key` with different `value`" from deep inside MRPT. Say which reading.
+	for (size_t i = 0; i < obs.sensedData.size(); ++i)
+	{
+		const bool unknown = obs.sensedData[i].landmarkID < 0;
+		(unknown ? m_seenUnknown : m_seenId) = true;
+		if (m_seenUnknown && m_seenId)
+			throw std::runtime_error(
+			    name() + ": step " + std::to_string(step) + ": measurement " + std::to_string(i) +
+			    " (landmark ID " + std::to_string(obs.sensedData[i].landmarkID) +
+			    "): the rawlog mixes landmark IDs with -1 (association unknown), which MRPT's "
+			    "CRangeBearingKFSLAM2D does not support");
+	}
 }
 
 mrpt::poses::CPosePDFGaussian CStaticBaselineBackend::getEgoPose() const

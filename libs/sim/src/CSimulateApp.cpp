@@ -119,8 +119,9 @@ void CSimulateApp::run()
 			if (auto o = sf->getObservationByClass<mrpt::obs::CObservationBearingRange>())
 				numMeasurements += o->sensedData.size();
 		writeKfSlamGroundTruth(groundTruth, run, outDir, base);
-		for (const char* s :
-		     {"_gt_landmarks.txt", "_gt_robot_path.txt", "_gt_data_association.txt"})
+		writeClassGroundTruth(run.classes, path("_gt_classes.csv"));
+		for (const char* s : {"_gt_landmarks.txt", "_gt_robot_path.txt", "_gt_data_association.txt",
+		                      "_gt_classes.csv"})
 			writtenFiles.push_back(path(s));
 	}
 	numRawlogEntries = 2 * groundTruth.numSteps();

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "options_format.h"
 
@@ -160,6 +161,46 @@ void checkDerived(const CConfigFileBase& c, const std::string& sec, const std::s
 		              "); use level = custom to set it");
 }
 
+/** Issue 12: start_moving_at_s, stop_at_s, start_stop_duration_s of an agent. No speed or
+ * lateral change while parked or stopped, nor during the start and stop ramps. */
+void readStartStop(const CConfigFileBase& c, const std::string& sec, THighwayAgent& a)
+{
+	const bool hasStart = cfg::has(c, sec, "start_moving_at_s"),
+	           hasStop = cfg::has(c, sec, "stop_at_s");
+	a.start_stop_duration_s = cfg::readPositive(c, sec, "start_stop_duration_s", 4);
+	const double d = a.start_stop_duration_s;
+	const std::vector<TRamp>& lat =
+	    a.kind == THighwayAgent::Kind::Car ? a.lane_changes : a.lateral_moves;
+	const char* latKey = a.kind == THighwayAgent::Kind::Car ? "lane_changes" : "lateral_moves";
+	if (hasStart)
+	{
+		a.start_moving_at_s = cfg::readNonNegative(c, sec, "start_moving_at_s", 0, true);
+		const double t0 = a.start_moving_at_s;
+		if (!(a.speed > 0))
+			cfg::fail(sec, "speed", fmt(a.speed), "must be > 0: the speed after start_moving_at_s");
+		if (!a.speed_changes.empty() && a.speed_changes.front().t_start < t0 + d)
+			cfg::fail(
+			    sec, "speed_changes", fmtRamps(a.speed_changes),
+			    "starts before the start ramp ends (start_moving_at_s + start_stop_duration_s = " +
+			        fmt(t0 + d) + ")");
+		if (!lat.empty() && lat.front().t_start < t0)
+			cfg::fail(sec, latKey, fmtRamps(lat), "moves sideways while parked");
+	}
+	if (hasStop)
+	{
+		a.stop_at_s = cfg::readPositive(c, sec, "stop_at_s", 1, true);
+		const double t1 = a.stop_at_s - d;
+		for (const std::vector<TRamp>* r : {&std::as_const(a.speed_changes), &lat})
+			if (!r->empty() && r->back().t_start + r->back().duration > t1)
+				cfg::fail(sec, "stop_at_s", fmt(a.stop_at_s),
+				          "a speed or lateral change ends after the stop ramp starts (" + fmt(t1) +
+				              " s)");
+		if (t1 < (hasStart ? a.start_moving_at_s + d : 0.0))
+			cfg::fail(sec, "stop_at_s", fmt(a.stop_at_s),
+			          "the stop ramp starts before t = 0 or before the start ramp ends");
+	}
+}
+
 THighwayAgent readAgent(const CConfigFileBase& c, const std::string& sec, const THighwayOptions& h,
                         bool isEgo)
 {
@@ -175,10 +216,10 @@ THighwayAgent readAgent(const CConfigFileBase& c, const std::string& sec, const 
 	}
 	else
 	{
-		cfg::rejectUnknownKeys(
-		    c, sec,
-		    {"type", "x0", "lane0", "y0", "speed", "speed_changes", "lane_changes", "lateral_moves",
-		     "length", "width", "num_features"});
+		cfg::rejectUnknownKeys(c, sec,
+		                       {"type", "x0", "lane0", "y0", "speed", "speed_changes",
+		                        "lane_changes", "lateral_moves", "length", "width", "num_features",
+		                        "start_moving_at_s", "stop_at_s", "start_stop_duration_s"});
 		a.kind = cfg::readChoice(c, sec, "type", {"car", "pedestrian"}, 0, true) == 0
 		             ? THighwayAgent::Kind::Car
 		             : THighwayAgent::Kind::Pedestrian;
@@ -222,6 +263,12 @@ THighwayAgent readAgent(const CConfigFileBase& c, const std::string& sec, const 
 			          "a pedestrian has 1 or 2 features");
 	}
 	if (isEgo && !(a.speed > 0)) cfg::fail(sec, "speed", fmt(a.speed), "the ego must move (> 0)");
+	if (!isEgo) readStartStop(c, sec, a);
+	const bool changes =
+	    !a.speed_changes.empty() || !a.lane_changes.empty() || !a.lateral_moves.empty();
+	if (!isEgo && a.speed == 0 && changes && std::isnan(a.start_moving_at_s))
+		cfg::fail(sec, "speed", "0",
+		          "a parked agent with later changes needs start_moving_at_s (its true class)");
 	return a;
 }
 
@@ -323,7 +370,39 @@ void readGenerated(const CConfigFileBase& c, TGeneratedOptions& g)
 			          "must exceed the lateral extent of the world (" + fmt(reach) + " m)");
 	}
 }
+/** Reads [Effects] (issue 12); all off when the section is absent. */
+void readEffects(const CConfigFileBase& c, TReadingEffects& e)
+{
+	const std::string E = "Effects";
+	cfg::rejectUnknownKeys(c, E,
+	                       {"anonymous_ids", "missed_detection_probability", "clutter_per_step",
+	                        "clutter_ids", "track_break_gap", "track_break_probability"});
+	e.anonymous_ids = cfg::readBool(c, E, "anonymous_ids", false);
+	e.missed_detection_probability = cfg::readNonNegative(c, E, "missed_detection_probability", 0);
+	if (e.missed_detection_probability >= 1)
+		cfg::fail(E, "missed_detection_probability", fmt(e.missed_detection_probability),
+		          "must be in [0, 1)");
+	e.clutter_per_step = int(readCount(c, E, "clutter_per_step", 0, false, 100000));
+	e.clutter_unknown_ids = cfg::readChoice(c, E, "clutter_ids", {"fresh", "unknown"}, 0) == 1;
+	e.track_break_gap = int(readCount(c, E, "track_break_gap", 0, false, 100'000'000));
+	e.track_break_probability = cfg::readNonNegative(c, E, "track_break_probability", 0);
+	if (e.track_break_probability > 1)
+		cfg::fail(E, "track_break_probability", fmt(e.track_break_probability),
+		          "must be in [0, 1]");
+}
 }  // namespace
+
+bool TScenarioOptions::objectMovingAt(size_t obj, double t) const
+{
+	if (type != ScenarioType::Highway) return true;
+	if (obj >= highway.agents.size())
+		throw std::out_of_range("objectMovingAt: no object " + std::to_string(obj));
+	const THighwayAgent& a = highway.agents[obj];
+	if (a.speed == 0 && std::isnan(a.start_moving_at_s)) return false;  // parked for good
+	if (!std::isnan(a.start_moving_at_s) && !(t > a.start_moving_at_s)) return false;
+	if (!std::isnan(a.stop_at_s) && t >= a.stop_at_s) return false;
+	return true;
+}
 
 void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::string&)
 {
@@ -398,6 +477,7 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 		readHighway(c, highway);
 	else
 		readGenerated(c, generated);
+	readEffects(c, effects);
 	validate();
 }
 

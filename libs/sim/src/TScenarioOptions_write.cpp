@@ -85,6 +85,25 @@ void dumpAgent(std::ostream& o, const THighwayAgent& a, bool isEgo)
 	if (car) o << "length = " << fmt(a.length) << "\n";
 	o << "width = " << fmt(a.width) << "\n";
 	if (!isEgo) o << "num_features = " << a.num_features << "\n";
+	if (!std::isnan(a.start_moving_at_s))
+		o << "start_moving_at_s = " << fmt(a.start_moving_at_s) << "\n";
+	if (!std::isnan(a.stop_at_s)) o << "stop_at_s = " << fmt(a.stop_at_s) << "\n";
+	if (!std::isnan(a.start_moving_at_s) || !std::isnan(a.stop_at_s))
+		o << "start_stop_duration_s = " << fmt(a.start_stop_duration_s) << "\n";
+}
+
+/** [Effects] only when set, so that the effective configuration of a scenario without them
+ * is unchanged. */
+void dumpEffects(std::ostream& o, const TReadingEffects& e)
+{
+	if (!e.any() && !e.clutter_unknown_ids) return;
+	o << "\n[Effects]\n";
+	o << "anonymous_ids = " << (e.anonymous_ids ? "true" : "false") << "\n";
+	o << "missed_detection_probability = " << fmt(e.missed_detection_probability) << "\n";
+	o << "clutter_per_step = " << e.clutter_per_step << "\n";
+	o << "clutter_ids = " << (e.clutter_unknown_ids ? "unknown" : "fresh") << "\n";
+	o << "track_break_gap = " << e.track_break_gap << "\n";
+	o << "track_break_probability = " << fmt(e.track_break_probability) << "\n";
 }
 }  // namespace
 
@@ -204,5 +223,6 @@ void TScenarioOptions::dumpToTextStream(std::ostream& o) const
 		o << "yaw_rate_max = " << fmt(g.yaw_rate_max) << "\n";
 		o << "object_spread = " << fmt(g.object_spread) << "\n";
 	}
+	dumpEffects(o, effects);
 }
 }  // namespace dynslam::sim

@@ -125,6 +125,11 @@ double TTrack::speedScale(double d) const { return radius <= 0 ? 1.0 : 1.0 - d /
 
 Eigen::Vector3d TBodyMotion::pose(const TTrack& track, double t) const
 {
+	if (t > stop_time)
+	{
+		const Eigen::Vector3d rest = pose(track, stop_time);
+		return {rest[0], rest[1], pose(track, stop_heading_time)[2]};
+	}
 	const double s = s0 + speed.integral(t), d = lateral.value(t);
 	const Eigen::Vector2d p = track.point(s, d);
 	double th;

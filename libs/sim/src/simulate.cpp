@@ -18,6 +18,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "effects.h"
+
 namespace dynslam::sim
 {
 namespace
@@ -58,7 +60,8 @@ public:
 	      m_rng(seed32(seed)),
 	      m_Lw(covSqrt<3>(o.Sigma_w, "[Noise] sigma_w")),
 	      m_Lv(covSqrt<2>(o.Sigma_v, "[Noise] sigma_v")),
-	      m_cell(o.sensor_range)
+	      m_cell(o.sensor_range),
+	      m_effects(gt, o, seed32(seed))
 	{
 		gt.checkConsistent();
 		if (gt.numSteps() != o.numSteps())
@@ -127,16 +130,32 @@ public:
 						m_ids.push_back(id);
 			}
 		std::sort(m_ids.begin(), m_ids.end());
-		for (int32_t id : m_ids) addMeasurement(*obs, x, m_gt.landmarks.at(id), id);
+		m_truth.clear();
+		for (int32_t id : m_ids)
+			if (addMeasurement(*obs, x, m_gt.landmarks.at(id), id))
+				addTruth(k, id, TrueClass::Static, -1, id);
 		// Objects whose centroid is within range: all their features.
 		for (const TObjectGroundTruth& og : m_gt.objects)
 			if (og.visible[k])
+			{
+				const TrueClass c = m_o.objectMovingAt(size_t(og.object), m_o.stepTime(k))
+				                        ? TrueClass::Moving
+				                        : TrueClass::Static;
 				for (int j = 0; j < og.num_features; ++j)
-					addMeasurement(*obs, x, og.features[k].col(j),
-					               ids::objectFeatureId(og.object, j));
+				{
+					const int32_t id = ids::objectFeatureId(og.object, j);
+					if (addMeasurement(*obs, x, og.features[k].col(j), id))
+						addTruth(k, id, c, og.object, j);
+				}
+			}
+		// Issue 12's front-end effects (after every noise draw, from their own generator).
+		if (m_o.effects.any()) m_effects.apply(k, *obs, m_truth);
 		sfOut = CSensoryFrame::Create();
 		sfOut->insert(obs);
 	}
+
+	/** Class ground truth of step k's readings (in the order of the observation). */
+	const std::vector<TReadingClass>& truth() const { return m_truth; }
 
 private:
 	Eigen::Vector3d draw3()
@@ -152,7 +171,21 @@ private:
 		return {a, b};
 	}
 
-	void addMeasurement(mrpt::obs::CObservationBearingRange& obs, const Eigen::Vector3d& x,
+	void addTruth(size_t k, int32_t id, TrueClass c, int32_t object, int32_t feature)
+	{
+		TReadingClass r;
+		r.step = int(k);
+		r.t = m_gt.t[k];
+		r.index = int(m_truth.size());
+		r.id = r.true_id = id;
+		r.cls = c;
+		r.object = object;
+		r.feature = feature;
+		m_truth.push_back(r);
+	}
+
+	/** Appends the noisy reading of f; false if it was not added (a point at the sensor). */
+	bool addMeasurement(mrpt::obs::CObservationBearingRange& obs, const Eigen::Vector3d& x,
 	                    const Eigen::Vector2d& f, int32_t id)
 	{
 		double range, yaw;
@@ -160,7 +193,7 @@ private:
 		{
 			const Eigen::Vector2d z = models::cartesianObserve(x, f) + m_Lv * draw2();
 			range = z.norm();
-			if (!(range > 0)) return;  // a point exactly at the sensor has no bearing
+			if (!(range > 0)) return false;  // a point exactly at the sensor has no bearing
 			yaw = std::atan2(z[1], z[0]);
 		}
 		else
@@ -179,6 +212,7 @@ private:
 		m.landmarkID = id;
 		m.covariance.setZero();
 		obs.sensedData.push_back(m);
+		return true;
 	}
 
 	long cellOf(double v) const { return long(std::floor(v / m_cell)); }
@@ -195,6 +229,8 @@ private:
 	double m_cell;
 	std::unordered_map<uint64_t, std::vector<int32_t>> m_grid;
 	std::vector<int32_t> m_ids;
+	detail::CReadingEffects m_effects;
+	std::vector<TReadingClass> m_truth;
 };
 
 mrpt::obs::CObservationComment commentObject(const std::string& text, mrpt::Clock::time_point stamp)
@@ -220,7 +256,11 @@ TSimulatedRun simulateMeasurements(const TGroundTruth& gt, const TScenarioOption
 	const size_t n = gt.numSteps();
 	run.actions.resize(n);
 	run.frames.resize(n);
-	for (size_t k = 0; k < n; ++k) sim.step(k, run.actions[k], run.frames[k]);
+	for (size_t k = 0; k < n; ++k)
+	{
+		sim.step(k, run.actions[k], run.frames[k]);
+		run.classes.insert(run.classes.end(), sim.truth().begin(), sim.truth().end());
+	}
 	return run;
 }
 

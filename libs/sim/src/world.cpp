@@ -18,7 +18,23 @@ TBodyMotion highwayMotion(const THighwayAgent& a, const THighwayOptions& h)
 {
 	TBodyMotion m;
 	m.s0 = a.x0;
-	m.speed = CSmoothProfile(a.speed, a.speed_changes);
+	// Issue 12: parked until start_moving_at_s, at rest from stop_at_s on (options validated
+	// that no other change overlaps these ramps).
+	const double d = a.start_stop_duration_s;
+	std::vector<TRamp> sp = a.speed_changes;
+	double v0 = a.speed;
+	if (!std::isnan(a.start_moving_at_s))
+	{
+		v0 = 0;
+		sp.insert(sp.begin(), TRamp{a.start_moving_at_s, d, a.speed});
+	}
+	if (!std::isnan(a.stop_at_s))
+	{
+		sp.push_back(TRamp{a.stop_at_s - d, d, 0.0});
+		m.stop_time = a.stop_at_s;
+		m.stop_heading_time = a.stop_at_s - d / 2;
+	}
+	m.speed = CSmoothProfile(v0, sp);
 	if (a.kind == THighwayAgent::Kind::Car)
 	{
 		std::vector<TRamp> lat = a.lane_changes;

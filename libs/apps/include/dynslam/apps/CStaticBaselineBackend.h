@@ -18,6 +18,10 @@
 #include <memory>
 #include <string>
 
+namespace mrpt::obs
+{
+class CObservationBearingRange;
+}
 namespace mrpt::slam
 {
 class CRangeBearingKFSLAM2D;
@@ -62,9 +66,13 @@ public:
 	mrpt::slam::CRangeBearingKFSLAM2D& filter() { return *m_filter; }
 
 private:
+	/** Mode AllFeatures: throws naming the reading once -1 IDs and IDs >= 0 have both come. */
+	void checkIdsNotMixed(const mrpt::obs::CObservationBearingRange& obs, int step);
+
 	Mode m_mode;
 	std::unique_ptr<mrpt::slam::CRangeBearingKFSLAM2D> m_filter;
 	TStepReport m_report;
 	size_t m_removed = 0;
+	bool m_seenId = false, m_seenUnknown = false;  ///< IDs >= 0 / -1 seen (mode AllFeatures)
 };
 }  // namespace dynslam::apps

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -53,6 +54,13 @@ struct THighwayAgent
 	std::vector<TRamp> lateral_moves;  ///< pedestrian: (t_start, duration, target y [m])
 	double length = 4.5, width = 1.8;  ///< car body [m]; pedestrian: width = shoulder width
 	int num_features = 4;              ///< car: 4 (corners); pedestrian: 1 or 2
+	// Issue 12: parked / stopping agents (NaN: not set). Parked until start_moving_at_s, then
+	// the speed ramps from 0 to `speed` during [start, start + start_stop_duration_s]; the
+	// speed ramps to 0 during [stop - start_stop_duration_s, stop] and the agent rests from
+	// stop_at_s on. True class (B_gt_classes.csv): moving iff start < t < stop.
+	double start_moving_at_s = std::numeric_limits<double>::quiet_NaN();  ///< [s]
+	double stop_at_s = std::numeric_limits<double>::quiet_NaN();          ///< [s]
+	double start_stop_duration_s = 4;                                     ///< [s]
 };
 
 struct THighwayOptions
@@ -87,6 +95,25 @@ struct TGeneratedOptions
 	double pedestrian_speed = 1.4;                                  ///< crossing speed [m/s]
 	double yaw_rate_max = 0.5;  ///< rotating objects: |yaw rate| uniform in [0.1, max] [rad/s]
 	double object_spread = 60;  ///< objects start within this distance of the ego [m]
+};
+
+/** [Effects] (issue 12): what a real front-end does to the readings. All off by default (the
+ * output is then identical to a run without the section). Drawn from a private generator
+ * seeded with (noise_seed + 0x9E3779B9) mod 2^32, so the noise draws never change. See
+ * doc/simulator.md, section "Front-end effects". */
+struct TReadingEffects
+{
+	bool anonymous_ids = false;  ///< every ID replaced by a random permutation of 0..N-1
+	double missed_detection_probability = 0;  ///< per reading, independent
+	int clutter_per_step = 0;                 ///< false readings per step, uniform in the disc
+	bool clutter_unknown_ids = false;         ///< clutter_ids = unknown (-1) | fresh (default)
+	int track_break_gap = 0;  ///< a track unseen for >= this many steps gets a new ID (0: off)
+	double track_break_probability = 0;  ///< per reading of a seen track: a new ID from now on
+	bool any() const
+	{
+		return anonymous_ids || missed_detection_probability > 0 || clutter_per_step > 0 ||
+		       track_break_gap > 0 || track_break_probability > 0;
+	}
 };
 
 struct TScenarioOptions : public mrpt::config::CLoadableOptions
@@ -133,6 +160,7 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 
 	THighwayOptions highway;
 	TGeneratedOptions generated;
+	TReadingEffects effects;  ///< [Effects] (issue 12)
 
 	/** Reads the whole scenario; `section` is unused (the scenario spans several sections). */
 	void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
@@ -149,6 +177,9 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 	void validate() const;
 	size_t numSteps() const { return size_t(steps) + 1; }
 	double stepTime(size_t k) const { return double(k) * dt; }
+	/** True class of object `obj` at time t: moving unless it is parked (before
+	 * start_moving_at_s) or has stopped (from stop_at_s on). Generated objects always move. */
+	bool objectMovingAt(size_t obj, double t) const;
 };
 
 /** Loads a scenario INI file (throws with the file name on a missing file). */

@@ -11,6 +11,7 @@
  * or, for spinning objects, a constant yaw rate. Everything is evaluated in O(#ramps) per
  * time, so generating N steps costs O(N). */
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 namespace dynslam::sim
@@ -69,6 +70,11 @@ struct TBodyMotion
 	CSmoothProfile lateral;  ///< d(t) [m]
 	bool spin = false;       ///< heading = heading0 + yaw_rate t instead of the velocity direction
 	double heading0 = 0, yaw_rate = 0;
+	/** The body rests from stop_time on: for t > stop_time the position is that at stop_time
+	 * and the heading that at stop_heading_time (during the stopping ramp, where the speed is
+	 * still positive: at rest atan2 of the velocity is undefined). +inf: never stops. */
+	double stop_time = std::numeric_limits<double>::infinity();
+	double stop_heading_time = std::numeric_limits<double>::infinity();
 
 	/** World pose (x, y, theta) at time t on the given track. */
 	Eigen::Vector3d pose(const TTrack& track, double t) const;

@@ -6,6 +6,7 @@
  * Step k = 0..steps, t_k = k dt. For every step the rawlog holds ACT_k (the noisy odometry
  * increment INTO pose k; ACT_0 is a zero increment with zero covariance) and SF_k (one
  * CObservationBearingRange taken at pose k). Ground truth step k is the pose of SF_k. */
+#include <dynslam/class_ground_truth.h>
 #include <dynslam/ground_truth.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <dynslam/sim/motion.h>
@@ -55,6 +56,9 @@ struct TSimulatedRun
 {
 	std::vector<mrpt::obs::CActionCollection::Ptr> actions;  ///< ACT_k, k = 0..steps
 	std::vector<mrpt::obs::CSensoryFrame::Ptr> frames;       ///< SF_k
+	/** Class ground truth of every reading, step by step in the order of the observations
+	 * (B_gt_classes.csv, class_ground_truth.h). Not kept by simulateToRawlog. */
+	std::vector<TReadingClass> classes;
 };
 
 /** Noisy odometry and measurements for the ground truth. Deterministic given noise_seed
