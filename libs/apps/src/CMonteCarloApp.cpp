@@ -290,12 +290,20 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile("config/montecarlo.ini");
 	loadIniFile(iniFile, params);
-	readMonteCarloSettings(*this, argRuns, argLevels, argThreads, argSeed, argNoFig);
 	outDir = argOut.getValue();
 	progress = !argQuiet.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
-	for (const auto& w : checkMrptSections(params, iniFile, argStrict.getValue())) MRPT_LOG_WARN(w);
-	makeBackend(backend, params);  // fail early on bad options
+	try
+	{
+		readMonteCarloSettings(*this, argRuns, argLevels, argThreads, argSeed, argNoFig);
+		for (const auto& w : checkMrptSections(params, iniFile, argStrict.getValue()))
+			MRPT_LOG_WARN(w);
+		makeBackend(backend, params);  // fail early on bad options
+	}
+	catch (const std::invalid_argument& e)
+	{
+		throw std::invalid_argument(inConfigFile(iniFile, e.what()));  // name the INI file
+	}
 	if (!outDir.empty()) makeOutputDir(outDir);
 	return true;
 }

@@ -23,5 +23,9 @@ struct TStepInput
 	Eigen::Matrix3d U = Eigen::Matrix3d::Zero();  ///< its covariance (from the action)
 	std::vector<TReading> readings;               ///< in observation order, IDs unique
 	double max_range = 0;                         ///< the sensor's range [m] (0: unknown)
+	/** The sensor's pose on the robot s = (x, y, yaw) (the SE(2) part of MRPT's
+	 * sensorLocationOnRobot): every reading of the step is z = h(x (+) s, f)
+	 * (dynslam/models/measurement.h, observeFromSensor). Zero: the sensor at the origin. */
+	Eigen::Vector3d sensor_pose = Eigen::Vector3d::Zero();
 };
 }  // namespace dynslam::estimator
