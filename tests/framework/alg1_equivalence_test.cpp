@@ -160,7 +160,7 @@ TEST(Alg1, WholeRunEquivalenceSensorNotAtTheOrigin)
 	report("generated, sensor at (0.3, -0.1, 0.2), range-bearing, smoothing",
 	       runBoth(so, 9,
 	               "measurement_model = range_bearing\nSigma_v = [1e-4 1e-6]\n"
-	               "smoothing = true\nSigma_s = [1e-2 1e-2 1e-3]\n"));
+	               "smoothing = true\nSigma_s = [1e-2 1e-2 1e-3]\nkeep_last_poses = 3\n"));
 }
 
 TEST(Alg1, BadInputWindowSizeZeroAndSingularPrior)
