@@ -110,7 +110,10 @@ public:
 		obs->sensor_std_yaw = float(m_o.std_yaw);
 		obs->sensor_std_pitch = 0;
 		const Eigen::Vector3d& sp = m_o.sensor_pose;
-		obs->sensorLocationOnRobot = mrpt::poses::CPose3D(sp[0], sp[1], 0, sp[2], 0, 0);
+		// (Left at the default identity for 0: CPose3D(0, 0, 0, 0, 0, 0) holds -0 entries in its
+		// rotation matrix, a different file.)
+		if (!sp.isZero())
+			obs->sensorLocationOnRobot = mrpt::poses::CPose3D(sp[0], sp[1], 0, sp[2], 0, 0);
 		// The readings are taken from the sensor's pose (x itself for a sensor at the origin).
 		const Eigen::Vector3d xs = models::sensorPoseInWorld(x, sp);
 		// Static landmarks within the true range of the sensor, by increasing ID.
