@@ -150,6 +150,25 @@ TEST(BadInput, IniErrorsNameTheFile)
 	expectCleanFailure(c, {"config file '" + cini + "': [RangeBearingKFSLAM] std_sensor_range"});
 }
 
+TEST(BadInput, MontecarloIniErrorsNameTheFile)
+{
+	// [MonteCarlo] errors (a missing required key, a bad value) name the INI file.
+	const std::string dir = apps_test::freshDir("mcinifile");
+	const std::string shipped = apps_test::readFile(configFile("montecarlo.ini"));
+	const std::string ini = dir + "/mc.ini";
+	apps_test::writeFile(
+	    ini, std::regex_replace(shipped, std::regex("(^|\\n)scenario *=[^\\n]*"), "$1"));
+	const auto r = runCommand(std::string(q(DYNSLAM_MONTECARLO_EXE)) + " -q --runs 1 -c " + q(ini));
+	expectCleanFailure(
+	    r, {"config file '" + ini + "': [MonteCarlo] scenario: required key is missing"});
+	std::string text = std::regex_replace(shipped, std::regex("(^|\\n)scenario *= *"),
+	                                      "$1scenario = " + std::string(DYNSLAM_CONFIG_DIR) + "/");
+	apps_test::writeFile(
+	    ini, std::regex_replace(text, std::regex("(^|\\n)threads *=[^\\n]*"), "$1threads = -2"));
+	const auto b = runCommand(std::string(q(DYNSLAM_MONTECARLO_EXE)) + " -q --runs 1 -c " + q(ini));
+	expectCleanFailure(b, {"config file '" + ini + "': [MonteCarlo] threads = '-2'"});
+}
+
 TEST(BadInput, MisspelledKeyInMrptSectionWarnsOrFailsWithStrict)
 {
 	const std::string dir = apps_test::freshDir("mrptkey");

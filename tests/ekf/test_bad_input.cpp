@@ -121,6 +121,54 @@ TEST(DynamicBadInput, NonZeroPitchAndZeroRange)
 	t.expectRejected(zeroAction(), Fixture::frame({Fixture::meas(2, 0, 0.1f)}), "zero range");
 }
 
+TEST(DynamicBadInput, SensorPoseNotFiniteOrTilted)
+{
+	// A NaN / Inf in sensorLocationOnRobot names the field and the values; a tilted sensor
+	// (pitch or roll) is rejected: 2-D SLAM. The filter is unchanged.
+	Fixture t;
+	const double nan = std::numeric_limits<double>::quiet_NaN();
+	const double inf = std::numeric_limits<double>::infinity();
+	for (int i : {0, 1, 2})
+	{
+		auto sf = Fixture::frame({Fixture::meas(2, 5, 0.1f)});
+		auto& p = sf->getObservationByClass<CObservationBearingRange>()->sensorLocationOnRobot;
+		if (i == 0) p.x(nan);
+		if (i == 1) p.y(inf);
+		if (i == 2) p.z(nan);
+		t.expectRejected(zeroAction(), sf, "sensorLocationOnRobot is not finite (x y z yaw");
+	}
+	for (const auto& [pitch, roll] : std::vector<std::pair<double, double>>{{0.1, 0}, {0, -0.05}})
+	{
+		auto sf = Fixture::frame({Fixture::meas(2, 5, 0.1f)});
+		sf->getObservationByClass<CObservationBearingRange>()->sensorLocationOnRobot =
+		    mrpt::poses::CPose3D(0.3, 0, 0, 0.2, pitch, roll);
+		t.expectRejected(zeroAction(), sf, "non-zero pitch or roll");
+	}
+}
+
+TEST(DynamicBadInput, SensorHeightIsIgnoredAsInMrpt)
+{
+	// A sensor above the robot (z only) is 2-D: the readings lie in its horizontal plane. The
+	// filter gives exactly what it gives with z = 0 (MRPT's CRangeBearingKFSLAM2D takes
+	// CPose2D(sensorLocationOnRobot) too).
+	Fixture a, b;
+	for (size_t k = 3; k < a.sc.actions.size(); ++k)
+	{
+		auto sa = mrpt::obs::CSensoryFrame::Create(), sb = mrpt::obs::CSensoryFrame::Create();
+		auto oa = std::make_shared<CObservationBearingRange>(
+		    *a.sc.frames[k]->getObservationByClass<CObservationBearingRange>());
+		auto ob = std::make_shared<CObservationBearingRange>(*oa);
+		oa->sensorLocationOnRobot = mrpt::poses::CPose3D(0.3, -0.1, 0.0, 0.2, 0, 0);
+		ob->sensorLocationOnRobot = mrpt::poses::CPose3D(0.3, -0.1, 1.5, 0.2, 0, 0);
+		sa->insert(oa);
+		sb->insert(ob);
+		a.f.processActionObservation(a.sc.actions[k], sa);
+		b.f.processActionObservation(b.sc.actions[k], sb);
+		EXPECT_EQ(a.f.fullMean().asEigen(), b.f.fullMean().asEigen()) << "step " << k;
+		EXPECT_EQ(a.f.fullCov().asEigen(), b.f.fullCov().asEigen()) << "step " << k;
+	}
+}
+
 TEST(DynamicBadInput, WrongActionType)
 {
 	Fixture t;

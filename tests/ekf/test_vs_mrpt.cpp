@@ -1,5 +1,6 @@
 /** With no moving objects the dynamic filter reproduces MRPT's CRangeBearingKFSLAM2D on the
- * same action/observation sequence: ego pose, landmarks and the full covariance. */
+ * same action/observation sequence: ego pose, landmarks and the full covariance; also with a
+ * sensor that is not at the robot's origin (sensorLocationOnRobot). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <mrpt/slam/CRangeBearingKFSLAM2D.h>
@@ -160,5 +161,33 @@ TEST(DynamicVsMrpt, SparseStaticUpdateEqualsMrptUpdate)
 		std::cout << (cart ? "cartesian" : "range-bearing") << ": sparse vs MRPT worst relative "
 		          << worst << "\n";
 		EXPECT_LT(worst, 1e-9);
+	}
+}
+
+TEST(DynamicVsMrpt, SensorNotAtTheRobotsOrigin)
+{
+	// The readings are taken from x (+) s, s = (0.3 m, -0.1 m, 0.2 rad), and the observations
+	// carry s in sensorLocationOnRobot (with a height of 0.5 m, which both filters ignore:
+	// MRPT uses CPose2D(sensorLocationOnRobot), i.e. x, y and yaw). Both update engines and
+	// MRPT's two update methods.
+	struct TCase
+	{
+		mrpt::bayes::TKFMethod method;
+		bool sparse;
+		unsigned seed;
+	};
+	for (const TCase& c :
+	     {TCase{mrpt::bayes::kfEKFNaive, false, 1}, TCase{mrpt::bayes::kfEKFNaive, true, 2},
+	      TCase{mrpt::bayes::kfEKFAlaDavison, false, 3}})
+	{
+		dynslam_test::TinyScenarioOptions o = options(c.seed);
+		o.sensor = Eigen::Vector3d(0.3, -0.1, 0.2);
+		o.sensor_z = 0.5;
+		double ex, ep;
+		runBoth(c.method, o, &ex, &ep, c.sparse);
+		std::cout << "sensor offset (method " << int(c.method) << ", sparse " << c.sparse
+		          << "): worst relative |dx| " << ex << ", |dP| " << ep << "\n";
+		EXPECT_LT(ex, 1e-9);
+		EXPECT_LT(ep, 1e-9);
 	}
 }

@@ -9,6 +9,7 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 
 #include <Eigen/Eigenvalues>
@@ -33,6 +34,10 @@ struct TinyScenarioOptions
 	unsigned seed = 1;
 	bool noise = true;
 	double object_turn_rate = 0.03;  ///< object a turns by (a + 1) times this per step [rad]
+	/** The sensor's pose on the robot (x, y, yaw), written to sensorLocationOnRobot (with
+	 * height sensor_z); readings are taken from x (+) sensor. */
+	Eigen::Vector3d sensor = Eigen::Vector3d::Zero();
+	double sensor_z = 0;
 };
 
 struct TinyScenario
@@ -120,18 +125,21 @@ inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
 		obs->sensorLabel = "RB";
 		obs->maxSensorDistance = float(o.range);
 		obs->fieldOfView_yaw = float(2 * M_PI);
+		obs->sensorLocationOnRobot =
+		    mrpt::poses::CPose3D(o.sensor[0], o.sensor[1], o.sensor_z, o.sensor[2], 0, 0);
+		const Eigen::Vector3d xs = models::sensorPoseInWorld(x, o.sensor);  // == x for s = 0
 		auto add = [&](int32_t id, const Eigen::Vector2d& f)
 		{
 			Eigen::Vector2d rb;
 			if (o.cartesian_noise)
 			{
-				Eigen::Vector2d z = models::cartesianObserve(x, f);
+				Eigen::Vector2d z = models::cartesianObserve(xs, f);
 				if (o.noise) z += gaussian(g, o.Sigma_v);
 				rb = models::cartesianToRangeBearing(z);
 			}
 			else
 			{
-				rb = models::rangeBearingObserve(x, f);
+				rb = models::rangeBearingObserve(xs, f);
 				if (o.noise) rb += gaussian(g, o.Sigma_rb);
 			}
 			mrpt::obs::CObservationBearingRange::TMeasurement m;

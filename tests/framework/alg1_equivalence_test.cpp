@@ -150,6 +150,19 @@ TEST(Alg1, WholeRunEquivalenceRangeBearingAndConfigNoise)
 	       runBoth(so, 7, "skip_prediction_on_empty_map = true\n"));
 }
 
+TEST(Alg1, WholeRunEquivalenceSensorNotAtTheOrigin)
+{
+	// The simulator takes the readings from x (+) s and writes s to sensorLocationOnRobot; both
+	// filters model z = h(x (+) s, f), with the Jacobian through the composition.
+	auto so = scenario("generated_small_scenario.ini", 18);
+	so.sensor_pose = Eigen::Vector3d(0.3, -0.1, 0.2);
+	report("generated, sensor at (0.3, -0.1, 0.2), cartesian", runBoth(so, 8, ""));
+	report("generated, sensor at (0.3, -0.1, 0.2), range-bearing, smoothing",
+	       runBoth(so, 9,
+	               "measurement_model = range_bearing\nSigma_v = [1e-4 1e-6]\n"
+	               "smoothing = true\nSigma_s = [1e-2 1e-2 1e-3]\nkeep_last_poses = 3\n"));
+}
+
 TEST(Alg1, BadInputWindowSizeZeroAndSingularPrior)
 {
 	mrpt::config::CConfigFileMemory ini(modelIni("") + "window_size = 0\n");

@@ -198,6 +198,22 @@ TEST(KittiBadInput, CommandLine)
 	                        "/nonexistent.ini"};
 	CKittiApp app2;
 	EXPECT_THROW(app2.initialize(11, badIni), std::runtime_error);
+	// An INI error names the file.
+	const std::string cfg = d + "/bad.ini";
+	kitti_test::writeLines(cfg, {"[KITTI_Import]", "std_rnage = 0.1"});
+	const char* badKey[] = {"dynslam-kitti", "--labels",   lab.c_str(), "--poses",
+	                        pos.c_str(),     "--sequence", "0007",      "--out",
+	                        out.c_str(),     "-c",         cfg.c_str()};
+	CKittiApp app4;
+	try
+	{
+		app4.initialize(11, badKey);
+		ADD_FAILURE() << "no exception";
+	}
+	catch (const std::invalid_argument& e)
+	{
+		expectContains(e.what(), "config file '" + cfg + "': [KITTI_Import] std_rnage");
+	}
 	const char* anon[] = {"dynslam-kitti", "--labels", lab.c_str(), "--poses",   pos.c_str(),
 	                      "--sequence",    "0007",     "--out",     out.c_str(), "--anonymous"};
 	CKittiApp app3;

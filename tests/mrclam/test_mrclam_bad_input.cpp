@@ -198,7 +198,7 @@ TEST(MrclamBadInput, AppExitsNonZeroWithTheMessage)
 	std::ifstream f2(err);
 	std::stringstream ss2;
 	ss2 << f2.rdbuf();
-	expectContains(ss2.str(), "[MRCLAM_Import] group_windw");
+	expectContains(ss2.str(), "config file '" + dir + "/bad.ini': [MRCLAM_Import] group_windw");
 }
 
 TEST(MrclamBadInput, OptionsRejectInvalidValues)
@@ -217,6 +217,6 @@ TEST(MrclamBadInput, OptionsRejectInvalidValues)
 	}
 	catch (const std::invalid_argument& e)
 	{
-		expectContains(e.what(), "[MRCLAM_Import] std_range = '-1'");
+		expectContains(e.what(), "config file '" + cfg + "': [MRCLAM_Import] std_range = '-1'");
 	}
 }

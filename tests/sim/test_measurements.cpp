@@ -11,6 +11,7 @@
 
 #include <Eigen/LU>
 #include <set>
+#include <sstream>
 
 #include "sim_test_utils.h"
 
@@ -255,4 +256,55 @@ TEST(SimMeasurements, SameSeedsSameData)
 	const TSimulatedRun z2 = simulateMeasurements(gt, o, 0);
 	for (size_t k = 0; k < gt.numSteps(); ++k) EXPECT_EQ(increment(z, k), increment(z2, k));
 	EXPECT_THROW(simulateMeasurements(gt, o, uint64_t(1) << 32), std::invalid_argument);
+}
+
+TEST(SimMeasurements, SensorNotAtTheRobotsOrigin)
+{
+	// [Sensor] sensor_pose = x y yaw: every observation carries it in sensorLocationOnRobot and
+	// the noise-free readings are h(x (+) s, f); the INI key round-trips; a bad value is
+	// rejected naming the key.
+	TScenarioOptions o = dynslam_test::highwayOptions();
+	o.setNoiseLevel("none");
+	o.steps = 20;
+	o.sensor_pose = Eigen::Vector3d(0.3, -0.1, 0.2);
+	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const TSimulatedRun run = simulateMeasurements(gt, o, 1);
+	size_t count = 0;
+	for (size_t k = 0; k < gt.numSteps(); ++k)
+	{
+		const auto obs = observation(run, k);
+		const auto& p = obs->sensorLocationOnRobot;
+		EXPECT_EQ(Eigen::Vector3d(p.x(), p.y(), p.z()), Eigen::Vector3d(0.3, -0.1, 0));
+		EXPECT_NEAR(p.yaw(), 0.2, 1e-15);
+		EXPECT_NEAR(p.pitch(), 0, 1e-15);
+		EXPECT_NEAR(p.roll(), 0, 1e-15);
+		for (const auto& m : obs->sensedData)
+		{
+			const Eigen::Vector2d f = truePosition(gt, k, m.landmarkID);
+			const Eigen::Vector2d h =
+			    dynslam::models::cartesianObserveFromSensor(gt.ego[k], o.sensor_pose, f);
+			const Eigen::Vector2d z =
+			    dynslam::models::rangeBearingToCartesian(Eigen::Vector2d(m.range, m.yaw));
+			EXPECT_LT((z - h).norm(), 3e-7 * h.norm() + 1e-12)
+			    << "k " << k << " id " << m.landmarkID;
+			++count;
+		}
+	}
+	EXPECT_GT(count, 100u);
+	std::ostringstream a;
+	o.dumpToTextStream(a);
+	EXPECT_EQ(loadScenarioFromText(a.str()).sensor_pose, o.sensor_pose) << a.str();
+	std::string bad = a.str();
+	const size_t at = bad.find("sensor_pose = ");
+	bad.replace(at, bad.find('\n', at) - at, "sensor_pose = 0.3 nan 0.2");
+	try
+	{
+		loadScenarioFromText(bad);
+		ADD_FAILURE() << "no exception";
+	}
+	catch (const std::invalid_argument& e)
+	{
+		EXPECT_NE(std::string(e.what()).find("[Sensor] sensor_pose"), std::string::npos)
+		    << e.what();
+	}
 }

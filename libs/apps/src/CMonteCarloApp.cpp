@@ -62,11 +62,12 @@ uint64_t CMonteCarloApp::runSeed(const std::string& level, int r) const
 namespace
 {
 /** The [MonteCarlo] settings of app.params (after the scenario file): each INI value unless
- * its command-line option is set. */
+ * its command-line option is set; then the MRPT sections' check (warnings, errors with
+ * `strict`) and the back-end's options (fail early on bad options). */
 void readMonteCarloSettings(CMonteCarloApp& app, TCLAP::ValueArg<int>& argRuns,
                             TCLAP::ValueArg<std::string>& argLevels,
                             TCLAP::ValueArg<int>& argThreads, TCLAP::ValueArg<long long>& argSeed,
-                            TCLAP::SwitchArg& argNoFig)
+                            TCLAP::SwitchArg& argNoFig, bool strict)
 {
 	using namespace dynslam::config;
 	auto& params = app.params;
@@ -103,6 +104,23 @@ void readMonteCarloSettings(CMonteCarloApp& app, TCLAP::ValueArg<int>& argRuns,
 	app.figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
 	app.sigma0FromLevel =
 	    readChoice(params, kSection, "initial_covariance", {"sigma_w", "ini"}, 0) == 0;
+	for (const auto& w : checkMrptSections(params, app.iniFile, strict))
+		app.logStr(mrpt::system::LVL_WARN, w);
+	makeBackend(app.backend, params);
+}
+
+/** Runs f; a std::invalid_argument (an INI error) is rethrown naming the INI file. */
+template <typename F>
+void namingTheIniFile(const std::string& iniFile, F&& f)
+{
+	try
+	{
+		f();
+	}
+	catch (const std::invalid_argument& e)
+	{
+		throw std::invalid_argument(inConfigFile(iniFile, e.what()));
+	}
 }
 
 /** One noise level of the sweep: scenario options with the level's noise, ground truth and
@@ -290,12 +308,15 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile("config/montecarlo.ini");
 	loadIniFile(iniFile, params);
-	readMonteCarloSettings(*this, argRuns, argLevels, argThreads, argSeed, argNoFig);
 	outDir = argOut.getValue();
 	progress = !argQuiet.getValue();
 	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
-	for (const auto& w : checkMrptSections(params, iniFile, argStrict.getValue())) MRPT_LOG_WARN(w);
-	makeBackend(backend, params);  // fail early on bad options
+	namingTheIniFile(iniFile,
+	                 [&]
+	                 {
+		                 readMonteCarloSettings(*this, argRuns, argLevels, argThreads, argSeed,
+		                                        argNoFig, argStrict.getValue());
+	                 });
 	if (!outDir.empty()) makeOutputDir(outDir);
 	return true;
 }

@@ -24,6 +24,25 @@ void checkOdometryCov(const Eigen::Matrix3d& U, const std::string& who)
 }
 }  // namespace
 
+Eigen::Vector3d sensorPoseOnRobot(const mrpt::poses::CPose3D& p, const std::string& who)
+{
+	for (int i = 0; i < 6; ++i)
+		if (!std::isfinite(p[i]))
+			throw std::runtime_error(who +
+			                         ": the bearing-range observation's sensorLocationOnRobot is "
+			                         "not finite (x y z yaw pitch roll = " +
+			                         p.asString() + ")");
+	// A tilted sensor does not measure bearings in the plane of the map: 2-D SLAM only. A height
+	// (z) is harmless: with pitch 0 every reading lies in the sensor's horizontal plane, and
+	// MRPT's CRangeBearingKFSLAM2D ignores it too (CPose2D(sensorLocationOnRobot)).
+	if (std::abs(p.pitch()) > 1e-9 || std::abs(p.roll()) > 1e-9)
+		throw std::runtime_error(who +
+		                         ": the bearing-range observation's sensorLocationOnRobot has a "
+		                         "non-zero pitch or roll (x y z yaw pitch roll = " +
+		                         p.asString() + "): 2-D SLAM needs a level sensor");
+	return {p.x(), p.y(), p.yaw()};
+}
+
 estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& action,
                                      const mrpt::obs::CSensoryFrame::Ptr& SF,
                                      const TParseOptions& opts, const std::string& who)
@@ -44,14 +63,7 @@ estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& ac
 	if (!SF) throw std::runtime_error(who + ": null sensory frame");
 	const auto obs = SF->getObservationByClass<mrpt::obs::CObservationBearingRange>();
 	if (!obs) return in;
-	const auto& sp = obs->sensorLocationOnRobot;
-	if (std::abs(sp.x()) + std::abs(sp.y()) + std::abs(sp.z()) + std::abs(sp.yaw()) +
-	        std::abs(sp.pitch()) + std::abs(sp.roll()) >
-	    0)
-		throw std::runtime_error(
-		    who +
-		    ": sensorLocationOnRobot must be the identity (the models place the sensor at the "
-		    "robot's origin)");
+	in.sensor_pose = sensorPoseOnRobot(obs->sensorLocationOnRobot, who);
 	in.max_range = obs->maxSensorDistance;
 	in.readings.reserve(obs->sensedData.size());
 	for (size_t i = 0; i < obs->sensedData.size(); ++i)

@@ -27,7 +27,8 @@ void checkIndices(const char* fn, const std::vector<int>& idx, Eigen::Index n, i
 
 Augmentation featureAugmentation(models::MeasurementModel model, const Eigen::Vector3d& ego,
                                  const Eigen::Ref<const RowMatrixXd>& P_ego_rows,
-                                 const std::vector<Eigen::Vector2d>& z, const Eigen::Matrix2d& R)
+                                 const std::vector<Eigen::Vector2d>& z, const Eigen::Matrix2d& R,
+                                 const Eigen::Vector3d& sensor)
 {
 	if (P_ego_rows.rows() != 3) throw std::invalid_argument("featureAugmentation: need 3 ego rows");
 	const Eigen::Index n = P_ego_rows.cols(), k = Eigen::Index(z.size());
@@ -40,7 +41,8 @@ Augmentation featureAugmentation(models::MeasurementModel model, const Eigen::Ve
 	for (Eigen::Index i = 0; i < k; ++i)
 	{
 		Eigen::Matrix2d Lz;
-		a.mean.segment<2>(2 * i) = models::inverseObserve(model, ego, z[i], &Lx[i], &Lz);
+		a.mean.segment<2>(2 * i) =
+		    models::inverseObserveFromSensor(model, ego, sensor, z[i], &Lx[i], &Lz);
 		a.cross.middleRows<2>(2 * i).noalias() = Lx[i] * P_ego_rows;
 		a.cov.block<2, 2>(2 * i, 2 * i) = Lx[i] * Pxx * Lx[i].transpose() + Lz * R * Lz.transpose();
 		for (Eigen::Index j = 0; j < i; ++j)

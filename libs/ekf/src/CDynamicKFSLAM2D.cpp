@@ -224,6 +224,7 @@ estimator::TUpdateContext CDynamicKFSLAM2D::updateContext() const
 	estimator::TUpdateContext ctx;
 	ctx.model = options.measurement_model;
 	ctx.R = options.Sigma_v;
+	ctx.sensor_pose = m_in.sensor_pose;
 	ctx.gate_threshold = options.outlier_method == "none"
 	                         ? std::numeric_limits<double>::infinity()
 	                         : estimator::gateThreshold2Dof(options.innovation_gate);
@@ -275,7 +276,8 @@ void CDynamicKFSLAM2D::firstEstimateJacobians(int32_t id, const Eigen::Vector3d&
 {
 	const auto it = m_firstEstimate.find(id);
 	if (it == m_firstEstimate.end()) return;
-	models::observe(options.measurement_model, ego, it->second, &J_z_x, &J_z_f);
+	models::observeFromSensor(options.measurement_model, ego, m_in.sensor_pose, it->second, &J_z_x,
+	                          &J_z_f);
 }
 
 std::optional<Eigen::Vector2d> CDynamicKFSLAM2D::firstEstimate(int32_t id) const

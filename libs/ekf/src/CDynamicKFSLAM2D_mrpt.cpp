@@ -74,20 +74,22 @@ void CDynamicKFSLAM2D::OnPreComputingPredictions(const vector_KFArray_OBS&,
 
 namespace
 {
-/** h() that never throws (MRPT may predict slots that are not read). */
-Eigen::Vector2d safeObserve(models::MeasurementModel model, const Eigen::Vector3d& x,
+/** h() from the sensor's world pose xs = x (+) s that never throws (MRPT may predict slots
+ * that are not read). */
+Eigen::Vector2d safeObserve(models::MeasurementModel model, const Eigen::Vector3d& xs,
                             const Eigen::Vector2d& f)
 {
-	if (model == models::MeasurementModel::RangeBearing && (f - x.head<2>()).squaredNorm() == 0)
+	if (model == models::MeasurementModel::RangeBearing && (f - xs.head<2>()).squaredNorm() == 0)
 		return Eigen::Vector2d::Zero();
-	return models::observe(model, x, f);
+	return models::observe(model, xs, f);
 }
 }  // namespace
 
 void CDynamicKFSLAM2D::OnObservationModel(const std::vector<size_t>& idx,
                                           vector_KFArray_OBS& out) const
 {
-	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
+	const Eigen::Vector3d xs = models::sensorPoseInWorld(
+	    Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]), m_mrptCtx.sensor_pose);
 	out.resize(idx.size());
 	for (size_t i = 0; i < idx.size(); ++i)
 	{
@@ -96,7 +98,7 @@ void CDynamicKFSLAM2D::OnObservationModel(const std::vector<size_t>& idx,
 		if (s >= m_slots.size() || m_slots[s].kind != SlotKind::StaticLandmark) continue;
 		const int k = m_layout.first(m_layout.blockAtSlot(s));
 		const Eigen::Vector2d z =
-		    safeObserve(m_mrptCtx.model, ego, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
+		    safeObserve(m_mrptCtx.model, xs, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
 		out[i][0] = z[0];
 		out[i][1] = z[1];
 	}
@@ -111,7 +113,8 @@ void CDynamicKFSLAM2D::OnObservationJacobians(size_t s, KFMatrix_OxV& Hx, KFMatr
 	models::Matrix23d J_z_x;
 	Eigen::Matrix2d J_z_f;
 	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
-	models::observe(m_mrptCtx.model, ego, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]), &J_z_x, &J_z_f);
+	models::observeFromSensor(m_mrptCtx.model, ego, m_mrptCtx.sensor_pose,
+	                          Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]), &J_z_x, &J_z_f);
 	if (m_mrptCtx.jacobians) m_mrptCtx.jacobians(m_slots[s].id, ego, J_z_x, J_z_f);
 	Hx = J_z_x;
 	Hy = J_z_f;
@@ -169,8 +172,8 @@ void CDynamicKFSLAM2D::OnInverseObservationModel(const KFArray_OBS& in_z, KFArra
 {
 	models::Matrix23d J_f_x;
 	Eigen::Matrix2d J_f_z;
-	const Eigen::Vector2d f = models::inverseObserve(
-	    options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
+	const Eigen::Vector2d f = models::inverseObserveFromSensor(
+	    options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]), m_in.sensor_pose,
 	    Eigen::Vector2d(in_z[0], in_z[1]), &J_f_x, &J_f_z);
 	yn[0] = f[0];
 	yn[1] = f[1];

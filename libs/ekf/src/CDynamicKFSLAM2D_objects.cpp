@@ -95,9 +95,9 @@ void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 		++(first ? m_report.object_features_new : m_report.object_features_t);
 	}
 	if (z.empty()) return;
-	plan.a = ekf::featureAugmentation(options.measurement_model,
-	                                  Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
-	                                  m_pkk.asEigen().topRows(3), z, options.Sigma_v);
+	plan.a = ekf::featureAugmentation(
+	    options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
+	    m_pkk.asEigen().topRows(3), z, options.Sigma_v, m_in.sensor_pose);
 }
 
 void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)

@@ -26,8 +26,9 @@ TLinearised linearise(const Eigen::Ref<Eigen::VectorXd>& x,
 	{
 		models::Matrix23d J_z_x;
 		Eigen::Matrix2d J_z_f;
-		const Eigen::Vector2d zhat = models::observe(
-		    ctx.model, ego, Eigen::Vector2d(x[o.index], x[o.index + 1]), &J_z_x, &J_z_f);
+		const Eigen::Vector2d zhat =
+		    models::observeFromSensor(ctx.model, ego, ctx.sensor_pose,
+		                              Eigen::Vector2d(x[o.index], x[o.index + 1]), &J_z_x, &J_z_f);
 		const Eigen::Vector2d nu = models::innovation(ctx.model, o.z, zhat);
 		if (ctx.jacobians) ctx.jacobians(o.id, ego, J_z_x, J_z_f);
 		l.Jx.push_back(J_z_x);

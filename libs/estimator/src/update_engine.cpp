@@ -26,8 +26,8 @@ TUpdateResult CSparseUpdateEngine::update(Eigen::Ref<Eigen::VectorXd> x,
 		const int si = o.index;
 		models::Matrix23d J_z_x;
 		Eigen::Matrix2d J_z_f;
-		const Eigen::Vector2d zhat =
-		    models::observe(ctx.model, ego, Eigen::Vector2d(x[si], x[si + 1]), &J_z_x, &J_z_f);
+		const Eigen::Vector2d zhat = models::observeFromSensor(
+		    ctx.model, ego, ctx.sensor_pose, Eigen::Vector2d(x[si], x[si + 1]), &J_z_x, &J_z_f);
 		const Eigen::Vector2d nu = models::innovation(ctx.model, o.z, zhat);
 		if (ctx.jacobians) ctx.jacobians(o.id, ego, J_z_x, J_z_f);
 		if (std::isfinite(ctx.gate_threshold))

@@ -82,6 +82,7 @@ void CAlg1Backend::processActionObservation(const mrpt::obs::CActionCollection::
 	const estimator::TStepInput in = parseStepInput(action, SF, m_opts.model.parseOptions(), who);
 	m_router->validate(in.readings, who);
 	++m_step;
+	m_sensor = in.sensor_pose;
 	m_report = TStepReport();
 	m_report.step = m_step;
 	const estimator::TRoutedStep routed = m_router->route(
@@ -142,8 +143,9 @@ void CAlg1Backend::staticSteps(const estimator::TRoutedStep& in)
 	if (!tracked.empty())
 	{
 		for (const auto& m : tracked)
-			m_cost.addTerm(std::make_shared<CMeasurementTerm>(
-			    m_ego.step, TVarKey::landmark(m.id), m.z, mo.measurement_model, mo.Sigma_v));
+			m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_ego.step, TVarKey::landmark(m.id),
+			                                                  m.z, mo.measurement_model, mo.Sigma_v,
+			                                                  m_sensor));
 		const auto r = gnAndCollapse();
 		m_report.static_updates = tracked.size();
 		m_report.nis_static = r.cost_linear_min;
@@ -155,9 +157,10 @@ void CAlg1Backend::staticSteps(const estimator::TRoutedStep& in)
 		for (const auto& m : fresh)
 		{
 			const TVarKey k = TVarKey::landmark(m.id);
-			m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.z));
-			m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_ego.step, k, m.z,
-			                                                  mo.measurement_model, mo.Sigma_v));
+			m_cost.addVariable(
+			    k, models::inverseObserveFromSensor(mo.measurement_model, x, m_sensor, m.z));
+			m_cost.addTerm(std::make_shared<CMeasurementTerm>(
+			    m_ego.step, k, m.z, mo.measurement_model, mo.Sigma_v, m_sensor));
 		}
 		gnAndCollapse();
 		m_report.static_new = fresh.size();
@@ -194,9 +197,10 @@ void CAlg1Backend::objectFeatureAugmentation(const estimator::TRoutedStep& in)
 			++m_report.object_features_t;
 			m_newTimeT.push_back(k);
 		}
-		m_cost.addVariable(k, models::inverseObserve(mo.measurement_model, x, m.reading.z));
-		m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_ego.step, k, m.reading.z,
-		                                                  mo.measurement_model, mo.Sigma_v));
+		m_cost.addVariable(
+		    k, models::inverseObserveFromSensor(mo.measurement_model, x, m_sensor, m.reading.z));
+		m_cost.addTerm(std::make_shared<CMeasurementTerm>(
+		    m_ego.step, k, m.reading.z, mo.measurement_model, mo.Sigma_v, m_sensor));
 	}
 	if (!objects.empty()) gnAndCollapse();
 }

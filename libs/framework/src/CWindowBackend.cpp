@@ -74,6 +74,7 @@ void CWindowBackend::processActionObservation(const mrpt::obs::CActionCollection
 	const estimator::TStepInput in = parseStepInput(action, SF, mo.parseOptions(), who);
 	m_router->validate(in.readings, who);
 	++m_step;
+	m_sensor = in.sensor_pose;
 	m_report = TStepReport();
 	m_report.step = m_step;
 	const estimator::TRoutedStep routed = m_router->route(
@@ -103,14 +104,14 @@ void CWindowBackend::processActionObservation(const mrpt::obs::CActionCollection
 		const TVarKey k = TVarKey::landmark(m.id);
 		if (r.route == estimator::Route::StaticNew)
 		{
-			m_cost.addVariable(
-			    k, models::inverseObserve(mo.measurement_model, m_cost.value(ego), m.z));
+			m_cost.addVariable(k, models::inverseObserveFromSensor(
+			                          mo.measurement_model, m_cost.value(ego), m_sensor, m.z));
 			++m_report.static_new;
 		}
 		else
 			++m_report.static_updates;
-		m_cost.addTerm(
-		    std::make_shared<CMeasurementTerm>(m_step, k, m.z, mo.measurement_model, mo.Sigma_v));
+		m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_step, k, m.z, mo.measurement_model,
+		                                                  mo.Sigma_v, m_sensor));
 		m_drop.noteSeen(m.id, m_step);
 	}
 	// 3. objects
@@ -198,9 +199,10 @@ void CWindowBackend::addObjects(const estimator::TRoutedStep& in, const TVarKey&
 			newT.push_back(k);
 			++m_report.object_features_t;
 		}
-		c.addVariable(k, models::inverseObserve(mo.measurement_model, x, r.reading.z));
+		c.addVariable(
+		    k, models::inverseObserveFromSensor(mo.measurement_model, x, m_sensor, r.reading.z));
 		c.addTerm(std::make_shared<CMeasurementTerm>(m_step, k, r.reading.z, mo.measurement_model,
-		                                             mo.Sigma_v));
+		                                             mo.Sigma_v, m_sensor));
 	}
 	for (const auto& [obj, o] : m_router->registry().objects())
 	{
@@ -270,15 +272,24 @@ void CWindowBackend::addCubeObjects(const estimator::TRoutedStep& in, const TVar
 {
 	CRunningCost& c = objectCost();
 	const Eigen::Vector3d x = c.value(ego);
-	// Group this step's used measurements per object, as sensor-frame points.
-	std::map<int32_t, std::vector<std::pair<int32_t, Eigen::Vector2d>>> per;
+	// Group this step's used measurements per object, as robot-frame points p = s (+) p_sensor
+	// with their covariances (the sensor's pose s on the robot, Sigma rotated by its yaw).
+	struct TPoint
+	{
+		int32_t id;
+		Eigen::Vector2d p;
+		Eigen::Matrix2d cov;
+	};
+	std::map<int32_t, std::vector<TPoint>> per;
+	const Eigen::Matrix2d Rs = models::rot2(m_sensor[2]);
 	for (const auto& r : in.objects())
 	{
 		const Eigen::Vector2d p =
 		    m_opts.model.measurement_model == models::MeasurementModel::Cartesian
 		        ? r.reading.z
 		        : models::rangeBearingToCartesian(r.reading.z);
-		per[r.object].push_back({r.reading.id, p});
+		per[r.object].push_back({r.reading.id, m_sensor.head<2>() + Rs * p,
+		                         Rs * pointCov(r.reading.z) * Rs.transpose()});
 	}
 	for (const auto& [obj, meas] : per)
 	{
@@ -292,18 +303,15 @@ void CWindowBackend::addCubeObjects(const estimator::TRoutedStep& in, const TVar
 			// The time-0 features, in the registry's (observation) order.
 			Eigen::Matrix2Xd& body = m_body[obj];
 			body.resize(2, Eigen::Index(meas.size()));
-			for (size_t i = 0; i < meas.size(); ++i) body.col(Eigen::Index(i)) = meas[i].second;
+			for (size_t i = 0; i < meas.size(); ++i) body.col(Eigen::Index(i)) = meas[i].p;
 			m_report.object_features_new += meas.size();
 		}
 		const Eigen::Matrix2Xd& body = m_body.at(obj);
-		for (const auto& [id, p] : meas)
+		for (const TPoint& q : meas)
 		{
-			seen.push_back(o.indexOf(id));
-			pts.push_back(p);
-			covs.push_back(pointCov(Eigen::Vector2d(m_opts.model.measurement_model ==
-			                                                models::MeasurementModel::Cartesian
-			                                            ? p
-			                                            : models::cartesianToRangeBearing(p))));
+			seen.push_back(o.indexOf(q.id));
+			pts.push_back(q.p);
+			covs.push_back(q.cov);
 		}
 		const size_t n = o.feature_ids.size(), m = pts.size();
 		if (m == 0) continue;

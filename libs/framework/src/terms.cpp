@@ -90,9 +90,11 @@ TLinearization COdometryTerm::linearize(const std::vector<Eigen::VectorXd>& x) c
 
 // ---------------------------------------------------------------------------------------
 CMeasurementTerm::CMeasurementTerm(int t, const TVarKey& feature, const Eigen::Vector2d& z,
-                                   models::MeasurementModel model, const Eigen::Matrix2d& Sigma_v)
+                                   models::MeasurementModel model, const Eigen::Matrix2d& Sigma_v,
+                                   const Eigen::Vector3d& sensor)
     : CTerm({TVarKey::ego(t), feature}),
       m_z(z),
+      m_sensor(sensor),
       m_model(model),
       m_info(spdInverse(Sigma_v, "CMeasurementTerm: Sigma_v"))
 {
@@ -102,7 +104,7 @@ TLinearization CMeasurementTerm::linearize(const std::vector<Eigen::VectorXd>& x
 {
 	models::Matrix23d Hx;
 	Eigen::Matrix2d Hf;
-	const Eigen::Vector2d zhat = models::observe(m_model, x[0], x[1], &Hx, &Hf);
+	const Eigen::Vector2d zhat = models::observeFromSensor(m_model, x[0], m_sensor, x[1], &Hx, &Hf);
 	TLinearization L;
 	L.r = models::innovation(m_model, m_z, zhat);
 	L.J = {-Eigen::MatrixXd(Hx), -Eigen::MatrixXd(Hf)};

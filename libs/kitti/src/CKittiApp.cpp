@@ -73,8 +73,16 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	{
 		if (!std::filesystem::is_regular_file(config_file))
 			throw std::runtime_error(config_file + ": config file not found");
-		mrpt::config::CConfigFile ini(config_file);
-		options.loadFromConfigFile(ini, "KITTI_Import");
+		try
+		{
+			mrpt::config::CConfigFile ini(config_file);
+			options.loadFromConfigFile(ini, "KITTI_Import");
+		}
+		catch (const std::exception& e)
+		{
+			// Every INI error names the file (as the other apps' inConfigFile does).
+			throw std::invalid_argument("config file '" + config_file + "': " + e.what());
+		}
 	}
 	options.import.anonymous = aAnon.getValue();
 	return true;

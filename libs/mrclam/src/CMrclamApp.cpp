@@ -59,8 +59,16 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	{
 		if (!std::filesystem::exists(config_file))
 			throw std::runtime_error(config_file + ": config file not found");
-		mrpt::config::CConfigFile ini(config_file);
-		options.loadFromConfigFile(ini, "MRCLAM_Import");
+		try
+		{
+			mrpt::config::CConfigFile ini(config_file);
+			options.loadFromConfigFile(ini, "MRCLAM_Import");
+		}
+		catch (const std::exception& e)
+		{
+			// Every INI error names the file (as the other apps' inConfigFile does).
+			throw std::invalid_argument("config file '" + config_file + "': " + e.what());
+		}
 	}
 	if (argDuration.isSet())
 	{

@@ -425,13 +425,15 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	start_time = cfg::readNonNegative(c, S, "start_time", 1.6e9);
 	landmark_gaps = readGaps(c, S, "landmark_gaps");
 
-	cfg::rejectUnknownKeys(c, SE, {"range", "label", "noise_model", "typical_range"});
+	cfg::rejectUnknownKeys(c, SE,
+	                       {"range", "label", "noise_model", "typical_range", "sensor_pose"});
 	sensor_range = cfg::readPositive(c, SE, "range", 55, true);
 	sensor_label = cfg::readString(c, SE, "label", "RB");
 	noise_model = cfg::readChoice(c, SE, "noise_model", {"cartesian", "range_bearing"}, 0) == 0
 	                  ? models::MeasurementModel::Cartesian
 	                  : models::MeasurementModel::RangeBearing;
 	typical_range = cfg::readPositive(c, SE, "typical_range", sensor_range / 2);
+	sensor_pose = cfg::readVector(c, SE, "sensor_pose", Eigen::Vector3d::Zero(), 3);
 
 	cfg::rejectUnknownKeys(c, N,
 	                       {"level", "sigma_w", "sigma_v", "sigma_0", "std_range", "std_yaw",
@@ -486,6 +488,8 @@ void TScenarioOptions::validate() const
 	if (!(dt > 0)) throw std::invalid_argument("[Scenario] dt must be > 0");
 	if (steps < 1) throw std::invalid_argument("[Scenario] steps must be >= 1");
 	if (!(sensor_range > 0)) throw std::invalid_argument("[Sensor] range must be > 0");
+	if (!sensor_pose.allFinite())
+		throw std::invalid_argument("[Sensor] sensor_pose must be finite");
 	if (!Sigma_w.allFinite() || !Sigma_v.allFinite() || !Sigma_0.allFinite())
 		throw std::invalid_argument("[Noise] covariances must be finite");
 	if (!std::isfinite(odometry_rate_bias) || !(std::abs(odometry_scale_error) < 1))

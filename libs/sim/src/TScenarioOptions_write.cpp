@@ -169,6 +169,11 @@ void TScenarioOptions::dumpToTextStream(std::ostream& o) const
 	o << "label = " << sensor_label << "\n";
 	o << "noise_model = " << models::toString(noise_model) << "\n";
 	o << "typical_range = " << fmt(typical_range) << "\n";
+	// Only when set: the shipped datasets (whose rawlog holds this text as a comment) stay
+	// byte-identical to a fresh regeneration.
+	if (!sensor_pose.isZero())
+		o << "sensor_pose = " << fmt(sensor_pose[0]) << " " << fmt(sensor_pose[1]) << " "
+		  << fmt(sensor_pose[2]) << "\n";
 	o << "\n[Noise]\n";
 	o << "level = " << noise_level << "\n";
 	o << "sigma_w = " << fmtMatrix(Sigma_w) << "\n";

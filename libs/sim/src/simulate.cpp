@@ -9,6 +9,7 @@
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationComment.h>
+#include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/serialization/CArchive.h>
@@ -117,24 +118,32 @@ public:
 		obs->sensor_std_range = float(m_o.std_range);
 		obs->sensor_std_yaw = float(m_o.std_yaw);
 		obs->sensor_std_pitch = 0;
-		// Static landmarks within the true range, by increasing ID.
+		const Eigen::Vector3d& sp = m_o.sensor_pose;
+		// (Left at the default identity for 0: CPose3D(0, 0, 0, 0, 0, 0) holds -0 entries in its
+		// rotation matrix, a different file.)
+		if (!sp.isZero())
+			obs->sensorLocationOnRobot = mrpt::poses::CPose3D(sp[0], sp[1], 0, sp[2], 0, 0);
+		// The readings are taken from the sensor's pose (x itself for a sensor at the origin).
+		const Eigen::Vector3d xs = models::sensorPoseInWorld(x, sp);
+		// Static landmarks within the true range of the sensor, by increasing ID.
 		m_ids.clear();
-		const long cx = cellOf(x[0]), cy = cellOf(x[1]);
+		const long cx = cellOf(xs[0]), cy = cellOf(xs[1]);
 		for (long i = cx - 1; i <= cx + 1; ++i)
 			for (long j = cy - 1; j <= cy + 1; ++j)
 			{
 				const auto it = m_grid.find(cellKey(i, j));
 				if (it == m_grid.end()) continue;
 				for (int32_t id : it->second)
-					if ((m_gt.landmarks.at(id) - x.head<2>()).norm() <= m_o.sensor_range)
+					if ((m_gt.landmarks.at(id) - xs.head<2>()).norm() <= m_o.sensor_range)
 						m_ids.push_back(id);
 			}
 		std::sort(m_ids.begin(), m_ids.end());
 		m_truth.clear();
 		for (int32_t id : m_ids)
-			if (addMeasurement(*obs, x, m_gt.landmarks.at(id), id))
+			if (addMeasurement(*obs, xs, m_gt.landmarks.at(id), id))
 				addTruth(k, id, TrueClass::Static, -1, id);
-		// Objects whose centroid is within range: all their features.
+		// Objects whose centroid is within range of the robot (ground truth's `visible`): all
+		// their features.
 		for (const TObjectGroundTruth& og : m_gt.objects)
 			if (og.visible[k])
 			{
@@ -144,7 +153,7 @@ public:
 				for (int j = 0; j < og.num_features; ++j)
 				{
 					const int32_t id = ids::objectFeatureId(og.object, j);
-					if (addMeasurement(*obs, x, og.features[k].col(j), id))
+					if (addMeasurement(*obs, xs, og.features[k].col(j), id))
 						addTruth(k, id, c, og.object, j);
 				}
 			}
@@ -184,24 +193,25 @@ private:
 		m_truth.push_back(r);
 	}
 
-	/** Appends the noisy reading of f; false if it was not added (a point at the sensor). */
-	bool addMeasurement(mrpt::obs::CObservationBearingRange& obs, const Eigen::Vector3d& x,
+	/** Appends the noisy reading of f from the sensor's world pose xs; false if it was not
+	 * added (a point at the sensor). */
+	bool addMeasurement(mrpt::obs::CObservationBearingRange& obs, const Eigen::Vector3d& xs,
 	                    const Eigen::Vector2d& f, int32_t id)
 	{
 		double range, yaw;
 		if (m_o.noise_model == models::MeasurementModel::Cartesian)
 		{
-			const Eigen::Vector2d z = models::cartesianObserve(x, f) + m_Lv * draw2();
+			const Eigen::Vector2d z = models::cartesianObserve(xs, f) + m_Lv * draw2();
 			range = z.norm();
 			if (!(range > 0)) return false;  // a point exactly at the sensor has no bearing
 			yaw = std::atan2(z[1], z[0]);
 		}
 		else
 		{
-			const Eigen::Vector2d d = f - x.head<2>();
+			const Eigen::Vector2d d = f - xs.head<2>();
 			const Eigen::Vector2d n = draw2();
 			range = d.norm() + m_o.std_range * n[0];
-			yaw = std::atan2(d[1], d[0]) - x[2] + m_o.std_yaw * n[1];
+			yaw = std::atan2(d[1], d[0]) - xs[2] + m_o.std_yaw * n[1];
 			if (range < 0) range = -range, yaw += M_PI;  // the same point
 			yaw = models::wrapToPi(yaw);
 		}

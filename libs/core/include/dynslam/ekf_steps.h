@@ -31,12 +31,14 @@ struct Augmentation
 };
 
 /** Alg. 3: augment new point features from measurements z_k (in the model's measurement
- * space) taken at the ego pose x[0..2]:
- *   mean_k = l(x, z_k), cross = L_x P[0:3, :], cov = L_x P_xx L_x^T + L_z R L_z^T (blockwise).
+ * space) taken at the ego pose x[0..2] by a sensor at `sensor` = (x, y, yaw) on the robot:
+ *   mean_k = l(x (+) s, z_k), cross = L_x P[0:3, :], cov = L_x P_xx L_x^T + L_z R L_z^T
+ * (blockwise), L_x = dl/dx through x (+) s (models::inverseObserveFromSensor).
  * @param P_ego_rows the first 3 rows of P (3 x n). */
 Augmentation featureAugmentation(models::MeasurementModel model, const Eigen::Vector3d& ego,
                                  const Eigen::Ref<const RowMatrixXd>& P_ego_rows,
-                                 const std::vector<Eigen::Vector2d>& z, const Eigen::Matrix2d& R);
+                                 const std::vector<Eigen::Vector2d>& z, const Eigen::Matrix2d& R,
+                                 const Eigen::Vector3d& sensor = Eigen::Vector3d::Zero());
 
 /** Alg. 4: augment the pose xi_t of one object from its features at time 0 and time t:
  *   mean = gamma(f0, ft), cross = Gamma1 P[f0, :] + Gamma2 P[ft, :],

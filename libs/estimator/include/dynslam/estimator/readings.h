@@ -26,5 +26,9 @@ struct TStepInput
 	double max_range = 0;                         ///< the sensor's range [m] (0: unknown)
 	/** The action's timestamp [s] (NaN: none); gives the step's dt to the odometry bias. */
 	double stamp = std::numeric_limits<double>::quiet_NaN();
+	/** The sensor's pose on the robot s = (x, y, yaw) (the SE(2) part of MRPT's
+	 * sensorLocationOnRobot): every reading of the step is z = h(x (+) s, f)
+	 * (dynslam/models/measurement.h, observeFromSensor). Zero: the sensor at the origin. */
+	Eigen::Vector3d sensor_pose = Eigen::Vector3d::Zero();
 };
 }  // namespace dynslam::estimator

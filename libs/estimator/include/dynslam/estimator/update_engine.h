@@ -28,11 +28,14 @@ struct TUpdateContext
 {
 	models::MeasurementModel model = models::MeasurementModel::Cartesian;
 	Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+	/** The sensor's pose on the robot (x, y, yaw): readings are z = h(x (+) s, f). */
+	Eigen::Vector3d sensor_pose = Eigen::Vector3d::Zero();
 	/** A reading whose squared Mahalanobis distance (its own 2x2 innovation covariance)
 	 * exceeds this is not used, and counted. Infinity: no gate. */
 	double gate_threshold = std::numeric_limits<double>::infinity();
-	/** Optional: replaces the Jacobians J_z_x, J_z_f of landmark `id` at ego pose `ego`
-	 * (first-estimate Jacobians); the innovation stays at the current estimate. */
+	/** Optional: replaces the Jacobians J_z_x, J_z_f of landmark `id` at ego pose `ego` and
+	 * the sensor pose sensor_pose (first-estimate Jacobians); the innovation stays at the
+	 * current estimate. */
 	std::function<void(int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x,
 	                   Eigen::Matrix2d& J_z_f)>
 	    jacobians;

@@ -77,6 +77,7 @@ private:
 	CRunningCost m_cost;
 	TVarKey m_ego;
 	int m_step = -1;
+	Eigen::Vector3d m_sensor = Eigen::Vector3d::Zero();  ///< the step's sensor pose on the robot
 	std::unique_ptr<estimator::IMeasurementRouter> m_router;
 	std::shared_ptr<const estimator::IObjectMotionModel> m_motion;
 	bool m_userRouter = false, m_userMotion = false;

@@ -67,10 +67,11 @@ private:
 	CRunningCost m_cost, m_objCost;
 	CTermPtr m_egoLink;  ///< clusterslam: the current prior on the ego copies in m_objCost
 	int m_step = -1;
+	Eigen::Vector3d m_sensor = Eigen::Vector3d::Zero();  ///< the step's sensor pose on the robot
 	std::unique_ptr<estimator::IMeasurementRouter> m_router;
 	std::shared_ptr<const estimator::IObjectMotionModel> m_motion;
 	estimator::CDropPolicy m_drop;
-	std::map<int32_t, Eigen::Matrix2Xd> m_body;  ///< cubeslam: time-0 features, sensor frame
+	std::map<int32_t, Eigen::Matrix2Xd> m_body;  ///< cubeslam: time-0 features, robot frame
 	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
 	std::map<int, Eigen::Vector3d> m_egoRecorded;
 	TStepReport m_report;

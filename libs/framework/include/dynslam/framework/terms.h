@@ -12,7 +12,7 @@
  * |-------------------------|----------------------------------------|------------------------|
  * | CPriorTerm              | x (-) mu (blocks stacked)              | Omega (PSD)            |
  * | COdometryTerm           | x_{t+1} (-) (x_t (+) u)                | (G Sigma_u G^T)^-1     |
- * | CMeasurementTerm        | z - h(x_t, f)  (bearing wrapped)       | Sigma_v^-1             |
+ * | CMeasurementTerm        | z - h(x_t (+) s, f)  (bearing wrapped) | Sigma_v^-1            |
  * | CObjectPoseFeatureTerm  | f_t - g^o(xi_t, f_0)  (paper, 2m rows) | diag(Sigma_xi^-1)      |
  * | CObjectPosePoseTerm     | xi_t (-) gamma(f_0, f_t)  (d rows)     | (Gamma2 diag(Sigma_xi)
  * Gamma2^T)^-1 | | CSmoothingTerm          | s(xi_{t-2}, xi_{t-1}, xi_t)            | Sigma_s^-1 |
@@ -100,13 +100,16 @@ private:
 class CMeasurementTerm : public CTerm
 {
 public:
+	/** sensor: the sensor's pose (x, y, yaw) on the robot; z = h(x_t (+) sensor, f). */
 	CMeasurementTerm(int t, const TVarKey& feature, const Eigen::Vector2d& z,
-	                 models::MeasurementModel model, const Eigen::Matrix2d& Sigma_v);
+	                 models::MeasurementModel model, const Eigen::Matrix2d& Sigma_v,
+	                 const Eigen::Vector3d& sensor = Eigen::Vector3d::Zero());
 	std::string name() const override { return "measurement"; }
 	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
 
 private:
 	Eigen::Vector2d m_z;
+	Eigen::Vector3d m_sensor;
 	models::MeasurementModel m_model;
 	Eigen::Matrix2d m_info;
 };

@@ -143,6 +143,9 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 	std::string sensor_label = "RB";
 	models::MeasurementModel noise_model = models::MeasurementModel::Cartesian;
 	double typical_range = 27.5;  ///< for the equivalent yaw std (default: sensor_range / 2)
+	/** The sensor's pose on the robot (x [m], y [m], yaw [rad]), written to every observation's
+	 * sensorLocationOnRobot; readings are taken from x (+) sensor_pose. */
+	Eigen::Vector3d sensor_pose = Eigen::Vector3d::Zero();
 
 	// [Noise]
 	std::string noise_level = "w2v2";  ///< w1v1..w3v3, none, or custom
