@@ -140,7 +140,12 @@ TEST(OdometryBias, BlockIsFirstNeverDroppedAndItsPadUntouched)
 		const auto& P = f.fullCov();
 		EXPECT_EQ(P(4, 4), 1.0);
 		for (size_t j = 0; j < size_t(P.cols()); ++j)
-			if (j != 4) ASSERT_EQ(P(4, j), 0.0) << "step " << k << " col " << j;
+		{
+			if (j != 4)
+			{
+				ASSERT_EQ(P(4, j), 0.0) << "step " << k << " col " << j;
+			}
+		}
 		EXPECT_EQ(f.fullMean()[4], 0.0);
 	}
 	EXPECT_GT(dropped, 10);

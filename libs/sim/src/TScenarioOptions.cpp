@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "options_format.h"
+#include "options_sections.h"
 
 namespace dynslam::sim
 {
@@ -23,6 +24,21 @@ using detail::fmt;
 using detail::fmtMatrix;
 using detail::fmtRamps;
 using mrpt::config::CConfigFileBase;
+
+namespace detail
+{
+long readCount(const CConfigFileBase& c, const std::string& sec, const std::string& key, long def,
+               bool required, long maxValue)
+{
+	const long n = cfg::readInt(c, sec, key, def, required);
+	if (n < 0) cfg::fail(sec, key, std::to_string(n), "negative count");
+	if (n > maxValue)
+		cfg::fail(sec, key, std::to_string(n), "larger than " + std::to_string(maxValue));
+	return n;
+}
+}  // namespace detail
+using detail::readCount;
+using detail::readGenerated;
 
 namespace
 {
@@ -93,16 +109,6 @@ std::vector<TRamp> readRamps(const CConfigFileBase& c, const std::string& sec,
 		cfg::fail(sec, key, v, e.what());
 	}
 	return r;
-}
-
-long readCount(const CConfigFileBase& c, const std::string& sec, const std::string& key, long def,
-               bool required, long maxValue)
-{
-	const long n = cfg::readInt(c, sec, key, def, required);
-	if (n < 0) cfg::fail(sec, key, std::to_string(n), "negative count");
-	if (n > maxValue)
-		cfg::fail(sec, key, std::to_string(n), "larger than " + std::to_string(maxValue));
-	return n;
 }
 
 uint32_t readSeed(const CConfigFileBase& c, const std::string& sec, const std::string& key)
@@ -297,79 +303,6 @@ void readHighway(const CConfigFileBase& c, THighwayOptions& h)
 		h.agents.push_back(readAgent(c, "Agent" + std::to_string(i), h, false));
 }
 
-/** Reads [Generated] into g (defaults kept for absent optional keys). */
-void readGenerated(const CConfigFileBase& c, TGeneratedOptions& g)
-{
-	const std::string G = "Generated";
-	cfg::rejectUnknownKeys(c, G,
-	                       {"track_radius",
-	                        "ego_speed",
-	                        "num_landmarks",
-	                        "landmark_offset_min",
-	                        "landmark_offset_max",
-	                        "num_lanes",
-	                        "lane_width",
-	                        "num_cars",
-	                        "num_pedestrians",
-	                        "num_rotating",
-	                        "features_per_car",
-	                        "features_per_pedestrian",
-	                        "features_per_rotating",
-	                        "car_length",
-	                        "car_width",
-	                        "pedestrian_width",
-	                        "rotating_radius",
-	                        "car_speed_factor_min",
-	                        "car_speed_factor_max",
-	                        "pedestrian_speed",
-	                        "yaw_rate_max",
-	                        "object_spread"});
-	g.track_radius = cfg::readNonNegative(c, G, "track_radius", 0, true);
-	g.ego_speed = cfg::readPositive(c, G, "ego_speed", 10, true);
-	g.num_landmarks = int(readCount(c, G, "num_landmarks", 200, true, ids::kStaticMax + 1));
-	g.landmark_offset_min = cfg::readNonNegative(c, G, "landmark_offset_min", 3);
-	g.landmark_offset_max = cfg::readPositive(c, G, "landmark_offset_max", 30);
-	if (g.landmark_offset_max < g.landmark_offset_min)
-		cfg::fail(G, "landmark_offset_max", fmt(g.landmark_offset_max),
-		          "smaller than landmark_offset_min");
-	g.num_lanes = int(readCount(c, G, "num_lanes", 3, false, 100));
-	if (g.num_lanes < 1) cfg::fail(G, "num_lanes", "0", "need at least one lane");
-	g.lane_width = cfg::readPositive(c, G, "lane_width", 3.5);
-	const long maxObj = ids::kMaxObject + 1;
-	g.num_cars = int(readCount(c, G, "num_cars", 2, true, maxObj));
-	g.num_pedestrians = int(readCount(c, G, "num_pedestrians", 1, true, maxObj));
-	g.num_rotating = int(readCount(c, G, "num_rotating", 1, true, maxObj));
-	if (long(g.num_cars) + g.num_pedestrians + g.num_rotating > maxObj)
-		cfg::fail(G, "num_cars", std::to_string(g.num_cars), "too many objects in total");
-	const long maxF = ids::kFeaturesPerObject;
-	g.features_per_car = int(readCount(c, G, "features_per_car", 4, false, maxF));
-	g.features_per_pedestrian = int(readCount(c, G, "features_per_pedestrian", 2, false, maxF));
-	g.features_per_rotating = int(readCount(c, G, "features_per_rotating", 3, false, maxF));
-	for (const auto& [k, v] : {std::pair<const char*, int>{"features_per_car", g.features_per_car},
-	                           {"features_per_pedestrian", g.features_per_pedestrian},
-	                           {"features_per_rotating", g.features_per_rotating}})
-		if (v < 1) cfg::fail(G, k, std::to_string(v), "an object needs at least one feature");
-	g.car_length = cfg::readPositive(c, G, "car_length", 4.5);
-	g.car_width = cfg::readPositive(c, G, "car_width", 1.8);
-	g.pedestrian_width = cfg::readPositive(c, G, "pedestrian_width", 0.5);
-	g.rotating_radius = cfg::readPositive(c, G, "rotating_radius", 1.0);
-	g.car_speed_factor_min = cfg::readNonNegative(c, G, "car_speed_factor_min", 0.8);
-	g.car_speed_factor_max = cfg::readNonNegative(c, G, "car_speed_factor_max", 1.2);
-	if (g.car_speed_factor_max < g.car_speed_factor_min)
-		cfg::fail(G, "car_speed_factor_max", fmt(g.car_speed_factor_max),
-		          "smaller than car_speed_factor_min");
-	g.pedestrian_speed = cfg::readPositive(c, G, "pedestrian_speed", 1.4);
-	g.yaw_rate_max = cfg::readPositive(c, G, "yaw_rate_max", 0.5);
-	g.object_spread = cfg::readPositive(c, G, "object_spread", 60);
-	if (g.track_radius > 0)
-	{
-		const double reach = std::max(g.landmark_offset_max,
-		                              (g.num_lanes + 1.0) * g.lane_width + g.rotating_radius + 2.0);
-		if (reach >= g.track_radius)
-			cfg::fail(G, "track_radius", fmt(g.track_radius),
-			          "must exceed the lateral extent of the world (" + fmt(reach) + " m)");
-	}
-}
 /** Reads [Effects] (issue 12); all off when the section is absent. */
 void readEffects(const CConfigFileBase& c, TReadingEffects& e)
 {

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "options_format.h"
+#include "options_sections.h"
 
 namespace dynslam::sim
 {
@@ -203,30 +204,7 @@ void TScenarioOptions::dumpToTextStream(std::ostream& o) const
 	}
 	else
 	{
-		const TGeneratedOptions& g = generated;
-		o << "\n[Generated]\n";
-		o << "track_radius = " << fmt(g.track_radius) << "\n";
-		o << "ego_speed = " << fmt(g.ego_speed) << "\n";
-		o << "num_landmarks = " << g.num_landmarks << "\n";
-		o << "landmark_offset_min = " << fmt(g.landmark_offset_min) << "\n";
-		o << "landmark_offset_max = " << fmt(g.landmark_offset_max) << "\n";
-		o << "num_lanes = " << g.num_lanes << "\n";
-		o << "lane_width = " << fmt(g.lane_width) << "\n";
-		o << "num_cars = " << g.num_cars << "\n";
-		o << "num_pedestrians = " << g.num_pedestrians << "\n";
-		o << "num_rotating = " << g.num_rotating << "\n";
-		o << "features_per_car = " << g.features_per_car << "\n";
-		o << "features_per_pedestrian = " << g.features_per_pedestrian << "\n";
-		o << "features_per_rotating = " << g.features_per_rotating << "\n";
-		o << "car_length = " << fmt(g.car_length) << "\n";
-		o << "car_width = " << fmt(g.car_width) << "\n";
-		o << "pedestrian_width = " << fmt(g.pedestrian_width) << "\n";
-		o << "rotating_radius = " << fmt(g.rotating_radius) << "\n";
-		o << "car_speed_factor_min = " << fmt(g.car_speed_factor_min) << "\n";
-		o << "car_speed_factor_max = " << fmt(g.car_speed_factor_max) << "\n";
-		o << "pedestrian_speed = " << fmt(g.pedestrian_speed) << "\n";
-		o << "yaw_rate_max = " << fmt(g.yaw_rate_max) << "\n";
-		o << "object_spread = " << fmt(g.object_spread) << "\n";
+		detail::dumpGenerated(o, generated);
 	}
 	dumpEffects(o, effects);
 }
