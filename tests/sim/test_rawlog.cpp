@@ -195,6 +195,22 @@ TEST(SimRawlog, SameSeedsGiveBitIdenticalFiles)
 	          dynslam_test::readFile(c + "/highway_gt_ego.csv"));
 }
 
+TEST(SimRawlog, TunnelDatasetRegeneratesIdentically)
+{
+	// The documented command: dynslam-simulate -c config/tunnel.ini -o datasets
+	const std::string ds = DYNSLAM_DATASETS_DIR;
+	ASSERT_TRUE(fs::exists(ds + "/tunnel.rawlog")) << "datasets/tunnel.rawlog missing";
+	const std::string out = tmpDir("tunnel_regen");
+	runApp({"-c", std::string(DYNSLAM_CONFIG_DIR) + "/tunnel.ini", "-o", out});
+	for (const char* s : kGtSuffixes)
+		EXPECT_EQ(dynslam_test::readFile(out + "/tunnel" + s),
+		          dynslam_test::readFile(ds + "/tunnel" + s))
+		    << "datasets/tunnel" << s << " differs from a fresh regeneration";
+	EXPECT_EQ(gunzip(out + "/tunnel.rawlog"), gunzip(ds + "/tunnel.rawlog"));
+	EXPECT_EQ(dynslam_test::readFile(out + "/tunnel_gt_classes.csv"),
+	          dynslam_test::readFile(ds + "/tunnel_gt_classes.csv"));
+}
+
 TEST(SimRawlog, DatasetRegeneratesIdentically)
 {
 	const std::string ds = DYNSLAM_DATASETS_DIR;
