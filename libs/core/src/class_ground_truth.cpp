@@ -1,6 +1,7 @@
 /** @file class_ground_truth.cpp
  * B_gt_classes.csv: writer and strict reader (see class_ground_truth.h). */
 #include <dynslam/class_ground_truth.h>
+#include <dynslam/number_format.h>
 
 #include <cmath>
 #include <cstdio>
@@ -14,17 +15,6 @@ namespace dynslam
 namespace
 {
 const char* kHeader = "step,t,index,id,true_id,class,object,feature";
-
-std::string num(double v)
-{
-	char buf[40];
-	for (int p = 15; p <= 17; ++p)  // shortest exact representation
-	{
-		std::snprintf(buf, sizeof(buf), "%.*g", p, v);
-		if (std::strtod(buf, nullptr) == v) break;
-	}
-	return buf;
-}
 
 [[noreturn]] void fail(const std::string& path, size_t line, const std::string& what)
 {
@@ -60,8 +50,8 @@ void writeClassGroundTruth(const std::vector<TReadingClass>& rows, const std::st
 	if (!f) throw std::runtime_error("writeClassGroundTruth: cannot write " + path);
 	f << kHeader << "\n";
 	for (const TReadingClass& r : rows)
-		f << r.step << "," << num(r.t) << "," << r.index << "," << r.id << "," << r.true_id << ","
-		  << toString(r.cls) << "," << r.object << "," << r.feature << "\n";
+		f << r.step << "," << formatShortest(r.t) << "," << r.index << "," << r.id << ","
+		  << r.true_id << "," << toString(r.cls) << "," << r.object << "," << r.feature << "\n";
 	f.close();
 	if (!f) throw std::runtime_error("writeClassGroundTruth: error writing " + path);
 }

@@ -1,6 +1,7 @@
 /** @file TScenarioOptions_write.cpp
  * The noise grid and the effective-configuration writer of TScenarioOptions. */
 #include <dynslam/models/measurement.h>
+#include <dynslam/number_format.h>
 #include <dynslam/sim/TScenarioOptions.h>
 
 #include <algorithm>
@@ -18,16 +19,7 @@ namespace dynslam::sim
 {
 namespace detail
 {
-std::string fmt(double v)
-{
-	char b[40];
-	for (int p = 15; p <= 17; ++p)  // shortest exact representation
-	{
-		std::snprintf(b, sizeof(b), "%.*g", p, v);
-		if (std::strtod(b, nullptr) == v) break;
-	}
-	return b;
-}
+std::string fmt(double v) { return formatShortest(v); }
 
 std::string fmtMatrix(const Eigen::MatrixXd& m)
 {
