@@ -6,7 +6,7 @@
 #
 #   scripts/mrclam_bias.sh DATASET_DIR [OUT_DIR] [BUILD_DIR]
 #
-# Writes OUT_DIR/robotN/<variant>/metrics.csv and OUT_DIR/bias.csv
+# Writes OUT_DIR/robotN/<variant>/metrics.csv and OUT_DIR/variants.csv
 # (robot,variant,ate,ate_aligned,ego_anees). Development only: no test needs it.
 # VARIANTS (default "gate rate huber huber_rate"): gate = as shipped; rate = + odometry_bias =
 # rate; rate_scale = + odometry_bias = rate_scale (scale prior std 5 %, random walk
@@ -21,15 +21,6 @@ DATA=$1
 OUT=${2:-out/mrclam_bias}
 SRC=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${3:-$SRC/build}
-find_exe() {
-	local p
-	p=$(find "$BUILD" -type f -perm -u+x -name "$1" 2>/dev/null | head -n 1)
-	[[ -n "$p" ]] || { echo "mrclam_bias.sh: $1 not found under $BUILD" >&2; exit 1; }
-	echo "$p"
-}
-IMPORT=$(find_exe dynslam-mrclam)
-COMPARE=$(find_exe dynslam-compare)
-VARIANTS=${VARIANTS:-"gate rate huber huber_rate"}
 # The bias parameters (fixed before the runs, doc/real-data.md 5.10): prior std 1 deg/s,
 # random walk 0.17 deg/s per sqrt(s) (the bias may change by ~0.5 deg/s within 10 s),
 # odometry_dt = 0.4 s (only for the first step: the actions carry timestamps).
@@ -37,30 +28,17 @@ BIAS_KEYS="odometry_bias = rate
 odometry_dt = 0.4
 bias_rate_std0 = 0.0175
 bias_rate_rw = ${RATE_RW:-0.003}"
-mkdir -p "$OUT"
-echo "robot,variant,ate,ate_aligned,ego_anees" > "$OUT/bias.csv"
-for N in ${ROBOTS:-1 2 3 4 5}; do
-	D="$OUT/robot$N"
-	mkdir -p "$D"
-	[[ -s "$D/robot$N.rawlog" ]] ||
-		"$IMPORT" --dataset "$DATA" --robot "$N" --out "$D" --config "$SRC/config/mrclam.ini" \
-			> "$D/import.log"
-	for V in $VARIANTS; do
-		keys=""
-		[[ $V == *rate* ]] && keys="$BIAS_KEYS"
-		[[ $V == *rate_scale* ]] && keys="${BIAS_KEYS/odometry_bias = rate/odometry_bias = rate_scale}
+TAG=variant
+variant_keys() {
+	local keys=""
+	[[ $1 == *rate* ]] && keys="$BIAS_KEYS"
+	[[ $1 == *rate_scale* ]] && keys="${BIAS_KEYS/odometry_bias = rate/odometry_bias = rate_scale}
 bias_scale_std0 = 0.05
 bias_scale_rw = 0.001"
-		[[ $V == huber* ]] && keys="$keys
+	[[ $1 == huber* ]] && keys="$keys
 outlier_method = huber"
-		# the [DynamicKFSLAM] section gets the keys; everything else as shipped
-		awk -v k="$keys" '{ print } /^\[DynamicKFSLAM\]$/ && k != "" { print k }' \
-			"$SRC/config/mrclam_compare.ini" > "$D/$V.ini"
-		"$COMPARE" -q -c "$D/$V.ini" -r "$D/robot$N.rawlog" --out "$D/$V" --filters dynamic \
-			--no-figures > "$D/$V.log" 2>&1 || { echo "robot $N $V: failed (see $D/$V.log)"; continue; }
-		awk -F, -v r="$N" -v m="$V" 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
-			{ print r "," m "," $c["ate"] "," $c["ate_aligned"] "," $c["ego_anees"] }' \
-			"$D/$V/metrics.csv" >> "$OUT/bias.csv"
-	done
-done
-column -s, -t "$OUT/bias.csv"
+	echo "$keys"
+}
+source "$SRC/scripts/mrclam_variants.sh"
+# shellcheck disable=SC2086
+run_variants ${VARIANTS:-gate rate huber huber_rate}
