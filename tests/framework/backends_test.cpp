@@ -11,20 +11,14 @@
 #include <cmath>
 #include <iostream>
 
+#include "backends_ini.h"
+
 using namespace dynslam;
 using namespace dynslam::framework;
 
 namespace
 {
-const char* kIni =
-    "[DynamicKFSLAM]\n"
-    "measurement_model = cartesian\n"
-    "Sigma_v = [1e-5 1e-5]\n"
-    "motion_noise = action\n"
-    "Sigma_0 = [1e-6 1e-6 1e-8]\n"
-    "Sigma_xi = [0.1 0.1]\n"
-    "[Framework]\n"
-    "window_size = 5\n";
+const char* const kIni = dynslam_test::kBackendsIni;
 
 struct TErrors
 {
