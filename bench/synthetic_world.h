@@ -15,6 +15,7 @@
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/measurement.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/odometry_action.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -179,16 +180,7 @@ private:
 	static mrpt::obs::CActionCollection::Ptr makeAction(const Eigen::Vector3d& u,
 	                                                    const Eigen::Matrix3d& C)
 	{
-		mrpt::obs::CActionRobotMovement2D mov;
-		mrpt::math::CMatrixDouble33 cov;
-		for (int i = 0; i < 3; ++i)
-			for (int j = 0; j < 3; ++j) cov(i, j) = C(i, j);
-		mov.poseChange =
-		    mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(u[0], u[1], u[2]), cov);
-		mov.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
-		auto acts = mrpt::obs::CActionCollection::Create();
-		acts->insert(mov);
-		return acts;
+		return dynslam::makeOdometryAction(u, C);
 	}
 
 	TSyntheticOptions m_o;

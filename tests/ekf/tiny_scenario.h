@@ -5,6 +5,7 @@
 #include <dynslam/models/measurement.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/odometry_action.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -60,16 +61,7 @@ inline Eigen::VectorXd gaussian(std::mt19937& g, const Eigen::MatrixXd& S)
 inline mrpt::obs::CActionCollection::Ptr makeAction(const Eigen::Vector3d& u,
                                                     const Eigen::Matrix3d& C)
 {
-	mrpt::obs::CActionRobotMovement2D mov;
-	mrpt::math::CMatrixDouble33 cov;
-	for (int i = 0; i < 3; ++i)
-		for (int j = 0; j < 3; ++j) cov(i, j) = C(i, j);
-	mov.poseChange =
-	    mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(u[0], u[1], u[2]), cov);
-	mov.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
-	auto acts = mrpt::obs::CActionCollection::Create();
-	acts->insert(mov);
-	return acts;
+	return dynslam::makeOdometryAction(u, C);
 }
 
 /** An object of the tiny scenario: centre, velocity, rotation rate, rigid feature offsets. */

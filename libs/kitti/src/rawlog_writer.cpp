@@ -1,4 +1,5 @@
 #include <dynslam/kitti/rawlog_writer.h>
+#include <dynslam/odometry_action.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -21,18 +22,10 @@ namespace
 {
 mrpt::obs::CActionCollection makeAction(const TStep& s)
 {
-	mrpt::obs::CActionRobotMovement2D act;
-	const mrpt::poses::CPose2D inc(s.increment.x(), s.increment.y(), s.increment.z());
-	mrpt::math::CMatrixDouble33 cov;
-	for (int i = 0; i < 3; i++)
-		for (int j = 0; j < 3; j++) cov(i, j) = s.cov(i, j);
-	act.poseChange =
-	    mrpt::poses::CPosePDF::Ptr(std::make_shared<mrpt::poses::CPosePDFGaussian>(inc, cov));
-	act.rawOdometryIncrementReading = inc;
-	act.estimationMethod = mrpt::obs::CActionRobotMovement2D::emScan2DMatching;
-	act.timestamp = mrpt::Clock::fromDouble(s.t);
 	mrpt::obs::CActionCollection acts;
-	acts.insert(act);
+	acts.insert(
+	    makeOdometryMovement(Eigen::Vector3d(s.increment.x(), s.increment.y(), s.increment.z()),
+	                         s.cov, mrpt::Clock::fromDouble(s.t)));
 	return acts;
 }
 

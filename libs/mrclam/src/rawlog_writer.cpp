@@ -1,4 +1,5 @@
 #include <dynslam/mrclam/rawlog_writer.h>
+#include <dynslam/odometry_action.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -20,22 +21,10 @@ namespace
 {
 mrpt::obs::CActionCollection makeAction(const TStep& s)
 {
-	mrpt::obs::CActionRobotMovement2D act;
-	const mrpt::poses::CPose2D inc(s.increment.delta.x(), s.increment.delta.y(),
-	                               s.increment.delta.z());
-	mrpt::math::CMatrixDouble33 cov;
-	for (int i = 0; i < 3; i++)
-		for (int j = 0; j < 3; j++) cov(i, j) = s.cov(i, j);
-	act.poseChange =
-	    mrpt::poses::CPosePDF::Ptr(std::make_shared<mrpt::poses::CPosePDFGaussian>(inc, cov));
-	act.rawOdometryIncrementReading = inc;
-	// Not emOdometry: MRPT serializes an emOdometry action as the raw increment plus its own
-	// motion-model parameters and rebuilds the covariance from those when reading, which
-	// would replace our noise model. Any other method stores the PDF itself.
-	act.estimationMethod = mrpt::obs::CActionRobotMovement2D::emScan2DMatching;
-	act.timestamp = mrpt::Clock::fromDouble(s.t);
 	mrpt::obs::CActionCollection acts;
-	acts.insert(act);
+	acts.insert(makeOdometryMovement(
+	    Eigen::Vector3d(s.increment.delta.x(), s.increment.delta.y(), s.increment.delta.z()), s.cov,
+	    mrpt::Clock::fromDouble(s.t)));
 	return acts;
 }
 

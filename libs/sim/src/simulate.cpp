@@ -4,6 +4,7 @@
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/measurement.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/odometry_action.h>
 #include <dynslam/sim/scenario.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -94,18 +95,10 @@ public:
 			u[2] = models::wrapToPi(u[2]);
 			cov = m_o.Sigma_w;
 		}
-		CActionRobotMovement2D act;
-		act.timestamp = stamp;
-		// Not emOdometry: MRPT serializes an emOdometry action as the raw increment plus its
-		// motion-model parameters and, when reading the rawlog, rebuilds the covariance from
-		// its default Gaussian model (std 0.01 m + 1% of the distance): Sigma_w would be lost
-		// for every reader of the file. Any other method stores the PDF itself.
-		act.estimationMethod = CActionRobotMovement2D::emScan2DMatching;
-		act.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
-		act.poseChange = mrpt::poses::CPosePDFGaussian::Create(
-		    mrpt::poses::CPose2D(u[0], u[1], u[2]), mrpt::math::CMatrixDouble33(cov));
+		// The covariance travels with the file (makeOdometryMovement: not emOdometry, whose
+		// covariance MRPT rebuilds from its default motion model when the rawlog is read).
 		actOut = CActionCollection::Create();
-		actOut->insert(act);
+		actOut->insert(makeOdometryMovement(u, cov, stamp));
 
 		// --- SF_k: one bearing-range observation
 		auto obs = CObservationBearingRange::Create();

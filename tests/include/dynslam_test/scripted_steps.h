@@ -5,6 +5,7 @@
  * these through ISlamBackend::processActionObservation. */
 #include <dynslam/models/measurement.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/odometry_action.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -23,16 +24,7 @@ namespace dynslam_test::script
 /** A CActionCollection with one CActionRobotMovement2D: increment u, covariance C. */
 inline mrpt::obs::CActionCollection::Ptr action(const Eigen::Vector3d& u, const Eigen::Matrix3d& C)
 {
-	mrpt::obs::CActionRobotMovement2D mov;
-	mrpt::math::CMatrixDouble33 cov;
-	for (int i = 0; i < 3; ++i)
-		for (int j = 0; j < 3; ++j) cov(i, j) = C(i, j);
-	mov.poseChange =
-	    mrpt::poses::CPosePDFGaussian::Create(mrpt::poses::CPose2D(u[0], u[1], u[2]), cov);
-	mov.rawOdometryIncrementReading = mrpt::poses::CPose2D(u[0], u[1], u[2]);
-	auto acts = mrpt::obs::CActionCollection::Create();
-	acts->insert(mov);
-	return acts;
+	return dynslam::makeOdometryAction(u, C);
 }
 
 /** (landmark ID, world point) pairs seen in one step. */
