@@ -33,6 +33,9 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	o.cv.accel_psd = readVector(c, s, "cv_accel_psd", o.cv.accel_psd, 3);
 	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
 	o.cv_gate = readNonNegative(c, s, "cv_gate", o.cv_gate);
+	o.cv.inflation_threshold =
+	    readNonNegative(c, s, "cv_inflation_threshold", o.cv.inflation_threshold);
+	o.cv.inflation_factor = readNonNegative(c, s, "cv_inflation_factor", o.cv.inflation_factor);
 }
 }  // namespace
 
@@ -73,7 +76,9 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	                   "cv_dt",
 	                   "cv_accel_psd",
 	                   "cv_velocity_prior_std",
-	                   "cv_gate"});
+	                   "cv_gate",
+	                   "cv_inflation_threshold",
+	                   "cv_inflation_factor"});
 	measurement_model =
 	    readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 	        ? models::MeasurementModel::Cartesian
@@ -185,6 +190,8 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "cv_velocity_prior_std          = " << formatMatrix(cv.velocity_prior_std.transpose())
 	    << "\n";
 	out << "cv_gate                        = " << cv_gate << "\n";
+	out << "cv_inflation_threshold         = " << cv.inflation_threshold << "\n";
+	out << "cv_inflation_factor            = " << cv.inflation_factor << "\n";
 	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
 	out << "keep_last_poses                = " << keep_last_poses << "\n";
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";
