@@ -5,6 +5,7 @@
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/models/object_pose.h>
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include "tiny_scenario.h"
 
@@ -171,4 +172,23 @@ TEST(ObjectModelCvInflation, RuleResetsWhenConsistent)
 	p.inflation_factor = 2;
 	p.inflation_threshold = -1;
 	EXPECT_THROW(estimator::CConstantVelocity{p}, std::invalid_argument);
+}
+
+TEST(ObjectModelCvInflation, IniKeys)
+{
+	const auto load = [](const std::string& extra)
+	{
+		mrpt::config::CConfigFileMemory ini;
+		ini.setContent(std::string("[DynamicKFSLAM]\nmeasurement_model = cartesian\n"
+		                           "Sigma_v = [1e-4 1e-4]\nobject_model = cv\ncv_dt = 0.5\n") +
+		               extra);
+		CDynamicKFSLAM2D f;
+		f.loadOptions(ini);
+		return f.objectMotionModel().tracksInnovations();
+	};
+	EXPECT_FALSE(load(""));  // off by default
+	EXPECT_TRUE(load("cv_inflation_threshold = 8\ncv_inflation_factor = 100\n"));
+	EXPECT_FALSE(load("cv_inflation_threshold = 8\n"));  // factor 1: off
+	EXPECT_THROW(load("cv_inflation_factor = 0.5\n"), std::invalid_argument);
+	EXPECT_THROW(load("cv_inflation_threshold = -1\n"), std::exception);
 }

@@ -39,46 +39,51 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 }
 }  // namespace
 
+namespace
+{
+/** Every key of the [DynamicKFSLAM] model options (unknown keys throw). */
+const std::vector<std::string> kModelKeys{"measurement_model",
+                                          "odometry_bias",
+                                          "odometry_dt",
+                                          "bias_rate_std0",
+                                          "bias_rate_rw",
+                                          "bias_scale_std0",
+                                          "bias_scale_rw",
+                                          "Sigma_v",
+                                          "motion_noise",
+                                          "Sigma_w",
+                                          "initial_pose",
+                                          "Sigma_0",
+                                          "Sigma_xi",
+                                          "smoothing",
+                                          "Sigma_s",
+                                          "drop_time_t_features",
+                                          "keep_last_poses",
+                                          "drop_static_after_unseen_steps",
+                                          "skip_prediction_on_empty_map",
+                                          "static_update",
+                                          "innovation_gate",
+                                          "first_estimate_jacobians",
+                                          "record_dropped",
+                                          "outlier_method",
+                                          "robust_kernel_c",
+                                          "robust_iterations",
+                                          "recovery_count",
+                                          "recovery_inflation",
+                                          "recovery_min_updates",
+                                          "object_model",
+                                          "cv_dt",
+                                          "cv_accel_psd",
+                                          "cv_velocity_prior_std",
+                                          "cv_gate",
+                                          "cv_inflation_threshold",
+                                          "cv_inflation_factor"};
+}  // namespace
+
 void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
-	rejectUnknownKeys(c, s,
-	                  {"measurement_model",
-	                   "odometry_bias",
-	                   "odometry_dt",
-	                   "bias_rate_std0",
-	                   "bias_rate_rw",
-	                   "bias_scale_std0",
-	                   "bias_scale_rw",
-	                   "Sigma_v",
-	                   "motion_noise",
-	                   "Sigma_w",
-	                   "initial_pose",
-	                   "Sigma_0",
-	                   "Sigma_xi",
-	                   "smoothing",
-	                   "Sigma_s",
-	                   "drop_time_t_features",
-	                   "keep_last_poses",
-	                   "drop_static_after_unseen_steps",
-	                   "skip_prediction_on_empty_map",
-	                   "static_update",
-	                   "innovation_gate",
-	                   "first_estimate_jacobians",
-	                   "record_dropped",
-	                   "outlier_method",
-	                   "robust_kernel_c",
-	                   "robust_iterations",
-	                   "recovery_count",
-	                   "recovery_inflation",
-	                   "recovery_min_updates",
-	                   "object_model",
-	                   "cv_dt",
-	                   "cv_accel_psd",
-	                   "cv_velocity_prior_std",
-	                   "cv_gate",
-	                   "cv_inflation_threshold",
-	                   "cv_inflation_factor"});
+	rejectUnknownKeys(c, s, kModelKeys);
 	measurement_model =
 	    readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 	        ? models::MeasurementModel::Cartesian
