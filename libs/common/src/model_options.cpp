@@ -33,47 +33,57 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	o.cv.accel_psd = readVector(c, s, "cv_accel_psd", o.cv.accel_psd, 3);
 	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
 	o.cv_gate = readNonNegative(c, s, "cv_gate", o.cv_gate);
+	o.cv.inflation_threshold =
+	    readNonNegative(c, s, "cv_inflation_threshold", o.cv.inflation_threshold);
+	o.cv.inflation_factor = readNonNegative(c, s, "cv_inflation_factor", o.cv.inflation_factor);
 }
+}  // namespace
+
+namespace
+{
+/** Every key of the [DynamicKFSLAM] model options (unknown keys throw). */
+const std::vector<std::string> kModelKeys{"measurement_model",
+                                          "odometry_bias",
+                                          "odometry_dt",
+                                          "bias_rate_std0",
+                                          "bias_rate_rw",
+                                          "bias_scale_std0",
+                                          "bias_scale_rw",
+                                          "Sigma_v",
+                                          "motion_noise",
+                                          "Sigma_w",
+                                          "initial_pose",
+                                          "Sigma_0",
+                                          "Sigma_xi",
+                                          "smoothing",
+                                          "Sigma_s",
+                                          "drop_time_t_features",
+                                          "keep_last_poses",
+                                          "drop_static_after_unseen_steps",
+                                          "skip_prediction_on_empty_map",
+                                          "static_update",
+                                          "innovation_gate",
+                                          "first_estimate_jacobians",
+                                          "record_dropped",
+                                          "outlier_method",
+                                          "robust_kernel_c",
+                                          "robust_iterations",
+                                          "recovery_count",
+                                          "recovery_inflation",
+                                          "recovery_min_updates",
+                                          "object_model",
+                                          "cv_dt",
+                                          "cv_accel_psd",
+                                          "cv_velocity_prior_std",
+                                          "cv_gate",
+                                          "cv_inflation_threshold",
+                                          "cv_inflation_factor"};
 }  // namespace
 
 void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
-	rejectUnknownKeys(c, s,
-	                  {"measurement_model",
-	                   "odometry_bias",
-	                   "odometry_dt",
-	                   "bias_rate_std0",
-	                   "bias_rate_rw",
-	                   "bias_scale_std0",
-	                   "bias_scale_rw",
-	                   "Sigma_v",
-	                   "motion_noise",
-	                   "Sigma_w",
-	                   "initial_pose",
-	                   "Sigma_0",
-	                   "Sigma_xi",
-	                   "smoothing",
-	                   "Sigma_s",
-	                   "drop_time_t_features",
-	                   "keep_last_poses",
-	                   "drop_static_after_unseen_steps",
-	                   "skip_prediction_on_empty_map",
-	                   "static_update",
-	                   "innovation_gate",
-	                   "first_estimate_jacobians",
-	                   "record_dropped",
-	                   "outlier_method",
-	                   "robust_kernel_c",
-	                   "robust_iterations",
-	                   "recovery_count",
-	                   "recovery_inflation",
-	                   "recovery_min_updates",
-	                   "object_model",
-	                   "cv_dt",
-	                   "cv_accel_psd",
-	                   "cv_velocity_prior_std",
-	                   "cv_gate"});
+	rejectUnknownKeys(c, s, kModelKeys);
 	measurement_model =
 	    readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 	        ? models::MeasurementModel::Cartesian
@@ -185,6 +195,8 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "cv_velocity_prior_std          = " << formatMatrix(cv.velocity_prior_std.transpose())
 	    << "\n";
 	out << "cv_gate                        = " << cv_gate << "\n";
+	out << "cv_inflation_threshold         = " << cv.inflation_threshold << "\n";
+	out << "cv_inflation_factor            = " << cv.inflation_factor << "\n";
 	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
 	out << "keep_last_poses                = " << keep_last_poses << "\n";
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";

@@ -106,6 +106,7 @@ void CDynamicKFSLAM2D::reset()
 	}
 	else if (!m_userMotion)
 		m_motion = estimator::makeObjectMotionModel(options.smoothing, options.Sigma_s);
+	m_motion->resetObjectState();  // per-object state of the rule (a user model too)
 	m_drop = estimator::CDropPolicy(options.dropOptions());
 	m_layout.clear();
 	if (options.odometry_bias.enabled()) addOdometryBiasBlock();

@@ -73,6 +73,8 @@ void CDynamicKFSLAM2D::predictObjects()
 		const std::vector<int> idx = concat(ip, m_layout.indices(st.velocity));
 		Eigen::MatrixXd F, Q;
 		const Eigen::VectorXd s = m_motion->predict(x(idx), &F, &Q);
+		const double scale = m_motion->processNoiseScale(obj);  // inflation rule (issue 13)
+		if (scale != 1.0) Q *= scale;
 		ekf::predictSubset(x, P, idx, s, F, Q);
 		m_layout.setStep(st.pose, m_step);
 	}
@@ -96,6 +98,7 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 	auto x = m_xkk.asEigen();
 	auto P = m_pkk.asEigen();
 	const double gate = m_motion->readingGate();
+	const bool track = m_motion->tracksInnovations();
 	for (const auto& [obj, readings] : byObject)
 	{
 		const estimator::TObjectEntry& info = m_router->registry().at(obj);
@@ -112,6 +115,7 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 		const int d = int(ip.size());
 		std::vector<Eigen::MatrixXd> Hs;
 		std::vector<Eigen::Vector2d> nus;
+		double nisSum = 0;
 		for (const auto& m : readings)
 		{
 			models::Matrix23d J_z_x;
@@ -123,10 +127,12 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 			H << J_z_x, J_z_xi, J_z_f0;
 			const Eigen::Vector2d nu =
 			    models::innovation(options.measurement_model, m.reading.z, zhat);
-			if (std::isfinite(gate))
+			if (std::isfinite(gate) || track)
 			{
 				const Eigen::Matrix2d S = H * Pii * H.transpose() + options.Sigma_v;
-				if (nu.dot(S.ldlt().solve(nu)) > gate)
+				const double nis = nu.dot(S.ldlt().solve(nu));
+				nisSum += nis;
+				if (nis > gate)
 				{
 					++m_report.object_gated_out;
 					continue;
@@ -135,6 +141,7 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 			Hs.push_back(H);
 			nus.push_back(nu);
 		}
+		if (track) m_motion->reportInnovations(obj, nisSum, 2 * int(readings.size()));
 		if (Hs.empty()) continue;  // every reading gated out: the object coasts on its prediction
 		const Eigen::Index m = Eigen::Index(Hs.size());
 		Eigen::MatrixXd H(2 * m, idx.size()), R = Eigen::MatrixXd::Zero(2 * m, 2 * m);

@@ -17,9 +17,31 @@ void TCvParams::validate() const
 		    "cv_velocity_prior_std: must be finite and > 0 (the velocity prior must be positive "
 		    "definite)");
 	if (!(gate > 0)) throw std::invalid_argument("cv gate threshold: must be > 0");
+	if (!(inflation_threshold >= 0) || !std::isfinite(inflation_threshold))
+		throw std::invalid_argument("cv_inflation_threshold: must be finite and >= 0 (0 = off)");
+	if (!(inflation_factor >= 1) || !std::isfinite(inflation_factor))
+		throw std::invalid_argument("cv_inflation_factor: must be finite and >= 1 (1 = off)");
 }
 
 CConstantVelocity::CConstantVelocity(const TCvParams& p) : m_p(p) { m_p.validate(); }
+
+void CConstantVelocity::reportInnovations(int32_t object, double nisSum, int dof)
+{
+	if (!m_p.inflationOn() || dof <= 0) return;
+	if (nisSum / dof > m_p.inflation_threshold)
+	{
+		m_scale[object] = m_p.inflation_factor;
+		++m_inflations;
+	}
+	else
+		m_scale.erase(object);  // consistent again: back to the nominal noise
+}
+
+double CConstantVelocity::processNoiseScale(int32_t object) const
+{
+	const auto it = m_scale.find(object);
+	return it == m_scale.end() ? 1.0 : it->second;
+}
 
 Eigen::VectorXd CConstantVelocity::residual(const TPseudoMeasurement&,
                                             const std::vector<Eigen::VectorXd>&,

@@ -56,7 +56,10 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * densities ax, ay, alpha), cv_velocity_prior_std (vx, vy, omega; > 0), cv_gate (chi-square
 	 * probability of the per-reading gate on object readings, 0 = no gate; a gated reading is
 	 * not used and counted in TStepReport::object_gated_out, the object coasts on its
-	 * prediction). */
+	 * prediction), cv_inflation_threshold / cv_inflation_factor (per-object process-noise
+	 * inflation: mean NIS per dof of an object's readings at a step above the threshold ->
+	 * its next prediction's acceleration PSD times the factor; 0 / 1 = off, the defaults;
+	 * doc/state-layout.md). */
 	estimator::TCvParams cv;
 	double cv_gate = 0;
 	bool drop_time_t_features = true;  ///< drop f_t after pose augmentation

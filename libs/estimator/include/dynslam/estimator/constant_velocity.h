@@ -6,6 +6,8 @@
  * ego: a car driving steadily beside it is a reference where static landmarks are scarce. */
 #include <dynslam/estimator/object_motion_model.h>
 
+#include <map>
+
 namespace dynslam::estimator
 {
 struct TCvParams
@@ -17,6 +19,13 @@ struct TCvParams
 	Eigen::Vector3d velocity_prior_std = Eigen::Vector3d(1.0, 1.0, 0.1);
 	/** Chi-square threshold (2 dof) of the gate on object readings (infinity: no gate). */
 	double gate = std::numeric_limits<double>::infinity();
+	/** Process-noise inflation (doc/state-layout.md): when the mean NIS per dof of an object's
+	 * readings at a step exceeds inflation_threshold, its next prediction uses the acceleration
+	 * PSD times inflation_factor; a step at or below the threshold resets the factor to 1.
+	 * Off when inflation_threshold = 0 or inflation_factor = 1 (the defaults). */
+	double inflation_threshold = 0.0;
+	double inflation_factor = 1.0;
+	bool inflationOn() const { return inflation_threshold > 0 && inflation_factor != 1.0; }
 	/** Throws std::invalid_argument naming the parameter. */
 	void validate() const;
 };
@@ -41,8 +50,20 @@ public:
 	                                Eigen::MatrixXd* Sigma) const override;
 	double readingGate() const override { return m_p.gate; }
 	const TCvParams& params() const { return m_p; }
+	bool tracksInnovations() const override { return m_p.inflationOn(); }
+	void reportInnovations(int32_t object, double nisSum, int dof) override;
+	double processNoiseScale(int32_t object) const override;
+	void resetObjectState() override
+	{
+		m_scale.clear();
+		m_inflations = 0;
+	}
+	/** Steps at which some object's process noise was inflated, since construction/reset. */
+	size_t inflationCount() const { return m_inflations; }
 
 private:
 	TCvParams m_p;
+	std::map<int32_t, double> m_scale;  ///< per object: factor on Q for its next prediction
+	size_t m_inflations = 0;
 };
 }  // namespace dynslam::estimator
