@@ -33,8 +33,11 @@ TExcerpt convert(bool anonymous)
 	o.loadFromConfigFile(ini, "KITTI_Import");
 	o.import.anonymous = anonymous;
 	const auto res = kitti::importFromFiles(data + "/label_02", data + "/poses", "0000", o.import);
+	// One folder per test: ctest runs the tests of this file in parallel processes.
+	const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
 	const std::string dir = (std::filesystem::temp_directory_path() /
-	                         (anonymous ? "dynslam_kitti_excerpt_anon" : "dynslam_kitti_excerpt"))
+	                         ("dynslam_kitti_excerpt_" + std::string(info ? info->name() : "main") +
+	                          (anonymous ? "_anon" : "")))
 	                            .string();
 	std::filesystem::remove_all(dir);
 	kitti::writeImport(res, o, dir, "kitti_0000");
