@@ -9,7 +9,7 @@ int main(int argc, char** argv)
 	try
 	{
 		dynslam::kitti::CKittiApp app;
-		if (!app.initialize(argc, const_cast<const char**>(argv))) return app.exitCode();
+		if (!app.initialize(argc, const_cast<const char**>(argv))) return 0;
 		app.run();
 		return 0;
 	}

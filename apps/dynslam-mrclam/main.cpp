@@ -9,7 +9,7 @@ int main(int argc, char** argv)
 	                              {
 		                              dynslam::mrclam::CMrclamApp app;
 		                              if (!app.initialize(argc, const_cast<const char**>(argv)))
-			                              return app.exitCode();
+			                              return 0;
 		                              app.run();
 		                              return 0;
 	                              });

@@ -191,8 +191,7 @@ TEST(KittiBadInput, CommandLine)
 	const std::string lab = d + "/label_02", pos = d + "/poses", out = d + "/out";
 	const char* noOut[] = {"dynslam-kitti", "--labels",   lab.c_str(), "--poses",
 	                       pos.c_str(),     "--sequence", "0007"};
-	EXPECT_FALSE(app.initialize(7, noOut));
-	EXPECT_EQ(app.exitCode(), 1);
+	EXPECT_THROW(app.initialize(7, noOut), std::invalid_argument);
 	const char* badIni[] = {"dynslam-kitti",   "--labels", lab.c_str(), "--poses",   pos.c_str(),
 	                        "--sequence",      "0007",     "--out",     out.c_str(), "-c",
 	                        "/nonexistent.ini"};

@@ -39,12 +39,6 @@ void loadIniFile(const std::string& path, mrpt::config::CConfigFileMemory& out)
 	out.setContent(ss.str());
 }
 
-std::string inConfigFile(const std::string& iniFile, const std::string& msg)
-{
-	if (msg.find(iniFile) != std::string::npos) return msg;
-	return "config file '" + iniFile + "': " + msg;
-}
-
 std::vector<std::string> checkSharedSections(const mrpt::config::CConfigFileBase& params,
                                              const std::string& iniFile, bool strict)
 {

@@ -1,6 +1,7 @@
 #pragma once
 // Private helper of the app classes: parses a TCLAP command line with MRPT's bundled TCLAP,
 // which returns false both for --help/--version and for errors (after printing them).
+#include <dynslam/app_support.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
 #include <optional>
@@ -14,13 +15,7 @@ namespace dynslam::apps::detail
 inline bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, const char** argv,
                              const std::string& app)
 {
-	if (cmd.parse(argc, argv)) return true;
-	for (int i = 1; i < argc; ++i)
-	{
-		const std::string a = argv[i];
-		if (a == "-h" || a == "--help" || a == "--version") return false;
-	}
-	throw std::invalid_argument(app + ": bad command line (see " + app + " --help)");
+	return cmd.parse(argc, argv) || !helpOrVersionAsked(argc, argv, app);
 }
 /** The value of an optional argument, or nothing if it was not given (INI overrides). */
 inline std::optional<std::string> valueIfSet(TCLAP::ValueArg<std::string>& a)

@@ -1,3 +1,4 @@
+#include <dynslam/app_support.h>
 #include <dynslam/kitti/CKittiApp.h>
 #include <dynslam/kitti/kitti_files.h>
 #include <dynslam/kitti/rawlog_writer.h>
@@ -53,37 +54,14 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	    "", "base", "base name of the output files (default kitti_SSSS)", false, "", "B", cmd);
 	TCLAP::SwitchArg aAnon("", "anonymous",
 	                       "every track anonymous: IDs that say nothing about track or class", cmd);
-	if (!cmd.parse(argc, argv))
-	{
-		m_exitCode = 1;
-		for (int i = 1; i < argc; i++)
-		{
-			const std::string a = argv[i];
-			if (a == "--help" || a == "-h" || a == "--version") m_exitCode = 0;
-		}
-		return false;
-	}
+	if (!cmd.parse(argc, argv) && helpOrVersionAsked(argc, argv, "dynslam-kitti")) return false;
 	labels_dir = aLabels.getValue();
 	poses_dir = aPoses.getValue();
 	sequence = aSeq.getValue();
 	out_dir = aOut.getValue();
 	config_file = aCfg.getValue();
 	base = aBase.getValue();
-	if (!config_file.empty())
-	{
-		if (!std::filesystem::is_regular_file(config_file))
-			throw std::runtime_error(config_file + ": config file not found");
-		try
-		{
-			mrpt::config::CConfigFile ini(config_file);
-			options.loadFromConfigFile(ini, "KITTI_Import");
-		}
-		catch (const std::exception& e)
-		{
-			// Every INI error names the file (as the other apps' inConfigFile does).
-			throw std::invalid_argument("config file '" + config_file + "': " + e.what());
-		}
-	}
+	if (!config_file.empty()) loadSectionOfFile(config_file, "KITTI_Import", options);
 	options.import.anonymous = aAnon.getValue();
 	return true;
 }

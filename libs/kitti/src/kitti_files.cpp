@@ -1,14 +1,12 @@
 #include <dynslam/kitti/kitti_files.h>
+#include <dynslam/text_fields.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -16,40 +14,12 @@ namespace dynslam::kitti
 {
 namespace
 {
-[[noreturn]] void failAt(const std::string& path, int line, const std::string& what)
-{
-	throw std::runtime_error(path + ":" + std::to_string(line) + ": " + what);
-}
-
-std::vector<std::string> splitWs(const std::string& s)
-{
-	std::vector<std::string> out;
-	std::istringstream is(s);
-	std::string tok;
-	while (is >> tok) out.push_back(tok);
-	return out;
-}
-
-double number(const std::string& tok, const std::string& path, int line, size_t col)
-{
-	const char* b = tok.c_str();
-	char* e = nullptr;
-	errno = 0;
-	const double v = std::strtod(b, &e);
-	if (e == b || *e != '\0')
-		failAt(path, line, "column " + std::to_string(col + 1) + ": '" + tok + "' is not a number");
-	if (!std::isfinite(v) || errno == ERANGE)
-		failAt(path, line,
-		       "column " + std::to_string(col + 1) + ": non-finite value '" + tok + "'");
-	return v;
-}
-
 int integer(const std::string& tok, const std::string& path, int line, size_t col)
 {
-	const double v = number(tok, path, line, col);
+	const double v = parseFiniteField(tok, path, line, col);
 	if (v != std::floor(v) || std::abs(v) > 1e9)
-		failAt(path, line,
-		       "column " + std::to_string(col + 1) + ": '" + tok + "' is not an integer");
+		throwAtLine(path, line,
+		            "column " + std::to_string(col + 1) + ": '" + tok + "' is not an integer");
 	return int(v);
 }
 
@@ -88,26 +58,28 @@ std::vector<TCameraPose> readPoses(const std::string& path)
 	{
 		++line;
 		if (!s.empty() && s.back() == '\r') s.pop_back();
-		const auto toks = splitWs(s);
+		const auto toks = splitWhitespace(s);
 		if (toks.empty())
 		{
 			// a trailing empty line is fine; an empty line inside the file would shift frames
 			std::string rest;
 			while (std::getline(f, rest))
-				if (!splitWs(rest).empty()) failAt(path, line, "empty line inside the pose file");
+				if (!splitWhitespace(rest).empty())
+					throwAtLine(path, line, "empty line inside the pose file");
 			break;
 		}
 		if (toks.size() != 12)
-			failAt(path, line,
-			       "expected 12 numbers (3x4 [R t]), found " + std::to_string(toks.size()));
+			throwAtLine(path, line,
+			            "expected 12 numbers (3x4 [R t]), found " + std::to_string(toks.size()));
 		TCameraPose T;
 		for (size_t i = 0; i < 12; ++i)
-			T(long(i / 4), long(i % 4)) = number(toks[i], path, line, i);
+			T(long(i / 4), long(i % 4)) = parseFiniteField(toks[i], path, line, i);
 		const Eigen::Matrix3d R = T.leftCols<3>();
 		const double orth = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
 		if (orth > 1e-3 || R.determinant() < 0)
-			failAt(path, line,
-			       "the 3x3 block is not a rotation (|R^T R - I| = " + std::to_string(orth) + ")");
+			throwAtLine(
+			    path, line,
+			    "the 3x3 block is not a rotation (|R^T R - I| = " + std::to_string(orth) + ")");
 		poses.push_back(T);
 	}
 	if (poses.empty()) throw std::runtime_error(path + ": no poses");
@@ -126,18 +98,18 @@ TKittiLabels readLabels(const std::string& path)
 	{
 		++line;
 		if (!s.empty() && s.back() == '\r') s.pop_back();
-		const auto t = splitWs(s);
+		const auto t = splitWhitespace(s);
 		if (t.empty()) continue;
 		++L.rows;
 		if (t.size() != 17)
-			failAt(path, line, "expected 17 columns, found " + std::to_string(t.size()));
+			throwAtLine(path, line, "expected 17 columns, found " + std::to_string(t.size()));
 		const int frame = integer(t[0], path, line, 0);
 		const int track = integer(t[1], path, line, 1);
-		if (frame < 0) failAt(path, line, "negative frame " + t[0]);
+		if (frame < 0) throwAtLine(path, line, "negative frame " + t[0]);
 		if (std::find(kTypes.begin(), kTypes.end(), t[2]) == kTypes.end())
-			failAt(path, line, "unknown type '" + t[2] + "'");
+			throwAtLine(path, line, "unknown type '" + t[2] + "'");
 		std::vector<double> v(17);
-		for (size_t i = 3; i < 17; ++i) v[i] = number(t[i], path, line, i);
+		for (size_t i = 3; i < 17; ++i) v[i] = parseFiniteField(t[i], path, line, i);
 		if (frame > L.max_frame)
 		{
 			L.max_frame = frame;
@@ -148,9 +120,9 @@ TKittiLabels readLabels(const std::string& path)
 			++L.dontcare;
 			continue;
 		}
-		if (track < 0) failAt(path, line, "track_id " + t[1] + " on a " + t[2] + " box");
+		if (track < 0) throwAtLine(path, line, "track_id " + t[1] + " on a " + t[2] + " box");
 		if (!seen.emplace(frame, track).second)
-			failAt(path, line, "track " + t[1] + " given twice in frame " + t[0]);
+			throwAtLine(path, line, "track " + t[1] + " given twice in frame " + t[0]);
 		TKittiBox b;
 		b.frame = frame;
 		b.track = track;
@@ -177,9 +149,9 @@ void checkLabelsAgainstPoses(const TKittiLabels& labels, size_t numPoses,
                              const std::string& posesPath)
 {
 	if (labels.max_frame >= 0 && size_t(labels.max_frame) >= numPoses)
-		failAt(labels.file, labels.max_frame_line,
-		       "frame " + std::to_string(labels.max_frame) + " has no pose: " + posesPath +
-		           " has " + std::to_string(numPoses) + " lines (frames 0.." +
-		           std::to_string(numPoses - 1) + ")");
+		throwAtLine(labels.file, labels.max_frame_line,
+		            "frame " + std::to_string(labels.max_frame) + " has no pose: " + posesPath +
+		                " has " + std::to_string(numPoses) + " lines (frames 0.." +
+		                std::to_string(numPoses - 1) + ")");
 }
 }  // namespace dynslam::kitti

@@ -1,12 +1,11 @@
 #include <dynslam/kitti/rawlog_writer.h>
 #include <dynslam/odometry_action.h>
-#include <mrpt/io/CFileGZOutputStream.h>
+#include <dynslam/rawlog_file_writer.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
-#include <mrpt/serialization/CArchive.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -127,16 +126,9 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 
 void writeRawlog(const TImportResult& res, const TImportOptions& opts, const std::string& path)
 {
-	mrpt::io::CFileGZOutputStream f;
-	if (!f.open(path)) throw std::runtime_error(path + ": cannot open for writing");
-	auto ar = mrpt::serialization::archiveFrom(f);
-	for (const auto& s : res.steps)
-	{
-		const auto acts = makeAction(s);
-		const auto sf = makeFrame(s, opts);
-		ar << acts << sf;
-	}
-	f.close();
+	CRawlogFileWriter out(path, "writeRawlog");
+	for (const auto& s : res.steps) out.writeStep(makeAction(s), makeFrame(s, opts));
+	out.close();
 }
 
 std::vector<std::string> writeImport(const TImportResult& res, const TKittiOptions& opts,

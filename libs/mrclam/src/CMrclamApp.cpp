@@ -1,3 +1,4 @@
+#include <dynslam/app_support.h>
 #include <dynslam/mrclam/CMrclamApp.h>
 #include <dynslam/mrclam/rawlog_writer.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
@@ -38,16 +39,7 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	                          "estimate measurement and odometry noise from the ground truth", cmd);
 	TCLAP::SwitchArg argAll("", "all-robots", "with --estimate-noise: robots 1..5", cmd);
 
-	if (!cmd.parse(argc, argv))
-	{
-		m_exitCode = 1;
-		for (int i = 1; i < argc; i++)
-		{
-			const std::string a = argv[i];
-			if (a == "--help" || a == "-h" || a == "--version") m_exitCode = 0;
-		}
-		return false;
-	}
+	if (!cmd.parse(argc, argv) && helpOrVersionAsked(argc, argv, "dynslam-mrclam")) return false;
 	dataset_dir = argDataset.getValue();
 	robot = argRobot.getValue();
 	out_dir = argOut.getValue();
@@ -55,21 +47,7 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	base = argBase.getValue();
 	estimate_noise = argNoise.getValue();
 	all_robots = argAll.getValue();
-	if (!config_file.empty())
-	{
-		if (!std::filesystem::exists(config_file))
-			throw std::runtime_error(config_file + ": config file not found");
-		try
-		{
-			mrpt::config::CConfigFile ini(config_file);
-			options.loadFromConfigFile(ini, "MRCLAM_Import");
-		}
-		catch (const std::exception& e)
-		{
-			// Every INI error names the file (as the other apps' inConfigFile does).
-			throw std::invalid_argument("config file '" + config_file + "': " + e.what());
-		}
-	}
+	if (!config_file.empty()) loadSectionOfFile(config_file, "MRCLAM_Import", options);
 	if (argDuration.isSet())
 	{
 		if (!(argDuration.getValue() > 0)) throw std::invalid_argument("--duration must be > 0");

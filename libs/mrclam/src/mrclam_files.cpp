@@ -1,45 +1,13 @@
 #include <dynslam/mrclam/mrclam_files.h>
+#include <dynslam/text_fields.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 namespace dynslam::mrclam
 {
-namespace
-{
-[[noreturn]] void failAt(const std::string& path, int line, const std::string& what)
-{
-	throw std::runtime_error(path + ":" + std::to_string(line) + ": " + what);
-}
-
-std::vector<std::string> splitWs(const std::string& s)
-{
-	std::vector<std::string> out;
-	std::istringstream is(s);
-	std::string tok;
-	while (is >> tok) out.push_back(tok);
-	return out;
-}
-
-double parseNumber(const std::string& tok, const std::string& path, int line, size_t col)
-{
-	const char* b = tok.c_str();
-	char* e = nullptr;
-	errno = 0;
-	const double v = std::strtod(b, &e);
-	if (e == b || *e != '\0')
-		failAt(path, line, "column " + std::to_string(col + 1) + ": '" + tok + "' is not a number");
-	if (!std::isfinite(v) || errno == ERANGE)
-		failAt(path, line,
-		       "column " + std::to_string(col + 1) + ": non-finite value '" + tok + "'");
-	return v;
-}
-}  // namespace
-
 TTable readTable(const std::string& path, size_t ncols, const std::vector<size_t>& integerCols,
                  int timeCol)
 {
@@ -54,20 +22,20 @@ TTable readTable(const std::string& path, size_t ncols, const std::vector<size_t
 		if (!s.empty() && s.back() == '\r') s.pop_back();
 		const auto first = s.find_first_not_of(" \t");
 		if (first == std::string::npos || s[first] == '#') continue;
-		const auto toks = splitWs(s);
+		const auto toks = splitWhitespace(s);
 		if (toks.size() != ncols)
-			failAt(path, line,
-			       "expected " + std::to_string(ncols) + " columns, found " +
-			           std::to_string(toks.size()) + " ('" + s + "')");
+			throwAtLine(path, line,
+			            "expected " + std::to_string(ncols) + " columns, found " +
+			                std::to_string(toks.size()) + " ('" + s + "')");
 		std::vector<double> row(ncols);
 		for (size_t c = 0; c < ncols; c++)
 		{
-			row[c] = parseNumber(toks[c], path, line, c);
+			row[c] = parseFiniteField(toks[c], path, line, c);
 			for (size_t ic : integerCols)
 				if (ic == c && row[c] != std::floor(row[c]))
-					failAt(path, line,
-					       "column " + std::to_string(c + 1) + ": '" + toks[c] +
-					           "' is not an integer");
+					throwAtLine(path, line,
+					            "column " + std::to_string(c + 1) + ": '" + toks[c] +
+					                "' is not an integer");
 		}
 		if (timeCol >= 0 && !t.rows.empty() && row[timeCol] < t.rows.back()[timeCol])
 		{
@@ -75,7 +43,7 @@ TTable readTable(const std::string& path, size_t ncols, const std::vector<size_t
 			m.precision(15);
 			m << "timestamps out of order: " << row[timeCol] << " after " << t.rows.back()[timeCol]
 			  << " (line " << t.lines.back() << ")";
-			failAt(path, line, m.str());
+			throwAtLine(path, line, m.str());
 		}
 		t.rows.push_back(std::move(row));
 		t.lines.push_back(line);
@@ -94,13 +62,13 @@ std::map<int, int> readBarcodes(const std::string& path)
 		const int subject = static_cast<int>(t.rows[i][0]);
 		const int barcode = static_cast<int>(t.rows[i][1]);
 		if (!isRobotSubject(subject) && !isLandmarkSubject(subject))
-			failAt(path, t.lines[i],
-			       "subject " + std::to_string(subject) +
-			           " outside 1..20 (robots 1-5, landmarks 6-20)");
+			throwAtLine(path, t.lines[i],
+			            "subject " + std::to_string(subject) +
+			                " outside 1..20 (robots 1-5, landmarks 6-20)");
 		if (!out.emplace(barcode, subject).second)
-			failAt(path, t.lines[i], "duplicate barcode " + std::to_string(barcode));
+			throwAtLine(path, t.lines[i], "duplicate barcode " + std::to_string(barcode));
 		if (!subjects.emplace(subject, barcode).second)
-			failAt(path, t.lines[i], "duplicate subject " + std::to_string(subject));
+			throwAtLine(path, t.lines[i], "duplicate subject " + std::to_string(subject));
 	}
 	if (out.empty()) throw std::runtime_error(path + ": no barcodes");
 	return out;
@@ -114,10 +82,10 @@ std::map<int, Eigen::Vector2d> readLandmarks(const std::string& path)
 	{
 		const int subject = static_cast<int>(t.rows[i][0]);
 		if (!isLandmarkSubject(subject))
-			failAt(path, t.lines[i],
-			       "subject " + std::to_string(subject) + " is not a landmark (6..20)");
+			throwAtLine(path, t.lines[i],
+			            "subject " + std::to_string(subject) + " is not a landmark (6..20)");
 		if (!out.emplace(subject, Eigen::Vector2d(t.rows[i][1], t.rows[i][2])).second)
-			failAt(path, t.lines[i], "duplicate subject " + std::to_string(subject));
+			throwAtLine(path, t.lines[i], "duplicate subject " + std::to_string(subject));
 	}
 	if (out.empty()) throw std::runtime_error(path + ": no landmarks");
 	return out;
@@ -141,7 +109,7 @@ std::vector<TMeasurementRow> readMeasurements(const std::string& path)
 	for (size_t i = 0; i < t.rows.size(); i++)
 	{
 		const auto& r = t.rows[i];
-		if (r[2] < 0) failAt(path, t.lines[i], "negative range " + std::to_string(r[2]));
+		if (r[2] < 0) throwAtLine(path, t.lines[i], "negative range " + std::to_string(r[2]));
 		out.push_back({r[0], static_cast<int>(r[1]), r[2], r[3], t.lines[i]});
 	}
 	if (out.empty()) throw std::runtime_error(path + ": no measurements");

@@ -1,12 +1,11 @@
 #include <dynslam/mrclam/rawlog_writer.h>
 #include <dynslam/odometry_action.h>
-#include <mrpt/io/CFileGZOutputStream.h>
+#include <dynslam/rawlog_file_writer.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
-#include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/datetime.h>
 
 #include <cmath>
@@ -60,16 +59,9 @@ mrpt::obs::CSensoryFrame makeFrame(const TStep& s, const TImportOptions& o)
 
 void writeRawlog(const TImportResult& res, const TImportOptions& opts, const std::string& path)
 {
-	mrpt::io::CFileGZOutputStream f;
-	if (!f.open(path)) throw std::runtime_error(path + ": cannot open for writing");
-	auto ar = mrpt::serialization::archiveFrom(f);
-	for (const auto& s : res.steps)
-	{
-		const auto acts = makeAction(s);
-		const auto sf = makeFrame(s, opts);
-		ar << acts << sf;
-	}
-	f.close();
+	CRawlogFileWriter out(path, "writeRawlog");
+	for (const auto& s : res.steps) out.writeStep(makeAction(s), makeFrame(s, opts));
+	out.close();
 }
 
 void writeImport(const TImportResult& res, const TMrclamOptions& opts, const std::string& dir,

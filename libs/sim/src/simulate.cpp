@@ -5,15 +5,13 @@
 #include <dynslam/models/measurement.h>
 #include <dynslam/models/se2.h>
 #include <dynslam/odometry_action.h>
+#include <dynslam/rawlog_file_writer.h>
 #include <dynslam/sim/scenario.h>
-#include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
-#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/random/RandomGenerators.h>
-#include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
 #include <cmath>
@@ -235,15 +233,6 @@ private:
 	detail::CReadingEffects m_effects;
 	std::vector<TReadingClass> m_truth;
 };
-
-mrpt::obs::CObservationComment commentObject(const std::string& text, mrpt::Clock::time_point stamp)
-{
-	mrpt::obs::CObservationComment c;
-	c.text = text;
-	c.timestamp = stamp;
-	c.sensorLabel = "COMMENT";
-	return c;
-}
 }  // namespace
 
 mrpt::Clock::time_point stepTimestamp(const TScenarioOptions& o, size_t k)
@@ -271,35 +260,31 @@ void writeRawlog(const TSimulatedRun& run, const std::string& path, const std::s
 {
 	if (run.actions.size() != run.frames.size())
 		throw std::invalid_argument("writeRawlog: actions and frames differ in number");
-	mrpt::io::CFileGZOutputStream f;
-	if (!f.open(path)) throw std::runtime_error("writeRawlog: cannot write " + path);
-	auto ar = mrpt::serialization::archiveFrom(f);
+	CRawlogFileWriter out(path, "writeRawlog");
 	if (!comment.empty())
 	{
 		const auto stamp = run.frames.empty() || run.frames[0]->size() == 0
 		                       ? mrpt::Clock::fromDouble(0)
 		                       : (*run.frames[0]->begin())->timestamp;
-		ar << commentObject(comment, stamp);
+		out.writeComment(comment, stamp);
 	}
-	for (size_t k = 0; k < run.actions.size(); ++k) ar << *run.actions[k] << *run.frames[k];
-	f.close();
+	for (size_t k = 0; k < run.actions.size(); ++k) out.writeStep(*run.actions[k], *run.frames[k]);
+	out.close();
 }
 
 void simulateToRawlog(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed,
                       const std::string& path, const std::string& comment)
 {
 	CStepSimulator sim(gt, o, noise_seed);
-	mrpt::io::CFileGZOutputStream f;
-	if (!f.open(path)) throw std::runtime_error("simulateToRawlog: cannot write " + path);
-	auto ar = mrpt::serialization::archiveFrom(f);
-	if (!comment.empty()) ar << commentObject(comment, stepTimestamp(o, 0));
+	CRawlogFileWriter out(path, "simulateToRawlog");
+	if (!comment.empty()) out.writeComment(comment, stepTimestamp(o, 0));
 	mrpt::obs::CActionCollection::Ptr act;
 	mrpt::obs::CSensoryFrame::Ptr sf;
 	for (size_t k = 0; k < gt.numSteps(); ++k)
 	{
 		sim.step(k, act, sf);
-		ar << *act << *sf;
+		out.writeStep(*act, *sf);
 	}
-	f.close();
+	out.close();
 }
 }  // namespace dynslam::sim

@@ -2,6 +2,7 @@
 /** @file app_common.h
  * Pieces shared by the app classes: INI loading, evaluation of one run against the ground
  * truth, and the per-filter output files. */
+#include <dynslam/app_support.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
 #include <dynslam/eval/consistency.h>
@@ -18,10 +19,6 @@ namespace dynslam::apps
 /** Loads an INI file into memory. Throws std::runtime_error naming the file if it is missing
  * or unreadable. */
 void loadIniFile(const std::string& path, mrpt::config::CConfigFileMemory& out);
-
-/** "config file 'iniFile': msg", unless msg already names the file: every INI error names the
- * file it is in. */
-std::string inConfigFile(const std::string& iniFile, const std::string& msg);
 
 /** INI checks shared by the apps: [OdometryNoise] (rawlog_io.h; throws std::invalid_argument on
  * bad values) and unknown keys in MRPT's own sections (mrpt_sections.h: returned as warnings,

@@ -22,9 +22,9 @@ class CKittiApp : public mrpt::system::COutputLogger
 public:
 	CKittiApp();
 	/** Parses the command line and loads the INI. Returns false when the program should stop
-	 * (help/version: exit code 0; bad arguments: 1, see exitCode()). Throws on a bad INI. */
+	 * (help or version shown: exit code 0). Throws std::invalid_argument on a bad command
+	 * line, std::runtime_error / std::invalid_argument naming the file on a bad INI. */
 	bool initialize(int argc, const char** argv);
-	int exitCode() const { return m_exitCode; }
 	/** Reads, converts and writes. Throws std::runtime_error on bad input (nothing written). */
 	void run();
 
@@ -37,7 +37,6 @@ public:
 	std::vector<std::string> written;
 
 private:
-	int m_exitCode = 0;
 };
 
 /** Reads and converts one sequence (no output): DIR/SSSS.txt of labels and poses. */

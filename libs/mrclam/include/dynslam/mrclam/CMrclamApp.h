@@ -26,10 +26,9 @@ public:
 	CMrclamApp();
 
 	/** Parses the command line and loads the config. Returns false when the program should
-	 * stop now (help/version shown: exit code 0; bad arguments: 1, see exitCode()). Throws
-	 * std::runtime_error / std::invalid_argument on a bad config file. */
+	 * stop now (help or version shown: exit code 0). Throws std::invalid_argument on a bad
+	 * command line, std::runtime_error / std::invalid_argument naming the file on a bad config. */
 	bool initialize(int argc, const char** argv);
-	int exitCode() const { return m_exitCode; }
 
 	/** Runs the import or the noise estimation. Throws std::runtime_error on bad input. */
 	void run();
@@ -50,6 +49,5 @@ public:
 private:
 	void runImport();
 	void runNoiseEstimation();
-	int m_exitCode = 0;
 };
 }  // namespace dynslam::mrclam
