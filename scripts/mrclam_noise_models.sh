@@ -22,12 +22,8 @@ DATA=$1
 OUT=${2:-out/mrclam_noise_models}
 SRC=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${3:-$SRC/build}
-find_exe() {
-	local p
-	p=$(find "$BUILD" -type f -perm -u+x -name "$1" 2>/dev/null | head -n 1)
-	[[ -n "$p" ]] || { echo "$(basename "$0"): $1 not found under $BUILD" >&2; exit 1; }
-	echo "$p"
-}
+# find_exe, with_keys
+source "$SRC/scripts/mrclam_variants.sh"
 IMPORT=$(find_exe dynslam-mrclam)
 COMPARE=$(find_exe dynslam-compare)
 # [MRCLAM_Import] keys of a model (appended after config/mrclam.ini's, so they win)
@@ -53,16 +49,18 @@ echo "robot,model,method,ate,ate_aligned,ego_anees" > "$CSV"
 for MODEL in ${MODELS:-white inflated}; do
 	mkdir -p "$OUT/$MODEL"
 	keys=$(import_keys "$MODEL")
-	awk -v k="$keys" '/^\[/ && s { print k; s = 0 } { print } /^\[MRCLAM_Import\]$/ { s = 1 }
-		END { if (s) print k }' "$SRC/config/mrclam.ini" > "$OUT/$MODEL/mrclam.ini"
+	# the model's keys replace config/mrclam.ini's own lines for them, at the top of the section
+	awk -v k="$keys" 'BEGIN { n = split(k, L, "\n"); for (i = 1; i <= n; ++i) { split(L[i], kv, / *= */); K[kv[1]] = 1 } }
+		/^\[/ { s = ($0 == "[MRCLAM_Import]") }
+		s && !/^\[/ { split($0, kv, / *= */); if (kv[1] in K) next }
+		{ print } /^\[MRCLAM_Import\]$/ { print k }' "$SRC/config/mrclam.ini" > "$OUT/$MODEL/mrclam.ini"
 	for N in ${ROBOTS:-1 2 3 4 5}; do
 		D="$OUT/$MODEL/robot$N"
 		mkdir -p "$D"
 		"$IMPORT" --dataset "$DATA" --robot "$N" --out "$D" --config "$OUT/$MODEL/mrclam.ini" \
 			> "$D/import.log"
 		for M in ${METHODS:-gate huber}; do
-			awk -v k="outlier_method = $M" '{ print } /^\[DynamicKFSLAM\]$/ { print k }' \
-				"$SRC/config/mrclam_compare.ini" > "$D/$M.ini"
+			with_keys "outlier_method = $M" < "$SRC/config/mrclam_compare.ini" > "$D/$M.ini"
 			"$COMPARE" -q -c "$D/$M.ini" -r "$D/robot$N.rawlog" --out "$D/$M" --filters dynamic \
 				--no-figures > "$D/$M.log" 2>&1 || { echo "robot $N $MODEL $M: failed (see $D/$M.log)"; continue; }
 			awk -F, -v r="$N" -v mo="$MODEL" -v m="$M" 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }

@@ -3,8 +3,9 @@
  * config/mrclam.ini as shipped (white) and with odo_noise_model = inflated (the taus of
  * config/mrclam.ini), both through the dynamic EKF of config/mrclam_compare.ini.
  *
- * Measured on this excerpt (Release, MRPT 2.5.8; robot 3, 313 steps, 121 s): white ATE 0.108 m,
- * ego ANEES 4.83; inflated ATE 0.103 m, ego ANEES 1.65. Thresholds: about 3x the measured values;
+ * Measured on this excerpt (Release, MRPT 2.5.8; robot 3, 313 steps, 121 s; the shipped
+ * outlier_method = huber): white ATE 0.109 m, ego ANEES 4.84; inflated ATE 0.104 m, ego ANEES
+ * 1.65 (with outlier_method = gate: 0.108 / 4.83 and 0.103 / 1.65). Thresholds: about 3x the measured values;
  * the ordering (inflated at most half as overconfident) is the property the model is for. */
 #include <dynslam/apps/data_files.h>
 #include <dynslam/mrclam/CMrclamOptions.h>
@@ -68,7 +69,7 @@ TEST(RealDataNoiseModel, InflatedModelIsLessOverconfidentOnTheExcerpt)
 	ASSERT_EQ(white.rawlog.size(), 313u);
 	ASSERT_EQ(infl.rawlog.size(), 313u);
 	// the shipped conversion is the white model (the default of config/mrclam.ini)
-	EXPECT_NEAR(white.r.ate, 0.108, 0.002);
+	EXPECT_NEAR(white.r.ate, 0.108, 0.003);
 	EXPECT_LT(white.anees(), 15.0);
 	EXPECT_LT(infl.r.ate, 0.3);
 	EXPECT_LT(infl.anees(), 5.0);
