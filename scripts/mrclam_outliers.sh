@@ -17,7 +17,8 @@ OUT=${2:-out/mrclam_outliers}
 SRC=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${3:-$SRC/build}
 TAG=method
-variant_keys() { echo "outlier_method = $1"; }
+# "shipped": config/mrclam_compare.ini unchanged (its own outlier_method)
+variant_keys() { [[ $1 == shipped ]] || echo "outlier_method = $1"; }
 source "$SRC/scripts/mrclam_variants.sh"
 # shellcheck disable=SC2086
 run_variants ${METHODS:-gate none huber cauchy gate_recovery jcbb}

@@ -10,6 +10,14 @@ find_exe() {
 	[[ -n "$p" ]] || { echo "$(basename "$0"): $1 not found under $BUILD" >&2; exit 1; }
 	echo "$p"
 }
+# Copies stdin to stdout with the key = value lines of $1 at the top of [DynamicKFSLAM], and
+# that section's own lines for the same keys dropped (the shipped outlier_method, e.g.).
+with_keys() {
+	awk -v k="$1" 'BEGIN { n = split(k, L, "\n"); for (i = 1; i <= n; ++i) { split(L[i], kv, / *= */); K[kv[1]] = 1 } }
+		/^\[/ { s = ($0 == "[DynamicKFSLAM]") }
+		s && !/^\[/ { split($0, kv, / *= */); if (kv[1] in K) next }
+		{ print } /^\[DynamicKFSLAM\]$/ && k != "" { print k }'
+}
 run_variants() {
 	local IMPORT COMPARE CSV N D V keys
 	IMPORT=$(find_exe dynslam-mrclam)
@@ -25,8 +33,7 @@ run_variants() {
 				> "$D/import.log"
 		for V in "$@"; do
 			keys=$(variant_keys "$V")
-			awk -v k="$keys" '{ print } /^\[DynamicKFSLAM\]$/ && k != "" { print k }' \
-				"$SRC/config/mrclam_compare.ini" > "$D/$V.ini"
+			with_keys "$keys" < "$SRC/config/mrclam_compare.ini" > "$D/$V.ini"
 			"$COMPARE" -q -c "$D/$V.ini" -r "$D/robot$N.rawlog" --out "$D/$V" --filters dynamic \
 				--no-figures > "$D/$V.log" 2>&1 || { echo "robot $N $V: failed (see $D/$V.log)"; continue; }
 			awk -F, -v r="$N" -v m="$V" 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }

@@ -135,6 +135,10 @@ TEST(Writers, MetricsCsvHasRequiredColumnsAndOneRowPerFilter)
 	    0u)
 	    << l[1];
 	EXPECT_NEAR((M_PI / 2 - 0.1) / std::sqrt(2.0), 1.04001006, 1e-8);
+	// no bias state: the two bias columns are the last two and empty
+	EXPECT_EQ(l[0].substr(l[0].size() - 51), ",odometry_bias_rate_final,odometry_bias_scale_final");
+	EXPECT_EQ(l[1].substr(l[1].size() - 2), ",,");
+	EXPECT_EQ(l[2].substr(l[2].size() - 2), ",,");
 	std::ostringstream table;
 	writeMetricsTable(table, rows);
 	EXPECT_EQ(lines(table.str()).size(), 3u);
@@ -149,4 +153,23 @@ TEST(Writers, MetricsCsvHasRequiredColumnsAndOneRowPerFilter)
 	EXPECT_EQ(c[1].rfind("w1v1,ego,1,2,", 0), 0u) << c[1];
 	EXPECT_EQ(c[4].rfind("w1v1,object1_pose,1,1,", 0), 0u) << c[4];
 	EXPECT_EQ(c[5].rfind("w1v1,nis,1,1,", 0), 0u) << c[5];
+}
+
+TEST(Writers, MetricsCsvCarriesTheFinalOdometryBias)
+{
+	const auto gt = eval_test::smallGroundTruth();
+	auto est = smallRun();
+	est.odometry_bias = Eigen::Vector2d(0.0175, -0.03);
+	std::vector<TMetricsRow> rows{{"rate_scale", computeRunMetrics(gt, est), std::nullopt}};
+	est.odometry_bias = Eigen::VectorXd::Constant(1, -0.002);
+	rows.push_back({"rate", computeRunMetrics(gt, est), std::nullopt});
+	EXPECT_EQ(rows[0].metrics.odometry_bias_rate, 0.0175);
+	EXPECT_EQ(rows[0].metrics.odometry_bias_scale, -0.03);
+	EXPECT_TRUE(std::isnan(rows[1].metrics.odometry_bias_scale));
+	std::ostringstream os;
+	writeMetricsCsv(os, rows);
+	const auto l = lines(os.str());
+	ASSERT_EQ(l.size(), 3u);
+	EXPECT_EQ(l[1].substr(l[1].size() - 13), ",0.0175,-0.03") << l[1];
+	EXPECT_EQ(l[2].substr(l[2].size() - 8), ",-0.002,") << l[2];
 }

@@ -5,6 +5,7 @@
 #include <dynslam/mrclam/import.h>
 #include <dynslam/mrclam/mrclam_files.h>
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -218,5 +219,61 @@ TEST(MrclamBadInput, OptionsRejectInvalidValues)
 	catch (const std::invalid_argument& e)
 	{
 		expectContains(e.what(), "config file '" + cfg + "': [MRCLAM_Import] std_range = '-1'");
+	}
+}
+
+TEST(MrclamBadInput, NoiseModelOptions)
+{
+	auto load = [](const std::string& text)
+	{
+		mrpt::config::CConfigFileMemory c(text);
+		TMrclamOptions o;
+		o.loadFromConfigFile(c, "MRCLAM_Import");
+		return o;
+	};
+	auto expectError = [&](const std::string& text, const std::string& msg)
+	{
+		try
+		{
+			load("[MRCLAM_Import]\n" + text + "\n");
+			FAIL() << "no exception for " << text;
+		}
+		catch (const std::invalid_argument& e)
+		{
+			expectContains(e.what(), msg);
+		}
+	};
+	expectError("odo_noise_model = colored",
+	            "[MRCLAM_Import] odo_noise_model = 'colored': must be white or inflated");
+	expectError("odo_tau_xy = 0.5", "[MRCLAM_Import] odo_tau_xy = '0.5': must be >= 1");
+	expectError("odo_tau_phi = -2", "[MRCLAM_Import] odo_tau_phi = '-2': must be >= 1");
+	expectError("odo_tau_phi = nan", "[MRCLAM_Import] odo_tau_phi = 'nan'");
+	const auto o = load("[MRCLAM_Import]\nodo_noise_model = inflated\nodo_tau_xy = 4\n");
+	EXPECT_EQ(o.import.odometry_noise.model, TOdometryNoiseModel::Model::inflated);
+	EXPECT_EQ(o.import.odometry_noise.tau_xy, 4.0);
+	EXPECT_EQ(o.import.odometry_noise.tau_phi, 1.0);  // the built-in default
+}
+
+TEST(MrclamBadInput, LeaveOutNeedsAllRobots)
+{
+	const auto dir = writeMiniDataset("leaveout");
+	for (const std::vector<std::string>& extra :
+	     {std::vector<std::string>{"--robot", "1", "--leave-out", "2"},
+	      std::vector<std::string>{"--all-robots", "--leave-out", "7"}})
+	{
+		std::vector<std::string> args = {"dynslam-mrclam", "--dataset", dir, "--estimate-noise"};
+		args.insert(args.end(), extra.begin(), extra.end());
+		std::vector<const char*> argv;
+		for (const auto& a : args) argv.push_back(a.c_str());
+		CMrclamApp app;
+		try
+		{
+			app.initialize(static_cast<int>(argv.size()), argv.data());
+			FAIL() << "no exception";
+		}
+		catch (const std::invalid_argument& e)
+		{
+			expectContains(e.what(), "--leave-out needs --all-robots and a robot 1..5");
+		}
 	}
 }

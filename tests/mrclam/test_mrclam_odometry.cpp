@@ -118,6 +118,16 @@ TEST(MrclamOdometry, NoiseModelGrowsWithDistanceAndAngle)
 	half.angle = 0.25;
 	const Eigen::Matrix3d Ch = m.covariance(half);
 	EXPECT_NEAR(2 * Ch(0, 0) - m.std_xy_min * m.std_xy_min, C(0, 0), 1e-15);
+	// the taus only act with the inflated model: var_xy * tau_xy, var_phi * tau_phi
+	m.tau_xy = 15;
+	m.tau_phi = 3;
+	EXPECT_EQ(m.covariance(inc), C);
+	m.model = TOdometryNoiseModel::Model::inflated;
+	const Eigen::Matrix3d Ci = m.covariance(inc);
+	EXPECT_NEAR(Ci(0, 0), 15 * C(0, 0), 1e-15);
+	EXPECT_NEAR(Ci(1, 1), 15 * C(1, 1), 1e-15);
+	EXPECT_NEAR(Ci(2, 2), 3 * C(2, 2), 1e-15);
+	EXPECT_EQ(Ci(0, 1), 0.0);
 }
 
 TEST(MrclamOdometry, InterpolationWrapsTheAngle)

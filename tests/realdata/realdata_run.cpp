@@ -87,7 +87,12 @@ TRealDataResult runRealData(const apps::TRawlog& rawlog, const TGroundTruth& gt,
 	mrpt::config::CConfigFileMemory params(ini.getContent());
 	std::string kind = filter;
 	if (filter == "dynamic" || filter == "dynamic_nogate") kind = "ekf";
-	if (filter == "dynamic_nogate") params.write("DynamicKFSLAM", "innovation_gate", 0);
+	if (filter == "dynamic_nogate")
+	{
+		// no outlier handling at all, whatever the INI's outlier_method
+		params.write("DynamicKFSLAM", "innovation_gate", 0);
+		params.write("DynamicKFSLAM", "outlier_method", "none");
+	}
 	auto backend = apps::makeBackend(kind, params);
 	const auto* dyn = dynamic_cast<const CDynamicKFSLAM2D*>(backend.get());
 

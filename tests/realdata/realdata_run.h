@@ -61,7 +61,8 @@ struct TRealDataResult
 };
 
 /** Runs one filter: "static_all", "static_landmarks_only", "dynamic" (the INI as given) or
- * "dynamic_nogate" (the same with [DynamicKFSLAM] innovation_gate = 0). Throws on errors. */
+ * "dynamic_nogate" (the same with [DynamicKFSLAM] innovation_gate = 0 and outlier_method =
+ * none). Throws on errors. */
 TRealDataResult runRealData(const apps::TRawlog& rawlog, const TGroundTruth& gt,
                             const mrpt::config::CConfigFileMemory& ini, const std::string& filter);
 

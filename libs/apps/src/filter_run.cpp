@@ -122,6 +122,10 @@ void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est
 		allInState = allInState && l.in_state;
 	}
 
+	est.odometry_bias.resize(0);
+	if (const auto* dyn = dynamic_cast<const CDynamicKFSLAM2D*>(&backend))
+		if (const auto b = dyn->getOdometryBias()) est.odometry_bias = b->first;
+
 	// Joint landmark covariance, in the order of est.landmarks.
 	if (const auto* dyn = dynamic_cast<const CDynamicKFSLAM2D*>(&backend); dyn && allInState)
 	{

@@ -172,6 +172,8 @@ TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est)
 	checkGroundTruth(gt);
 	TRunMetrics m;
 	m.ms_per_step = est.ms_per_step;
+	if (est.odometry_bias.size() >= 1) m.odometry_bias_rate = est.odometry_bias[0];
+	if (est.odometry_bias.size() >= 2) m.odometry_bias_scale = est.odometry_bias[1];
 	scoreEgo(gt, est, m);
 	scoreStaticMap(gt, est, m);
 	std::set<int32_t> known;

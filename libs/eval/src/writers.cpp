@@ -208,7 +208,8 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 		os << "," << a << "_object," << a << "_feat_rmse_x," << a << "_feat_rmse_y," << a
 		   << "_pose_rmse_x," << a << "_pose_rmse_y," << a << "_pose_rmse_theta";
 	}
-	os << ",ego_anees,ego_nees_inside,map_anees,map_dof,nis_anees,nis_inside\n";
+	os << ",ego_anees,ego_nees_inside,map_anees,map_dof,nis_anees,nis_inside,"
+	      "odometry_bias_rate_final,odometry_bias_scale_final\n";
 	for (const auto& r : rows)
 	{
 		const TRunMetrics& m = r.metrics;
@@ -237,7 +238,7 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 		}
 		else
 			os << ",,,,,,";
-		os << "\n";
+		os << "," << num(m.odometry_bias_rate) << "," << num(m.odometry_bias_scale) << "\n";
 	}
 }
 

@@ -38,6 +38,9 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	TCLAP::SwitchArg argNoise("", "estimate-noise",
 	                          "estimate measurement and odometry noise from the ground truth", cmd);
 	TCLAP::SwitchArg argAll("", "all-robots", "with --estimate-noise: robots 1..5", cmd);
+	TCLAP::ValueArg<int> argLeaveOut("", "leave-out",
+	                                 "with --all-robots: estimate on the other four robots (1..5)",
+	                                 false, 0, "N", cmd);
 
 	if (!cmd.parse(argc, argv) && helpOrVersionAsked(argc, argv, "dynslam-mrclam")) return false;
 	dataset_dir = argDataset.getValue();
@@ -47,6 +50,9 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	base = argBase.getValue();
 	estimate_noise = argNoise.getValue();
 	all_robots = argAll.getValue();
+	leave_out = argLeaveOut.getValue();
+	if (argLeaveOut.isSet() && (!all_robots || !isRobotSubject(leave_out)))
+		throw std::invalid_argument("--leave-out needs --all-robots and a robot 1..5");
 	if (!config_file.empty()) loadSectionOfFile(config_file, "MRCLAM_Import", options);
 	if (argDuration.isSet())
 	{
@@ -86,7 +92,10 @@ void CMrclamApp::runNoiseEstimation()
 {
 	std::vector<int> robots;
 	if (all_robots)
-		for (int r = kFirstRobot; r <= kLastRobot; r++) robots.push_back(r);
+		for (int r = kFirstRobot; r <= kLastRobot; r++)
+		{
+			if (r != leave_out) robots.push_back(r);
+		}
 	else if (isRobotSubject(robot))
 		robots.push_back(robot);
 	else
@@ -123,6 +132,9 @@ void CMrclamApp::runNoiseEstimation()
 	if (robots.size() > 1)
 		report << "\n" << noise_pooled.toText() << delayScoresText(pooledDelays) << "\n";
 	delay_pooled = bestDelay(pooledDelays).delay;
+	noise_pooled.delay_estimate = delay_pooled;
+	noise_pooled.scale_v_estimate =
+	    options.import.odometry_scale_v * noise_pooled.odo_translation_gain;
 	report << "Suggested INI values (inlier std; fitted odometry model):\n" << noise_pooled.toIni();
 	std::cout << report.str();
 	if (!out_dir.empty())
@@ -132,6 +144,10 @@ void CMrclamApp::runNoiseEstimation()
 		std::ofstream o(p);
 		o << report.str();
 		if (!o) throw std::runtime_error(p + ": write error");
+		const std::string pi = out_dir + "/noise_estimate.ini";
+		std::ofstream oi(pi);
+		oi << noise_pooled.toIni();
+		if (!oi) throw std::runtime_error(pi + ": write error");
 	}
 }
 }  // namespace dynslam::mrclam

@@ -66,6 +66,9 @@ const std::vector<std::string> kKeys = {"group_window",
                                         "odo_std_phi_min",
                                         "odo_var_phi_per_m",
                                         "odo_var_phi_per_rad",
+                                        "odo_noise_model",
+                                        "odo_tau_xy",
+                                        "odo_tau_phi",
                                         "noise_outlier_factor",
                                         "noise_trim_chi2"};
 }  // namespace
@@ -103,6 +106,18 @@ void TMrclamOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
 	readNum(c, sec, "odo_std_phi_min", n.std_phi_min, 0, false);
 	readNum(c, sec, "odo_var_phi_per_m", n.var_phi_per_m, 0, false);
 	readNum(c, sec, "odo_var_phi_per_rad", n.var_phi_per_rad, 0, false);
+	if (c.keyExists(sec, "odo_noise_model"))
+	{
+		const std::string m = c.read_string(sec, "odo_noise_model", "", true);
+		if (m == "white")
+			n.model = TOdometryNoiseModel::Model::white;
+		else if (m == "inflated")
+			n.model = TOdometryNoiseModel::Model::inflated;
+		else
+			fail(sec, "odo_noise_model", m, "must be white or inflated");
+	}
+	readNum(c, sec, "odo_tau_xy", n.tau_xy, 1, false);
+	readNum(c, sec, "odo_tau_phi", n.tau_phi, 1, false);
 	readNum(c, sec, "noise_outlier_factor", noise_outlier_factor, 0, true);
 	readNum(c, sec, "noise_trim_chi2", noise_trim_chi2, 0, true);
 }
@@ -127,6 +142,10 @@ void TMrclamOptions::dumpToTextStream(std::ostream& out) const
 	    << "odo_std_phi_min = " << n.std_phi_min << "\n"
 	    << "odo_var_phi_per_m = " << n.var_phi_per_m << "\n"
 	    << "odo_var_phi_per_rad = " << n.var_phi_per_rad << "\n"
+	    << "odo_noise_model = "
+	    << (n.model == TOdometryNoiseModel::Model::inflated ? "inflated" : "white") << "\n"
+	    << "odo_tau_xy = " << n.tau_xy << "\n"
+	    << "odo_tau_phi = " << n.tau_phi << "\n"
 	    << "noise_outlier_factor = " << noise_outlier_factor << "\n"
 	    << "noise_trim_chi2 = " << noise_trim_chi2 << "\n";
 }

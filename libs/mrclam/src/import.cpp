@@ -44,6 +44,8 @@ TImportOptions::TImportOptions()
 	n.std_phi_min = 0.00136;
 	n.var_phi_per_m = 0.00171;
 	n.var_phi_per_rad = 0.00705;
+	n.tau_xy = 15;
+	n.tau_phi = 1;
 }
 
 size_t TImportSummary::landmarkMeasurements() const

@@ -271,6 +271,7 @@ void estimateOdometryNoise(const TNoiseSamples& s, double outlierFactor, double 
 		est.odo_ex = residualStats(ex, outlierFactor);
 		est.odo_ey = residualStats(ey, outlierFactor);
 		est.odo_ephi = residualStats(ephi, outlierFactor);
+		estimateOdometryCorrelation(s, trimChi2, est);
 	}
 }
 }  // namespace
@@ -321,7 +322,16 @@ std::string TNoiseEstimate::toText() const
 	  << "  check with the fit: mean NEES xy = " << odo_mean_nees_xy
 	  << " (2 expected), phi = " << odo_mean_nees_phi << " (1 expected); above chi2 95%: xy "
 	  << 100 * odo_frac_xy_above_95 << "%, phi " << 100 * odo_frac_phi_above_95
-	  << "% (5% expected)\n";
+	  << "% (5% expected)\n"
+	  << "  correlation of the normalized errors: integrated autocorrelation time tau_xy = "
+	  << odo_acf_xy.tau << " (window " << odo_acf_xy.window
+	  << (odo_acf_xy.converged ? "" : ", not converged") << "), tau_phi = " << odo_acf_phi.tau
+	  << " (window " << odo_acf_phi.window << (odo_acf_phi.converged ? "" : ", not converged")
+	  << ")\n  NEES per dof of sums of W increments, white fit (xy / phi):";
+	for (size_t i = 0; i < odo_window_nees_xy.size(); i++)
+		o << "  W=" << odo_window_lengths[i] << ": " << odo_window_nees_xy[i] << " / "
+		  << odo_window_nees_phi[i];
+	o << "\n";
 	return o.str();
 }
 
@@ -336,7 +346,11 @@ std::string TNoiseEstimate::toIni() const
 	  << "\nodo_var_xy_per_rad = " << odometry.var_xy_per_rad
 	  << "\nodo_std_phi_min = " << odometry.std_phi_min
 	  << "\nodo_var_phi_per_m = " << odometry.var_phi_per_m
-	  << "\nodo_var_phi_per_rad = " << odometry.var_phi_per_rad << "\n";
+	  << "\nodo_var_phi_per_rad = " << odometry.var_phi_per_rad
+	  << "\nodo_noise_model = inflated\nodo_tau_xy = " << odometry.tau_xy
+	  << "\nodo_tau_phi = " << odometry.tau_phi << "\n";
+	if (delay_estimate >= 0) o << "odo_delay = " << delay_estimate << "\n";
+	if (scale_v_estimate > 0) o << "odo_scale_v = " << scale_v_estimate << "\n";
 	return o.str();
 }
 }  // namespace dynslam::mrclam

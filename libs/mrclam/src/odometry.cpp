@@ -94,7 +94,9 @@ Eigen::Matrix3d TOdometryNoiseModel::covariance(const TOdometryIncrement& inc) c
 	    std_xy_min * std_xy_min + var_xy_per_m * inc.distance + var_xy_per_rad * inc.angle;
 	const double vphi =
 	    std_phi_min * std_phi_min + var_phi_per_m * inc.distance + var_phi_per_rad * inc.angle;
-	return Eigen::Vector3d(vxy, vxy, vphi).asDiagonal();
+	const bool infl = model == Model::inflated;
+	const double kxy = infl ? tau_xy : 1.0, kphi = infl ? tau_phi : 1.0;
+	return Eigen::Vector3d(kxy * vxy, kxy * vxy, kphi * vphi).asDiagonal();
 }
 
 CTrajectoryInterpolator::CTrajectoryInterpolator(std::vector<TPoseRow> rows)

@@ -75,6 +75,9 @@ struct TRunEstimates
 	std::vector<double> nis;
 	std::vector<int> nis_dof;
 	double ms_per_step = 0;  ///< mean wall time per step [ms]
+	/** Final odometry bias estimate of a filter with a bias state (odometry_bias = rate: (b_w)
+	 * [rad/s]; rate_scale: (b_w, s)); empty without one. */
+	Eigen::VectorXd odometry_bias;
 };
 
 /** Checks sizes and finiteness of means: unique ego steps >= 0, object pose mean of size 2 or 3

@@ -45,6 +45,9 @@ struct TRunMetrics
 	std::vector<TObjectMetrics> objects;    ///< one per ground-truth object, in gt order
 	size_t object_estimates_unmatched = 0;  ///< feature/pose estimates of unknown objects
 	double ms_per_step = 0;                 ///< copied from the estimates
+	/** Copied from the estimates' odometry_bias: b_w [rad/s] and s (NaN without a bias state,
+	 * resp. without the scale); not part of the run records (run_records.h). */
+	double odometry_bias_rate = kNaN, odometry_bias_scale = kNaN;
 };
 
 /** Pose error est - truth with the angle wrapped to (-pi, pi]. */

@@ -58,7 +58,8 @@ struct TMetricsRow
  * for each agent k = 1..K (K = most objects in any row): agentk_object,agentk_feat_rmse_x,
  * agentk_feat_rmse_y,agentk_pose_rmse_x,agentk_pose_rmse_y,agentk_pose_rmse_theta,
  * then ego_anees,ego_nees_inside,map_anees,map_dof,nis_anees,nis_inside (fractions in [0,1];
- * empty without consistency). */
+ * empty without consistency), then odometry_bias_rate_final [rad/s], odometry_bias_scale_final
+ * (the final odometry bias estimate, TRunMetrics; empty without a bias state / scale). */
 void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows);
 
 /** The same numbers as an aligned plain-text table for the terminal. */

@@ -3,13 +3,15 @@
  * The dynslam-mrclam app (MRPT's KFSLAMApp pattern: a thin main() around this class).
  *
  *   dynslam-mrclam --dataset DIR --robot N --out DIR [--config INI] [--duration S] [--base B]
- *   dynslam-mrclam --dataset DIR --estimate-noise (--robot N | --all-robots) [--out DIR] [--config
- * INI]
+ *   dynslam-mrclam --dataset DIR --estimate-noise (--robot N | --all-robots [--leave-out N])
+ *                  [--out DIR] [--config INI]
  *
  * Import: reads DIR (MRCLAM files), converts robot N (import.h) and writes into --out the
  * rawlog, the ground truth, `<B>_summary.txt` and `<B>_import.ini` (B defaults to robotN).
  * --estimate-noise: residual statistics against the ground truth (noise_estimation.h), per
- * robot and pooled; printed and, with --out, saved as `noise_estimate.txt`. */
+ * robot and pooled; printed and, with --out, saved as `noise_estimate.txt`; with --out also
+ * `noise_estimate.ini` (the pooled estimate as [MRCLAM_Import] keys, TNoiseEstimate::toIni).
+ * --leave-out N: all robots but N (the leave-one-robot-out check). */
 #include <dynslam/mrclam/CMrclamOptions.h>
 #include <dynslam/mrclam/import.h>
 #include <dynslam/mrclam/noise_estimation.h>
@@ -37,6 +39,7 @@ public:
 	std::string dataset_dir, out_dir, config_file, base;
 	int robot = 0;
 	bool estimate_noise = false, all_robots = false;
+	int leave_out = 0;  ///< with all_robots: a robot 1..5 left out of the estimate (0: none)
 	TMrclamOptions options;
 
 	// --- results ---

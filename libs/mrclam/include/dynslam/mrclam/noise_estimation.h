@@ -23,7 +23,15 @@
  * of delays d (odometry.h); the d with the smallest RMS heading error against the ground
  * truth is the estimate (scoreOdometryDelays; pooled over robots by summing squared errors).
  * Gains: sum |dtheta_gt| / sum |dtheta_odo| and sum |dp_gt| / sum |dp_odo| over the steps
- * (1 = no scale error; reported, not corrected). */
+ * (1 = no scale error; reported, not corrected).
+ *
+ * Odometry correlation (odometry_autocorr.cpp): the errors normalized by the fitted model,
+ * z_k = e_k / sqrt(var_k) (heading; x and y as two series), per robot in step order, clipped
+ * to +-sqrt(trim_chi2). Their integrated autocorrelation time tau = 1 + 2 sum_{l=1}^{M} rho(l)
+ * (Sokal's window: the smallest M >= 5 tau(M)) is the factor by which the variance of a sum of
+ * many increments exceeds the white model's; it is the inflation of TOdometryNoiseModel's
+ * `inflated` model. Check: the NEES of sums of W consecutive increments under the white model
+ * (about tau for W much longer than the correlation). */
 #include <dynslam/mrclam/import.h>
 #include <dynslam/mrclam/mrclam_files.h>
 #include <dynslam/mrclam/odometry.h>
@@ -42,6 +50,22 @@ struct TResidualStats
 };
 /** Statistics of residuals r; outliers: |r - median| > outlierFactor * robust_std. */
 TResidualStats residualStats(const std::vector<double>& r, double outlierFactor);
+
+/** Integrated autocorrelation time of zero-mean series pooled over independent series (the
+ * normalized errors are zero-mean under the model, so no mean is removed: a bias that lasts
+ * counts as correlation): rho(l) = [sum z_k z_{k+l} / N_l] / [sum z_k^2 / N],
+ * tau(M) = 1 + 2 sum_{l=1}^{M} rho(l), M = the smallest lag with M >= c tau(M) (Sokal), at most
+ * maxLag (then converged = false). Throws std::invalid_argument for c <= 0 or maxLag < 1. */
+struct TAutocorrelation
+{
+	size_t n = 0;             ///< samples in all series
+	double tau = 1;           ///< [steps]
+	int window = 0;           ///< M
+	bool converged = false;   ///< a window M <= maxLag was found
+	std::vector<double> rho;  ///< rho(0..M)
+};
+TAutocorrelation integratedAutocorrelation(const std::vector<std::vector<double>>& series,
+                                           double c = 5, int maxLag = 400);
 
 /** Raw residual samples, appendable over several robots. */
 struct TNoiseSamples
@@ -87,9 +111,20 @@ struct TNoiseEstimate
 	double odo_mean_nees_xy = 0, odo_mean_nees_phi = 0;  ///< E[e^2/var] with the fit (all)
 	double odo_frac_xy_above_95 = 0, odo_frac_phi_above_95 = 0;  ///< chi2 95% exceedance
 	TResidualStats odo_ex, odo_ey, odo_ephi;
+	/** Correlation of the normalized errors (x and y pooled; heading) and the inflation
+	 * factors tau_xy, tau_phi of odometry.h's inflated model (copied into `odometry`). */
+	TAutocorrelation odo_acf_xy, odo_acf_phi;
+	/** NEES per dof of sums of W consecutive increment errors under the white fit, for the W
+	 * of odo_window_lengths (1 if the white model held over W steps). */
+	std::vector<int> odo_window_lengths{1, 10, 30, 100};
+	std::vector<double> odo_window_nees_xy, odo_window_nees_phi;
 	std::string toText() const;
-	/** The chosen values as INI lines for [MRCLAM_Import] / [MRCLAM_OdometryNoise]. */
+	/** The chosen values as INI lines for [MRCLAM_Import] (with odo_noise_model = inflated
+	 * and the taus; and, if set, odo_delay and odo_scale_v from delay_estimate and
+	 * scale_v_estimate). */
 	std::string toIni() const;
+	double delay_estimate = -1;    ///< [s] set by the caller (< 0: not written by toIni)
+	double scale_v_estimate = -1;  ///< set by the caller (< 0: not written by toIni)
 };
 
 /** Score of one odometry delay over the step intervals of an import. */
@@ -126,6 +161,11 @@ struct TDeadReckoningPoint
 std::vector<TDeadReckoningPoint> deadReckoning(const TImportResult& res,
                                                const std::vector<double>& times);
 std::string deadReckoningText(const std::vector<TDeadReckoningPoint>& pts);
+
+/** Fills odo_acf_* and odo_window_nees_* of est (whose white fit est.odometry must be set)
+ * and sets est.odometry.tau_xy/tau_phi (>= 1); samples of one robot must be contiguous and in
+ * step order (collectNoiseSamples, append). */
+void estimateOdometryCorrelation(const TNoiseSamples& s, double trimChi2, TNoiseEstimate& est);
 
 TNoiseEstimate estimateNoise(const TNoiseSamples& s, double outlierFactor = 5,
                              double trimChi2 = 25);

@@ -54,15 +54,29 @@ private:
  *   var_xy  = std_xy_min^2  + var_xy_per_m  * distance + var_xy_per_rad  * angle  (x and y)
  *   var_phi = std_phi_min^2 + var_phi_per_m * distance + var_phi_per_rad * angle
  * i.e. a random walk whose variance grows linearly with the integrated path length and the
- * integrated absolute rotation, plus a floor. Covariance = diag(var_xy, var_xy, var_phi). */
+ * integrated absolute rotation, plus a floor. Covariance = diag(var_xy, var_xy, var_phi).
+ *
+ * Correlated errors (model = inflated): real odometry errors are correlated over many steps,
+ * so the variance of a sum of N increment errors is N var tau (tau = the integrated
+ * autocorrelation time of the normalized errors, in steps, noise_estimation.h) rather than
+ * N var. The inflated model multiplies var_xy by tau_xy and var_phi by tau_phi: still white per
+ * step (what an EKF can use), but with the long-horizon variance of the correlated errors. */
 struct TOdometryNoiseModel
 {
+	enum class Model
+	{
+		white,    ///< the fit as it is (independent steps)
+		inflated  ///< var_xy * tau_xy, var_phi * tau_phi
+	};
 	double std_xy_min = 1e-3;       ///< [m]
 	double var_xy_per_m = 1e-4;     ///< [m^2/m]
 	double var_xy_per_rad = 0;      ///< [m^2/rad]
 	double std_phi_min = 1e-3;      ///< [rad]
 	double var_phi_per_m = 1e-3;    ///< [rad^2/m]
 	double var_phi_per_rad = 1e-3;  ///< [rad^2/rad]
+	Model model = Model::white;
+	double tau_xy = 1;   ///< [steps] >= 1, used by Model::inflated
+	double tau_phi = 1;  ///< [steps] >= 1, used by Model::inflated
 	Eigen::Matrix3d covariance(const TOdometryIncrement& inc) const;
 };
 
