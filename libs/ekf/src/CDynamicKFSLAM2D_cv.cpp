@@ -120,9 +120,14 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 		{
 			models::Matrix23d J_z_x;
 			Eigen::MatrixXd J_z_xi, J_z_f0;
+			const int k = info.indexOf(m.reading.id);
+			const Eigen::Vector3d& sensor = m_in.sensor_pose;
 			const Eigen::Vector2d zhat =
-			    models::observeObjectFeature(options.measurement_model, ego, xi, f0,
-			                                 info.indexOf(m.reading.id), &J_z_x, &J_z_xi, &J_z_f0);
+			    sensor.isZero(0)
+			        ? models::observeObjectFeature(options.measurement_model, ego, xi, f0, k,
+			                                       &J_z_x, &J_z_xi, &J_z_f0)
+			        : models::observeObjectFeatureFromSensor(options.measurement_model, ego, sensor,
+			                                                 xi, f0, k, &J_z_x, &J_z_xi, &J_z_f0);
 			Eigen::MatrixXd H(2, idx.size());
 			H << J_z_x, J_z_xi, J_z_f0;
 			const Eigen::Vector2d nu =
