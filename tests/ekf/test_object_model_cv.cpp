@@ -261,7 +261,7 @@ TEST(ObjectModelCv, OptionsAndBadInput)
 	          "paper_smoothing");
 	EXPECT_EQ(load("object_model = cv\ncv_dt = 0.5\n"), "cv");
 	EXPECT_THROW(load("object_model = cv\n"), std::exception);  // cv_dt is required
-	EXPECT_THROW(load("object_model = ctrv\n"), std::invalid_argument);
+	EXPECT_THROW(load("object_model = ctra\ncv_dt = 0.5\n"), std::invalid_argument);  // unknown
 	EXPECT_THROW(load("object_model = cv\ncv_dt = 0.5\nsmoothing = true\nkeep_last_poses = 3\n"),
 	             std::invalid_argument);
 	EXPECT_THROW(load("object_model = cv\ncv_dt = 0.5\ncv_velocity_prior_std = [1 0 1]\n"),

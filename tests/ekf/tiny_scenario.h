@@ -35,6 +35,10 @@ struct TinyScenarioOptions
 	unsigned seed = 1;
 	bool noise = true;
 	double object_turn_rate = 0.03;  ///< object a turns by (a + 1) times this per step [rad]
+	/** false: the objects' centres translate at constant velocity (the body rotates about it);
+	 * true: the centre's velocity turns with the body (constant turn rate and velocity: the
+	 * centre moves on a circle of radius |v| / turn rate). */
+	bool objects_on_arcs = false;
 	/** The sensor's pose on the robot (x, y, yaw), written to sensorLocationOnRobot (with
 	 * height sensor_z); readings are taken from x (+) sensor. */
 	Eigen::Vector3d sensor = Eigen::Vector3d::Zero();
@@ -146,7 +150,15 @@ inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
 		for (int a = 0; a < int(objs.size()); ++a)
 		{
 			const TinyObject& ob = objs[a];
-			const Eigen::Vector2d c = ob.c + ob.v * k;
+			Eigen::Vector2d c = ob.c + ob.v * k;
+			if (o.objects_on_arcs && ob.w != 0)
+			{
+				const double a = ob.w * k;
+				c = ob.c + (Eigen::Matrix2d() << std::sin(a), std::cos(a) - 1, 1 - std::cos(a),
+				            std::sin(a))
+				                   .finished() *
+				               ob.v / ob.w;
+			}
 			if ((c - x.head<2>()).norm() > o.range) continue;
 			const Eigen::Matrix2d R = models::rot2(ob.w * k);
 			for (int f = 0; f < ob.off.cols(); ++f)

@@ -39,6 +39,7 @@ struct TWorst
 	double mean = 0, cov = 0;
 	int steps = 0;
 	size_t poses = 0, smoothing = 0, dropped_static = 0, dropped_time_t = 0;
+	size_t object_updates = 0, gated = 0;  ///< object-centric models (cv, ctrv)
 };
 
 /** Runs both on the scenario and compares at every step. */
@@ -87,6 +88,11 @@ TWorst runBoth(const sim::TScenarioOptions& so, uint64_t seed, const std::string
 		w.smoothing += ra.smoothing_updates;
 		w.dropped_static += ra.dropped_static;
 		w.dropped_time_t += ra.dropped_time_t;
+		w.object_updates += ra.object_feature_updates;
+		w.gated += ra.object_gated_out;
+		EXPECT_EQ(ra.object_feature_updates, ekf.getLastStepReport().object_feature_updates);
+		EXPECT_EQ(ra.object_gated_out, ekf.getLastStepReport().object_gated_out);
+		EXPECT_EQ(ra.object_features_t, ekf.getLastStepReport().object_features_t);
 		EXPECT_EQ(ra.smoothing_updates, ekf.getLastStepReport().smoothing_updates);
 		EXPECT_EQ(ra.dropped_static, ekf.getLastStepReport().dropped_static);
 		EXPECT_EQ(alg.getLastStepReport().object_poses_added,
@@ -105,13 +111,13 @@ sim::TScenarioOptions scenario(const std::string& file, int steps)
 	return so;
 }
 
-TWorst report(const char* what, const TWorst& w)
+TWorst report(const char* what, const TWorst& w, double tol = 1e-9)
 {
 	std::cout << "[alg1 vs EKF] " << what << ": " << w.steps << " steps, worst mean rel. error "
 	          << w.mean << ", worst covariance rel. error " << w.cov << "\n";
 	EXPECT_GT(w.steps, 0);
-	EXPECT_LT(w.mean, 1e-9) << what;
-	EXPECT_LT(w.cov, 1e-9) << what;
+	EXPECT_LT(w.mean, tol) << what;
+	EXPECT_LT(w.cov, tol) << what;
 	EXPECT_GT(w.poses, 0u) << what;
 	return w;
 }
@@ -136,6 +142,82 @@ TEST(Alg1, WholeRunEquivalenceGeneratedScenarios)
 	const TWorst dr = report("generated, static drop after 2 unseen steps",
 	                         runBoth(so, 5, "drop_static_after_unseen_steps = 2\n"));
 	EXPECT_GT(dr.dropped_static, 0u);
+}
+
+/** The object-centric models (issue 13): Alg. 1 with the object motion term, the sighting
+ * term and the velocity initialisation term (framework/object_motion_terms.h) equals the EKF
+ * with object_model = cv / ctrv at every step: the paper's theorem for the new models. */
+TEST(Alg1, WholeRunEquivalenceObjectModels)
+{
+	// The cv_* defaults (accel_psd [0.1 0.1 0.01], velocity prior std [1 1 0.1]). 1e-9 on the
+	// generated scenario (measured <= 4.8e-11); longer runs lose more digits, as the velocity
+	// blocks make the information worse conditioned than with the paper's model (highway
+	// 4.7e-12 there over 121 steps).
+	const std::string cv = "cv_dt = 0.5\n";
+	const auto so = scenario("generated_small_scenario.ini", 18);
+	for (const std::string model : {"cv", "ctrv"})
+	{
+		const std::string m = "object_model = " + model + "\n" + cv;
+		const TWorst g = report(("generated, " + model).c_str(), runBoth(so, 6, m));
+		EXPECT_GT(g.object_updates, 20u) << model;
+		const TWorst k =
+		    report(("generated, " + model + ", keep time-t features, K = 3").c_str(),
+		           runBoth(so, 7, m + "drop_time_t_features = false\nkeep_last_poses = 3\n"));
+		EXPECT_GT(k.object_updates, 20u) << model;
+		// 60 highway steps, a gate that rejects readings: measured 5.4e-9 (cv) and 3.3e-9
+		// (ctrv) on the covariance, 1e-9 on the mean (conditioning: see below).
+		const TWorst h =
+		    report(("highway, " + model + ", gate 0.5").c_str(),
+		           runBoth(scenario("highway.ini", 60), 1, m + "cv_gate = 0.5\n"), 1e-7);
+		EXPECT_GT(h.object_updates, 100u) << model;
+		EXPECT_GT(h.gated, 0u) << model;
+	}
+	auto off = so;
+	off.sensor_pose = Eigen::Vector3d(0.3, -0.1, 0.2);
+	const TWorst rb = report("generated, ctrv, range-bearing, sensor at (0.3, -0.1, 0.2)",
+	                         runBoth(off, 8,
+	                                 "object_model = ctrv\n" + cv +
+	                                     "measurement_model = range_bearing\n"
+	                                     "Sigma_v = [1e-4 1e-6]\n"),
+	                         1e-8);  // measured 2.3e-9 (covariance)
+	EXPECT_GT(rb.object_updates, 20u);
+}
+
+TEST(Alg1, WholeRunEquivalenceObjectModelsIllConditioned)
+{
+	// The tunnel's settings (config/compare_tunnel.ini): a process noise 10-100 times smaller
+	// and a velocity prior 2 times tighter than the defaults. Q^-1 then dominates the
+	// information of the object blocks; the Schur complements of the prediction and the
+	// inversion that reports the covariance lose about kappa * eps (doc/framework.md). The
+	// same operations, measured: see the printed errors.
+	const std::string m =
+	    "object_model = ctrv\ncv_dt = 0.5\ncv_accel_psd = [0.01 0.01 1e-4]\n"
+	    "cv_velocity_prior_std = [0.5 0.5 0.05]\n";
+	report("generated, ctrv, tunnel settings",
+	       runBoth(scenario("generated_small_scenario.ini", 18), 6, m),
+	       1e-8);  // measured 1.0e-9 (covariance), 3.5e-10 (mean)
+	report("highway, ctrv, tunnel settings, gate 0.99",
+	       runBoth(scenario("highway.ini", 60), 1, m + "cv_gate = 0.99\n"),
+	       1e-5);  // measured 1.1e-6 (covariance), 2.1e-9 (mean)
+}
+
+TEST(Alg1, ObjectModelsBadInput)
+{
+	// The inflation rule is the EKF's only; a zero spectral density leaves the framework's
+	// motion term without an information matrix; a velocity prior std <= 0: clear errors at
+	// construction.
+	const auto make = [](const std::string& extra)
+	{
+		mrpt::config::CConfigFileMemory ini(modelIni("object_model = cv\ncv_dt = 0.5\n" + extra));
+		TBackendOptions bo;
+		bo.loadFromConfigFile(ini, "Framework");
+		CAlg1Backend alg(bo);
+	};
+	EXPECT_NO_THROW(make(""));
+	EXPECT_THROW(make("cv_inflation_threshold = 8\ncv_inflation_factor = 100\n"),
+	             std::invalid_argument);
+	EXPECT_THROW(make("cv_accel_psd = [0.01 0 1e-4]\n"), std::invalid_argument);
+	EXPECT_THROW(make("cv_velocity_prior_std = [0.5 0 0.05]\n"), std::invalid_argument);
 }
 
 TEST(Alg1, WholeRunEquivalenceRangeBearingAndConfigNoise)

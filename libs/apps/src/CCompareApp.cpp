@@ -24,13 +24,15 @@ const char* kDefaultIni = "config/compare_highway.ini";
 std::string backendOf(const std::string& filter) { return filter == "dynamic" ? "ekf" : filter; }
 
 /** Fixed colours per filter, whatever the subset: static_all red, static only orange, dynamic
- * blue, dynamic_cv green, dynamic_smoothing purple (eval::seriesColor). */
+ * blue, dynamic_cv green, dynamic_smoothing purple, dynamic_ctrv the sixth colour
+ * (eval::seriesColor). */
 size_t filterColorIndex(const std::string& n)
 {
 	return n == "static_all"              ? 0
 	       : n == "static_landmarks_only" ? 3
 	       : n == "dynamic_cv"            ? 2
 	       : n == "dynamic_smoothing"     ? 4
+	       : n == "dynamic_ctrv"          ? 5
 	                                      : 1;
 }
 
@@ -38,8 +40,9 @@ size_t filterColorIndex(const std::string& n)
  * other object models (issue 13; makeBackend). */
 const std::vector<std::string>& knownFilters()
 {
-	static const std::vector<std::string> f{"static_all", "static_landmarks_only", "dynamic",
-	                                        "dynamic_cv", "dynamic_smoothing"};
+	static const std::vector<std::string> f{"static_all",   "static_landmarks_only",
+	                                        "dynamic",      "dynamic_cv",
+	                                        "dynamic_ctrv", "dynamic_smoothing"};
 	return f;
 }
 
@@ -67,7 +70,7 @@ std::vector<std::string> parseFilterList(const std::string& fl)
 			fail(kSection, "filters", fl,
 			     "unknown filter '" + f +
 			         "' (known: static_all, static_landmarks_only, dynamic, dynamic_cv, "
-			         "dynamic_smoothing)");
+			         "dynamic_ctrv, dynamic_smoothing)");
 	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
 	return filters;
 }

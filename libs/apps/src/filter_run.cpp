@@ -16,15 +16,15 @@ namespace dynslam::apps
 {
 namespace
 {
-/** dynslam-compare's filters dynamic_cv / dynamic_smoothing: the [DynamicKFSLAM] filter with
- * another object model. cv needs cv_dt in the section (no silent default for the step
- * length); paper_smoothing keeps at least the 3 poses it needs. */
+/** dynslam-compare's filters dynamic_cv / dynamic_ctrv / dynamic_smoothing: the [DynamicKFSLAM]
+ * filter with another object model. cv and ctrv need cv_dt in the section (no silent default for
+ * the step length); paper_smoothing keeps at least the 3 poses it needs. */
 void overrideObjectModel(CDynamicKFSLAM2D& f, const mrpt::config::CConfigFileBase& ini,
                          const std::string& model)
 {
-	if (model == "cv" && !ini.keyExists("DynamicKFSLAM", "cv_dt"))
-		throw std::invalid_argument(
-		    "[DynamicKFSLAM] cv_dt: required by the filter dynamic_cv (seconds per step)");
+	if ((model == "cv" || model == "ctrv") && !ini.keyExists("DynamicKFSLAM", "cv_dt"))
+		throw std::invalid_argument("[DynamicKFSLAM] cv_dt: required by the filter dynamic_" +
+		                            model + " (seconds per step)");
 	if (model == "paper_smoothing" && !ini.keyExists("DynamicKFSLAM", "Sigma_s"))
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] Sigma_s: required by the filter dynamic_smoothing");
@@ -51,12 +51,15 @@ std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
                                           const mrpt::config::CConfigFileBase& ini,
                                           std::ostream* optionsDump)
 {
-	if (kind == "ekf" || kind == "dynamic" || kind == "dynamic_cv" || kind == "dynamic_smoothing")
+	if (kind == "ekf" || kind == "dynamic" || kind == "dynamic_cv" || kind == "dynamic_ctrv" ||
+	    kind == "dynamic_smoothing")
 	{
 		auto f = std::make_unique<CDynamicKFSLAM2D>();
 		f->loadOptions(ini, "DynamicKFSLAM");
-		if (kind == "dynamic_cv" || kind == "dynamic_smoothing")
-			overrideObjectModel(*f, ini, kind == "dynamic_cv" ? "cv" : "paper_smoothing");
+		if (kind == "dynamic_cv" || kind == "dynamic_ctrv")
+			overrideObjectModel(*f, ini, kind.substr(8));
+		else if (kind == "dynamic_smoothing")
+			overrideObjectModel(*f, ini, "paper_smoothing");
 		if (optionsDump)
 		{
 			*optionsDump << "# [DynamicKFSLAM] (CDynamicKFSLAM2D::TOptions)";

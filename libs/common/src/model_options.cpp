@@ -17,7 +17,7 @@ namespace
 void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
-	const std::vector<std::string> objectModels{"paper", "paper_smoothing", "cv"};
+	const std::vector<std::string> objectModels{"paper", "paper_smoothing", "cv", "ctrv"};
 	o.object_model = objectModels[size_t(readChoice(c, s, "object_model", objectModels, 0))];
 	if (o.object_model == "paper_smoothing")
 	{
@@ -28,7 +28,7 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	}
 	else if (o.object_model == "paper" && o.smoothing)
 		o.object_model = "paper_smoothing";
-	const bool cvModel = o.object_model == "cv";
+	const bool cvModel = o.objectCentric();
 	o.cv.dt = readPositive(c, s, "cv_dt", o.cv.dt, cvModel);
 	o.cv.accel_psd = readVector(c, s, "cv_accel_psd", o.cv.accel_psd, 3);
 	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
@@ -136,13 +136,13 @@ void TModelOptions::validate() const
 		throw std::invalid_argument(
 		    "keep_last_poses = " + std::to_string(keep_last_poses) +
 		    ": smoothing needs the last 3 object poses (keep_last_poses >= 3)");
-	if (object_model != "paper" && object_model != "paper_smoothing" && object_model != "cv")
+	if (object_model != "paper" && object_model != "paper_smoothing" && !objectCentric())
 		throw std::invalid_argument("object_model = " + object_model +
-		                            ": must be paper, paper_smoothing or cv");
-	if (object_model == "cv" && smoothing)
-		throw std::invalid_argument(
-		    "object_model = cv: the paper's smoothing (smoothing = true) "
-		    "is a different object model");
+		                            ": must be paper, paper_smoothing, cv or ctrv");
+	if (objectCentric() && smoothing)
+		throw std::invalid_argument("object_model = " + object_model +
+		                            ": the paper's smoothing (smoothing = true) "
+		                            "is a different object model");
 	if (!(cv_gate >= 0 && cv_gate < 1))
 		throw std::invalid_argument("cv_gate = " + std::to_string(cv_gate) +
 		                            ": must be a probability in [0, 1) (0 = no gate)");

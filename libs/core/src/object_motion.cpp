@@ -2,6 +2,7 @@
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +21,59 @@ Eigen::VectorXd cvPredict(const Eigen::VectorXd& s, double dt, Eigen::MatrixXd* 
 	{
 		J_out_s->setIdentity(2 * d, 2 * d);
 		J_out_s->topRightCorner(d, d).diagonal().setConstant(dt);
+	}
+	return out;
+}
+
+namespace
+{
+/** S = sin(w dt)/w, C = (1 - cos(w dt))/w and their derivatives by w; Taylor series in
+ * a = w dt below 1e-2 (truncation ~ a^6, below double precision there). */
+struct TTurnCoefficients
+{
+	double S, C, dS, dC;
+};
+TTurnCoefficients turnCoefficients(double w, double dt)
+{
+	const double a = w * dt;
+	if (std::abs(a) < 1e-2)
+	{
+		const double a2 = a * a;
+		return {dt * (1 - a2 / 6 + a2 * a2 / 120), dt * a * (0.5 - a2 / 24 + a2 * a2 / 720),
+		        dt * dt * a * (-1.0 / 3 + a2 / 30), dt * dt * (0.5 - a2 / 8 + a2 * a2 / 144)};
+	}
+	const double s = std::sin(a), c = std::cos(a);
+	return {s / w, (1 - c) / w, (dt * c * w - s) / (w * w), (dt * s * w - (1 - c)) / (w * w)};
+}
+}  // namespace
+
+Eigen::VectorXd ctrvPredict(const Eigen::VectorXd& s, double dt, Eigen::MatrixXd* J_out_s)
+{
+	if (s.size() == 4) return cvPredict(s, dt, J_out_s);  // no turn rate without a rotation
+	if (s.size() != 6)
+		throw std::invalid_argument("ctrvPredict: state of 4 or 6 entries, not " +
+		                            std::to_string(s.size()));
+	const double w = s[5], a = w * dt;
+	const TTurnCoefficients k = turnCoefficients(w, dt);
+	Eigen::Matrix2d A, dA, R, dR;
+	A << k.S, -k.C, k.C, k.S;
+	dA << k.dS, -k.dC, k.dC, k.dS;
+	R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+	dR << -std::sin(a), -std::cos(a), std::cos(a), -std::sin(a);
+	dR *= dt;
+	const Eigen::Vector2d v = s.segment<2>(3);
+	Eigen::VectorXd out = s;
+	out.head<2>() += A * v;
+	out[2] = wrapToPi(s[2] + a);
+	out.segment<2>(3) = R * v;
+	if (J_out_s)
+	{
+		J_out_s->setIdentity(6, 6);
+		J_out_s->block<2, 2>(0, 3) = A;
+		J_out_s->block<2, 1>(0, 5) = dA * v;
+		(*J_out_s)(2, 5) = dt;
+		J_out_s->block<2, 2>(3, 3) = R;
+		J_out_s->block<2, 1>(3, 5) = dR * v;
 	}
 	return out;
 }
@@ -81,6 +135,21 @@ Eigen::Vector2d observeObjectFeature(MeasurementModel m, const Eigen::Vector3d& 
 	    objectFeatureAt(xi, f0, k, J_z_xi ? &J_f_xi : nullptr, J_z_f0 ? &J_f_f0 : nullptr);
 	Eigen::Matrix2d J_z_f;
 	const Eigen::Vector2d z = observe(m, x, f, J_z_x, &J_z_f);
+	if (J_z_xi) *J_z_xi = J_z_f * J_f_xi;
+	if (J_z_f0) *J_z_f0 = J_z_f * J_f_f0;
+	return z;
+}
+
+Eigen::Vector2d observeObjectFeatureFromSensor(MeasurementModel m, const Eigen::Vector3d& x,
+                                               const Eigen::Vector3d& s, const Eigen::VectorXd& xi,
+                                               const Eigen::Matrix2Xd& f0, int k, Matrix23d* J_z_x,
+                                               Eigen::MatrixXd* J_z_xi, Eigen::MatrixXd* J_z_f0)
+{
+	Eigen::MatrixXd J_f_xi, J_f_f0;
+	const Eigen::Vector2d f =
+	    objectFeatureAt(xi, f0, k, J_z_xi ? &J_f_xi : nullptr, J_z_f0 ? &J_f_f0 : nullptr);
+	Eigen::Matrix2d J_z_f;
+	const Eigen::Vector2d z = observeFromSensor(m, x, s, f, J_z_x, &J_z_f);
 	if (J_z_xi) *J_z_xi = J_z_f * J_f_xi;
 	if (J_z_f0) *J_z_f0 = J_z_f * J_f_f0;
 	return z;

@@ -8,6 +8,7 @@
 #include <dynslam/CMrptUpdateEngine.h>
 #include <dynslam/ekf_odometry_bias.h>
 #include <dynslam/ekf_steps.h>
+#include <dynslam/estimator/constant_turn_rate.h>
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/robust_update_engines.h>
 #include <dynslam/models/se2.h>
@@ -98,11 +99,14 @@ void CDynamicKFSLAM2D::reset()
 		else
 			m_engine = std::make_unique<CMrptUpdateEngine>(*this);
 	}
-	if (!m_userMotion && options.object_model == "cv")
+	if (!m_userMotion && options.objectCentric())
 	{
 		estimator::TCvParams cv = options.cv;
 		cv.gate = estimator::gateThreshold2Dof(options.cv_gate);
-		m_motion = std::make_unique<estimator::CConstantVelocity>(cv);
+		if (options.object_model == "ctrv")
+			m_motion = std::make_unique<estimator::CConstantTurnRate>(cv);
+		else
+			m_motion = std::make_unique<estimator::CConstantVelocity>(cv);
 	}
 	else if (!m_userMotion)
 		m_motion = estimator::makeObjectMotionModel(options.smoothing, options.Sigma_s);

@@ -36,6 +36,18 @@ std::map<int32_t, TObjectState> objectStates(const estimator::CPaddedLayout& L)
 	return out;
 }
 
+/** z = h(x (+) s, g(xi, f0)_k); a sensor at the robot origin keeps the code path measured
+ * before the sensor offset was supported. */
+Eigen::Vector2d sighting(models::MeasurementModel m, const Eigen::Vector3d& x,
+                         const Eigen::Vector3d& s, const Eigen::VectorXd& xi,
+                         const Eigen::Matrix2Xd& f0, int k, models::Matrix23d* J_z_x,
+                         Eigen::MatrixXd* J_z_xi, Eigen::MatrixXd* J_z_f0)
+{
+	return s.isZero(0)
+	           ? models::observeObjectFeature(m, x, xi, f0, k, J_z_x, J_z_xi, J_z_f0)
+	           : models::observeObjectFeatureFromSensor(m, x, s, xi, f0, k, J_z_x, J_z_xi, J_z_f0);
+}
+
 std::vector<int> concat(std::vector<int> a, const std::vector<int>& b)
 {
 	a.insert(a.end(), b.begin(), b.end());
@@ -121,8 +133,8 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 			models::Matrix23d J_z_x;
 			Eigen::MatrixXd J_z_xi, J_z_f0;
 			const Eigen::Vector2d zhat =
-			    models::observeObjectFeature(options.measurement_model, ego, xi, f0,
-			                                 info.indexOf(m.reading.id), &J_z_x, &J_z_xi, &J_z_f0);
+			    sighting(options.measurement_model, ego, m_in.sensor_pose, xi, f0,
+			             info.indexOf(m.reading.id), &J_z_x, &J_z_xi, &J_z_f0);
 			Eigen::MatrixXd H(2, idx.size());
 			H << J_z_x, J_z_xi, J_z_f0;
 			const Eigen::Vector2d nu =

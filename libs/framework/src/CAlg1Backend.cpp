@@ -28,12 +28,11 @@ void CAlg1Backend::reset()
 	m_step = -1;
 	if (!m_userRouter) m_router = estimator::makeRouter("ids");
 	m_router->reset();
-	if (m_opts.model.object_model == "cv")
-		throw std::invalid_argument(
-		    "[DynamicKFSLAM] object_model = cv: not implemented in the framework's back-ends "
-		    "(the dynamic EKF only, issue 13)");
-	if (!m_userMotion)
+	if (!m_userMotion && m_opts.model.objectCentric())
+		m_motion = makeObjectCentricModel(m_opts.model);
+	else if (!m_userMotion)
 		m_motion = estimator::makeObjectMotionModel(m_opts.model.smoothing, m_opts.model.Sigma_s);
+	m_velocitySince.clear();
 	m_drop = estimator::CDropPolicy(m_opts.model.dropOptions());
 	m_droppedStatic.clear();
 	m_report = TStepReport();
@@ -89,10 +88,13 @@ void CAlg1Backend::processActionObservation(const mrpt::obs::CActionCollection::
 	    m_step, in.readings, [this](int32_t id) { return m_cost.has(TVarKey::landmark(id)); });
 	m_report.skipped_unknown_object_feature = routed.skipped_unknown_object_feature;
 	propagate(in);                      // Alg. 7 / Theorem A.5
+	predictObjects();                   // object-centric models only (cv, ctrv)
 	staticSteps(routed);                // Alg. 5 / A.3, then Alg. 3 / A.1
+	objectFeatureUpdates(routed);       // object-centric models only
 	objectFeatureAugmentation(routed);  // Alg. 3 / A.1 (objects)
 	objectPoseAugmentation();           // Alg. 4 / Theorem 4.1
 	objectMotion();                     // Alg. 6 / Theorem 4.2 (optional)
+	initObjectVelocities();             // object-centric models only
 	drops();
 }
 
@@ -187,8 +189,11 @@ void CAlg1Backend::objectFeatureAugmentation(const estimator::TRoutedStep& in)
 		m_cost.marginalize(stale);
 	}
 	const Eigen::Vector3d x = m_cost.value(m_ego);
+	size_t added = 0;
 	for (const auto& m : objects)
 	{
+		if (hasVelocity(m.object)) continue;  // its readings were updates (objectFeatureUpdates)
+		++added;
 		const TVarKey k = TVarKey::objectFeature(m.object, m.feature, m_step);
 		if (m.route == estimator::Route::ObjectFirstSighting)
 			++m_report.object_features_new;
@@ -202,7 +207,7 @@ void CAlg1Backend::objectFeatureAugmentation(const estimator::TRoutedStep& in)
 		m_cost.addTerm(std::make_shared<CMeasurementTerm>(
 		    m_ego.step, k, m.reading.z, mo.measurement_model, mo.Sigma_v, m_sensor));
 	}
-	if (!objects.empty()) gnAndCollapse();
+	if (added > 0) gnAndCollapse();
 }
 
 // Alg. 4 per object as a GN step (Theorem 4.1).
@@ -389,6 +394,11 @@ void CAlg1Backend::getLabelledState(Eigen::VectorXd& x, Eigen::MatrixXd& P,
 				if (m_cost.dim(k) == 3) labels.push_back(p + ".dtheta");
 				break;
 			}
+			case VarKind::ObjectVelocity:  // the EKF's label: the step the velocity was added
+				for (int i = 0; i < m_cost.dim(k); ++i)
+					labels.push_back(ob + ".v" + std::to_string(m_velocitySince.at(k.id)) + "." +
+					                 std::to_string(i));
+				break;
 		}
 	}
 }

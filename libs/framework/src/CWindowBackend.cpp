@@ -28,10 +28,10 @@ void CWindowBackend::reset()
 	m_egoLink.reset();
 	m_step = -1;
 	m_router = estimator::makeRouter("ids");
-	if (m_opts.model.object_model == "cv")
-		throw std::invalid_argument(
-		    "[DynamicKFSLAM] object_model = cv: not implemented in the framework's back-ends "
-		    "(the dynamic EKF only, issue 13)");
+	if (m_opts.model.objectCentric())
+		throw std::invalid_argument("[DynamicKFSLAM] object_model = " + m_opts.model.object_model +
+		                            ": not implemented in the windowed back-end "
+		                            "(the dynamic EKF only, issue 13)");
 	m_motion = estimator::makeObjectMotionModel(m_opts.model.smoothing, m_opts.model.Sigma_s);
 	m_drop = estimator::CDropPolicy(m_opts.model.dropOptions());
 	m_body.clear();

@@ -21,6 +21,8 @@ std::string toString(const TVarKey& k)
 			return "xi[obj " + std::to_string(k.id) + ", t " + t + "]";
 		case VarKind::ObjectBodyPose:
 			return "O[obj " + std::to_string(k.id) + ", t " + t + "]";
+		case VarKind::ObjectVelocity:
+			return "v[obj " + std::to_string(k.id) + ", t " + t + "]";
 	}
 	return "?";
 }

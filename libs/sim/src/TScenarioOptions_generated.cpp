@@ -45,7 +45,10 @@ void readGenerated(const CConfigFileBase& c, TGeneratedOptions& g)
 	                        "car_speed_factor_max",
 	                        "pedestrian_speed",
 	                        "yaw_rate_max",
-	                        "object_spread"});
+	                        "object_spread",
+	                        "car_brakes",
+	                        "car_brake_decel",
+	                        "car_brake_speed_factor"});
 	g.track_radius = cfg::readNonNegative(c, G, "track_radius", 0, true);
 	g.ego_speed = cfg::readPositive(c, G, "ego_speed", 10, true);
 	g.num_landmarks = int(readCount(c, G, "num_landmarks", 200, true, ids::kStaticMax + 1));
@@ -83,6 +86,12 @@ void readGenerated(const CConfigFileBase& c, TGeneratedOptions& g)
 	g.pedestrian_speed = cfg::readPositive(c, G, "pedestrian_speed", 1.4);
 	g.yaw_rate_max = cfg::readPositive(c, G, "yaw_rate_max", 0.5);
 	g.object_spread = cfg::readPositive(c, G, "object_spread", 60);
+	g.car_brakes = int(readCount(c, G, "car_brakes", 0, false, 1000));
+	g.car_brake_decel = cfg::readPositive(c, G, "car_brake_decel", 6.0);
+	g.car_brake_speed_factor = cfg::readNonNegative(c, G, "car_brake_speed_factor", 0.2);
+	if (g.car_brake_speed_factor >= 1)
+		cfg::fail(G, "car_brake_speed_factor", fmt(g.car_brake_speed_factor),
+		          "a brake slows down: must be < 1");
 	if (g.track_radius > 0)
 	{
 		const double reach = std::max(g.landmark_offset_max,
@@ -118,5 +127,11 @@ void dumpGenerated(std::ostream& o, const TGeneratedOptions& g)
 	o << "pedestrian_speed = " << fmt(g.pedestrian_speed) << "\n";
 	o << "yaw_rate_max = " << fmt(g.yaw_rate_max) << "\n";
 	o << "object_spread = " << fmt(g.object_spread) << "\n";
+	if (g.car_brakes > 0)  // written only when on: the other effective configurations unchanged
+	{
+		o << "car_brakes = " << g.car_brakes << "\n";
+		o << "car_brake_decel = " << fmt(g.car_brake_decel) << "\n";
+		o << "car_brake_speed_factor = " << fmt(g.car_brake_speed_factor) << "\n";
+	}
 }
 }  // namespace dynslam::sim::detail

@@ -88,11 +88,37 @@ double randomSide(mrpt::random::CRandomGenerator& rng)
 	return rng.drawUniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
 }
 
+/** The speed ramps of a car's hard brakes (TGeneratedOptions::car_brakes; none if 0). A
+ * smoothstep ramp of duration D from v to f v has a peak deceleration 1.5 v (1 - f) / D. */
+std::vector<TRamp> brakeRamps(const TGeneratedOptions& g, double v, double T,
+                              mrpt::random::CRandomGenerator& rng)
+{
+	std::vector<TRamp> r;
+	if (g.car_brakes <= 0 || !(v > 0)) return r;
+	const double f = g.car_brake_speed_factor, hold = 2.0;
+	const double D = 1.5 * v * (1 - f) / g.car_brake_decel, span = 2 * D + hold;
+	const double slot = T / g.car_brakes;
+	if (slot < span)
+		throw std::invalid_argument("[Generated] car_brakes = " + std::to_string(g.car_brakes) +
+		                            ": a brake takes " + std::to_string(span) +
+		                            " s, more than the run's " + std::to_string(slot) +
+		                            " s per brake");
+	for (int i = 0; i < g.car_brakes; ++i)
+	{
+		const double t0 = i * slot + rng.drawUniform(0.0, slot - span);
+		r.push_back({t0, D, f * v});
+		r.push_back({t0 + D + hold, D, v});
+	}
+	return r;
+}
+
 /** Cars: in a lane other than the ego's (lane centres at +-j lane_width), around the ego,
  * speed ego_speed * factor with a +-10% sine variation (period 20-60 s), weaving by up to
  * a quarter lane (period 10-30 s). */
-void addCars(TWorld& w, const TGeneratedOptions& g, mrpt::random::CRandomGenerator& rng)
+void addCars(TWorld& w, const TGeneratedOptions& g, double T, uint32_t brakeSeed,
+             mrpt::random::CRandomGenerator& rng)
 {
+	mrpt::random::CRandomGenerator brakeRng(brakeSeed);  // private: rng's draws unchanged
 	auto side = [&]() { return randomSide(rng); };
 	const int sideLanes = std::max(1, (g.num_lanes - 1) / 2);
 	for (int i = 0; i < g.num_cars; ++i)
@@ -108,7 +134,8 @@ void addCars(TWorld& w, const TGeneratedOptions& g, mrpt::random::CRandomGenerat
 		const double wv = 2 * M_PI / rng.drawUniform(20.0, 60.0),
 		             wl = 2 * M_PI / rng.drawUniform(10.0, 30.0);
 		obj.motion.s0 = s0;
-		obj.motion.speed = CSmoothProfile(v, {}, 0.1 * v, wv, rng.drawUniform(0.0, 2 * M_PI));
+		obj.motion.speed = CSmoothProfile(v, brakeRamps(g, v, T, brakeRng), 0.1 * v, wv,
+		                                  rng.drawUniform(0.0, 2 * M_PI));
 		obj.motion.lateral = CSmoothProfile(d0, {}, rng.drawUniform(0.0, 0.25 * g.lane_width), wl,
 		                                    rng.drawUniform(0.0, 2 * M_PI));
 		obj.body = g.features_per_car == 4
@@ -142,7 +169,7 @@ TWorld buildGenerated(const TScenarioOptions& o)
 		const double d = side() * rng.drawUniform(g.landmark_offset_min, g.landmark_offset_max);
 		if (!o.inLandmarkGap(s)) w.landmarks.emplace(int32_t(i), w.track.point(s, d));
 	}
-	addCars(w, g, rng);
+	addCars(w, g, T, o.world_seed ^ 0x5BD1E995u, rng);
 	// Pedestrians: cross the road back and forth (d = D sin(w t + phi), D = half the road plus
 	// 2 m, peak speed pedestrian_speed) while drifting 0.3 m/s along it, placed along the
 	// ego's path.

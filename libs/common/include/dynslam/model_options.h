@@ -50,8 +50,11 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * (default: objects follow their features, Alg. 3-4, smoothing per `smoothing`),
 	 * paper_smoothing (= paper with smoothing = true), cv (constant velocity: each object's pose
 	 * and world-frame velocity are predicted every step and its sightings update ego, pose and
-	 * body-frame features together; EKF only). */
+	 * body-frame features together), ctrv (the same with a constant turn rate: the velocity
+	 * turns at omega, models::ctrvPredict; it reads the cv_* keys). */
 	std::string object_model = "paper";
+	/** cv or ctrv: an object-centric model (objects have a velocity and update the state). */
+	bool objectCentric() const { return object_model == "cv" || object_model == "ctrv"; }
 	/** cv: cv_dt [s per step] (required with cv), cv_accel_psd (white-acceleration spectral
 	 * densities ax, ay, alpha), cv_velocity_prior_std (vx, vy, omega; > 0), cv_gate (chi-square
 	 * probability of the per-reading gate on object readings, 0 = no gate; a gated reading is

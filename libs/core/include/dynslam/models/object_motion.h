@@ -15,6 +15,17 @@
  * acceleration with spectral density q_i per axis (discrete form, per axis i):
  *     Q_i = q_i [dt^3/3  dt^2/2; dt^2/2  dt]   on (xi_i, v_i).
  *
+ * Constant turn rate and velocity (CTRV), the same state: the reference point moves with a
+ * constant speed and a velocity that turns at omega (a rigid body with a constant body-frame
+ * twist: every point of it moves on a circle at the same omega). With a = omega dt,
+ *
+ *     p'  = p + A(omega) v,   A = [S -C; C S],  S = sin(a)/omega,  C = (1 - cos a)/omega
+ *     th' = th + a (wrapped),  v' = R(a) v,  omega' = omega   (+ process noise)
+ *
+ * For |a| < 1e-2 S and C (and their derivatives) are evaluated by their Taylor series (no
+ * division by omega; omega = 0 gives exactly the CV step). Zero speed needs no special case
+ * (nothing divides by |v|). A translation-only pose (d = 2) has no turn rate: CTRV is then CV.
+ *
  * A sighting of feature k of an object is z = h(x_ego, g(xi, f0)_k): the measurement of
  * ego, object pose and the object's body-frame features together. */
 #include <dynslam/models/measurement.h>
@@ -26,6 +37,12 @@ namespace dynslam::models
 /** CV prediction of s = [xi; v] (2d entries, d = 2 or 3) over dt: returns s'; J_out_s
  * (2d x 2d) = [I, dt I; 0, I]. Throws std::invalid_argument on a wrong size. */
 Eigen::VectorXd cvPredict(const Eigen::VectorXd& s, double dt, Eigen::MatrixXd* J_out_s = nullptr);
+
+/** CTRV prediction of s = [xi; v] (6 entries; 4 entries: the CV step) over dt: returns s';
+ * J_out_s (6 x 6) the exact Jacobian (series near omega = 0). Throws std::invalid_argument on
+ * a wrong size. */
+Eigen::VectorXd ctrvPredict(const Eigen::VectorXd& s, double dt,
+                            Eigen::MatrixXd* J_out_s = nullptr);
 
 /** White-acceleration process noise of the CV model for d = q.size() axes (2d x 2d, entries
  * ordered as s = [xi; v]). q >= 0. */
@@ -49,4 +66,13 @@ Eigen::Vector2d observeObjectFeature(MeasurementModel m, const Eigen::Vector3d& 
                                      const Eigen::VectorXd& xi, const Eigen::Matrix2Xd& f0, int k,
                                      Matrix23d* J_z_x = nullptr, Eigen::MatrixXd* J_z_xi = nullptr,
                                      Eigen::MatrixXd* J_z_f0 = nullptr);
+
+/** The same from a sensor at pose s on the robot: z = h(x (+) s, g(xi, f0)_k)
+ * (models::observeFromSensor). */
+Eigen::Vector2d observeObjectFeatureFromSensor(MeasurementModel m, const Eigen::Vector3d& x,
+                                               const Eigen::Vector3d& s, const Eigen::VectorXd& xi,
+                                               const Eigen::Matrix2Xd& f0, int k,
+                                               Matrix23d* J_z_x = nullptr,
+                                               Eigen::MatrixXd* J_z_xi = nullptr,
+                                               Eigen::MatrixXd* J_z_f0 = nullptr);
 }  // namespace dynslam::models

@@ -16,6 +16,12 @@
  *  6. smoothing (Alg. 6, Theorem 4.2), optional, GN;
  *  7. drops (time-t features, old object poses, unseen static landmarks): marginalization
  *     (deleting rows and columns of a covariance is marginalizing the Gaussian).
+ * With an object-centric model (object_model = cv | ctrv, issue 13; framework/
+ * object_motion_terms.h) also: after 1, every object with a velocity is predicted (motion term
+ * from (xi, v) at t-1 to t, then (xi, v) at t-1 marginalized); after 2, its sightings are
+ * measurement terms of ego, pose and body-frame features, one GN step per object (with the
+ * model's gate); after 6, a new object's velocity is added with its initialisation term (GN).
+ * The same steps as the EKF's, so Alg. 1 equals it (tests/framework/alg1_equivalence_test.cpp).
  * After every GN step the cost is replaced by ||x - mu||^2_{J^T J} (Alg. 1: "cost <- ...").
  * The state is kept in information form; covariances are computed when asked for. */
 #include <dynslam/ISlamBackend.h>
@@ -70,6 +76,16 @@ private:
 	void objectPoseAugmentation();
 	void objectMotion();  // the object motion model's pseudo-measurements (Alg. 6)
 	void drops();
+	// object-centric models (CAlg1Backend_objects.cpp; nothing with the paper's models)
+	bool objectCentric() const;
+	/** cv or ctrv from the options (gate from cv_gate); the inflation rule is EKF only:
+	 * std::invalid_argument if it is on. */
+	static std::shared_ptr<const estimator::IObjectMotionModel> makeObjectCentricModel(
+	    const TModelOptions& o);
+	void predictObjects();
+	void objectFeatureUpdates(const estimator::TRoutedStep& in);
+	void initObjectVelocities();
+	bool hasVelocity(int32_t obj) const { return m_velocitySince.count(obj) > 0; }
 	Eigen::MatrixXd marginalCov(const TVarKey& k) const;
 	bool isTimeT(const TVarKey& k) const;
 
@@ -83,7 +99,8 @@ private:
 	bool m_userRouter = false, m_userMotion = false;
 	estimator::CDropPolicy m_drop;
 	std::vector<TStaticLandmarkEstimate> m_droppedStatic;
-	std::vector<TVarKey> m_newTimeT;  ///< time-t features added this step, observation order
+	std::vector<TVarKey> m_newTimeT;         ///< time-t features added this step, observation order
+	std::map<int32_t, int> m_velocitySince;  ///< object -> step its velocity was added
 	TStepReport m_report;
 };
 }  // namespace dynslam::framework

@@ -10,6 +10,8 @@
  * | ObjectPose      | object a, step t (xi_t, relative to the object's time 0) | 3 (2 for
  * one-feature objects) | 2 if dim 3 | | ObjectBodyPose  | object a, step t (global pose of the
  * object's body frame; CubeSLAM-like) | 3 (or 2) | 2 if dim 3 |
+ * | ObjectVelocity  | object a, step t (object_model = cv / ctrv: (vx, vy, omega), world frame) |
+ * 3 (2 for one-feature objects) | - |
  *
  * A variable's value is a VectorXd; angle entries are kept wrapped to (-pi, pi]. */
 #include <Eigen/Core>
@@ -25,7 +27,8 @@ enum class VarKind : uint8_t
 	StaticLandmark,
 	ObjectFeature,
 	ObjectPose,
-	ObjectBodyPose
+	ObjectBodyPose,
+	ObjectVelocity
 };
 
 struct TVarKey
@@ -45,6 +48,11 @@ struct TVarKey
 	static TVarKey objectBodyPose(int32_t obj, int t)
 	{
 		return {VarKind::ObjectBodyPose, obj, -1, t};
+	}
+
+	static TVarKey objectVelocity(int32_t obj, int t)
+	{
+		return {VarKind::ObjectVelocity, obj, -1, t};
 	}
 
 	bool operator<(const TVarKey& o) const

@@ -95,6 +95,14 @@ struct TGeneratedOptions
 	double pedestrian_speed = 1.4;                                  ///< crossing speed [m/s]
 	double yaw_rate_max = 0.5;  ///< rotating objects: |yaw rate| uniform in [0.1, max] [rad/s]
 	double object_spread = 60;  ///< objects start within this distance of the ego [m]
+	/** Hard brakes of the cars (issue 13): each car brakes car_brakes times (0: never, the
+	 * default; the world is then the one without these keys), at a random time in each of
+	 * car_brakes equal slots of the run, to car_brake_speed_factor times its base speed with a
+	 * peak deceleration car_brake_decel [m/s^2], holds that speed for 2 s, and speeds up
+	 * again at the same rate. Drawn from a private generator: the other draws are unchanged. */
+	int car_brakes = 0;
+	double car_brake_decel = 6.0;
+	double car_brake_speed_factor = 0.2;
 };
 
 /** [Effects] (issue 12): what a real front-end does to the readings. All off by default (the

@@ -1,0 +1,73 @@
+#pragma once
+/** @file object_motion_terms.h
+ * The terms of the object-centric motion models (issue 13, `object_model = cv | ctrv`;
+ * doc/framework.md "Object-centric motion models"):
+ *
+ * | term                    | residual                                         | information     |
+ * |-------------------------|--------------------------------------------------|-----------------|
+ * | CObjectMotionTerm       | [xi_t; v_t] (-) f([xi_{t-1}; v_{t-1}])            | (a Q)^-1        |
+ * | CObjectSightingTerm     | z - h(x_t (+) s, g(xi_t, f_0)_k) (bearing wrapped) | Sigma_v^-1     |
+ * | CObjectVelocityInitTerm | v - v0(xi) (the model's initial velocity)          | Sigma_v0^-1    |
+ *
+ * f, Q and v0 are the IObjectMotionModel's (predict, initialVelocity): the same functions the
+ * EKF uses. A marginalization of (xi_{t-1}, v_{t-1}) with the motion term is the EKF's object
+ * prediction; a GN step on the sighting terms of an object is its measurement update; a GN step
+ * on the initialisation term is the EKF's velocity augmentation. */
+#include <dynslam/estimator/object_motion_model.h>
+#include <dynslam/framework/terms.h>
+
+namespace dynslam::framework
+{
+/** Keys {xi_{t-1}, v_{t-1}, xi_t, v_t}; Q times `noiseScale` (the inflation rule's factor);
+ * throws std::invalid_argument if that covariance is not positive definite (a zero spectral
+ * density: the framework needs an invertible process noise). */
+class CObjectMotionTerm : public CTerm
+{
+public:
+	CObjectMotionTerm(std::shared_ptr<const estimator::IObjectMotionModel> model,
+	                  const TVarKey& xiPrev, const TVarKey& vPrev, const TVarKey& xi,
+	                  const TVarKey& v, double noiseScale = 1.0);
+	std::string name() const override { return "object_motion:" + m_model->name(); }
+	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
+
+private:
+	std::shared_ptr<const estimator::IObjectMotionModel> m_model;
+	double m_scale;
+};
+
+/** A sighting of feature k of an object with pose xi_t and time-0 (body-frame) features f0
+ * (all n of them: the centroid of the pose map depends on all). Keys {x_t, xi_t, f0...}. */
+class CObjectSightingTerm : public CTerm
+{
+public:
+	CObjectSightingTerm(int t, const TVarKey& xi, const std::vector<TVarKey>& f0, int k,
+	                    const Eigen::Vector2d& z, models::MeasurementModel model,
+	                    const Eigen::Matrix2d& Sigma_v,
+	                    const Eigen::Vector3d& sensor = Eigen::Vector3d::Zero());
+	std::string name() const override { return "object_sighting"; }
+	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
+
+private:
+	int m_k;
+	Eigen::Vector2d m_z;
+	Eigen::Vector3d m_sensor;
+	models::MeasurementModel m_model;
+	Eigen::Matrix2d m_info;
+};
+
+/** The velocity of a new object from its first pose, `steps` steps after its first sighting:
+ * v = v0(xi) + n, n ~ N(0, Sigma_v0) (IObjectMotionModel::initialVelocity). Keys {xi, v}. */
+class CObjectVelocityInitTerm : public CTerm
+{
+public:
+	CObjectVelocityInitTerm(std::shared_ptr<const estimator::IObjectMotionModel> model,
+	                        const TVarKey& xi, const TVarKey& v, int steps, int poseDim);
+	std::string name() const override { return "object_velocity_init"; }
+	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
+
+private:
+	std::shared_ptr<const estimator::IObjectMotionModel> m_model;
+	int m_steps;
+	Eigen::MatrixXd m_info;
+};
+}  // namespace dynslam::framework

@@ -1,0 +1,144 @@
+/** CAlg1Backend: the steps of the object-centric motion models (object_model = cv | ctrv,
+ * issue 13) as framework operations: the prediction of each object's pose and velocity is a
+ * motion term followed by a marginalization (as Alg. 7 for the ego, Theorem A.5), the
+ * sightings of an object are measurement terms and one GN step (Theorem A.3), the velocity of
+ * a new object is an augmentation (GN step on its initialisation term, Theorem A.1). The EKF's
+ * counterparts are in libs/ekf/src/CDynamicKFSLAM2D_cv.cpp. */
+#include <dynslam/backend_results.h>
+#include <dynslam/estimator/constant_turn_rate.h>
+#include <dynslam/estimator/constant_velocity.h>
+#include <dynslam/estimator/update_engine.h>
+#include <dynslam/framework/CAlg1Backend.h>
+#include <dynslam/framework/object_motion_terms.h>
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace dynslam::framework
+{
+std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeObjectCentricModel(
+    const TModelOptions& o)
+{
+	estimator::TCvParams p = o.cv;
+	p.gate = estimator::gateThreshold2Dof(o.cv_gate);
+	if (p.inflationOn())
+		throw std::invalid_argument(
+		    "[DynamicKFSLAM] cv_inflation_threshold / cv_inflation_factor: the process-noise "
+		    "inflation rule is not implemented in the framework (the dynamic EKF only)");
+	if ((p.accel_psd.array() <= 0).any())
+		throw std::invalid_argument(
+		    "[DynamicKFSLAM] cv_accel_psd: every entry must be > 0 in the framework (its motion "
+		    "term needs an invertible process noise; the dynamic EKF accepts 0)");
+	if (o.object_model == "ctrv") return std::make_shared<estimator::CConstantTurnRate>(p);
+	return std::make_shared<estimator::CConstantVelocity>(p);
+}
+
+bool CAlg1Backend::objectCentric() const
+{
+	return m_motion->velocityDim(3) > 0 || m_motion->velocityDim(2) > 0;
+}
+
+void CAlg1Backend::predictObjects()
+{
+	if (!objectCentric()) return;
+	for (auto& [obj, since] : m_velocitySince)
+	{
+		TVarKey xi, v = TVarKey::objectVelocity(obj, -1);
+		for (const auto& k : m_cost.keys())
+		{
+			if (k.kind == VarKind::ObjectPose && k.id == obj) xi = k;  // one pose per object
+			if (k.kind == VarKind::ObjectVelocity && k.id == obj) v = k;
+		}
+		if (xi.kind != VarKind::ObjectPose || !m_cost.has(v))
+			throw std::logic_error("CAlg1Backend: an object velocity without its pose");
+		// The pose of the previous step is replaced by the prediction: recorded like a drop.
+		TObjectPoseEstimate e;
+		e.step = xi.step;
+		e.mean = m_cost.value(xi);
+		e.cov = marginalCov(xi);
+		m_router->registry().recordDroppedPose(obj, toRecord(e), m_drop.record());
+		const int d = m_cost.dim(xi), dv = m_cost.dim(v);
+		Eigen::VectorXd s(d + dv);
+		s << m_cost.value(xi), m_cost.value(v);
+		const Eigen::VectorXd pred = m_motion->predict(s, nullptr, nullptr);
+		const TVarKey xiNext = TVarKey::objectPose(obj, m_step);
+		const TVarKey vNext = TVarKey::objectVelocity(obj, m_step);
+		m_cost.addVariable(xiNext, pred.head(d));
+		m_cost.addVariable(vNext, pred.tail(dv));
+		m_cost.addTerm(std::make_shared<CObjectMotionTerm>(m_motion, xi, v, xiNext, vNext,
+		                                                   m_motion->processNoiseScale(obj)));
+		m_cost.marginalize({xi, v});
+	}
+}
+
+void CAlg1Backend::objectFeatureUpdates(const estimator::TRoutedStep& in)
+{
+	std::map<int32_t, std::vector<estimator::TRoutedReading>> byObject;
+	for (const auto& m : in.with(estimator::Route::ObjectTimeT))
+		if (hasVelocity(m.object)) byObject[m.object].push_back(m);
+	const auto& mo = m_opts.model;
+	const double gate = m_motion->readingGate();
+	for (const auto& [obj, readings] : byObject)
+	{
+		const estimator::TObjectEntry& info = m_router->registry().at(obj);
+		TVarKey xi;
+		for (const auto& k : m_cost.keys())
+			if (k.kind == VarKind::ObjectPose && k.id == obj) xi = k;
+		std::vector<TVarKey> f0;
+		for (size_t j = 0; j < info.feature_ids.size(); ++j)
+			f0.push_back(TVarKey::objectFeature(obj, info.feature_index[j], info.first_step));
+		std::vector<CTermPtr> terms;
+		for (const auto& m : readings)
+			terms.push_back(std::make_shared<CObjectSightingTerm>(
+			    m_ego.step, xi, f0, info.indexOf(m.reading.id), m.reading.z, mo.measurement_model,
+			    mo.Sigma_v, m_sensor));
+		if (std::isfinite(gate))  // each reading's NIS with its own innovation covariance
+		{
+			std::vector<TVarKey> blocks{m_ego, xi};
+			blocks.insert(blocks.end(), f0.begin(), f0.end());
+			const Eigen::MatrixXd P = m_cost.covariance(blocks);
+			std::vector<Eigen::VectorXd> vals;
+			for (const auto& k : blocks) vals.push_back(m_cost.value(k));
+			std::vector<CTermPtr> kept;
+			for (const auto& t : terms)
+			{
+				const TLinearization L = t->linearize(vals);
+				Eigen::MatrixXd H(2, P.cols());
+				for (size_t b = 0, c = 0; b < L.J.size(); c += size_t(L.J[b].cols()), ++b)
+					H.middleCols(Eigen::Index(c), L.J[b].cols()) = L.J[b];
+				const Eigen::Matrix2d S = H * P * H.transpose() + mo.Sigma_v;
+				if (L.r.dot(S.ldlt().solve(L.r)) > gate)
+					++m_report.object_gated_out;
+				else
+					kept.push_back(t);
+			}
+			terms = kept;
+		}
+		if (terms.empty()) continue;  // every reading gated out: the object coasts
+		for (const auto& t : terms) m_cost.addTerm(t);
+		gnAndCollapse();
+		m_report.object_feature_updates += terms.size();
+	}
+}
+
+void CAlg1Backend::initObjectVelocities()
+{
+	if (!objectCentric()) return;
+	bool added = false;
+	for (const auto& [obj, o] : m_router->registry().objects())
+	{
+		const TVarKey xi = TVarKey::objectPose(obj, m_step);
+		if (hasVelocity(obj) || !m_cost.has(xi)) continue;
+		const int d = m_cost.dim(xi);
+		if (m_motion->velocityDim(d) == 0) continue;
+		const int steps = m_step - o.first_step;
+		const TVarKey v = TVarKey::objectVelocity(obj, m_step);
+		m_cost.addVariable(v, m_motion->initialVelocity(m_cost.value(xi), steps, nullptr, nullptr));
+		m_cost.addTerm(std::make_shared<CObjectVelocityInitTerm>(m_motion, xi, v, steps, d));
+		m_velocitySince[obj] = m_step;
+		added = true;
+	}
+	if (added) gnAndCollapse();
+}
+}  // namespace dynslam::framework

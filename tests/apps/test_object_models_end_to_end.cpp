@@ -1,0 +1,38 @@
+/** The object-centric models end to end (issue 13): dynslam-compare on a generated scenario
+ * whose cars turn (circle of radius 70 m) and brake hard (config/generated_turning_braking.ini,
+ * the shipped datasets/turning_braking.rawlog): the object models must not drag the ego. */
+#include <apps_test_utils.h>
+#include <dynslam/apps/CCompareApp.h>
+
+#include <cstdio>
+
+using namespace dynslam;
+using namespace dynslam::apps;
+using apps_test::TArgs;
+
+TEST(CompareApp, TurningBrakingObjectsDoNotDragTheEgo)
+{
+	CCompareApp app;
+	TArgs a({"-c", apps_test::configFile("compare_turning_braking.ini"), "--no-figures", "-q"});
+	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
+	app.run();
+	ASSERT_EQ(app.rows.size(), 4u);
+	EXPECT_EQ(app.rows[0].filter, "static_landmarks_only");
+	EXPECT_EQ(app.rows[2].filter, "dynamic_cv");
+	EXPECT_EQ(app.rows[3].filter, "dynamic_ctrv");
+	const double so = app.rows[0].metrics.ate, dy = app.rows[1].metrics.ate;
+	const double cv = app.rows[2].metrics.ate, ctrv = app.rows[3].metrics.ate;
+	std::printf(
+	    "[ measured ] turning/braking ATE: static_landmarks_only %.4f m, dynamic %.4f m, "
+	    "dynamic_cv %.4f m, dynamic_ctrv %.4f m\n",
+	    so, dy, cv, ctrv);
+	// The issue's target: no worse than 1.05 x static_landmarks_only.
+	// Measured: 0.0144, 0.0085, 0.0096, 0.0088 m. The static baseline is MRPT's filter with
+	// range-bearing noise equivalent to the Cartesian noise only at 27.5 m, hence worse than the
+	// dynamic EKF, which equals the oracle that drops the moving features: against that one
+	// cv costs 13 %, ctrv 3.5 % (doc/results.md).
+	EXPECT_LE(cv, 1.05 * so);
+	EXPECT_LE(ctrv, 1.05 * so);
+	EXPECT_LE(ctrv, cv);  // the turning model drags the ego less than the straight one
+	EXPECT_LT(ctrv, 0.05);
+}
