@@ -21,6 +21,8 @@ const char* toString(BlockKind k)
 			return "object_velocity";
 		case BlockKind::OdometryBias:
 			return "odometry_bias";
+		case BlockKind::Compressed:
+			return "compressed";
 	}
 	return "?";
 }

@@ -22,7 +22,10 @@ enum class BlockKind : uint8_t
 	ObjectFeatureT,  ///< feature of a moving object now (time t)
 	ObjectPose,      ///< xi_t = (dx, dy, dtheta), or (dx, dy) for one-feature objects
 	ObjectVelocity,  ///< object velocity of object-centric motion models (vx, vy[, omega])
-	OdometryBias     ///< (b_w) or (b_w, s): odometry bias (dynslam/models/odometry_bias.h)
+	OdometryBias,    ///< (b_w) or (b_w, s): odometry bias (dynslam/models/odometry_bias.h)
+	/** Compressed EKF only (compressed_state.h): two columns of the accumulated cross-covariance
+	 * of the active state with the passive one (`object` = the level, `feature` = the pair). */
+	Compressed
 };
 const char* toString(BlockKind k);
 
