@@ -102,7 +102,7 @@ void expandState(Eigen::VectorXd& x, ekf::RowMatrixXd& P, CPaddedLayout& layout,
 	const std::vector<int> act = layout.keptStorage(isC);
 	CPaddedLayout out;
 	for (size_t b = 0; b < layout.size(); ++b)
-		if (!isC[b]) out.append(layout[b]);
+		if (!isC[b]) out.appendNumbered(layout[b]);
 
 	Eigen::Index N = Eigen::Index(act.size());
 	for (const auto& lv : levels)
@@ -139,7 +139,7 @@ void expandState(Eigen::VectorXd& x, ekf::RowMatrixXd& P, CPaddedLayout& layout,
 		Po.block(nf, 0, nF, nf) = CB(Eigen::all, F).transpose();
 		Po.block(nf, nf, nF, nF) = BB(F, F);
 		for (const TBlock& b : lv.blocks)
-			if (b.kind != BlockKind::Compressed) out.append(b);
+			if (b.kind != BlockKind::Compressed) out.appendNumbered(b);
 		if (l == 0)
 		{
 			if (!S.empty()) throw std::logic_error("expandState: the first level holds C entries");
@@ -156,9 +156,21 @@ void expandState(Eigen::VectorXd& x, ekf::RowMatrixXd& P, CPaddedLayout& layout,
 		beta = xB(S);
 		nf += nF;
 	}
-	x = std::move(xo);
-	P = std::move(Po);
-	layout = std::move(out);
+	// Back to creation order (the full EKF's storage order).
+	std::vector<size_t> order(out.size());
+	for (size_t b = 0; b < order.size(); ++b) order[b] = b;
+	std::stable_sort(order.begin(), order.end(),
+	                 [&](size_t a, size_t b) { return out[a].seq < out[b].seq; });
+	CPaddedLayout sorted;
+	std::vector<int> perm{0, 1, 2};
+	for (const size_t b : order)
+	{
+		sorted.appendNumbered(out[b]);
+		for (int i = 0; i < 2 * out[b].slots(); ++i) perm.push_back(out.first(b) + i);
+	}
+	x = xo(perm);
+	P = Po(perm, perm);
+	layout = std::move(sorted);
 	levels.clear();
 }
 }  // namespace dynslam::estimator

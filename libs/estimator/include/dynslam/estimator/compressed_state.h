@@ -52,9 +52,8 @@ TPassiveLevel compressState(const Eigen::Ref<const Eigen::VectorXd>& x,
 
 /** The global update: brings every level's passive blocks up to date from the accumulated
  * matrices held by the state's Compressed entries (levels in the order they were made, the last
- * one's C blocks in the state) and writes the full state: the non-compressed entries in their
- * order, then the passive blocks of the last level, of the one before, ... (Compressed blocks
- * removed). Clears `levels`. */
+ * one's C blocks in the state) and writes the full state, its blocks in creation order
+ * (TBlock::seq: the full EKF's storage order), the Compressed blocks removed. Clears `levels`. */
 void expandState(Eigen::VectorXd& x, ekf::RowMatrixXd& P, CPaddedLayout& layout,
                  std::vector<TPassiveLevel>& levels);
 }  // namespace dynslam::estimator
