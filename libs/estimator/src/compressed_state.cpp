@@ -31,6 +31,27 @@ void splitPassive(const std::vector<TBlock>& blocks, std::vector<int>& final_pos
 		comp_pos.push_back(o + 1);
 	}
 }
+/** Writes (xo, Po, out) to (x, P, layout) with the blocks in creation order (TBlock::seq,
+ * the full EKF's storage order). */
+void restoreCreationOrder(const CPaddedLayout& out, const Eigen::VectorXd& xo,
+                          const ekf::RowMatrixXd& Po, Eigen::VectorXd& x, ekf::RowMatrixXd& P,
+                          CPaddedLayout& layout)
+{
+	std::vector<size_t> order(out.size());
+	for (size_t b = 0; b < order.size(); ++b) order[b] = b;
+	std::stable_sort(order.begin(), order.end(),
+	                 [&](size_t a, size_t b) { return out[a].seq < out[b].seq; });
+	CPaddedLayout sorted;
+	std::vector<int> perm{0, 1, 2};
+	for (const size_t b : order)
+	{
+		sorted.appendNumbered(out[b]);
+		for (int i = 0; i < 2 * out[b].slots(); ++i) perm.push_back(out.first(b) + i);
+	}
+	x = xo(perm);
+	P = Po(perm, perm);
+	layout = std::move(sorted);
+}
 }  // namespace
 
 TPassiveLevel compressState(const Eigen::Ref<const Eigen::VectorXd>& x,
@@ -156,21 +177,7 @@ void expandState(Eigen::VectorXd& x, ekf::RowMatrixXd& P, CPaddedLayout& layout,
 		beta = xB(S);
 		nf += nF;
 	}
-	// Back to creation order (the full EKF's storage order).
-	std::vector<size_t> order(out.size());
-	for (size_t b = 0; b < order.size(); ++b) order[b] = b;
-	std::stable_sort(order.begin(), order.end(),
-	                 [&](size_t a, size_t b) { return out[a].seq < out[b].seq; });
-	CPaddedLayout sorted;
-	std::vector<int> perm{0, 1, 2};
-	for (const size_t b : order)
-	{
-		sorted.appendNumbered(out[b]);
-		for (int i = 0; i < 2 * out[b].slots(); ++i) perm.push_back(out.first(b) + i);
-	}
-	x = xo(perm);
-	P = Po(perm, perm);
-	layout = std::move(sorted);
+	restoreCreationOrder(out, xo, Po, x, P, layout);
 	levels.clear();
 }
 }  // namespace dynslam::estimator
