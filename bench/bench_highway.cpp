@@ -13,7 +13,8 @@ using namespace dynslam_bench;
 
 namespace
 {
-/** One full run of the shipped highway rawlog (121 steps). Arg: 0 = MRPT update, 1 = sparse. */
+/** One full run of the shipped highway rawlog (121 steps). Arg: 0 = MRPT update, 1 = sparse,
+ * 2 = compressed (static_update = compressed; the final global update included). */
 void BM_HighwayRun(benchmark::State& state)
 {
 	const TRun& run = highwayRun();
@@ -22,14 +23,19 @@ void BM_HighwayRun(benchmark::State& state)
 	{
 		dynslam::CDynamicKFSLAM2D f;
 		configureDynamic(f, run.Sigma_v, run.Sigma_0, sparse);
+		if (state.range(0) == 2)
+		{
+			f.options.compressed_static_update = true;
+			f.reset();
+		}
 		for (size_t k = 0; k < run.actions.size(); ++k)
 			f.processActionObservation(run.actions[k], run.frames[k]);
 		benchmark::DoNotOptimize(f.fullMean()[0]);
 	}
 	state.counters["steps"] = double(run.actions.size());
-	state.SetLabel(sparse ? "sparse" : "mrpt");
+	state.SetLabel(state.range(0) == 2 ? "compressed" : sparse ? "sparse" : "mrpt");
 }
-BENCHMARK(BM_HighwayRun)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HighwayRun)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 /** The same static-only run through MRPT's CRangeBearingKFSLAM2D (filter 0) and the dynamic EKF
  * with MRPT's update (1) or the sparse one (2). Args: filter, landmarks (highway_static with

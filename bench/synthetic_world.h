@@ -45,6 +45,9 @@ struct TSyntheticOptions
 	double range = 30.0;       ///< sensor range for static landmarks [m]
 	int max_visible = 20;      ///< at most this many static landmarks per step (nearest first)
 	bool first_step_sees_all = false;  ///< ring: step 0 reports all landmarks
+	/** Straight: step 0 also reports this many landmarks (IDs 0..prebuilt-1) lying behind the
+	 * start out of range for good (a pre-built map); the road's landmarks get the IDs after. */
+	int prebuilt = 0;
 	int objects = 0;
 	int features_per_object = 3;
 	Eigen::Matrix3d Sigma_w = Eigen::Vector3d(1e-5, 1e-5, 1e-7).asDiagonal();
@@ -109,7 +112,7 @@ public:
 			const int hi = int(std::ceil((p.x() + m_o.range) / m_o.spacing));
 			for (int i = lo; i <= hi; ++i)
 			{
-				if (i > dynslam::ids::kStaticMax)
+				if (i + m_o.prebuilt > dynslam::ids::kStaticMax)
 					throw std::runtime_error("CSyntheticWorld: ran out of static landmark IDs");
 				const double d = (straightLandmark(i) - p).norm();
 				if (d <= m_o.range) m_cand.push_back({d, i});
@@ -118,12 +121,15 @@ public:
 		std::sort(m_cand.begin(), m_cand.end());
 		size_t nmax =
 		    (m_k == 0 && m_o.first_step_sees_all) ? m_cand.size() : size_t(m_o.max_visible);
+		const bool ring = m_o.track == TSyntheticOptions::Track::Ring;
 		for (size_t j = 0; j < m_cand.size() && j < nmax; ++j)
 		{
 			const int i = m_cand[j].second;
-			add(*obs, i,
-			    m_o.track == TSyntheticOptions::Track::Ring ? m_ring[i] : straightLandmark(i));
+			add(*obs, ring ? i : i + m_o.prebuilt, ring ? m_ring[i] : straightLandmark(i));
 		}
+		if (!ring && m_k == 0)
+			for (int j = 0; j < m_o.prebuilt; ++j)
+				add(*obs, j, straightLandmark(-1 - int(std::ceil(m_o.range / m_o.spacing)) - j));
 		// Objects in convoy: body pose = ego pose (+) offset, rotating slowly in place.
 		for (int a = 0; a < m_o.objects; ++a)
 		{

@@ -103,8 +103,14 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	    int(readInt(c, s, "drop_static_after_unseen_steps", drop_static_after_unseen_steps));
 	skip_prediction_on_empty_map =
 	    readBool(c, s, "skip_prediction_on_empty_map", skip_prediction_on_empty_map);
-	sparse_static_update =
-	    readChoice(c, s, "static_update", {"mrpt", "sparse"}, sparse_static_update ? 1 : 0) == 1;
+	{
+		const int u = readChoice(c, s, "static_update", {"mrpt", "sparse", "compressed"},
+		                         compressed_static_update ? 2
+		                         : sparse_static_update   ? 1
+		                                                  : 0);
+		sparse_static_update = u >= 1;
+		compressed_static_update = u == 2;
+	}
 	innovation_gate = readNonNegative(c, s, "innovation_gate", innovation_gate);
 	first_estimate_jacobians = readBool(c, s, "first_estimate_jacobians", first_estimate_jacobians);
 	record_dropped = readBool(c, s, "record_dropped", record_dropped);
@@ -202,7 +208,10 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";
 	out << "skip_prediction_on_empty_map   = " << (skip_prediction_on_empty_map ? "true" : "false")
 	    << "\n";
-	out << "static_update                  = " << (sparse_static_update ? "sparse" : "mrpt")
+	out << "static_update                  = "
+	    << (compressed_static_update ? "compressed"
+	        : sparse_static_update   ? "sparse"
+	                                 : "mrpt")
 	    << "\n";
 	out << "innovation_gate                = " << innovation_gate << "\n";
 	out << "outlier_method                 = " << outlier_method << "\n";

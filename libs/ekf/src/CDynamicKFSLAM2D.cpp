@@ -40,6 +40,8 @@ const char* toString(SlotKind k)
 			return "object_velocity_b";
 		case SlotKind::OdometryBias:
 			return "odometry_bias";
+		case SlotKind::Compressed:
+			return "compressed";
 	}
 	return "?";
 }
@@ -94,6 +96,8 @@ void CDynamicKFSLAM2D::reset()
 			                                   options.recovery_min_updates});
 		else if (m == "jcbb")
 			m_engine = std::make_unique<CJcbbUpdateEngine>(options.innovation_gate);
+		else if (options.compressed_static_update)
+			m_engine = std::make_unique<estimator::CCompressedUpdateEngine>();
 		else if (options.sparse_static_update)
 			m_engine = std::make_unique<estimator::CSparseUpdateEngine>();
 		else
@@ -113,6 +117,9 @@ void CDynamicKFSLAM2D::reset()
 	m_motion->resetObjectState();  // per-object state of the rule (a user model too)
 	m_drop = estimator::CDropPolicy(options.dropOptions());
 	m_layout.clear();
+	m_passive.clear();
+	m_passiveStatic.clear();
+	m_nextLevel = 0;
 	if (options.odometry_bias.enabled()) addOdometryBiasBlock();
 	onLayoutChanged();
 	m_droppedStatic.clear();
@@ -164,6 +171,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 	m_report.step = m_step;
 	try
 	{
+		expandIfNeeded();  // compressed EKF only
 		m_routed = m_router->route(m_step, m_in.readings,
 		                           [this](int32_t id) { return m_staticBlock.count(id) != 0; });
 		m_report.skipped_unknown_object_feature = m_routed.skipped_unknown_object_feature;
@@ -187,6 +195,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		planDrops(plan);
 		commit(plan);
 		recordFirstEstimates();  // first-estimate Jacobians (optional)
+		compressIfDue();         // compressed EKF only
 	}
 	catch (const std::exception& e)
 	{
@@ -272,7 +281,9 @@ void CDynamicKFSLAM2D::recordFirstEstimates()
 		m_firstEstimate.emplace(id, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
 	}
 	for (auto it = m_firstEstimate.begin(); it != m_firstEstimate.end();)
-		it = inState.count(it->first) ? std::next(it) : m_firstEstimate.erase(it);
+		it = inState.count(it->first) || m_passiveStatic.count(it->first)
+		         ? std::next(it)
+		         : m_firstEstimate.erase(it);
 }
 
 void CDynamicKFSLAM2D::firstEstimateJacobians(int32_t id, const Eigen::Vector3d& ego,

@@ -27,6 +27,7 @@ mrpt::poses::CPosePDFGaussian CDynamicKFSLAM2D::getEgoPose() const
 
 std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks(bool includeDropped) const
 {
+	ensureExpanded();
 	std::vector<TStaticLandmarkEstimate> out;
 	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
@@ -85,6 +86,7 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 
 std::vector<size_t> CDynamicKFSLAM2D::padIndices() const
 {
+	ensureExpanded();
 	const std::vector<int> p = m_layout.padIndices();
 	return std::vector<size_t>(p.begin(), p.end());
 }
@@ -123,6 +125,9 @@ void CDynamicKFSLAM2D::onLayoutChanged()
 				break;
 			case BlockKind::OdometryBias:
 				s.kind = SlotKind::OdometryBias;
+				break;
+			case BlockKind::Compressed:
+				s.kind = SlotKind::Compressed;
 				break;
 		}
 		m_slots.push_back(s);
@@ -176,6 +181,12 @@ void appendLabels(const TBlock& t, std::vector<std::string>& labels)
 			labels.push_back("odo.b_w");
 			if (t.dim == 2) labels.push_back("odo.s");
 			break;
+		case BlockKind::Compressed:  // never seen by a getter (ensureExpanded)
+			labels.push_back("c" + std::to_string(t.object) + "." + std::to_string(t.feature) +
+			                 ".0");
+			labels.push_back("c" + std::to_string(t.object) + "." + std::to_string(t.feature) +
+			                 ".1");
+			break;
 	}
 }
 }  // namespace
@@ -183,6 +194,7 @@ void appendLabels(const TBlock& t, std::vector<std::string>& labels)
 void CDynamicKFSLAM2D::getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& P,
                                            std::vector<std::string>* labels) const
 {
+	ensureExpanded();
 	const std::vector<int> keep = ekf::keptIndices(int(m_xkk.size()), m_layout.padIndices());
 	x = m_xkk.asEigen()(keep);
 	P = m_pkk.asEigen()(keep, keep);

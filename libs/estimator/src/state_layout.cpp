@@ -1,5 +1,6 @@
 #include <dynslam/estimator/state_layout.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -21,6 +22,8 @@ const char* toString(BlockKind k)
 			return "object_velocity";
 		case BlockKind::OdometryBias:
 			return "odometry_bias";
+		case BlockKind::Compressed:
+			return "compressed";
 	}
 	return "?";
 }
@@ -30,9 +33,17 @@ void CPaddedLayout::clear()
 	m_blocks.clear();
 	m_first.clear();
 	m_blockAtSlot.clear();
+	m_nextSeq = 0;
 }
 
 void CPaddedLayout::append(const TBlock& b)
+{
+	TBlock n = b;
+	n.seq = m_nextSeq;
+	appendNumbered(n);
+}
+
+void CPaddedLayout::appendNumbered(const TBlock& b)
 {
 	if (b.dim < 1 || b.dim > 4)
 		throw std::invalid_argument("CPaddedLayout: a block has 1..4 entries, not " +
@@ -40,6 +51,7 @@ void CPaddedLayout::append(const TBlock& b)
 	m_first.push_back(storageDim());
 	for (int s = 0; s < b.slots(); ++s) m_blockAtSlot.push_back(m_blocks.size());
 	m_blocks.push_back(b);
+	m_nextSeq = std::max(m_nextSeq, b.seq + 1);
 }
 
 std::vector<int> CPaddedLayout::indices(size_t b) const
@@ -79,7 +91,9 @@ void CPaddedLayout::removeBlocks(const std::vector<bool>& remove)
 	kept.reserve(m_blocks.size());
 	for (size_t b = 0; b < m_blocks.size(); ++b)
 		if (!remove[b]) kept.push_back(m_blocks[b]);
+	const uint64_t next = m_nextSeq;
 	clear();
-	for (const auto& b : kept) append(b);
+	for (const auto& b : kept) appendNumbered(b);
+	m_nextSeq = next;
 }
 }  // namespace dynslam::estimator

@@ -82,6 +82,11 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * static_update = mrpt: CMrptUpdateEngine, MRPT's own update (KF_options.method) run by
 	 * runOneKalmanIteration with its prediction skipped (doc/architecture.md). */
 	bool sparse_static_update = true;
+	/** static_update = compressed (sets sparse_static_update too): the sparse update on the
+	 * exact compressed EKF (estimator::CCompressedUpdateEngine, compressed_state.h): static
+	 * landmarks left behind are kept out of the working state and brought up to date when
+	 * needed; equal to the full EKF to rounding. */
+	bool compressed_static_update = false;
 	/** Innovation gate for static-landmark updates: a measurement whose squared
 	 * Mahalanobis distance (with its own 2x2 innovation covariance) exceeds the chi-square
 	 * quantile of this probability (2 dof) is not used, and counted

@@ -37,6 +37,7 @@
  * skipped and counted, as documented per case in getLastStepReport(). */
 #include <dynslam/ISlamBackend.h>
 #include <dynslam/ekf_steps.h>
+#include <dynslam/estimator/compressed_state.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
@@ -73,7 +74,8 @@ enum class SlotKind : uint8_t
 	ObjectPoseB,      ///< [dtheta, pad] of an object pose xi_t
 	ObjectVelocityA,  ///< [vx, vy] of an object velocity (object_model = cv)
 	ObjectVelocityB,  ///< [omega, pad] of an object velocity (object_model = cv)
-	OdometryBias      ///< [b_w, pad] or [b_w, s] (odometry_bias != none; the first slot)
+	OdometryBias,     ///< [b_w, pad] or [b_w, s] (odometry_bias != none; the first slot)
+	Compressed        ///< static_update = compressed: accumulated matrices (compressed_state.h)
 };
 const char* toString(SlotKind k);
 
@@ -137,9 +139,17 @@ public:
 	/** Every object's pose history: dropped poses (recorded) and poses in the state. */
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
 	/** The typed state after the ego pose (blocks and where they are stored). */
-	const estimator::CPaddedLayout& getLayout() const { return m_layout; }
+	const estimator::CPaddedLayout& getLayout() const
+	{
+		ensureExpanded();
+		return m_layout;
+	}
 	/** The layout as MRPT's 2-dof slots (a 3-dof pose is ObjectPoseA + ObjectPoseB). */
-	const std::vector<TSlot>& getSlots() const { return m_slots; }
+	const std::vector<TSlot>& getSlots() const
+	{
+		ensureExpanded();
+		return m_slots;
+	}
 	/** Mean and covariance without pad entries; labels[i] names entry i. */
 	void getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& P,
 	                         std::vector<std::string>* labels = nullptr) const;
@@ -148,8 +158,24 @@ public:
 	const TStepReport& getLastStepReport() const override { return m_report; }
 	int stepCount() const { return m_step + 1; }
 	/** Full mean / covariance including pads (MRPT's storage). */
-	const KFVector& fullMean() const { return m_xkk; }
-	const KFMatrix& fullCov() const { return m_pkk; }
+	const KFVector& fullMean() const
+	{
+		ensureExpanded();
+		return m_xkk;
+	}
+	const KFMatrix& fullCov() const
+	{
+		ensureExpanded();
+		return m_pkk;
+	}
+	/** static_update = compressed: the global update (compressed_state.h), which getters of the
+	 * whole state (landmarks, layout, full mean and covariance) do by themselves; the estimate
+	 * is unchanged, the storage order of the landmarks is not. No-op otherwise. */
+	void globalUpdate();
+	/** Working storage size (with compressed entries; equals fullMean().size() otherwise) and
+	 * the static landmarks kept out of it (static_update = compressed). */
+	size_t workingDim() const { return m_xkk.size(); }
+	size_t passiveLandmarks() const { return m_passiveStatic.size(); }
 	/** First-estimate Jacobians only (empty otherwise): the first estimate of static landmark
 	 * `id`, i.e. its mean at the end of the step in which it was initialized. */
 	std::optional<Eigen::Vector2d> firstEstimate(int32_t id) const;
@@ -252,6 +278,17 @@ private:
 	void planObjectVelocities(TPending& plan);
 	/** Objects that have a velocity block (their readings are updates, not time-t features). */
 	std::set<int32_t> objectsWithVelocity() const;
+	// compressed EKF (static_update = compressed, CDynamicKFSLAM2D_compressed.cpp)
+	/** At the start of a step: the global update if a passive landmark is read or due. */
+	void expandIfNeeded();
+	/** At the end of a step: compresses the static landmarks unseen for long enough. */
+	void compressIfDue();
+	/** Getters: the global update if the state is compressed (the estimate is unchanged). */
+	void ensureExpanded() const;
+	std::vector<estimator::TPassiveLevel> m_passive;  ///< compression levels, oldest first
+	std::map<int32_t, int> m_passiveStatic;           ///< passive landmark ID -> its block's step
+	int m_nextLevel = 0;
+
 	/** Rebuilds what is derived from the layout: the slot view and the static-landmark index. */
 	void onLayoutChanged();
 

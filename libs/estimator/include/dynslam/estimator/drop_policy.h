@@ -30,6 +30,12 @@ public:
 	void noteSeen(int32_t id, int step) { m_lastSeen[id] = step; }
 	/** Static landmark `id` left the state: no longer tracked. */
 	void forget(int32_t id) { m_lastSeen.erase(id); }
+	/** The step static landmark `id` was last read at, `fallback` if never noted. */
+	int lastSeen(int32_t id, int fallback) const
+	{
+		const auto it = m_lastSeen.find(id);
+		return it == m_lastSeen.end() ? fallback : it->second;
+	}
 	/** Whether static landmark `id` is due to be dropped at the end of `step`: last read at
 	 * least N steps ago (N > 0). `addedStep` stands in for a landmark never noted. */
 	bool staticDue(int32_t id, int step, int addedStep) const;

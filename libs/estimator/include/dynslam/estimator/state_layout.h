@@ -22,7 +22,10 @@ enum class BlockKind : uint8_t
 	ObjectFeatureT,  ///< feature of a moving object now (time t)
 	ObjectPose,      ///< xi_t = (dx, dy, dtheta), or (dx, dy) for one-feature objects
 	ObjectVelocity,  ///< object velocity of object-centric motion models (vx, vy[, omega])
-	OdometryBias     ///< (b_w) or (b_w, s): odometry bias (dynslam/models/odometry_bias.h)
+	OdometryBias,    ///< (b_w) or (b_w, s): odometry bias (dynslam/models/odometry_bias.h)
+	/** Compressed EKF only (compressed_state.h): two columns of the accumulated cross-covariance
+	 * of the active state with the passive one (`object` = the level, `feature` = the pair). */
+	Compressed
 };
 const char* toString(BlockKind k);
 
@@ -34,6 +37,9 @@ struct TBlock
 	int32_t feature = -1;  ///< the feature index within the object (features)
 	int step = -1;         ///< step of a pose or of a time-t feature; creation step otherwise
 	int dim = 2;           ///< entries (without the pad)
+	/** Creation order: CPaddedLayout::append numbers the blocks it adds, so a layout is in
+	 * ascending order (the compressed EKF's global update restores it, compressed_state.h). */
+	uint64_t seq = 0;
 	/** 2-dof storage slots it occupies. */
 	int slots() const { return (dim + 1) / 2; }
 };
@@ -47,8 +53,11 @@ public:
 	bool empty() const { return m_blocks.empty(); }
 	const TBlock& operator[](size_t b) const { return m_blocks[b]; }
 	const std::vector<TBlock>& blocks() const { return m_blocks; }
-	/** Appends a block (dim 1..4) at the end of the storage. */
+	/** Appends a block (dim 1..4) at the end of the storage, numbered after every block
+	 * appended before (TBlock::seq). */
 	void append(const TBlock& b);
+	/** Appends a block keeping its number (later appends are numbered after it). */
+	void appendNumbered(const TBlock& b);
 	/** Storage index of block b's first entry. */
 	int first(size_t b) const { return m_first[b]; }
 	/** Storage indices of block b's entries (dim of them, no pad). */
@@ -73,5 +82,6 @@ private:
 	std::vector<TBlock> m_blocks;
 	std::vector<int> m_first;
 	std::vector<size_t> m_blockAtSlot;
+	uint64_t m_nextSeq = 0;
 };
 }  // namespace dynslam::estimator

@@ -69,6 +69,22 @@ public:
 	                     const TUpdateContext& ctx) override;
 };
 
+/** static_update = compressed: the sparse update on the active state of the compressed EKF
+ * (compressed_state.h). The EKF that is given this engine keeps the static landmarks unseen for
+ * `passive_after` steps out of its working state, `batch` of them at a time, and brings them up
+ * to date (exactly) when one is read again, is due to be dropped, or a getter needs them. */
+class CCompressedUpdateEngine : public CSparseUpdateEngine
+{
+public:
+	explicit CCompressedUpdateEngine(int passive_after = 3, int batch = 8);
+	std::string name() const override { return "compressed"; }
+	int passiveAfter() const { return m_passiveAfter; }
+	int batch() const { return m_batch; }
+
+private:
+	int m_passiveAfter, m_batch;
+};
+
 /** Chi-square quantile with 2 dof in closed form (F(x) = 1 - exp(-x/2)) of probability p;
  * infinity for p = 0 (no gate). */
 double gateThreshold2Dof(double p);
