@@ -10,6 +10,8 @@
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <sstream>
 
 using namespace dynslam;
@@ -37,15 +39,17 @@ struct TResult
 	eval::TBinaryScores reading, track;
 	eval::TDelaySummary delays;
 	double ari = 0;
-	size_t objects = 0, reclassified = 0, unknownIds = 0;
+	size_t objects = 0, reclassified = 0, unknownIds = 0, held = 0, candidates = 0, updates = 0;
 };
 
 /** Runs the EKF on the scenario; classify: feature_labels = classify (extra: more keys). */
-TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& extra = "")
+TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& extra = "",
+            const std::string& sigmaV = "1e-5")
 {
 	const TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
 	std::string ini = kIni;
+	ini.replace(ini.find("1e-5 1e-5"), 9, sigmaV + " " + sigmaV);
 	if (classify) ini.insert(ini.find("[DynamicKFSLAM_"), "feature_labels = classify\n" + extra);
 	mrpt::config::CConfigFileMemory cfg(ini);
 	CDynamicKFSLAM2D ekf;
@@ -68,6 +72,9 @@ TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& ex
 		}
 		r.reclassified += ekf.getLastStepReport().reclassified_static;
 		r.unknownIds += ekf.getLastStepReport().skipped_unknown_id;
+		r.held += ekf.getLastStepReport().classify_held;
+		r.candidates += ekf.getLastStepReport().classify_candidates;
+		r.updates += ekf.getLastStepReport().static_updates;
 		const auto e = ekf.getEgoPose().mean;
 		const double d2 = std::pow(e.x() - gt.ego[k][0], 2) + std::pow(e.y() - gt.ego[k][1], 2);
 		se += d2;
@@ -89,8 +96,10 @@ void print(const std::string& what, const TResult& r)
 	std::cout << what << ": ATE " << r.ate << " m (max " << r.maxErr << "), reading P/R/F1 "
 	          << r.reading.precision << "/" << r.reading.recall << "/" << r.reading.f1
 	          << ", track F1 " << r.track.f1 << ", ARI " << r.ari << ", objects " << r.objects
-	          << ", reclassified " << r.reclassified << ", onsets detected " << r.delays.detected
-	          << "/" << r.delays.onsets.size() << " max delay " << r.delays.max_delay << "\n";
+	          << ", reclassified " << r.reclassified << ", held " << r.held << ", candidates "
+	          << r.candidates << ", static updates " << r.updates << ", onsets detected "
+	          << r.delays.detected << "/" << r.delays.onsets.size() << " max delay "
+	          << r.delays.max_delay << "\n";
 }
 }  // namespace
 
@@ -103,6 +112,39 @@ TEST(ClassifyHighway, AnonymousIdsAreClassifiedAndTheEgoStaysClose)
 	EXPECT_GE(cls.track.f1, 0.9);
 	EXPECT_GE(cls.reading.f1, 0.9);
 	EXPECT_LE(cls.ate, 3 * labelled.ate + 0.03);
+}
+
+/** The anonymous highway at another noise level, with (anonymous) or without anonymous IDs. */
+sim::TScenarioOptions anonymousAt(const std::string& level, bool anonymous)
+{
+	std::ifstream f(std::string(DYNSLAM_CONFIG_DIR) + "/highway_anonymous.ini");
+	std::stringstream ss;
+	ss << f.rdbuf();
+	std::string s = ss.str();
+	s.replace(s.find("level = w2v2"), 12, "level = " + level);
+	s.replace(s.find("anonymous_ids   = true"), 22,
+	          std::string("anonymous_ids = ") + (anonymous ? "true" : "false"));
+	return sim::loadScenarioFromText(s);
+}
+
+TEST(ClassifyHighway, NoiseLevelsAgainstTheLabelledFilterOnTheSameTrackBreaks)
+{
+	for (const char* level :
+	     {"w1v1", "w1v2", "w1v3", "w2v1", "w2v2", "w2v3", "w3v1", "w3v2", "w3v3"})
+	{
+		const std::string v = level[3] == '1' ? "1e-6" : level[3] == '2' ? "1e-5" : "1e-4";
+		const TResult labelled = run(anonymousAt(level, false), false, "", v);
+		const TResult cls = run(anonymousAt(level, true), true, "", v);
+		print(std::string(level) + " labelled", labelled);
+		print(std::string(level) + " classify", cls);
+		// Measured: per-reading F1 0.983..0.985, per-track F1 0.973..1 (doc/classification.md).
+		EXPECT_GE(cls.reading.f1, 0.95) << level;
+		EXPECT_GE(cls.track.f1, 0.9) << level;
+		// Measured: classify / labelled ATE 0.88 (w1v3) .. 6.6 (w3v1): each track's first
+		// reading is not used, so the map is anchored one step later (issue 12's 10 % target is
+		// not reached, doc/classification.md). A bound against divergence, not the target.
+		EXPECT_LE(cls.ate, 8 * labelled.ate + 0.05) << level;
+	}
 }
 
 TEST(ClassifyHighway, ParkedCarDrivingOffIsReclassified)
