@@ -65,7 +65,8 @@ TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& ex
 		{
 			using estimator::Route;
 			const bool st = m.route == Route::StaticKnown || m.route == Route::StaticNew;
-			dec.push_back(st              ? eval::Decision::Static
+			dec.push_back(m.candidate     ? eval::Decision::Undecided
+			              : st            ? eval::Decision::Static
 			              : m.object >= 0 ? eval::Decision::Moving
 			                              : eval::Decision::Undecided);
 			group.push_back(m.object);
@@ -109,9 +110,11 @@ TEST(ClassifyHighway, AnonymousIdsAreClassifiedAndTheEgoStaysClose)
 	const TResult cls = run(scenario("highway_anonymous.ini"), true);
 	print("labelled", labelled);
 	print("classify", cls);
-	EXPECT_GE(cls.track.f1, 0.9);
-	EXPECT_GE(cls.reading.f1, 0.9);
-	EXPECT_LE(cls.ate, 3 * labelled.ate + 0.03);
+	// Measured: track F1 1, reading F1 0.984 (the first reading of each track is undecided),
+	// ATE 0.1274 m vs 0.1276 m labelled (on highway.ini, without the track breaks).
+	EXPECT_GE(cls.track.f1, 0.95);
+	EXPECT_GE(cls.reading.f1, 0.95);
+	EXPECT_LE(cls.ate, 1.1 * labelled.ate + 0.01);
 }
 
 /** The anonymous highway at another noise level, with (anonymous) or without anonymous IDs. */
@@ -140,10 +143,8 @@ TEST(ClassifyHighway, NoiseLevelsAgainstTheLabelledFilterOnTheSameTrackBreaks)
 		// Measured: per-reading F1 0.983..0.985, per-track F1 0.973..1 (doc/classification.md).
 		EXPECT_GE(cls.reading.f1, 0.95) << level;
 		EXPECT_GE(cls.track.f1, 0.9) << level;
-		// Measured: classify / labelled ATE 0.88 (w1v3) .. 6.6 (w3v1): each track's first
-		// reading is not used, so the map is anchored one step later (issue 12's 10 % target is
-		// not reached, doc/classification.md). A bound against divergence, not the target.
-		EXPECT_LE(cls.ate, 8 * labelled.ate + 0.05) << level;
+		// Measured: classify / labelled ATE 0.92 (w3v2) .. 1.012 (w3v1); issue 12's target.
+		EXPECT_LE(cls.ate, 1.1 * labelled.ate + 0.01) << level;
 	}
 }
 
@@ -156,8 +157,13 @@ TEST(ClassifyHighway, ParkedCarDrivingOffIsReclassified)
 	for (const auto& d : cls.delays.onsets)
 		std::cout << "onset object " << d.object << " feature " << d.feature << " at "
 		          << d.onset_step << " detected " << d.detect_step << "\n";
-	EXPECT_GT(cls.reclassified, 0u);
-	EXPECT_LE(cls.ate, 3 * labelled.ate + 0.03);
+	// Measured: the 4 features of the car that drives off reclassified 2 steps after the onset
+	// (reclassify_count = 3 readings beyond the gate), ATE 0.063 m vs 0.067 m labelled.
+	EXPECT_EQ(cls.reclassified, 4u);
+	EXPECT_EQ(cls.delays.detected, cls.delays.onsets.size());
+	EXPECT_GE(cls.delays.onsets.size(), 4u);
+	EXPECT_LE(cls.delays.max_delay, 6);
+	EXPECT_LE(cls.ate, 1.2 * labelled.ate);
 }
 
 TEST(ClassifyHighway, MissedDetectionsAndClutterDoNotDiverge)
@@ -166,6 +172,8 @@ TEST(ClassifyHighway, MissedDetectionsAndClutterDoNotDiverge)
 	const TResult cls = run(scenario("highway_clutter.ini"), true);
 	print("labelled", labelled);
 	print("classify", cls);
-	EXPECT_LT(cls.maxErr, 1.0);
-	EXPECT_GE(cls.track.f1, 0.8);
+	// Measured: max ego error 0.230 m (labelled 0.230 m), reading F1 0.990, track F1 1.
+	EXPECT_LT(cls.maxErr, 2 * labelled.maxErr);
+	EXPECT_GE(cls.reading.f1, 0.95);
+	EXPECT_GE(cls.track.f1, 0.95);
 }

@@ -51,12 +51,19 @@ std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
                                           const mrpt::config::CConfigFileBase& ini,
                                           std::ostream* optionsDump)
 {
-	if (kind == "ekf" || kind == "dynamic" || kind == "dynamic_cv" || kind == "dynamic_smoothing")
+	if (kind == "ekf" || kind == "dynamic" || kind == "dynamic_cv" || kind == "dynamic_smoothing" ||
+	    kind == "dynamic_classified")
 	{
 		auto f = std::make_unique<CDynamicKFSLAM2D>();
 		f->loadOptions(ini, "DynamicKFSLAM");
 		if (kind == "dynamic_cv" || kind == "dynamic_smoothing")
 			overrideObjectModel(*f, ini, kind == "dynamic_cv" ? "cv" : "paper_smoothing");
+		if (kind == "dynamic_classified")  // issue 12: the same filter, no ID oracle
+		{
+			f->options.feature_labels = "classify";
+			f->options.validate();
+			f->reset();
+		}
 		if (optionsDump)
 		{
 			*optionsDump << "# [DynamicKFSLAM] (CDynamicKFSLAM2D::TOptions)";

@@ -87,7 +87,8 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_group_prob",
                                           "classify_group_max_dist",
                                           "classify_reclassify_count",
-                                          "classify_reclassify_gate"};
+                                          "classify_reclassify_gate",
+                                          "classify_candidate_landmarks"};
 
 /** feature_labels and the classify_* keys (issue 12). */
 void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
@@ -105,6 +106,7 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	p.group_max_dist = readDouble(c, s, "classify_group_max_dist", p.group_max_dist);
 	p.reclassify_count = int(readInt(c, s, "classify_reclassify_count", p.reclassify_count));
 	p.reclassify_gate = readDouble(c, s, "classify_reclassify_gate", p.reclassify_gate);
+	p.candidate_landmarks = readBool(c, s, "classify_candidate_landmarks", p.candidate_landmarks);
 }
 }  // namespace
 
@@ -259,6 +261,8 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "classify_group_max_dist        = " << classify.group_max_dist << "\n";
 	out << "classify_reclassify_count      = " << classify.reclassify_count << "\n";
 	out << "classify_reclassify_gate       = " << classify.reclassify_gate << "\n";
+	out << "classify_candidate_landmarks   = " << (classify.candidate_landmarks ? "true" : "false")
+	    << "\n";
 }
 TParseOptions TModelOptions::parseOptions() const
 {

@@ -79,7 +79,8 @@ void CClassifyingRouter::remember(TTrack& t, const TPoint2& z, int step, int kee
 	while (int(t.history.size()) > keep) t.history.erase(t.history.begin());
 }
 
-void CClassifyingRouter::predictTracks(int step)
+void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
+                                       const std::function<bool(int32_t)>& isKnownStatic)
 {
 	const int steps = m_lastStep < 0 ? 0 : step - m_lastStep;
 	m_lastStep = step;
@@ -90,6 +91,8 @@ void CClassifyingRouter::predictTracks(int step)
 		{
 			if (t.cls == TrackClass::Candidate)
 			{
+				if (m_p.candidate_landmarks && isKnownStatic(it->first))
+					out.dropped_candidates.push_back(it->first);
 				it = m_tracks.erase(it);
 				continue;
 			}
@@ -182,7 +185,8 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
                                       const std::function<bool(int32_t)>& isKnownStatic)
 {
 	if (!m_ctx) throw std::logic_error("CClassifyingRouter::route: setContext() was not called");
-	predictTracks(step);
+	TRoutedStep out;
+	predictTracks(step, out, isKnownStatic);
 	enum class Act
 	{
 		Skip,
@@ -190,8 +194,8 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 		Moving
 	};
 	std::vector<Act> act(readings.size(), Act::Skip);
+	std::vector<bool> candidate(readings.size(), false);
 	std::vector<int32_t> turnedMoving;  // decided (or reclassified) moving now, in order
-	TRoutedStep out;
 	const int keep = m_p.max_window + 2;
 	for (size_t i = 0; i < readings.size(); ++i)
 	{
@@ -215,9 +219,18 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 				act[i] = Act::Static;
 			}
 			else if (d == TrackClass::Moving)
+			{
 				turnedMoving.push_back(id);
+				if (m_p.candidate_landmarks && isKnownStatic(id))
+					out.dropped_candidates.push_back(id);
+			}
 			else
+			{
 				++out.candidates;
+				candidate[i] = true;
+				// The first reading: a candidate landmark, not an update (see the header).
+				if (m_p.candidate_landmarks && t.sightings == 0) act[i] = Act::Static;
+			}
 		}
 		else if (t.cls == TrackClass::Static)
 		{
@@ -242,10 +255,13 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 	{
 		TRoutedReading m;
 		m.reading = readings[i];
+		m.candidate = candidate[i];
 		const int32_t id = readings[i].id;
 		const auto it = id >= 0 ? m_tracks.find(id) : m_tracks.end();
 		if (it != m_tracks.end() && it->second.cls == TrackClass::Moving) act[i] = Act::Moving;
-		if (act[i] == Act::Static)
+		if (act[i] == Act::Static && m.candidate)
+			m.route = isKnownStatic(id) ? Route::Skip : Route::StaticNew;
+		else if (act[i] == Act::Static)
 			m.route = isKnownStatic(id) ? Route::StaticKnown : Route::StaticNew;
 		else if (act[i] == Act::Moving)
 		{

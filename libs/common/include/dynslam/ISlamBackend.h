@@ -71,6 +71,7 @@ struct TStepReport
 	 * static landmarks reclassified moving and dropped from the state. */
 	size_t classify_candidates = 0, classify_held = 0, skipped_unknown_id = 0;
 	size_t reclassified_static = 0;
+	size_t dropped_candidates = 0;  ///< candidate landmarks removed (decided moving, forgotten)
 };
 
 /** Common interface of the back-ends. */

@@ -12,13 +12,18 @@
  * sigma_m = motion_std per step) against a static one. Wald's sequential probability ratio
  * test decides: moving when the sum reaches log((1 - beta) / alpha), static when it falls to
  * log(beta / (1 - alpha)); after max_window sightings the sign of the sum decides.
- * Static -> StaticNew, then StaticKnown. Moving -> a feature of a new object, or of an object
- * created in the same step whose features keep constant distances to it (rigidDistanceTest,
- * chi-square at group_prob, at most group_max_dist apart); one-feature objects are allowed.
- * A static track keeps its filter: a reading beyond the reclassify_gate is held back (Skip,
- * counted), reclassify_count consecutive ones turn it moving (TRoutedStep::reclassified: the
- * filter drops the landmark; the reading becomes the first sighting of a new object).
- * ID -1 (association unknown) is skipped and counted (TRoutedStep::skipped_unknown_id). */
+ * With candidate_landmarks (default), a candidate's first reading initialises a landmark
+ * (StaticNew: an augmentation, which does not change the ego) whose later readings are not used
+ * until the track is decided: static -> StaticKnown updates (the first reading's information
+ * is kept), moving -> the landmark is dropped (TRoutedStep::dropped_candidates), as is a
+ * forgotten candidate. Without it, a decided static track starts with StaticNew. Moving -> a
+ * feature of a new object, or of an object created in the same step whose features keep constant
+ * distances to it (rigidDistanceTest, chi-square at group_prob, at most group_max_dist apart);
+ * one-feature objects are allowed. A static track keeps its filter: a reading beyond the
+ * reclassify_gate is held back (Skip, counted), reclassify_count consecutive ones turn it moving
+ * (TRoutedStep::reclassified: the filter drops the landmark; the reading becomes the first sighting
+ * of a new object). ID -1 (association unknown) is skipped and counted
+ * (TRoutedStep::skipped_unknown_id). */
 #include <dynslam/estimator/classify_evidence.h>
 #include <dynslam/estimator/measurement_router.h>
 
@@ -30,15 +35,16 @@ namespace dynslam::estimator
 /** The INI keys classify_* of [DynamicKFSLAM] (dynslam/model_options.h). */
 struct TClassifyParams
 {
-	double alpha = 0.01;             ///< classify_alpha: P(decide moving | static), in (0, 1)
-	double beta = 0.01;              ///< classify_beta: P(decide static | moving), in (0, 1)
-	double motion_std = 0.5;         ///< classify_motion_std [m per step], > 0
-	int max_window = 10;             ///< classify_max_window: sightings before a forced decision
-	int forget_steps = 20;           ///< classify_forget_steps: unseen candidates are forgotten
-	double group_prob = 0.99;        ///< classify_group_prob: rigid-distance chi-square, (0, 1)
-	double group_max_dist = 6;       ///< classify_group_max_dist [m]
-	int reclassify_count = 3;        ///< classify_reclassify_count (0: never reclassify)
-	double reclassify_gate = 0.999;  ///< classify_reclassify_gate: chi-square prob., (0, 1)
+	double alpha = 0.01;              ///< classify_alpha: P(decide moving | static), in (0, 1)
+	double beta = 0.01;               ///< classify_beta: P(decide static | moving), in (0, 1)
+	double motion_std = 0.5;          ///< classify_motion_std [m per step], > 0
+	int max_window = 10;              ///< classify_max_window: sightings before a forced decision
+	int forget_steps = 20;            ///< classify_forget_steps: unseen candidates are forgotten
+	double group_prob = 0.99;         ///< classify_group_prob: rigid-distance chi-square, (0, 1)
+	double group_max_dist = 6;        ///< classify_group_max_dist [m]
+	int reclassify_count = 3;         ///< classify_reclassify_count (0: never reclassify)
+	double reclassify_gate = 0.999;   ///< classify_reclassify_gate: chi-square prob., (0, 1)
+	bool candidate_landmarks = true;  ///< classify_candidate_landmarks (see the file comment)
 	/** Throws std::invalid_argument naming the key. */
 	void validate() const;
 };
@@ -87,7 +93,8 @@ public:
 
 private:
 	/** Carries every live track through the step's odometry; forgets stale candidates. */
-	void predictTracks(int step);
+	void predictTracks(int step, TRoutedStep& out,
+	                   const std::function<bool(int32_t)>& isKnownStatic);
 	/** Adds the evidence of one reading to a candidate; returns its decision (if any). */
 	std::optional<TrackClass> addEvidence(TTrack& t, const TPoint2& z, int step);
 	/** A static track's reading: true if consistent (and used by its filter). */

@@ -34,6 +34,9 @@ struct TRoutedReading
 	Route route = Route::Skip;
 	int32_t object = -1;   ///< object readings: the object
 	int32_t feature = -1;  ///< object readings: the feature index within the object
+	/** The reading of a track not yet classified (feature_labels = classify): a StaticNew
+	 * candidate landmark (never an update of the ego) or a Skip. */
+	bool candidate = false;
 };
 
 /** The routed readings of one step, in observation order, and what was skipped. */
@@ -48,6 +51,8 @@ struct TRoutedStep
 	/** Static landmarks decided moving in this step (a parked car drove off): the filter drops
 	 * them from the state; their reading of this step is routed as an object feature. */
 	std::vector<int32_t> reclassified;
+	/** Candidate landmarks to remove from the state (decided moving, or forgotten). */
+	std::vector<int32_t> dropped_candidates;
 	/** The readings with route r, in observation order. */
 	std::vector<TRoutedReading> with(Route r) const;
 	/** The readings of static landmarks (known and new), in observation order. */
