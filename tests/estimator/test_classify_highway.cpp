@@ -177,3 +177,38 @@ TEST(ClassifyHighway, MissedDetectionsAndClutterDoNotDiverge)
 	EXPECT_GE(cls.reading.f1, 0.95);
 	EXPECT_GE(cls.track.f1, 0.95);
 }
+
+TEST(ClassifyHighway, BadOptionsAreClearErrors)
+{
+	const auto load = [](const std::string& extra)
+	{
+		std::string ini = kIni;
+		ini.insert(ini.find("[DynamicKFSLAM_"), extra);
+		mrpt::config::CConfigFileMemory cfg(ini);
+		CDynamicKFSLAM2D ekf;
+		ekf.loadOptions(cfg, "DynamicKFSLAM");
+	};
+	const auto expectError = [&](const std::string& extra, const std::string& key)
+	{
+		try
+		{
+			load(extra);
+			ADD_FAILURE() << extra << " accepted";
+		}
+		catch (const std::exception& e)
+		{
+			EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+		}
+	};
+	expectError("feature_labels = anonymous\n", "feature_labels");
+	expectError("feature_labels = classify\nclassify_alpha = 1.5\n", "classify_alpha");
+	expectError("feature_labels = classify\nclassify_beta = 0\n", "classify_beta");
+	expectError("feature_labels = classify\nclassify_max_window = 1\n", "classify_max_window");
+	expectError("classify_typo = 1\n", "classify_typo");
+	EXPECT_NO_THROW(load("feature_labels = classify\nclassify_alpha = 0.05\n"));
+	// The default is the ID-range router, unchanged.
+	mrpt::config::CConfigFileMemory cfg(kIni);
+	CDynamicKFSLAM2D ekf;
+	ekf.loadOptions(cfg, "DynamicKFSLAM");
+	EXPECT_EQ(ekf.router().name(), "ids");
+}

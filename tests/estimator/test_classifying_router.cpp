@@ -186,6 +186,36 @@ TEST(ClassifyingRouter, StaticTrackThatStartsMovingIsReclassified)
 	RecordProperty("reclassification_delay", reclassifiedAt - onset);
 }
 
+TEST(ClassifyingRouter, UndecidedTracksNeverUpdateTheFilter)
+{
+	// Weak evidence (motion_std at the noise level): the track stays a candidate for several
+	// sightings. Its first reading is a candidate landmark (StaticNew), the later ones are
+	// skipped, never StaticKnown (which would update the ego), whatever the filter knows.
+	TClassifyParams p;
+	p.motion_std = 0.01;
+	p.max_window = 50;
+	TSynth s(11);
+	CClassifyingRouter r(p);
+	const Eigen::Vector2d f(8, 2);
+	int undecidedSightings = 0;
+	for (int k = 0; k < 50; ++k)
+	{
+		r.setContext(s.ctx(k == 0 ? Eigen::Vector3d::Zero() : s.move()));
+		const TRoutedStep out = r.route(k, {{0, s.see(f)}}, [](int32_t) { return true; });
+		if (r.tracks().at(0).cls != TrackClass::Candidate) break;
+		ASSERT_EQ(out.readings.size(), 1u);
+		EXPECT_TRUE(out.readings[0].candidate);
+		EXPECT_EQ(out.readings[0].route, Route::Skip) << "step " << k;
+		++undecidedSightings;
+	}
+	EXPECT_GE(undecidedSightings, 3) << "the test needs a track that stays undecided";
+	TSynth s2(11);
+	CClassifyingRouter r2(p);
+	r2.setContext(s2.ctx(Eigen::Vector3d::Zero()));
+	const TRoutedStep first = r2.route(0, {{0, s2.see(f)}}, kNone);
+	EXPECT_EQ(first.readings[0].route, Route::StaticNew) << "a candidate landmark";
+}
+
 TEST(ClassifyingRouter, BadInputIsAClearError)
 {
 	TClassifyParams p;
