@@ -181,73 +181,94 @@ void CClassifyingRouter::makeMoving(int32_t id, TTrack& t, int step,
 	newObjects.push_back(t.object);
 }
 
+CClassifyingRouter::Act CClassifyingRouter::classifyOne(
+    int32_t id, const TPoint2& z, int step, TRoutedStep& out, bool& candidate,
+    std::vector<int32_t>& turnedMoving, const std::function<bool(int32_t)>& isKnownStatic)
+{
+	TTrack& t = m_tracks[id];
+	if (t.first_seen < 0) t.first_seen = step;
+	remember(t, z, step, m_p.max_window + 2);
+	Act act = Act::Skip;
+	if (t.cls == TrackClass::Candidate)
+	{
+		const std::optional<TrackClass> d = addEvidence(t, z, step);
+		if (d == TrackClass::Static)
+		{
+			t.cls = TrackClass::Static;
+			t.decided_step = step;
+			act = Act::Static;
+		}
+		else if (d == TrackClass::Moving)
+		{
+			turnedMoving.push_back(id);
+			if (m_p.candidate_landmarks && isKnownStatic(id)) out.dropped_candidates.push_back(id);
+		}
+		else
+		{
+			++out.candidates;
+			candidate = true;
+			// The first reading: a candidate landmark, not an update (see the header).
+			if (m_p.candidate_landmarks && t.sightings == 0) act = Act::Static;
+		}
+	}
+	else if (t.cls == TrackClass::Static)
+	{
+		if (checkStatic(t, z, step))
+			act = Act::Static;
+		else if (t.bad_streak >= m_p.reclassify_count)
+		{
+			turnedMoving.push_back(id);
+			if (isKnownStatic(id)) out.reclassified.push_back(id);
+		}
+		else
+			++out.held;
+	}
+	else
+		act = Act::Moving;
+	++t.sightings;
+	t.last_seen = step;
+	return act;
+}
+
+void CClassifyingRouter::routeMoving(TRoutedReading& m, const TTrack& t, int step, TRoutedStep& out)
+{
+	m.object = t.object;
+	m.feature = t.feature;
+	switch (m_registry.registerReading(m.object, m.reading.id, m.feature, step))
+	{
+		case FeatureRole::FirstSighting:
+			m.route = Route::ObjectFirstSighting;
+			break;
+		case FeatureRole::TimeT:
+			m.route = Route::ObjectTimeT;
+			break;
+		case FeatureRole::Unknown:
+			m.route = Route::Skip;
+			++out.skipped_unknown_object_feature;
+			break;
+	}
+}
+
 TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& readings,
                                       const std::function<bool(int32_t)>& isKnownStatic)
 {
 	if (!m_ctx) throw std::logic_error("CClassifyingRouter::route: setContext() was not called");
 	TRoutedStep out;
 	predictTracks(step, out, isKnownStatic);
-	enum class Act
-	{
-		Skip,
-		Static,
-		Moving
-	};
 	std::vector<Act> act(readings.size(), Act::Skip);
 	std::vector<bool> candidate(readings.size(), false);
 	std::vector<int32_t> turnedMoving;  // decided (or reclassified) moving now, in order
-	const int keep = m_p.max_window + 2;
 	for (size_t i = 0; i < readings.size(); ++i)
 	{
-		const int32_t id = readings[i].id;
-		if (id < 0)
+		if (readings[i].id < 0)
 		{
 			++out.skipped_unknown_id;
 			continue;
 		}
-		const TPoint2 z = readingInRobotFrame(*m_ctx, readings[i].z);
-		TTrack& t = m_tracks[id];
-		if (t.first_seen < 0) t.first_seen = step;
-		remember(t, z, step, keep);
-		if (t.cls == TrackClass::Candidate)
-		{
-			const std::optional<TrackClass> d = addEvidence(t, z, step);
-			if (d == TrackClass::Static)
-			{
-				t.cls = TrackClass::Static;
-				t.decided_step = step;
-				act[i] = Act::Static;
-			}
-			else if (d == TrackClass::Moving)
-			{
-				turnedMoving.push_back(id);
-				if (m_p.candidate_landmarks && isKnownStatic(id))
-					out.dropped_candidates.push_back(id);
-			}
-			else
-			{
-				++out.candidates;
-				candidate[i] = true;
-				// The first reading: a candidate landmark, not an update (see the header).
-				if (m_p.candidate_landmarks && t.sightings == 0) act[i] = Act::Static;
-			}
-		}
-		else if (t.cls == TrackClass::Static)
-		{
-			if (checkStatic(t, z, step))
-				act[i] = Act::Static;
-			else if (t.bad_streak >= m_p.reclassify_count)
-			{
-				turnedMoving.push_back(id);
-				if (isKnownStatic(id)) out.reclassified.push_back(id);
-			}
-			else
-				++out.held;
-		}
-		else
-			act[i] = Act::Moving;
-		++t.sightings;
-		t.last_seen = step;
+		bool c = false;
+		act[i] = classifyOne(readings[i].id, readingInRobotFrame(*m_ctx, readings[i].z), step, out,
+		                     c, turnedMoving, isKnownStatic);
+		candidate[i] = c;
 	}
 	std::vector<int32_t> newObjects;
 	for (const int32_t id : turnedMoving) makeMoving(id, m_tracks.at(id), step, newObjects);
@@ -264,23 +285,7 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 		else if (act[i] == Act::Static)
 			m.route = isKnownStatic(id) ? Route::StaticKnown : Route::StaticNew;
 		else if (act[i] == Act::Moving)
-		{
-			m.object = it->second.object;
-			m.feature = it->second.feature;
-			switch (m_registry.registerReading(m.object, id, m.feature, step))
-			{
-				case FeatureRole::FirstSighting:
-					m.route = Route::ObjectFirstSighting;
-					break;
-				case FeatureRole::TimeT:
-					m.route = Route::ObjectTimeT;
-					break;
-				case FeatureRole::Unknown:
-					m.route = Route::Skip;
-					++out.skipped_unknown_object_feature;
-					break;
-			}
-		}
+			routeMoving(m, it->second, step, out);
 		out.readings.push_back(m);
 	}
 	return out;

@@ -102,6 +102,19 @@ private:
 	/** Makes track id moving at step: joins an object created in this step or starts one. */
 	void makeMoving(int32_t id, TTrack& t, int step, std::vector<int32_t>& newObjects);
 	static void remember(TTrack& t, const TPoint2& z, int step, int keep);
+	enum class Act
+	{
+		Skip,
+		Static,
+		Moving
+	};
+	/** Updates track id with its reading z: what to do with it (moving tracks decided now are
+	 * appended to turnedMoving and routed after grouping). */
+	Act classifyOne(int32_t id, const TPoint2& z, int step, TRoutedStep& out, bool& candidate,
+	                std::vector<int32_t>& turnedMoving,
+	                const std::function<bool(int32_t)>& isKnownStatic);
+	/** An object reading of moving track t through the registry. */
+	void routeMoving(TRoutedReading& m, const TTrack& t, int step, TRoutedStep& out);
 
 	TClassifyParams m_p;
 	std::optional<TRouterContext> m_ctx;
