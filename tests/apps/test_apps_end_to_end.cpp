@@ -11,6 +11,7 @@
 #include <dynslam/apps/CMonteCarloApp.h>
 #include <dynslam/apps/CRunApp.h>
 
+#include <algorithm>
 #include <filesystem>
 
 using namespace dynslam;
@@ -205,6 +206,38 @@ TEST(CompareApp, SmoothingFilterRowRunsAlg6)
 	EXPECT_NEAR(dy, 0.1276, 0.002);  // the README's table
 	EXPECT_NE(sm, dy);
 	EXPECT_NEAR(sm, dy, 0.01 * dy);
+}
+
+TEST(CompareApp, ClassifiedRowHasClassColumns)
+{
+	// config/compare_classified.ini: dynamic and dynamic_classified (feature_labels = classify,
+	// issue 12, doc/classification.md) on the shipped highway; the class columns are scored
+	// against datasets/highway_gt_classes.csv and empty for the other rows.
+	const std::string out = apps_test::freshDir("cmp_classified");
+	CCompareApp app;
+	TArgs a({"-c", apps_test::configFile("compare_classified.ini"), "--filters",
+	         "dynamic,dynamic_classified", "--no-figures", "-q", "--out", out});
+	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
+	app.run();
+	ASSERT_EQ(app.rows.size(), 2u);
+	EXPECT_FALSE(app.rows[0].classes);
+	ASSERT_TRUE(app.rows[1].classes);
+	const auto& c = *app.rows[1].classes;
+	std::printf(
+	    "[ measured ] classified: P %.4f R %.4f F1 %.4f ARI %.4f, ATE %.4f (dynamic %.4f)\n",
+	    c.precision, c.recall, c.f1, c.ari, app.rows[1].metrics.ate, app.rows[0].metrics.ate);
+	EXPECT_GE(c.f1, 0.95);
+	EXPECT_LE(app.rows[1].metrics.ate, 1.1 * app.rows[0].metrics.ate + 0.01);
+	const auto lines = apps_test::readLines(out + "/metrics.csv");
+	ASSERT_EQ(lines.size(), 3u);
+	const auto header = apps_test::splitCsv(lines[0]);
+	const auto it = std::find(header.begin(), header.end(), "class_f1");
+	ASSERT_NE(it, header.end());
+	const size_t col = size_t(it - header.begin());
+	EXPECT_EQ(header[col - 2], "class_precision");
+	EXPECT_EQ(header[col + 1], "group_ari");
+	EXPECT_EQ(apps_test::splitCsv(lines[1])[col], "") << "dynamic does not classify";
+	EXPECT_NE(apps_test::splitCsv(lines[2])[col], "");
 }
 
 TEST(CompareApp, ExecutableWithoutArgumentsRunsTheShippedDefault)

@@ -128,5 +128,18 @@ TEST(Backends, BadOptions)
 			EXPECT_NE(std::string(e.what()).find("odometry_bias = rate"), std::string::npos)
 			    << e.what();
 		}
+		// So is the classification of anonymous tracks (issue 12): never silently ID ranges.
+		b.model.odometry_bias.mode = "none";
+		b.model.feature_labels = "classify";
+		try
+		{
+			makeBackend(b);
+			ADD_FAILURE() << kind << ": feature_labels = classify accepted";
+		}
+		catch (const std::invalid_argument& e)
+		{
+			EXPECT_NE(std::string(e.what()).find("feature_labels = classify"), std::string::npos)
+			    << e.what();
+		}
 	}
 }

@@ -1,8 +1,11 @@
+#include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/run_outputs.h>
+#include <dynslam/class_ground_truth.h>
 #include <dynslam/config_utils.h>
+#include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
 
@@ -24,8 +27,8 @@ const char* kDefaultIni = "config/compare_highway.ini";
 std::string backendOf(const std::string& filter) { return filter == "dynamic" ? "ekf" : filter; }
 
 /** Fixed colours per filter, whatever the subset: static_all red, static only orange, dynamic
- * blue, dynamic_cv green, dynamic_smoothing purple, dynamic_ctrv the sixth colour
- * (eval::seriesColor). */
+ * blue, dynamic_cv green, dynamic_smoothing purple, dynamic_ctrv and dynamic_classified the
+ * sixth and seventh colours (eval::seriesColor). */
 size_t filterColorIndex(const std::string& n)
 {
 	return n == "static_all"              ? 0
@@ -33,6 +36,7 @@ size_t filterColorIndex(const std::string& n)
 	       : n == "dynamic_cv"            ? 2
 	       : n == "dynamic_smoothing"     ? 4
 	       : n == "dynamic_ctrv"          ? 5
+	       : n == "dynamic_classified"    ? 6
 	                                      : 1;
 }
 
@@ -40,9 +44,9 @@ size_t filterColorIndex(const std::string& n)
  * other object models (issue 13; makeBackend). */
 const std::vector<std::string>& knownFilters()
 {
-	static const std::vector<std::string> f{"static_all",   "static_landmarks_only",
-	                                        "dynamic",      "dynamic_cv",
-	                                        "dynamic_ctrv", "dynamic_smoothing"};
+	static const std::vector<std::string> f{
+	    "static_all",   "static_landmarks_only", "dynamic",           "dynamic_cv",
+	    "dynamic_ctrv", "dynamic_smoothing",     "dynamic_classified"};
 	return f;
 }
 
@@ -70,7 +74,7 @@ std::vector<std::string> parseFilterList(const std::string& fl)
 			fail(kSection, "filters", fl,
 			     "unknown filter '" + f +
 			         "' (known: static_all, static_landmarks_only, dynamic, dynamic_cv, "
-			         "dynamic_ctrv, dynamic_smoothing)");
+			         "dynamic_ctrv, dynamic_smoothing, dynamic_classified)");
 	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
 	return filters;
 }
@@ -217,10 +221,15 @@ void CCompareApp::run()
 		dump << "\n# ======== filter " << f << " ========\n";
 		auto backend = makeBackend(backendOf(f), params, &dump);
 		MRPT_LOG_INFO_FMT("filter %zu/%zu: %s on %zu steps", i + 1, filters.size(), f.c_str(), n);
+		// feature_labels = classify: the decision about every reading, for the class metrics.
+		const auto* ekf = dynamic_cast<const CDynamicKFSLAM2D*>(backend.get());
+		const bool classifies = ekf && ekf->options.feature_labels == "classify";
+		TClassDecisions decisions;
 		TFilterRun r =
 		    runFilter(*backend, d.rawlog.actions, d.rawlog.frames,
 		              [&](size_t done, size_t total)
 		              {
+			              if (classifies) decisions.add(ekf->lastRoutedStep());
 			              if (every == 0 || (done % every != 0 && done != total)) return;
 			              MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", f.c_str(), done, total,
 			                                100.0 * double(done) / double(total));
@@ -234,6 +243,7 @@ void CCompareApp::run()
 		{
 			const TEvaluation ev = evaluateRun(gt, r.est);
 			rows.push_back({f, ev.metrics, ev.summary});
+			if (classifies) rows.back().classes = classScores(decisions);
 		}
 		runs.push_back(std::move(r));
 	}
@@ -256,6 +266,41 @@ void CCompareApp::run()
 	else
 		std::cout << "(add --out DIR to write metrics.csv, per-filter estimates and figures)\n";
 	writeVisualOutputs();
+}
+
+std::optional<eval::TMetricsRow::TClassScores> CCompareApp::classScores(
+    const TClassDecisions& d) const
+{
+	const std::string file = groundTruthUsed + "_gt_classes.csv";
+	if (!std::filesystem::exists(file))
+	{
+		MRPT_LOG_WARN_FMT("no class ground truth %s: the class_* columns stay empty", file.c_str());
+		return std::nullopt;
+	}
+	const std::vector<TReadingClass> truth = readClassGroundTruth(file);
+	if (truth.size() != d.decisions.size())
+	{
+		MRPT_LOG_WARN_FMT("%s has %zu readings, the run %zu: the class_* columns stay empty",
+		                  file.c_str(), truth.size(), d.decisions.size());
+		return std::nullopt;
+	}
+	const eval::TBinaryScores s = eval::perReadingScores(truth, d.decisions);
+	return eval::TMetricsRow::TClassScores{s.precision, s.recall, s.f1,
+	                                       eval::groupingAri(truth, d.groups)};
+}
+
+void TClassDecisions::add(const estimator::TRoutedStep& step)
+{
+	using estimator::Route;
+	for (const auto& m : step.readings)
+	{
+		const bool st = m.route == Route::StaticKnown || m.route == Route::StaticNew;
+		decisions.push_back(m.candidate     ? eval::Decision::Undecided
+		                    : st            ? eval::Decision::Static
+		                    : m.object >= 0 ? eval::Decision::Moving
+		                                    : eval::Decision::Undecided);
+		groups.push_back(m.candidate || st ? -1 : m.object);
+	}
 }
 
 void CCompareApp::differenceRows()

@@ -52,7 +52,7 @@ std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
                                           std::ostream* optionsDump)
 {
 	if (kind == "ekf" || kind == "dynamic" || kind == "dynamic_cv" || kind == "dynamic_ctrv" ||
-	    kind == "dynamic_smoothing")
+	    kind == "dynamic_smoothing" || kind == "dynamic_classified")
 	{
 		auto f = std::make_unique<CDynamicKFSLAM2D>();
 		f->loadOptions(ini, "DynamicKFSLAM");
@@ -60,6 +60,12 @@ std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
 			overrideObjectModel(*f, ini, kind.substr(8));
 		else if (kind == "dynamic_smoothing")
 			overrideObjectModel(*f, ini, "paper_smoothing");
+		if (kind == "dynamic_classified")  // issue 12: the same filter, no ID oracle
+		{
+			f->options.feature_labels = "classify";
+			f->options.validate();
+			f->reset();
+		}
 		if (optionsDump)
 		{
 			*optionsDump << "# [DynamicKFSLAM] (CDynamicKFSLAM2D::TOptions)";

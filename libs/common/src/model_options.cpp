@@ -77,7 +77,37 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "cv_velocity_prior_std",
                                           "cv_gate",
                                           "cv_inflation_threshold",
-                                          "cv_inflation_factor"};
+                                          "cv_inflation_factor",
+                                          "feature_labels",
+                                          "classify_alpha",
+                                          "classify_beta",
+                                          "classify_motion_std",
+                                          "classify_max_window",
+                                          "classify_forget_steps",
+                                          "classify_group_prob",
+                                          "classify_group_max_dist",
+                                          "classify_reclassify_count",
+                                          "classify_reclassify_gate",
+                                          "classify_candidate_landmarks"};
+
+/** feature_labels and the classify_* keys (issue 12). */
+void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	using namespace dynslam::config;
+	const std::vector<std::string> labels{"ids", "classify"};
+	o.feature_labels = labels[size_t(readChoice(c, s, "feature_labels", labels, 0))];
+	estimator::TClassifyParams& p = o.classify;
+	p.alpha = readDouble(c, s, "classify_alpha", p.alpha);
+	p.beta = readDouble(c, s, "classify_beta", p.beta);
+	p.motion_std = readDouble(c, s, "classify_motion_std", p.motion_std);
+	p.max_window = int(readInt(c, s, "classify_max_window", p.max_window));
+	p.forget_steps = int(readInt(c, s, "classify_forget_steps", p.forget_steps));
+	p.group_prob = readDouble(c, s, "classify_group_prob", p.group_prob);
+	p.group_max_dist = readDouble(c, s, "classify_group_max_dist", p.group_max_dist);
+	p.reclassify_count = int(readInt(c, s, "classify_reclassify_count", p.reclassify_count));
+	p.reclassify_gate = readDouble(c, s, "classify_reclassify_gate", p.reclassify_gate);
+	p.candidate_landmarks = readBool(c, s, "classify_candidate_landmarks", p.candidate_landmarks);
+}
 }  // namespace
 
 void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
@@ -123,6 +153,7 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	recovery_inflation = readDouble(c, s, "recovery_inflation", recovery_inflation);
 	recovery_min_updates = int(readInt(c, s, "recovery_min_updates", recovery_min_updates));
 	odometry_bias.load(c, s);
+	loadClassify(*this, c, s);
 	try
 	{
 		validate();
@@ -171,6 +202,10 @@ void TModelOptions::validate() const
 		throw std::invalid_argument(
 		    "outlier_method = jcbb: needs the confidence of its individual "
 		    "and joint chi-square tests (innovation_gate in (0, 1))");
+	if (feature_labels != "ids" && feature_labels != "classify")
+		throw std::invalid_argument("feature_labels = " + feature_labels +
+		                            ": must be ids or classify");
+	classify.validate();
 	if (!(robust_kernel_c > 0) || robust_iterations < 1)
 		throw std::invalid_argument("robust_kernel_c must be > 0 and robust_iterations >= 1");
 	if (recovery_count < 1 || !(recovery_inflation > 1) || recovery_min_updates < 0)
@@ -224,6 +259,19 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	    << "\n";
 	out << "record_dropped                 = " << (record_dropped ? "true" : "false") << "\n";
 	odometry_bias.dump(out);
+	if (feature_labels == "ids") return;  // the classify_* keys only matter with classify
+	out << "feature_labels                 = " << feature_labels << "\n";
+	out << "classify_alpha                 = " << classify.alpha << "\n";
+	out << "classify_beta                  = " << classify.beta << "\n";
+	out << "classify_motion_std            = " << classify.motion_std << "\n";
+	out << "classify_max_window            = " << classify.max_window << "\n";
+	out << "classify_forget_steps          = " << classify.forget_steps << "\n";
+	out << "classify_group_prob            = " << classify.group_prob << "\n";
+	out << "classify_group_max_dist        = " << classify.group_max_dist << "\n";
+	out << "classify_reclassify_count      = " << classify.reclassify_count << "\n";
+	out << "classify_reclassify_gate       = " << classify.reclassify_gate << "\n";
+	out << "classify_candidate_landmarks   = " << (classify.candidate_landmarks ? "true" : "false")
+	    << "\n";
 }
 TParseOptions TModelOptions::parseOptions() const
 {

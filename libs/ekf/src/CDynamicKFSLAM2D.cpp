@@ -81,7 +81,7 @@ void CDynamicKFSLAM2D::reset()
 	for (int i = 0; i < 3; ++i)
 		for (int j = 0; j < 3; ++j) m_pkk(i, j) = options.Sigma_0(i, j);
 	// The seams: the options' implementations unless another one was set.
-	if (!m_userRouter) m_router = estimator::makeRouter("ids");
+	if (!m_userRouter) m_router = estimator::makeRouter(options.feature_labels, &options.classify);
 	m_router->reset();
 	if (!m_userEngine)
 	{
@@ -172,9 +172,19 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 	try
 	{
 		expandIfNeeded();  // compressed EKF only
+		estimator::TRouterContext ctx;
+		ctx.model = options.measurement_model;
+		ctx.R = options.Sigma_v;
+		ctx.sensor_pose = m_in.sensor_pose;
+		ctx.u = m_in.u;
+		ctx.U = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
+		m_router->setContext(ctx);
 		m_routed = m_router->route(m_step, m_in.readings,
 		                           [this](int32_t id) { return m_staticBlock.count(id) != 0; });
 		m_report.skipped_unknown_object_feature = m_routed.skipped_unknown_object_feature;
+		m_report.classify_candidates = m_routed.candidates;
+		m_report.classify_held = m_routed.held;
+		m_report.skipped_unknown_id = m_routed.skipped_unknown_id;
 		propagateEgo();          // Alg. 7
 		predictObjects();        // object-centric motion models only (cv)
 		staticUpdate();          // Alg. 5

@@ -225,12 +225,23 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 			++m_report.dropped_poses;
 		}
 	}
-	// Static landmarks unseen for too long (optional; never one added in this step).
+	// Static landmarks unseen for too long (optional; never one added in this step), and those
+	// the router reclassified as moving (feature_labels = classify: not recorded as static).
+	const std::set<int32_t> moving(m_routed.reclassified.begin(), m_routed.reclassified.end());
+	const std::set<int32_t> candidates(m_routed.dropped_candidates.begin(),
+	                                   m_routed.dropped_candidates.end());
 	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
 		const TBlock& t = m_layout[b];
-		if (t.kind != BlockKind::StaticLandmark || !m_drop.staticDue(t.id, m_step, t.step))
+		if (t.kind != BlockKind::StaticLandmark) continue;
+		if (moving.count(t.id) || candidates.count(t.id))
+		{
+			m_drop.forget(t.id);
+			remove.push_back(b);
+			++(moving.count(t.id) ? m_report.reclassified_static : m_report.dropped_candidates);
 			continue;
+		}
+		if (!m_drop.staticDue(t.id, m_step, t.step)) continue;
 		const std::vector<int> idx = m_layout.indices(b);
 		TStaticLandmarkEstimate e;
 		e.id = t.id;

@@ -1,3 +1,4 @@
+#include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/landmark_ids.h>
 
@@ -113,9 +114,12 @@ int32_t CIdRangeRouter::featureId(int32_t object, int32_t feature) const
 	return ids::objectFeatureId(object, feature);
 }
 
-std::unique_ptr<IMeasurementRouter> makeRouter(const std::string& feature_labels)
+std::unique_ptr<IMeasurementRouter> makeRouter(const std::string& feature_labels,
+                                               const TClassifyParams* classify)
 {
 	if (feature_labels == "ids") return std::make_unique<CIdRangeRouter>();
-	throw std::invalid_argument("feature_labels = " + feature_labels + ": known: ids");
+	if (feature_labels == "classify")
+		return std::make_unique<CClassifyingRouter>(classify ? *classify : TClassifyParams());
+	throw std::invalid_argument("feature_labels = " + feature_labels + ": known: ids, classify");
 }
 }  // namespace dynslam::estimator

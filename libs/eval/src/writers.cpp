@@ -208,6 +208,9 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 		os << "," << a << "_object," << a << "_feat_rmse_x," << a << "_feat_rmse_y," << a
 		   << "_pose_rmse_x," << a << "_pose_rmse_y," << a << "_pose_rmse_theta";
 	}
+	const bool classes =
+	    std::any_of(rows.begin(), rows.end(), [](const TMetricsRow& r) { return r.classes; });
+	if (classes) os << ",class_precision,class_recall,class_f1,group_ari";
 	os << ",ego_anees,ego_nees_inside,map_anees,map_dof,nis_anees,nis_inside,"
 	      "odometry_bias_rate_final,odometry_bias_scale_final\n";
 	for (const auto& r : rows)
@@ -228,6 +231,11 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 			os << "," << o.object << "," << num(o.features.x) << "," << num(o.features.y) << ","
 			   << num(o.poses.x) << "," << num(o.poses.y) << "," << num(o.poses.theta);
 		}
+		if (classes && r.classes)
+			os << "," << num(r.classes->precision) << "," << num(r.classes->recall) << ","
+			   << num(r.classes->f1) << "," << num(r.classes->ari);
+		else if (classes)
+			os << ",,,,";
 		if (r.consistency)
 		{
 			const auto& c = *r.consistency;

@@ -115,6 +115,12 @@ void TBackendOptions::validate() const
 		    "[" + model_section + "] odometry_bias = " + model.odometry_bias.mode +
 		    ": online odometry bias estimation is implemented in the dynamic EKF only "
 		    "(CDynamicKFSLAM2D); the framework back-ends need odometry_bias = none");
+	if (model.feature_labels != "ids")
+		throw std::invalid_argument(
+		    "[" + model_section + "] feature_labels = " + model.feature_labels +
+		    ": classification of anonymous tracks is implemented in the dynamic EKF only "
+		    "(CDynamicKFSLAM2D, doc/classification.md); the framework back-ends need "
+		    "feature_labels = ids");
 	model.validate();
 }
 

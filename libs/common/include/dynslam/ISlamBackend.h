@@ -66,6 +66,12 @@ struct TStepReport
 	size_t object_feature_updates = 0, object_gated_out = 0;
 	double nis_static = 0;  ///< NIS of the static update (0 if none)
 	size_t nis_static_dof = 0;
+	/** feature_labels = classify (doc/classification.md): readings of undecided tracks and of
+	 * static tracks held back as inconsistent (both unused), readings with ID -1 (skipped),
+	 * static landmarks reclassified moving and dropped from the state. */
+	size_t classify_candidates = 0, classify_held = 0, skipped_unknown_id = 0;
+	size_t reclassified_static = 0;
+	size_t dropped_candidates = 0;  ///< candidate landmarks removed (decided moving, forgotten)
 };
 
 /** Common interface of the back-ends. */

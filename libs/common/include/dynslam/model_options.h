@@ -5,6 +5,7 @@
  * [DynamicKFSLAM] of the INI files. Shared by every back-end: the dynamic EKF
  * (CDynamicKFSLAM2D::TOptions is this struct) and the framework's configurations
  * (framework::TBackendOptions::model), so it lives below both, in dynslam::common. */
+#include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/models/measurement.h>
@@ -126,5 +127,11 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	/** Online odometry bias estimation (issue 17): odometry_bias = none | rate | rate_scale
 	 * and its keys, dynslam/odometry_bias_options.h. Only the dynamic EKF supports it. */
 	TOdometryBiasOptions odometry_bias;
+	/** feature_labels (issue 12, doc/classification.md): ids (default: the ID ranges of
+	 * dynslam/landmark_ids.h say what each reading is) or classify (every ID >= 0 is an
+	 * anonymous track, classified online by estimator::CClassifyingRouter with the
+	 * classify_* keys; EKF only). */
+	std::string feature_labels = "ids";
+	estimator::TClassifyParams classify;
 };
 }  // namespace dynslam

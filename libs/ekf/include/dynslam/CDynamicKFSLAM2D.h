@@ -156,6 +156,8 @@ public:
 	/** State vector index of the pad entries (for checks). */
 	std::vector<size_t> padIndices() const;
 	const TStepReport& getLastStepReport() const override { return m_report; }
+	/** The router's decisions about the last step's readings, in observation order. */
+	const estimator::TRoutedStep& lastRoutedStep() const { return m_routed; }
 	int stepCount() const { return m_step + 1; }
 	/** Full mean / covariance including pads (MRPT's storage). */
 	const KFVector& fullMean() const

@@ -5,7 +5,10 @@
  *      static landmark;
  *  (b) static_landmarks_only: the same filter given only the static landmarks (moving
  *      features removed by ID, dynslam/landmark_ids.h);
- *  (c) dynamic: the dynamic EKF (CDynamicKFSLAM2D).
+ *  (c) dynamic: the dynamic EKF (CDynamicKFSLAM2D);
+ *  optional rows: dynamic_cv, dynamic_smoothing (other object models), dynamic_classified
+ *  (feature_labels = classify: no ID oracle; metrics.csv then gains class_precision,
+ *  class_recall, class_f1, group_ari against <ground truth>_gt_classes.csv).
  * Prints one table of metrics and timing per filter; with --out DIR writes DIR/metrics.csv
  * (header + one row per filter: filter,ego_rmse_x,ego_rmse_y,ego_rmse_theta,static_rmse_x,
  * static_rmse_y,ate,ms_per_step,...), the per-filter estimate files, overlaid figures and the
@@ -21,6 +24,8 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
+#include <dynslam/estimator/measurement_router.h>
+#include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/writers.h>
 #include <dynslam/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -32,6 +37,14 @@
 
 namespace dynslam::apps
 {
+/** The decision about every reading of a run (feature_labels = classify), in rawlog order. */
+struct TClassDecisions
+{
+	std::vector<eval::Decision> decisions;
+	std::vector<int64_t> groups;  ///< the estimated object of each reading (-1: none)
+	void add(const estimator::TRoutedStep& step);
+};
+
 class CCompareApp : public mrpt::system::COutputLogger
 {
 public:
@@ -85,5 +98,8 @@ private:
 	void drawFigures();
 	void differenceRows();
 	void writeVisualOutputs();  ///< --scene, --video
+	/** Scores of a classifying run against <groundTruthUsed>_gt_classes.csv (empty, with a
+	 * warning, if the file is missing or its reading count differs). */
+	std::optional<eval::TMetricsRow::TClassScores> classScores(const TClassDecisions& d) const;
 };
 }  // namespace dynslam::apps

@@ -7,7 +7,9 @@
  * dynslam/landmark_ids.h (the oracle the paper assumes). */
 #include <dynslam/estimator/object_registry.h>
 #include <dynslam/estimator/readings.h>
+#include <dynslam/models/measurement.h>
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -32,6 +34,9 @@ struct TRoutedReading
 	Route route = Route::Skip;
 	int32_t object = -1;   ///< object readings: the object
 	int32_t feature = -1;  ///< object readings: the feature index within the object
+	/** The reading of a track not yet classified (feature_labels = classify): a StaticNew
+	 * candidate landmark (never an update of the ego) or a Skip. */
+	bool candidate = false;
 };
 
 /** The routed readings of one step, in observation order, and what was skipped. */
@@ -39,6 +44,15 @@ struct TRoutedStep
 {
 	std::vector<TRoutedReading> readings;
 	size_t skipped_unknown_object_feature = 0;  ///< object feature without an f_0
+	/** feature_labels = classify only (CClassifyingRouter); 0 / empty for the ID-range rule. */
+	size_t skipped_unknown_id = 0;  ///< readings with ID -1 (no association yet: skipped)
+	size_t candidates = 0;          ///< readings of undecided tracks (not used by the filter)
+	size_t held = 0;  ///< readings of static tracks held back as inconsistent (not used)
+	/** Static landmarks decided moving in this step (a parked car drove off): the filter drops
+	 * them from the state; their reading of this step is routed as an object feature. */
+	std::vector<int32_t> reclassified;
+	/** Candidate landmarks to remove from the state (decided moving, or forgotten). */
+	std::vector<int32_t> dropped_candidates;
 	/** The readings with route r, in observation order. */
 	std::vector<TRoutedReading> with(Route r) const;
 	/** The readings of static landmarks (known and new), in observation order. */
@@ -50,6 +64,18 @@ struct TRoutedStep
 /** The readings of routed readings, in their order. */
 std::vector<TReading> readingsOf(const std::vector<TRoutedReading>& r);
 
+/** What a router that looks at the readings' geometry needs besides the readings (the
+ * classifying router): the measurement model, its noise, the sensor pose and the step's
+ * odometry increment u (robot frame) with its covariance U. */
+struct TRouterContext
+{
+	models::MeasurementModel model = models::MeasurementModel::Cartesian;
+	Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+	Eigen::Vector3d sensor_pose = Eigen::Vector3d::Zero();
+	Eigen::Vector3d u = Eigen::Vector3d::Zero();
+	Eigen::Matrix3d U = Eigen::Matrix3d::Zero();
+};
+
 class IMeasurementRouter
 {
 public:
@@ -58,6 +84,8 @@ public:
 	/** Checks every reading of a step before the filter changes anything: throws
 	 * std::runtime_error naming the reading, prefixed by `who`. */
 	virtual void validate(const std::vector<TReading>& readings, const std::string& who) const = 0;
+	/** The step's context, given before route() (ignored by routers that need none). */
+	virtual void setContext(const TRouterContext&) {}
 	/** Routes the readings of `step` (validated). isKnownStatic(id) says whether static
 	 * landmark `id` is in the state. Registers new objects and first-sighting features. */
 	virtual TRoutedStep route(int step, const std::vector<TReading>& readings,
@@ -87,6 +115,9 @@ private:
 	CObjectRegistry m_registry;
 };
 
-/** The router of the INI option feature_labels (today only "ids"). */
-std::unique_ptr<IMeasurementRouter> makeRouter(const std::string& feature_labels);
+struct TClassifyParams;
+/** The router of the INI option feature_labels: "ids" (CIdRangeRouter) or "classify"
+ * (CClassifyingRouter with `classify`, its defaults if null). Throws std::invalid_argument. */
+std::unique_ptr<IMeasurementRouter> makeRouter(const std::string& feature_labels,
+                                               const TClassifyParams* classify = nullptr);
 }  // namespace dynslam::estimator

@@ -50,6 +50,13 @@ struct TMetricsRow
 	std::string filter;  ///< e.g. static_all, static_landmarks_only, dynamic
 	TRunMetrics metrics;
 	std::optional<TConsistencySummary> consistency;  ///< adds the NEES/NIS columns if set
+	/** Classification scores (feature_labels = classify rows, class_metrics.h): per-reading
+	 * precision, recall, F1 of "moving" and the grouping ARI. */
+	struct TClassScores
+	{
+		double precision = kNaN, recall = kNaN, f1 = kNaN, ari = kNaN;
+	};
+	std::optional<TClassScores> classes;  ///< if any row has it: 4 more columns (see below)
 };
 
 /** Metrics CSV: a header row, then one row per filter. Columns:
@@ -57,6 +64,8 @@ struct TMetricsRow
  * ego_steps,landmarks_scored,landmarks_missing,landmarks_unmatched,
  * for each agent k = 1..K (K = most objects in any row): agentk_object,agentk_feat_rmse_x,
  * agentk_feat_rmse_y,agentk_pose_rmse_x,agentk_pose_rmse_y,agentk_pose_rmse_theta,
+ * then (only if a row has TMetricsRow::classes; empty for the other rows)
+ * class_precision,class_recall,class_f1,group_ari,
  * then ego_anees,ego_nees_inside,map_anees,map_dof,nis_anees,nis_inside (fractions in [0,1];
  * empty without consistency), then odometry_bias_rate_final [rad/s], odometry_bias_scale_final
  * (the final odometry bias estimate, TRunMetrics; empty without a bias state / scale). */

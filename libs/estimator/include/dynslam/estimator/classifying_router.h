@@ -1,0 +1,127 @@
+#pragma once
+/** @file classifying_router.h
+ * feature_labels = classify (issue 12, doc/classification.md): every non-negative reading ID
+ * is an anonymous persistent track; the router decides static vs moving online and groups the
+ * moving tracks into rigid objects, with no ID oracle.
+ *
+ * A new track is a candidate: not routed to the filter (Skip), so neither the ego nor the map
+ * is touched while it is undecided. Its evidence is a small filter of the static hypothesis in
+ * the robot frame: the point is carried through every odometry increment (TRouterContext::u,
+ * U) and updated with each reading; each innovation nu (covariance S) adds the log-likelihood
+ * ratio log N(nu; 0, S + sigma_m^2 I) - log N(nu; 0, S) of a moving point (a random walk of
+ * sigma_m = motion_std per step) against a static one. Wald's sequential probability ratio
+ * test decides: moving when the sum reaches log((1 - beta) / alpha), static when it falls to
+ * log(beta / (1 - alpha)); after max_window sightings the sign of the sum decides.
+ * With candidate_landmarks (default), a candidate's first reading initialises a landmark
+ * (StaticNew: an augmentation, which does not change the ego) whose later readings are not used
+ * until the track is decided: static -> StaticKnown updates (the first reading's information
+ * is kept), moving -> the landmark is dropped (TRoutedStep::dropped_candidates), as is a
+ * forgotten candidate. Without it, a decided static track starts with StaticNew. Moving -> a
+ * feature of a new object, or of an object created in the same step whose features keep constant
+ * distances to it (rigidDistanceTest, chi-square at group_prob, at most group_max_dist apart);
+ * one-feature objects are allowed. A static track keeps its filter: a reading beyond the
+ * reclassify_gate is held back (Skip, counted), reclassify_count consecutive ones turn it moving
+ * (TRoutedStep::reclassified: the filter drops the landmark; the reading becomes the first sighting
+ * of a new object). ID -1 (association unknown) is skipped and counted
+ * (TRoutedStep::skipped_unknown_id). */
+#include <dynslam/estimator/classify_evidence.h>
+#include <dynslam/estimator/measurement_router.h>
+
+#include <map>
+#include <optional>
+
+namespace dynslam::estimator
+{
+/** The INI keys classify_* of [DynamicKFSLAM] (dynslam/model_options.h). */
+struct TClassifyParams
+{
+	double alpha = 0.01;              ///< classify_alpha: P(decide moving | static), in (0, 1)
+	double beta = 0.01;               ///< classify_beta: P(decide static | moving), in (0, 1)
+	double motion_std = 0.5;          ///< classify_motion_std [m per step], > 0
+	int max_window = 10;              ///< classify_max_window: sightings before a forced decision
+	int forget_steps = 20;            ///< classify_forget_steps: unseen candidates are forgotten
+	double group_prob = 0.99;         ///< classify_group_prob: rigid-distance chi-square, (0, 1)
+	double group_max_dist = 6;        ///< classify_group_max_dist [m]
+	int reclassify_count = 3;         ///< classify_reclassify_count (0: never reclassify)
+	double reclassify_gate = 0.999;   ///< classify_reclassify_gate: chi-square prob., (0, 1)
+	bool candidate_landmarks = true;  ///< classify_candidate_landmarks (see the file comment)
+	/** Throws std::invalid_argument naming the key. */
+	void validate() const;
+};
+
+enum class TrackClass : uint8_t
+{
+	Candidate,
+	Static,
+	Moving
+};
+
+/** What the router knows about one track. */
+struct TTrack
+{
+	TrackClass cls = TrackClass::Candidate;
+	TPoint2 q;             ///< static hypothesis: the point in the current robot frame
+	bool q_valid = false;  ///< false: re-initialised at the next sighting
+	double llr = 0;        ///< sum of the log-likelihood ratios (moving vs static)
+	int sightings = 0, first_seen = -1, last_seen = -1, decided_step = -1;
+	int bad_streak = 0;                 ///< static: consecutive readings beyond the gate
+	int32_t object = -1, feature = -1;  ///< moving: its object and feature index
+	std::map<int, TPoint2> history;     ///< the last readings (robot frame), by step
+};
+
+class CClassifyingRouter : public IMeasurementRouter
+{
+public:
+	explicit CClassifyingRouter(const TClassifyParams& p = TClassifyParams());
+	std::string name() const override { return "classify"; }
+	/** IDs >= 0 or -1; duplicates of an ID >= 0 in one step are rejected. */
+	void validate(const std::vector<TReading>& readings, const std::string& who) const override;
+	void setContext(const TRouterContext& ctx) override { m_ctx = ctx; }
+	/** Throws std::logic_error if setContext was never called. */
+	TRoutedStep route(int step, const std::vector<TReading>& readings,
+	                  const std::function<bool(int32_t)>& isKnownStatic) override;
+	const CObjectRegistry& registry() const override { return m_registry; }
+	CObjectRegistry& registry() override { return m_registry; }
+	/** The track ID of feature `feature` of object `object`. */
+	int32_t featureId(int32_t object, int32_t feature) const override;
+	void reset() override;
+
+	const TClassifyParams& params() const { return m_p; }
+	const std::map<int32_t, TTrack>& tracks() const { return m_tracks; }
+	double upperThreshold() const;  ///< log((1 - beta) / alpha): decide moving
+	double lowerThreshold() const;  ///< log(beta / (1 - alpha)): decide static
+
+private:
+	/** Carries every live track through the step's odometry; forgets stale candidates. */
+	void predictTracks(int step, TRoutedStep& out,
+	                   const std::function<bool(int32_t)>& isKnownStatic);
+	/** Adds the evidence of one reading to a candidate; returns its decision (if any). */
+	std::optional<TrackClass> addEvidence(TTrack& t, const TPoint2& z, int step);
+	/** A static track's reading: true if consistent (and used by its filter). */
+	bool checkStatic(TTrack& t, const TPoint2& z, int step);
+	/** Makes track id moving at step: joins an object created in this step or starts one. */
+	void makeMoving(int32_t id, TTrack& t, int step, std::vector<int32_t>& newObjects);
+	static void remember(TTrack& t, const TPoint2& z, int step, int keep);
+	enum class Act
+	{
+		Skip,
+		Static,
+		Moving
+	};
+	/** Updates track id with its reading z: what to do with it (moving tracks decided now are
+	 * appended to turnedMoving and routed after grouping). */
+	Act classifyOne(int32_t id, const TPoint2& z, int step, TRoutedStep& out, bool& candidate,
+	                std::vector<int32_t>& turnedMoving,
+	                const std::function<bool(int32_t)>& isKnownStatic);
+	/** An object reading of moving track t through the registry. */
+	void routeMoving(TRoutedReading& m, const TTrack& t, int step, TRoutedStep& out);
+
+	TClassifyParams m_p;
+	std::optional<TRouterContext> m_ctx;
+	std::map<int32_t, TTrack> m_tracks;
+	CObjectRegistry m_registry;
+	std::map<int32_t, std::vector<int32_t>> m_objectTracks;  ///< object -> track IDs
+	int32_t m_nextObject = 0;
+	int m_lastStep = -1;
+};
+}  // namespace dynslam::estimator

@@ -1,0 +1,293 @@
+/** CClassifyingRouter (classifying_router.h, doc/classification.md). */
+#include <dynslam/estimator/classifying_router.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+namespace dynslam::estimator
+{
+void TClassifyParams::validate() const
+{
+	const auto prob = [](double p, const char* key)
+	{
+		if (!(p > 0 && p < 1))
+			throw std::invalid_argument(std::string(key) + " = " + std::to_string(p) +
+			                            ": must be a probability in (0, 1)");
+	};
+	prob(alpha, "classify_alpha");
+	prob(beta, "classify_beta");
+	prob(group_prob, "classify_group_prob");
+	prob(reclassify_gate, "classify_reclassify_gate");
+	if (alpha + beta >= 1)
+		throw std::invalid_argument("classify_alpha + classify_beta must be < 1");
+	if (!(motion_std > 0) || !std::isfinite(motion_std))
+		throw std::invalid_argument("classify_motion_std must be > 0");
+	if (max_window < 2) throw std::invalid_argument("classify_max_window must be >= 2");
+	if (forget_steps < 1) throw std::invalid_argument("classify_forget_steps must be >= 1");
+	if (!(group_max_dist > 0)) throw std::invalid_argument("classify_group_max_dist must be > 0");
+	if (reclassify_count < 0)
+		throw std::invalid_argument("classify_reclassify_count must be >= 0 (0: off)");
+}
+
+CClassifyingRouter::CClassifyingRouter(const TClassifyParams& p) : m_p(p) { m_p.validate(); }
+
+double CClassifyingRouter::upperThreshold() const { return std::log((1 - m_p.beta) / m_p.alpha); }
+double CClassifyingRouter::lowerThreshold() const { return std::log(m_p.beta / (1 - m_p.alpha)); }
+
+void CClassifyingRouter::reset()
+{
+	m_tracks.clear();
+	m_registry.clear();
+	m_objectTracks.clear();
+	m_nextObject = 0;
+	m_lastStep = -1;
+	m_ctx.reset();
+}
+
+void CClassifyingRouter::validate(const std::vector<TReading>& readings,
+                                  const std::string& who) const
+{
+	std::set<int32_t> seen;
+	for (size_t i = 0; i < readings.size(); ++i)
+	{
+		const int32_t id = readings[i].id;
+		const std::string where =
+		    "measurement " + std::to_string(i) + " (track ID " + std::to_string(id) + ")";
+		if (id < -1)
+			throw std::runtime_error(who + ": " + where +
+			                         ": feature_labels = classify takes track IDs >= 0 or -1 "
+			                         "(association unknown)");
+		if (id >= 0 && !seen.insert(id).second)
+			throw std::runtime_error(who + ": duplicate " + where);
+	}
+}
+
+int32_t CClassifyingRouter::featureId(int32_t object, int32_t feature) const
+{
+	const TObjectEntry& e = m_registry.at(object);
+	for (size_t i = 0; i < e.feature_index.size(); ++i)
+		if (e.feature_index[i] == feature) return e.feature_ids[i];
+	throw std::out_of_range("CClassifyingRouter::featureId: object " + std::to_string(object) +
+	                        " has no feature " + std::to_string(feature));
+}
+
+void CClassifyingRouter::remember(TTrack& t, const TPoint2& z, int step, int keep)
+{
+	t.history[step] = z;
+	while (int(t.history.size()) > keep) t.history.erase(t.history.begin());
+}
+
+void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
+                                       const std::function<bool(int32_t)>& isKnownStatic)
+{
+	const int steps = m_lastStep < 0 ? 0 : step - m_lastStep;
+	m_lastStep = step;
+	for (auto it = m_tracks.begin(); it != m_tracks.end();)
+	{
+		TTrack& t = it->second;
+		if (t.cls != TrackClass::Moving && t.q_valid && step - t.last_seen > m_p.forget_steps)
+		{
+			if (t.cls == TrackClass::Candidate)
+			{
+				if (m_p.candidate_landmarks && isKnownStatic(it->first))
+					out.dropped_candidates.push_back(it->first);
+				it = m_tracks.erase(it);
+				continue;
+			}
+			t.q_valid = false;  // a static track seen again restarts its filter
+		}
+		if (t.cls != TrackClass::Moving && t.q_valid && steps > 0)
+			t.q = predictStatic(t.q, m_ctx->u, m_ctx->U);
+		++it;
+	}
+}
+
+std::optional<TrackClass> CClassifyingRouter::addEvidence(TTrack& t, const TPoint2& z, int step)
+{
+	if (!t.q_valid)
+	{
+		t.q = z;
+		t.q_valid = true;
+		return std::nullopt;
+	}
+	const Eigen::Vector2d nu = z.p - t.q.p;
+	const Eigen::Matrix2d S = t.q.C + z.C;
+	const double gap = std::max(1, step - t.last_seen);
+	const Eigen::Matrix2d Q = Eigen::Matrix2d::Identity() * (m_p.motion_std * m_p.motion_std * gap);
+	t.llr += movingLogLikelihoodRatio(nu, S, Q);
+	const Eigen::Matrix2d K = t.q.C * S.inverse();
+	t.q.p += K * nu;
+	t.q.C = (Eigen::Matrix2d::Identity() - K) * t.q.C;
+	t.q.C = 0.5 * (t.q.C + t.q.C.transpose());
+	if (t.llr >= upperThreshold()) return TrackClass::Moving;
+	if (t.llr <= lowerThreshold()) return TrackClass::Static;
+	if (t.sightings + 1 >= m_p.max_window)
+		return t.llr > 0 ? TrackClass::Moving : TrackClass::Static;
+	return std::nullopt;
+}
+
+bool CClassifyingRouter::checkStatic(TTrack& t, const TPoint2& z, int)
+{
+	if (!t.q_valid)
+	{
+		t.q = z;
+		t.q_valid = true;
+		t.bad_streak = 0;
+		return true;
+	}
+	const Eigen::Vector2d nu = z.p - t.q.p;
+	const Eigen::Matrix2d S = t.q.C + z.C;
+	const double nis = nu.dot(S.inverse() * nu);
+	if (m_p.reclassify_count > 0 && nis > chiSquareQuantile(m_p.reclassify_gate, 2))
+	{
+		++t.bad_streak;
+		return false;
+	}
+	t.bad_streak = 0;
+	const Eigen::Matrix2d K = t.q.C * S.inverse();
+	t.q.p += K * nu;
+	t.q.C = (Eigen::Matrix2d::Identity() - K) * t.q.C;
+	t.q.C = 0.5 * (t.q.C + t.q.C.transpose());
+	return true;
+}
+
+void CClassifyingRouter::makeMoving(int32_t id, TTrack& t, int step,
+                                    std::vector<int32_t>& newObjects)
+{
+	t.cls = TrackClass::Moving;
+	t.q_valid = false;
+	t.decided_step = step;
+	for (const int32_t obj : newObjects)
+	{
+		std::vector<int32_t>& members = m_objectTracks[obj];
+		bool rigid = true;
+		for (const int32_t other : members)
+		{
+			const TRigidTest r = rigidDistanceTest(t.history, m_tracks.at(other).history);
+			rigid = rigid && r.common >= 2 && r.mean_dist <= m_p.group_max_dist &&
+			        r.chi2 <= chiSquareQuantile(m_p.group_prob, r.common - 1);
+		}
+		if (!rigid) continue;
+		t.object = obj;
+		t.feature = int32_t(members.size());
+		members.push_back(id);
+		return;
+	}
+	t.object = m_nextObject++;
+	t.feature = 0;
+	m_objectTracks[t.object] = {id};
+	newObjects.push_back(t.object);
+}
+
+CClassifyingRouter::Act CClassifyingRouter::classifyOne(
+    int32_t id, const TPoint2& z, int step, TRoutedStep& out, bool& candidate,
+    std::vector<int32_t>& turnedMoving, const std::function<bool(int32_t)>& isKnownStatic)
+{
+	TTrack& t = m_tracks[id];
+	if (t.first_seen < 0) t.first_seen = step;
+	remember(t, z, step, m_p.max_window + 2);
+	Act act = Act::Skip;
+	if (t.cls == TrackClass::Candidate)
+	{
+		const std::optional<TrackClass> d = addEvidence(t, z, step);
+		if (d == TrackClass::Static)
+		{
+			t.cls = TrackClass::Static;
+			t.decided_step = step;
+			act = Act::Static;
+		}
+		else if (d == TrackClass::Moving)
+		{
+			turnedMoving.push_back(id);
+			if (m_p.candidate_landmarks && isKnownStatic(id)) out.dropped_candidates.push_back(id);
+		}
+		else
+		{
+			++out.candidates;
+			candidate = true;
+			// The first reading: a candidate landmark, not an update (see the header).
+			if (m_p.candidate_landmarks && t.sightings == 0) act = Act::Static;
+		}
+	}
+	else if (t.cls == TrackClass::Static)
+	{
+		if (checkStatic(t, z, step))
+			act = Act::Static;
+		else if (t.bad_streak >= m_p.reclassify_count)
+		{
+			turnedMoving.push_back(id);
+			if (isKnownStatic(id)) out.reclassified.push_back(id);
+		}
+		else
+			++out.held;
+	}
+	else
+		act = Act::Moving;
+	++t.sightings;
+	t.last_seen = step;
+	return act;
+}
+
+void CClassifyingRouter::routeMoving(TRoutedReading& m, const TTrack& t, int step, TRoutedStep& out)
+{
+	m.object = t.object;
+	m.feature = t.feature;
+	switch (m_registry.registerReading(m.object, m.reading.id, m.feature, step))
+	{
+		case FeatureRole::FirstSighting:
+			m.route = Route::ObjectFirstSighting;
+			break;
+		case FeatureRole::TimeT:
+			m.route = Route::ObjectTimeT;
+			break;
+		case FeatureRole::Unknown:
+			m.route = Route::Skip;
+			++out.skipped_unknown_object_feature;
+			break;
+	}
+}
+
+TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& readings,
+                                      const std::function<bool(int32_t)>& isKnownStatic)
+{
+	if (!m_ctx) throw std::logic_error("CClassifyingRouter::route: setContext() was not called");
+	TRoutedStep out;
+	predictTracks(step, out, isKnownStatic);
+	std::vector<Act> act(readings.size(), Act::Skip);
+	std::vector<bool> candidate(readings.size(), false);
+	std::vector<int32_t> turnedMoving;  // decided (or reclassified) moving now, in order
+	for (size_t i = 0; i < readings.size(); ++i)
+	{
+		if (readings[i].id < 0)
+		{
+			++out.skipped_unknown_id;
+			continue;
+		}
+		bool c = false;
+		act[i] = classifyOne(readings[i].id, readingInRobotFrame(*m_ctx, readings[i].z), step, out,
+		                     c, turnedMoving, isKnownStatic);
+		candidate[i] = c;
+	}
+	std::vector<int32_t> newObjects;
+	for (const int32_t id : turnedMoving) makeMoving(id, m_tracks.at(id), step, newObjects);
+	for (size_t i = 0; i < readings.size(); ++i)
+	{
+		TRoutedReading m;
+		m.reading = readings[i];
+		m.candidate = candidate[i];
+		const int32_t id = readings[i].id;
+		const auto it = id >= 0 ? m_tracks.find(id) : m_tracks.end();
+		if (it != m_tracks.end() && it->second.cls == TrackClass::Moving) act[i] = Act::Moving;
+		if (act[i] == Act::Static && m.candidate)
+			m.route = isKnownStatic(id) ? Route::Skip : Route::StaticNew;
+		else if (act[i] == Act::Static)
+			m.route = isKnownStatic(id) ? Route::StaticKnown : Route::StaticNew;
+		else if (act[i] == Act::Moving)
+			routeMoving(m, it->second, step, out);
+		out.readings.push_back(m);
+	}
+	return out;
+}
+}  // namespace dynslam::estimator

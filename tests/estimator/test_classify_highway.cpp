@@ -1,0 +1,214 @@
+/** feature_labels = classify end to end on the simulated highway (doc/classification.md):
+ * anonymous IDs (config/highway_anonymous.ini) against the ID-labelled filter on the same
+ * noise, a parked car that drives off (config/highway_parked_driveoff.ini), and missed
+ * detections with clutter (config/highway_clutter.ini). Thresholds are a few times the
+ * measured values (measured values in the comments and in doc/classification.md). */
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/eval/class_metrics.h>
+#include <dynslam/sim/scenario.h>
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+using namespace dynslam;
+
+namespace
+{
+const std::string kIni =
+    "[DynamicKFSLAM]\n"
+    "measurement_model = cartesian\n"
+    "Sigma_v = [1e-5 1e-5]\n"
+    "motion_noise = action\n"
+    "Sigma_0 = [1e-5 1e-5 1e-7]\n"
+    "Sigma_xi = [0.1 0.1]\n"
+    "[DynamicKFSLAM_KalmanFilter]\n"
+    "method = kfEKFNaive\n";
+
+sim::TScenarioOptions scenario(const std::string& cfg)
+{
+	return sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/" + cfg);
+}
+
+struct TResult
+{
+	double ate = 0, maxErr = 0;
+	eval::TBinaryScores reading, track;
+	eval::TDelaySummary delays;
+	double ari = 0;
+	size_t objects = 0, reclassified = 0, unknownIds = 0, held = 0, candidates = 0, updates = 0;
+};
+
+/** Runs the EKF on the scenario; classify: feature_labels = classify (extra: more keys). */
+TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& extra = "",
+            const std::string& sigmaV = "1e-5")
+{
+	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
+	std::string ini = kIni;
+	ini.replace(ini.find("1e-5 1e-5"), 9, sigmaV + " " + sigmaV);
+	if (classify) ini.insert(ini.find("[DynamicKFSLAM_"), "feature_labels = classify\n" + extra);
+	mrpt::config::CConfigFileMemory cfg(ini);
+	CDynamicKFSLAM2D ekf;
+	ekf.loadOptions(cfg, "DynamicKFSLAM");
+	TResult r;
+	std::vector<eval::Decision> dec;
+	std::vector<int64_t> group;
+	double se = 0;
+	for (size_t k = 0; k < sim.actions.size(); ++k)
+	{
+		ekf.processActionObservation(sim.actions[k], sim.frames[k]);
+		for (const auto& m : ekf.lastRoutedStep().readings)
+		{
+			using estimator::Route;
+			const bool st = m.route == Route::StaticKnown || m.route == Route::StaticNew;
+			dec.push_back(m.candidate     ? eval::Decision::Undecided
+			              : st            ? eval::Decision::Static
+			              : m.object >= 0 ? eval::Decision::Moving
+			                              : eval::Decision::Undecided);
+			group.push_back(m.object);
+		}
+		r.reclassified += ekf.getLastStepReport().reclassified_static;
+		r.unknownIds += ekf.getLastStepReport().skipped_unknown_id;
+		r.held += ekf.getLastStepReport().classify_held;
+		r.candidates += ekf.getLastStepReport().classify_candidates;
+		r.updates += ekf.getLastStepReport().static_updates;
+		const auto e = ekf.getEgoPose().mean;
+		const double d2 = std::pow(e.x() - gt.ego[k][0], 2) + std::pow(e.y() - gt.ego[k][1], 2);
+		se += d2;
+		r.maxErr = std::max(r.maxErr, std::sqrt(d2));
+	}
+	r.ate = std::sqrt(se / double(sim.actions.size()));
+	EXPECT_EQ(dec.size(), sim.classes.size()) << "one decision per reading";
+	if (dec.size() != sim.classes.size()) return r;
+	r.reading = eval::perReadingScores(sim.classes, dec);
+	r.track = eval::perTrackScores(sim.classes, dec);
+	r.delays = eval::detectionDelays(sim.classes, dec);
+	r.ari = eval::groupingAri(sim.classes, group);
+	r.objects = ekf.getObjectTracks().size();
+	return r;
+}
+
+void print(const std::string& what, const TResult& r)
+{
+	std::cout << what << ": ATE " << r.ate << " m (max " << r.maxErr << "), reading P/R/F1 "
+	          << r.reading.precision << "/" << r.reading.recall << "/" << r.reading.f1
+	          << ", track F1 " << r.track.f1 << ", ARI " << r.ari << ", objects " << r.objects
+	          << ", reclassified " << r.reclassified << ", held " << r.held << ", candidates "
+	          << r.candidates << ", static updates " << r.updates << ", onsets detected "
+	          << r.delays.detected << "/" << r.delays.onsets.size() << " max delay "
+	          << r.delays.max_delay << "\n";
+}
+}  // namespace
+
+TEST(ClassifyHighway, AnonymousIdsAreClassifiedAndTheEgoStaysClose)
+{
+	const TResult labelled = run(scenario("highway.ini"), false);
+	const TResult cls = run(scenario("highway_anonymous.ini"), true);
+	print("labelled", labelled);
+	print("classify", cls);
+	// Measured: track F1 1, reading F1 0.984 (the first reading of each track is undecided),
+	// ATE 0.1274 m vs 0.1276 m labelled (on highway.ini, without the track breaks).
+	EXPECT_GE(cls.track.f1, 0.95);
+	EXPECT_GE(cls.reading.f1, 0.95);
+	EXPECT_LE(cls.ate, 1.1 * labelled.ate + 0.01);
+}
+
+/** The anonymous highway at another noise level, with (anonymous) or without anonymous IDs. */
+sim::TScenarioOptions anonymousAt(const std::string& level, bool anonymous)
+{
+	std::ifstream f(std::string(DYNSLAM_CONFIG_DIR) + "/highway_anonymous.ini");
+	std::stringstream ss;
+	ss << f.rdbuf();
+	std::string s = ss.str();
+	s.replace(s.find("level = w2v2"), 12, "level = " + level);
+	s.replace(s.find("anonymous_ids   = true"), 22,
+	          std::string("anonymous_ids = ") + (anonymous ? "true" : "false"));
+	return sim::loadScenarioFromText(s);
+}
+
+TEST(ClassifyHighway, NoiseLevelsAgainstTheLabelledFilterOnTheSameTrackBreaks)
+{
+	for (const char* level :
+	     {"w1v1", "w1v2", "w1v3", "w2v1", "w2v2", "w2v3", "w3v1", "w3v2", "w3v3"})
+	{
+		const std::string v = level[3] == '1' ? "1e-6" : level[3] == '2' ? "1e-5" : "1e-4";
+		const TResult labelled = run(anonymousAt(level, false), false, "", v);
+		const TResult cls = run(anonymousAt(level, true), true, "", v);
+		print(std::string(level) + " labelled", labelled);
+		print(std::string(level) + " classify", cls);
+		// Measured: per-reading F1 0.983..0.985, per-track F1 0.973..1 (doc/classification.md).
+		EXPECT_GE(cls.reading.f1, 0.95) << level;
+		EXPECT_GE(cls.track.f1, 0.9) << level;
+		// Measured: classify / labelled ATE 0.92 (w3v2) .. 1.012 (w3v1); issue 12's target.
+		EXPECT_LE(cls.ate, 1.1 * labelled.ate + 0.01) << level;
+	}
+}
+
+TEST(ClassifyHighway, ParkedCarDrivingOffIsReclassified)
+{
+	const TResult labelled = run(scenario("highway_parked_driveoff.ini"), false);
+	const TResult cls = run(scenario("highway_parked_driveoff.ini"), true);
+	print("labelled", labelled);
+	print("classify", cls);
+	for (const auto& d : cls.delays.onsets)
+		std::cout << "onset object " << d.object << " feature " << d.feature << " at "
+		          << d.onset_step << " detected " << d.detect_step << "\n";
+	// Measured: the 4 features of the car that drives off reclassified 2 steps after the onset
+	// (reclassify_count = 3 readings beyond the gate), ATE 0.063 m vs 0.067 m labelled.
+	EXPECT_EQ(cls.reclassified, 4u);
+	EXPECT_EQ(cls.delays.detected, cls.delays.onsets.size());
+	EXPECT_GE(cls.delays.onsets.size(), 4u);
+	EXPECT_LE(cls.delays.max_delay, 6);
+	EXPECT_LE(cls.ate, 1.2 * labelled.ate);
+}
+
+TEST(ClassifyHighway, MissedDetectionsAndClutterDoNotDiverge)
+{
+	const TResult labelled = run(scenario("highway_clutter.ini"), false);
+	const TResult cls = run(scenario("highway_clutter.ini"), true);
+	print("labelled", labelled);
+	print("classify", cls);
+	// Measured: max ego error 0.230 m (labelled 0.230 m), reading F1 0.990, track F1 1.
+	EXPECT_LT(cls.maxErr, 2 * labelled.maxErr);
+	EXPECT_GE(cls.reading.f1, 0.95);
+	EXPECT_GE(cls.track.f1, 0.95);
+}
+
+TEST(ClassifyHighway, BadOptionsAreClearErrors)
+{
+	const auto load = [](const std::string& extra)
+	{
+		std::string ini = kIni;
+		ini.insert(ini.find("[DynamicKFSLAM_"), extra);
+		mrpt::config::CConfigFileMemory cfg(ini);
+		CDynamicKFSLAM2D ekf;
+		ekf.loadOptions(cfg, "DynamicKFSLAM");
+	};
+	const auto expectError = [&](const std::string& extra, const std::string& key)
+	{
+		try
+		{
+			load(extra);
+			ADD_FAILURE() << extra << " accepted";
+		}
+		catch (const std::exception& e)
+		{
+			EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+		}
+	};
+	expectError("feature_labels = anonymous\n", "feature_labels");
+	expectError("feature_labels = classify\nclassify_alpha = 1.5\n", "classify_alpha");
+	expectError("feature_labels = classify\nclassify_beta = 0\n", "classify_beta");
+	expectError("feature_labels = classify\nclassify_max_window = 1\n", "classify_max_window");
+	expectError("classify_typo = 1\n", "classify_typo");
+	EXPECT_NO_THROW(load("feature_labels = classify\nclassify_alpha = 0.05\n"));
+	// The default is the ID-range router, unchanged.
+	mrpt::config::CConfigFileMemory cfg(kIni);
+	CDynamicKFSLAM2D ekf;
+	ekf.loadOptions(cfg, "DynamicKFSLAM");
+	EXPECT_EQ(ekf.router().name(), "ids");
+}
