@@ -170,7 +170,10 @@ TEST(ClassifyingRouter, StaticTrackThatStartsMovingIsReclassified)
 		const bool known = k > 1;
 		const TRoutedStep out = r.route(k, {{0, s.see(f)}}, [&](int32_t) { return known; });
 		held += out.held;
-		if (k < onset) EXPECT_NE(r.tracks().at(0).cls, TrackClass::Moving) << "step " << k;
+		if (k < onset)
+		{
+			EXPECT_NE(r.tracks().at(0).cls, TrackClass::Moving) << "step " << k;
+		}
 		if (!out.reclassified.empty())
 		{
 			reclassifiedAt = k;

@@ -242,7 +242,7 @@ void CCompareApp::run()
 		if (hasGroundTruth)
 		{
 			const TEvaluation ev = evaluateRun(gt, r.est);
-			rows.push_back({f, ev.metrics, ev.summary});
+			rows.push_back({f, ev.metrics, ev.summary, std::nullopt});
 			if (classifies) rows.back().classes = classScores(decisions);
 		}
 		runs.push_back(std::move(r));

@@ -199,7 +199,8 @@ eval::TConsistencySummary CRunApp::evaluateAndReport()
 		evaluation = evaluateRun(gt, result.est);
 		cons = evaluation->consistency;
 		summary = evaluation->summary;
-		std::vector<eval::TMetricsRow> rows{{result.name, evaluation->metrics, summary}};
+		std::vector<eval::TMetricsRow> rows{
+		    {result.name, evaluation->metrics, summary, std::nullopt}};
 		writeOutput("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
 		std::ostringstream table;
 		eval::writeMetricsTable(table, rows);
