@@ -114,10 +114,11 @@ TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 	TArgs a({"--out", out, "-q"});  // no -c: the shipped default
 	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
 	app.run();
-	ASSERT_EQ(app.rows.size(), 3u);
+	ASSERT_EQ(app.rows.size(), 4u);
 	EXPECT_EQ(app.rows[0].filter, "static_all");
 	EXPECT_EQ(app.rows[1].filter, "static_landmarks_only");
 	EXPECT_EQ(app.rows[2].filter, "dynamic");
+	EXPECT_EQ(app.rows[3].filter, "dynamic_classified");
 	const auto& sa = app.rows[0].metrics;
 	const auto& so = app.rows[1].metrics;
 	const auto& dy = app.rows[2].metrics;
@@ -132,9 +133,14 @@ TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 	EXPECT_LT(dy.ego.y, 1.5 * so.ego.y);
 	EXPECT_LT(dy.ate, 0.20);
 	EXPECT_LT(so.ate, 0.20);
+	// The same filter with no ID oracle (issue 12): measured F1 0.991, ATE 0.1274 vs 0.1276 m.
+	ASSERT_TRUE(app.rows[3].classes.has_value());
+	EXPECT_GT(app.rows[3].classes->f1, 0.95);
+	EXPECT_LT(app.rows[3].metrics.ate, 1.1 * dy.ate + 0.01);
+	EXPECT_FALSE(app.rows[2].classes.has_value());
 
 	const auto lines = apps_test::readLines(out + "/metrics.csv");
-	ASSERT_EQ(lines.size(), 4u);
+	ASSERT_EQ(lines.size(), 5u);
 	const auto header = apps_test::splitCsv(lines[0]);
 	const std::vector<std::string> required{
 	    "filter",        "ego_rmse_x", "ego_rmse_y",  "ego_rmse_theta", "static_rmse_x",
@@ -144,6 +150,8 @@ TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 	EXPECT_EQ(apps_test::splitCsv(lines[1])[0], "static_all");
 	EXPECT_EQ(apps_test::splitCsv(lines[2])[0], "static_landmarks_only");
 	EXPECT_EQ(apps_test::splitCsv(lines[3])[0], "dynamic");
+	EXPECT_EQ(apps_test::splitCsv(lines[4])[0], "dynamic_classified");
+	EXPECT_NE(std::find(header.begin(), header.end(), "class_f1"), header.end());
 	for (const char* f : {"compare_map.png", "compare_map_start.png", "compare_ego_errors.png",
 	                      "compare_ego_errors_without_static_all.png"})
 		EXPECT_TRUE(apps_test::isPng(out + "/" + f)) << f;
@@ -187,7 +195,8 @@ TEST(CompareApp, SmoothingFilterRowRunsAlg6)
 	// config/run_highway_smoothing.ini). Measured ATE: 0.127555 / 0.127578 m (README: the
 	// smoothing changes the ego in the fifth digit). Equal numbers would mean it did not run.
 	std::string ini = apps_test::readFile(apps_test::configFile("compare_highway.ini"));
-	const std::string from = "filters             = static_all, static_landmarks_only, dynamic";
+	const std::string from =
+	    "filters             = static_all, static_landmarks_only, dynamic, dynamic_classified";
 	ASSERT_NE(ini.find(from), std::string::npos);
 	ini.replace(ini.find(from), from.size(), "filters = dynamic, dynamic_smoothing");
 	ini.replace(ini.find("[DynamicKFSLAM]\n"), 16, "[DynamicKFSLAM]\nSigma_s = [1e-2 1e-2 1e-3]\n");
