@@ -14,7 +14,8 @@ using namespace dynslam_bench;
 namespace
 {
 /** One full run of the shipped highway rawlog (121 steps). Arg: 0 = MRPT update, 1 = sparse,
- * 2 = compressed (static_update = compressed; the final global update included). */
+ * 2 = compressed (static_update = compressed; the final global update included), 3 = sparse
+ * with feature_labels = classify (issue 12: what classification costs). */
 void BM_HighwayRun(benchmark::State& state)
 {
 	const TRun& run = highwayRun();
@@ -28,14 +29,21 @@ void BM_HighwayRun(benchmark::State& state)
 			f.options.compressed_static_update = true;
 			f.reset();
 		}
+		if (state.range(0) == 3)  // sparse, no ID oracle (issue 12: feature_labels = classify)
+		{
+			f.options.feature_labels = "classify";
+			f.options.validate();
+			f.reset();
+		}
 		for (size_t k = 0; k < run.actions.size(); ++k)
 			f.processActionObservation(run.actions[k], run.frames[k]);
 		benchmark::DoNotOptimize(f.fullMean()[0]);
 	}
 	state.counters["steps"] = double(run.actions.size());
-	state.SetLabel(state.range(0) == 2 ? "compressed" : sparse ? "sparse" : "mrpt");
+	const char* labels[] = {"mrpt", "sparse", "compressed", "sparse+classify"};
+	state.SetLabel(labels[state.range(0)]);
 }
-BENCHMARK(BM_HighwayRun)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HighwayRun)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 
 /** The same static-only run through MRPT's CRangeBearingKFSLAM2D (filter 0) and the dynamic EKF
  * with MRPT's update (1) or the sparse one (2). Args: filter, landmarks (highway_static with
