@@ -234,19 +234,7 @@ void CClassifyingRouter::routeMoving(TRoutedReading& m, const TTrack& t, int ste
 {
 	m.object = t.object;
 	m.feature = t.feature;
-	switch (m_registry.registerReading(m.object, m.reading.id, m.feature, step))
-	{
-		case FeatureRole::FirstSighting:
-			m.route = Route::ObjectFirstSighting;
-			break;
-		case FeatureRole::TimeT:
-			m.route = Route::ObjectTimeT;
-			break;
-		case FeatureRole::Unknown:
-			m.route = Route::Skip;
-			++out.skipped_unknown_object_feature;
-			break;
-	}
+	routeObjectReading(m_registry, step, m, out);
 }
 
 TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& readings,

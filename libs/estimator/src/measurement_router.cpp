@@ -50,6 +50,23 @@ std::vector<TRoutedReading> TRoutedStep::objects() const
 	return out;
 }
 
+void routeObjectReading(CObjectRegistry& registry, int step, TRoutedReading& m, TRoutedStep& out)
+{
+	switch (registry.registerReading(m.object, m.reading.id, m.feature, step))
+	{
+		case FeatureRole::FirstSighting:
+			m.route = Route::ObjectFirstSighting;
+			break;
+		case FeatureRole::TimeT:
+			m.route = Route::ObjectTimeT;
+			break;
+		case FeatureRole::Unknown:
+			m.route = Route::Skip;
+			++out.skipped_unknown_object_feature;
+			break;
+	}
+}
+
 std::vector<TReading> readingsOf(const std::vector<TRoutedReading>& r)
 {
 	std::vector<TReading> out;
@@ -90,19 +107,7 @@ TRoutedStep CIdRangeRouter::route(int step, const std::vector<TReading>& reading
 		{
 			m.object = ids::objectOf(r.id);
 			m.feature = ids::featureOf(r.id);
-			switch (m_registry.registerReading(m.object, r.id, m.feature, step))
-			{
-				case FeatureRole::FirstSighting:
-					m.route = Route::ObjectFirstSighting;
-					break;
-				case FeatureRole::TimeT:
-					m.route = Route::ObjectTimeT;
-					break;
-				case FeatureRole::Unknown:
-					m.route = Route::Skip;
-					++out.skipped_unknown_object_feature;
-					break;
-			}
+			routeObjectReading(m_registry, step, m, out);
 		}
 		out.readings.push_back(m);
 	}

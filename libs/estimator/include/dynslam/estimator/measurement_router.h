@@ -64,6 +64,11 @@ struct TRoutedStep
 /** The readings of routed readings, in their order. */
 std::vector<TReading> readingsOf(const std::vector<TRoutedReading>& r);
 
+/** Routes object reading `m` (its object and feature set) by registering it in `registry`:
+ * ObjectFirstSighting, ObjectTimeT, or Skip counted in out.skipped_unknown_object_feature.
+ * Shared by every router. */
+void routeObjectReading(CObjectRegistry& registry, int step, TRoutedReading& m, TRoutedStep& out);
+
 /** What a router that looks at the readings' geometry needs besides the readings (the
  * classifying router): the measurement model, its noise, the sensor pose and the step's
  * odometry increment u (robot frame) with its covariance U. */
