@@ -1,11 +1,15 @@
 #include "kitti_run.h"
 
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/apps/CCompareApp.h>
+
 #include <cmath>
 
 namespace dynslam::kitti_eval
 {
 TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
-                         const mrpt::config::CConfigFileMemory& ini, const std::string& filter)
+                         const mrpt::config::CConfigFileMemory& ini, const std::string& filter,
+                         const std::vector<TReadingClass>& classes)
 {
 	mrpt::config::CConfigFileMemory params(ini.getContent());
 	const bool dyn = filter == "dynamic" || filter == "dynamic_nogate";
@@ -13,11 +17,15 @@ TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
 	auto backend = apps::makeBackend(dyn ? "ekf" : filter, params);
 	TKittiRunResult r;
 	r.filter = filter;
+	const auto* ekf = dynamic_cast<const CDynamicKFSLAM2D*>(backend.get());
+	const bool classifies = ekf && ekf->options.feature_labels == "classify";
+	apps::TClassDecisions decisions;
 	auto perStep = [&](size_t, size_t)
 	{
 		const TStepReport& rep = backend->getLastStepReport();
 		r.gated_out += rep.gated_out;
 		r.static_updates += rep.static_updates;
+		if (classifies) decisions.add(ekf->lastRoutedStep());
 	};
 	r.run = apps::runFilter(*backend, rawlog.actions, rawlog.frames, perStep);
 	r.run.name = filter;
@@ -28,6 +36,12 @@ TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
 	r.landmarks_scored = sm.n_xy;
 	r.rpe = eval::relativePoseError(gt, r.run.est.ego, 10);
 	r.objects = eval::objectErrors(gt, r.run.est);
+	if (classifies && !classes.empty())
+	{
+		r.class_reading = eval::perReadingScores(classes, decisions.decisions);
+		r.class_track = eval::perTrackScores(classes, decisions.decisions);
+		r.group_ari = eval::groupingAri(classes, decisions.groups);
+	}
 	return r;
 }
 }  // namespace dynslam::kitti_eval

@@ -8,17 +8,22 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
+#include <dynslam/class_ground_truth.h>
+#include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/motion_metrics.h>
 #include <dynslam/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 namespace dynslam::kitti_eval
 {
 struct TKittiRunResult
 {
-	std::string filter;  ///< static_all | static_landmarks_only | dynamic | dynamic_nogate
+	std::string filter;  ///< static_all | static_landmarks_only | dynamic | dynamic_nogate |
+	                     ///< dynamic_classified
 	apps::TFilterRun run;
 	apps::TEvaluation eval;
 	double ate = 0;                ///< [m], no alignment (the world frame is the true start)
@@ -27,12 +32,19 @@ struct TKittiRunResult
 	size_t landmarks_scored = 0;
 	eval::TObjectErrors objects;  ///< dynamic only
 	size_t gated_out = 0, static_updates = 0;
+	/** dynamic_classified with a class truth given: "moving" per reading and per track, and the
+	 * grouping ARI (eval/class_metrics.h). */
+	eval::TBinaryScores class_reading, class_track;
+	double group_ari = std::nan("");
 };
 
-/** Runs one filter of config/compare_kitti.ini's three on the rawlog, or "dynamic_nogate" (the
- * dynamic filter with [DynamicKFSLAM] innovation_gate = 0, like MRPT's ungated filter). */
+/** Runs one filter of config/compare_kitti.ini's rows on the rawlog, or "dynamic_nogate" (the
+ * dynamic filter with [DynamicKFSLAM] innovation_gate = 0, like MRPT's ungated filter).
+ * classes: the class truth of every reading (<base>_gt_classes.csv), scored when the filter
+ * classifies (dynamic_classified); may be empty. */
 TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
-                         const mrpt::config::CConfigFileMemory& ini, const std::string& filter);
+                         const mrpt::config::CConfigFileMemory& ini, const std::string& filter,
+                         const std::vector<TReadingClass>& classes = {});
 }  // namespace dynslam::kitti_eval
 
 namespace dynslam::kitti_eval

@@ -1,4 +1,5 @@
 #include <dynslam/kitti/geometry.h>
+#include <dynslam/landmark_ids.h>
 #include <dynslam/models/se2.h>
 
 #include <algorithm>
@@ -151,3 +152,33 @@ void fillGroundTruth(const TKittiLabels& L, const std::vector<Eigen::Vector3d>& 
 	gt.checkConsistent();
 }
 }  // namespace dynslam::kitti::detail
+
+namespace dynslam::kitti
+{
+std::vector<TReadingClass> readingClasses(const TImportResult& res)
+{
+	std::vector<TReadingClass> rows;
+	rows.reserve(res.summary.readings);
+	for (size_t k = 0; k < res.steps.size(); ++k)
+	{
+		const TStep& s = res.steps[k];
+		for (size_t i = 0; i < s.readings.size(); ++i)
+		{
+			const TReading& r = s.readings[i];
+			const TTrack& t = res.tracks.at(r.track);
+			TReadingClass c;
+			c.step = int(k);
+			c.t = s.t;
+			c.index = int(i);
+			c.id = r.id;
+			c.cls = t.moving ? TrueClass::Moving : TrueClass::Static;
+			c.object = t.moving ? t.object : -1;
+			c.true_id =
+			    t.moving ? ids::objectFeatureId(t.object, r.corner) : 4 * t.track + r.corner;
+			c.feature = t.moving ? r.corner : c.true_id;
+			rows.push_back(c);
+		}
+	}
+	return rows;
+}
+}  // namespace dynslam::kitti

@@ -100,6 +100,7 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 			          f << r.id << ',' << r.track << ',' << r.corner << ',' << int(r.moving) << ','
 			            << tracks.at(r.track).object << '\n';
 	          });
+	writeClassGroundTruth(readingClasses(res), file("_gt_classes.csv"));
 	writeText(file("_summary.txt"), [&](std::ostream& f) { f << res.summary.toText(); });
 	writeText(file("_scenario.ini"),
 	          [&](std::ostream& f)

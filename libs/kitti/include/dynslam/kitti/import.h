@@ -31,6 +31,7 @@
  *   on (c = footprint centre = the centroid of the 4 corners, the g^o rotation centre), NaN
  *   elsewhere. Extra files: the track list, the per-step class truth, the ID table
  *   (rawlog_writer.h). */
+#include <dynslam/class_ground_truth.h>
 #include <dynslam/ground_truth.h>
 #include <dynslam/kitti/kitti_files.h>
 
@@ -150,4 +151,12 @@ struct TImportResult
  * input (labels beyond the poses, a track ID too large for the static ID range, bad options). */
 TImportResult importSequence(const std::vector<TCameraPose>& poses, const TKittiLabels& labels,
                              const TImportOptions& opts, const std::string& sequence);
+
+/** The class truth of every reading (class_ground_truth.h; written as B_gt_classes.csv), one
+ * row per reading in the order of its step: id = the ID in the rawlog (either mode), true_id =
+ * the labelled mode's ID (4 track + corner for a static track, ids::objectFeatureId(object,
+ * corner) for a moving one), class = the track's class (classify.h: static or moving for its
+ * whole life; KITTI has no clutter), object = the object index of a moving track (-1 static),
+ * feature = true_id for a static track, the corner for a moving one. */
+std::vector<TReadingClass> readingClasses(const TImportResult& res);
 }  // namespace dynslam::kitti

@@ -17,6 +17,8 @@
  *      `<base>_gt_track_list.csv`  track,type,moving,radius,first_frame,last_frame,frames,
  *                                  read_frames,first_read,object,length,width
  *      `<base>_gt_ids.csv`         id,track,corner,moving,object (every reading ID)
+ *      `<base>_gt_classes.csv`     the class truth of every reading (class_ground_truth.h,
+ *                                  readingClasses in import.h): scores feature_labels = classify
  *  - `<base>_summary.txt` and `<base>_scenario.ini` (the effective [KITTI_Import] options, i.e.
  *    the noise used, the mode, the counts and the filter start).
  * Everything is written into a temporary folder inside `dir` and moved into place at the end:
