@@ -170,3 +170,17 @@ TEST(Metrics, RejectsMalformedInput)
 	bad.objects[0].pose.pop_back();
 	EXPECT_THROW(computeRunMetrics(bad, est), std::invalid_argument);
 }
+
+TEST(Metrics, FirstNonFiniteEgoStepFindsADivergedRun)
+{
+	// dynslam-compare leaves a diverged filter out of its table with this step (MRPT's
+	// static filter on KITTI 0007 reaches NaN at step 766; doc/kitti.md)
+	TRunEstimates est;
+	est.ego = {ego(0, {0, 0, 0}), ego(1, {1, 0, 0}), ego(2, {2, 0, 0})};
+	EXPECT_EQ(firstNonFiniteEgoStep(est), -1);
+	est.ego[2].mean.z() = std::nan("");
+	EXPECT_EQ(firstNonFiniteEgoStep(est), 2);
+	est.ego[1].mean.x() = INFINITY;
+	EXPECT_EQ(firstNonFiniteEgoStep(est), 1);
+	EXPECT_THROW(computeRunMetrics(eval_test::smallGroundTruth(), est), std::invalid_argument);
+}

@@ -195,6 +195,7 @@ void CCompareApp::run()
 {
 	runs.clear();
 	rows.clear();
+	failedFilters.clear();
 	writtenFiles.clear();
 	TLoadedData d = loadData(data, params, "DynamicKFSLAM", "RangeBearingKFSLAM");
 	for (const auto& w : d.rawlog.warnings) MRPT_LOG_WARN(w);
@@ -235,6 +236,13 @@ void CCompareApp::run()
 			                                100.0 * double(done) / double(total));
 		              });
 		r.name = f;
+		if (const int k = eval::firstNonFiniteEgoStep(r.est); k >= 0)
+		{
+			failedFilters.push_back(f + ": diverged (non-finite ego mean from step " +
+			                        std::to_string(k) + " on)");
+			MRPT_LOG_ERROR_FMT("%s: left out of the table", failedFilters.back().c_str());
+			continue;
+		}
 		setEgoTimes(r);
 		if (hasGroundTruth && runs.empty())
 			if (const std::string w = timeBaseWarning(r, gt); !w.empty()) MRPT_LOG_WARN(w);
@@ -247,6 +255,9 @@ void CCompareApp::run()
 		}
 		runs.push_back(std::move(r));
 	}
+	if (runs.empty())
+		throw std::runtime_error("dynslam-compare: every filter diverged (" +
+		                         failedFilters.front() + ", ...)");
 	if (!hasGroundTruth) differenceRows();
 
 	std::ostringstream table;
@@ -259,6 +270,7 @@ void CCompareApp::run()
 		      << "' row, not errors (ego per step; map: the static landmarks both filters have; "
 		         "ATE column: RMS ego position distance); ms/step: wall time of one filter step "
 		         "on this machine.\n";
+	for (const auto& fail : failedFilters) table << "NOT IN THE TABLE: " << fail << "\n";
 	tableText = table.str();
 	std::cout << "\n" << tableText;
 	if (!outDir.empty())
@@ -367,6 +379,12 @@ void CCompareApp::writeOutputs(const std::string& optionsDump)
 				    eval::writeConsistencySummary(os, *r.consistency);
 			    }
 	    });
+	if (!failedFilters.empty())
+		out("failed_filters.txt",
+		    [&](std::ostream& os)
+		    {
+			    for (const auto& fail : failedFilters) os << fail << "\n";
+		    });
 	for (const auto& r : runs)
 	{
 		writeEstimateFiles(outDir, r.name + "_", r.est, g, writtenFiles);

@@ -6,6 +6,13 @@
 
 namespace dynslam::eval
 {
+int firstNonFiniteEgoStep(const TRunEstimates& est)
+{
+	for (const auto& e : est.ego)
+		if (!e.mean.allFinite()) return e.step;
+	return -1;
+}
+
 void checkEstimates(const TRunEstimates& est)
 {
 	std::set<int> steps;

@@ -73,7 +73,11 @@ public:
 	int progressEvery = 0;  ///< [Compare] progress_every (0: ten lines per filter on long runs)
 
 	// --- results of run() ---
-	std::vector<TFilterRun> runs;  ///< one per filter, in `filters` order
+	std::vector<TFilterRun> runs;  ///< one per filter that finished, in `filters` order
+	/** Filters that diverged (an ego mean became NaN/Inf: e.g. MRPT's static filter on KITTI
+	 * 0007): "<filter>: <reason>". They have no row, no estimates and no figure line; the
+	 * other filters run on, the table's footnote and OUT/failed_filters.txt name them. */
+	std::vector<std::string> failedFilters;
 	/** Metrics per filter; without ground truth the RMS differences of each filter to
 	 * referenceFilter (the dynamic filter if it ran, else the first). */
 	std::vector<eval::TMetricsRow> rows;

@@ -84,4 +84,8 @@ struct TRunEstimates
  * with a matching covariance, landmarks_cov empty or 2L x 2L, nis and nis_dof of equal length.
  * Throws std::invalid_argument naming the offending entry. */
 void checkEstimates(const TRunEstimates& est);
+
+/** The first ego estimate whose mean is not finite (a filter that diverged), as its step;
+ * -1 when every ego mean is finite. */
+int firstNonFiniteEgoStep(const TRunEstimates& est);
 }  // namespace dynslam::eval
