@@ -171,16 +171,31 @@ TEST(Metrics, RejectsMalformedInput)
 	EXPECT_THROW(computeRunMetrics(bad, est), std::invalid_argument);
 }
 
-TEST(Metrics, FirstNonFiniteEgoStepFindsADivergedRun)
+TEST(Metrics, DivergedEstimateNamesWhatDiverged)
 {
-	// dynslam-compare leaves a diverged filter out of its table with this step (MRPT's
+	// dynslam-compare leaves a diverged filter out of its table with this text (MRPT's
 	// static filter on KITTI 0007 reaches NaN at step 766; doc/kitti.md)
 	TRunEstimates est;
 	est.ego = {ego(0, {0, 0, 0}), ego(1, {1, 0, 0}), ego(2, {2, 0, 0})};
-	EXPECT_EQ(firstNonFiniteEgoStep(est), -1);
+	TLandmarkEstimate l;
+	l.id = 7;
+	est.landmarks = {l};
+	TObjectPoseEstimate p;
+	p.object = 1;
+	p.step = 2;
+	p.mean = Eigen::Vector3d::Zero();
+	p.cov = Eigen::Matrix3d::Identity();
+	est.object_poses = {p};
+	EXPECT_EQ(divergedEstimate(est), "");
+	est.object_poses[0].mean.x() = -kDivergedMagnitude;  // the limit itself is still sane
+	EXPECT_EQ(divergedEstimate(est), "");
+	est.object_poses[0].mean.x() = std::nan("");
+	EXPECT_EQ(divergedEstimate(est), "pose of object 1 at step 2");
+	est.landmarks[0].mean.y() = -INFINITY;
+	EXPECT_EQ(divergedEstimate(est), "mean of landmark 7");
 	est.ego[2].mean.z() = std::nan("");
-	EXPECT_EQ(firstNonFiniteEgoStep(est), 2);
-	est.ego[1].mean.x() = INFINITY;
-	EXPECT_EQ(firstNonFiniteEgoStep(est), 1);
+	EXPECT_EQ(divergedEstimate(est), "ego mean at step 2");
+	est.ego[1].mean.x() = 2e9;  // finite but beyond any map
+	EXPECT_EQ(divergedEstimate(est), "ego mean at step 1");
 	EXPECT_THROW(computeRunMetrics(eval_test::smallGroundTruth(), est), std::invalid_argument);
 }

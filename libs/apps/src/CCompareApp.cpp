@@ -236,10 +236,9 @@ void CCompareApp::run()
 			                                100.0 * double(done) / double(total));
 		              });
 		r.name = f;
-		if (const int k = eval::firstNonFiniteEgoStep(r.est); k >= 0)
+		if (const std::string bad = eval::divergedEstimate(r.est); !bad.empty())
 		{
-			failedFilters.push_back(f + ": diverged (non-finite ego mean from step " +
-			                        std::to_string(k) + " on)");
+			failedFilters.push_back(f + ": diverged (" + bad + " non-finite or beyond 1e9)");
 			MRPT_LOG_ERROR_FMT("%s: left out of the table", failedFilters.back().c_str());
 			continue;
 		}

@@ -6,11 +6,22 @@
 
 namespace dynslam::eval
 {
-int firstNonFiniteEgoStep(const TRunEstimates& est)
+std::string divergedEstimate(const TRunEstimates& est)
 {
+	const auto str = [](auto v) { return std::to_string(v); };
+	// (maxCoeff may skip a NaN: allFinite first)
+	const auto bad = [](const auto& m)
+	{ return !m.allFinite() || m.cwiseAbs().maxCoeff() > kDivergedMagnitude; };
 	for (const auto& e : est.ego)
-		if (!e.mean.allFinite()) return e.step;
-	return -1;
+		if (bad(e.mean)) return "ego mean at step " + str(e.step);
+	for (const auto& l : est.landmarks)
+		if (bad(l.mean)) return "mean of landmark " + str(l.id);
+	for (const auto& f : est.object_features)
+		if (bad(f.mean)) return "mean of object " + str(f.object) + " feature " + str(f.feature);
+	for (const auto& p : est.object_poses)
+		if (p.mean.size() > 0 && bad(p.mean))
+			return "pose of object " + str(p.object) + " at step " + str(p.step);
+	return {};
 }
 
 void checkEstimates(const TRunEstimates& est)

@@ -74,9 +74,10 @@ public:
 
 	// --- results of run() ---
 	std::vector<TFilterRun> runs;  ///< one per filter that finished, in `filters` order
-	/** Filters that diverged (an ego mean became NaN/Inf: e.g. MRPT's static filter on KITTI
-	 * 0007): "<filter>: <reason>". They have no row, no estimates and no figure line; the
-	 * other filters run on, the table's footnote and OUT/failed_filters.txt name them. */
+	/** Filters that diverged (a mean NaN, infinite or beyond 1e9, eval::divergedEstimate: e.g.
+	 * MRPT's static filter on KITTI 0007): "<filter>: <reason>". They have no row, no estimates and
+	 * no figure line; the other filters run on, the table's footnote and OUT/failed_filters.txt
+	 * name them. */
 	std::vector<std::string> failedFilters;
 	/** Metrics per filter; without ground truth the RMS differences of each filter to
 	 * referenceFilter (the dynamic filter if it ran, else the first). */

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace dynslam::eval
@@ -85,7 +86,12 @@ struct TRunEstimates
  * Throws std::invalid_argument naming the offending entry. */
 void checkEstimates(const TRunEstimates& est);
 
-/** The first ego estimate whose mean is not finite (a filter that diverged), as its step;
- * -1 when every ego mean is finite. */
-int firstNonFiniteEgoStep(const TRunEstimates& est);
+/** Mean entries beyond this magnitude (1e9 m, far beyond any map; or rad) mark a diverged filter.
+ */
+constexpr double kDivergedMagnitude = 1e9;
+/** The first mean with an entry that is not finite or beyond kDivergedMagnitude (a filter that
+ * diverged), described as "ego mean at step k", "mean of landmark ID", "mean of object o
+ * feature f" or "pose of object o at step k"; empty when every mean is sane. Searched in that
+ * order. */
+std::string divergedEstimate(const TRunEstimates& est);
 }  // namespace dynslam::eval
