@@ -259,6 +259,17 @@ void CCompareApp::run()
 		                         failedFilters.front() + ", ...)");
 	if (!hasGroundTruth) differenceRows();
 
+	buildTable();
+	std::cout << "\n" << tableText;
+	if (!outDir.empty())
+		writeOutputs(dump.str());
+	else
+		std::cout << "(add --out DIR to write metrics.csv, per-filter estimates and figures)\n";
+	writeVisualOutputs();
+}
+
+void CCompareApp::buildTable()
+{
 	std::ostringstream table;
 	eval::writeMetricsTable(table, rows);
 	if (hasGroundTruth)
@@ -271,12 +282,6 @@ void CCompareApp::run()
 		         "on this machine.\n";
 	for (const auto& fail : failedFilters) table << "NOT IN THE TABLE: " << fail << "\n";
 	tableText = table.str();
-	std::cout << "\n" << tableText;
-	if (!outDir.empty())
-		writeOutputs(dump.str());
-	else
-		std::cout << "(add --out DIR to write metrics.csv, per-filter estimates and figures)\n";
-	writeVisualOutputs();
 }
 
 std::optional<eval::TMetricsRow::TClassScores> CCompareApp::classScores(

@@ -102,6 +102,7 @@ private:
 	void writeOutputs(const std::string& optionsDump);
 	void drawFigures();
 	void differenceRows();
+	void buildTable();          ///< tableText: the rows, the footnote, the diverged filters
 	void writeVisualOutputs();  ///< --scene, --video
 	/** Scores of a classifying run against <groundTruthUsed>_gt_classes.csv (empty, with a
 	 * warning, if the file is missing or its reading count differs). */
