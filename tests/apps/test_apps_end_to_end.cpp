@@ -188,6 +188,20 @@ TEST(CompareApp, TunnelObjectModelsCvHelpsTheEgo)
 	EXPECT_LT(ctrv.ate, 0.7 * dy.ate);  // measured ratio 0.51
 	EXPECT_LT(cv.ate, 0.5 * so.ate);    // the target; measured ratio 0.121
 	EXPECT_LT(cv.ate, 0.3);             // measured 0.0904 m
+	// The gap (datasets/tunnel_scenario.ini: landmark_gaps = [200 800]) is scored for every row
+	// (eval::gapMetrics, metrics.csv columns ate_gap ...): 72 steps; measured in the gap
+	// 0.5659 / 0.5695 / 0.0810 / 0.3087 m, ego NEES 4.24 / 3.17 / 1.27 / 1.96 in [2.461, 3.592].
+	for (const auto& r : app.rows)
+	{
+		ASSERT_TRUE(r.gap.has_value()) << r.filter;
+		EXPECT_EQ(r.gap->steps, 72u) << r.filter;
+		EXPECT_NEAR(r.gap->nees_lower, 2.461, 1e-3);
+		EXPECT_NEAR(r.gap->nees_upper, 3.592, 1e-3);
+		std::printf("[ measured ] %s: ATE in the gap %.4f m, outside %.4f m, NEES %.3f\n",
+		            r.filter.c_str(), r.gap->ate, r.gap->ate_outside, r.gap->nees);
+	}
+	EXPECT_LT(app.rows[2].gap->ate, 0.5 * app.rows[0].gap->ate);  // the target, in the gap
+	EXPECT_LT(app.rows[2].gap->nees, app.rows[2].gap->nees_upper);  // not overconfident
 }
 
 TEST(CompareApp, SmoothingFilterRowRunsAlg6)

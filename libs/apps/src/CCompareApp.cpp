@@ -8,6 +8,7 @@
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
+#include <dynslam/eval/gap_metrics.h>
 
 #include <algorithm>
 #include <cmath>
@@ -208,6 +209,10 @@ void CCompareApp::run()
 	          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
 	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
 
+	const auto gaps = hasGroundTruth ? highwayLandmarkGaps(data.scenario == "auto"
+	                                                           ? scenarioBesideRawlog(data.rawlog)
+	                                                           : data.scenario)
+	                                 : std::vector<std::pair<double, double>>{};
 	std::ostringstream dump;
 	const size_t n = d.rawlog.size();
 	// Progress lines on long runs: every progress_every steps, or ten per filter from
@@ -242,8 +247,9 @@ void CCompareApp::run()
 		if (hasGroundTruth)
 		{
 			const TEvaluation ev = evaluateRun(gt, r.est);
-			rows.push_back({f, ev.metrics, ev.summary, std::nullopt});
+			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt});
 			if (classifies) rows.back().classes = classScores(decisions);
+			if (!gaps.empty()) rows.back().gap = eval::gapMetrics(gt, r.est.ego, gaps);
 		}
 		runs.push_back(std::move(r));
 	}
