@@ -2,6 +2,7 @@
  * a landmark gap on the true ego x, the error at the gap's last step, and the mean ego NEES
  * over the gap with its chi-square bounds; values computed by hand. */
 #include <dynslam/eval/chi2.h>
+#include <dynslam/eval/gap_figure.h>
 #include <dynslam/eval/gap_metrics.h>
 #include <dynslam/eval/writers.h>
 #include <gtest/gtest.h>
@@ -106,4 +107,32 @@ TEST(GapMetrics, MetricsCsvColumnsOnlyWhenARowHasThem)
 	EXPECT_EQ(h.substr(h.size() - cols.size()), cols);
 	EXPECT_NE(r0.find(",0.25,,,7,"), std::string::npos) << r0;  // NaN cells are empty
 	EXPECT_EQ(r1.substr(r1.size() - 7), ",,,,,,,");
+}
+
+TEST(GapMetrics, ErrorOverTheRoadFigureShadesTheGap)
+{
+	const TGroundTruth gt = straightRoad();
+	TRunEstimates est;
+	for (int k = 0; k < 6; ++k)
+		est.ego.push_back(estimate(k, gt.ego[size_t(k)], Eigen::Vector3d(0, 0.1 * k, 0), 0.01));
+	const mrpt::img::TColor blue(0, 0, 255);
+	const mrpt::img::CImage img = drawGapErrorFigure(gt, {{"f", blue, &est}}, {{15, 35}}, 800, 400);
+	ASSERT_EQ(img.getWidth(), 800u);
+	ASSERT_EQ(img.getHeight(), 400u);
+	// x from -1 to 51 m (2 % margins) over the plot columns 80..780; the gap 15..35 m is checked
+	// 1 m inside its edges, the rest 1 m outside them (left half: the legend is top right).
+	size_t shaded = 0, shadedOutside = 0, line = 0;
+	for (int y = 45; y < 340; ++y)
+		for (int x = 85; x < 775; ++x)
+		{
+			const uint8_t* p = img(x, y);                                 // BGR
+			const bool grey = p[0] == 205 && p[1] == 230 && p[2] == 235;  // BGR of the shade
+			const double wx = -1.0 + 52.0 * (x - 80) / 700.0;
+			if (grey && wx > 16 && wx < 34) ++shaded;
+			if (grey && (wx < 14 || wx > 36) && x < 500) ++shadedOutside;
+			if (p[0] == 255 && p[1] == 0 && p[2] == 0) ++line;
+		}
+	EXPECT_GT(shaded, 50000u);  // most of the gap's columns x rows
+	EXPECT_EQ(shadedOutside, 0u);
+	EXPECT_GT(line, 300u);  // the series is drawn
 }

@@ -8,6 +8,7 @@
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
+#include <dynslam/eval/gap_figure.h>
 #include <dynslam/eval/gap_metrics.h>
 
 #include <algorithm>
@@ -209,10 +210,11 @@ void CCompareApp::run()
 	          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
 	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
 
-	const auto gaps = hasGroundTruth ? highwayLandmarkGaps(data.scenario == "auto"
-	                                                           ? scenarioBesideRawlog(data.rawlog)
-	                                                           : data.scenario)
-	                                 : std::vector<std::pair<double, double>>{};
+	landmarkGaps = hasGroundTruth ? highwayLandmarkGaps(data.scenario == "auto"
+	                                                        ? scenarioBesideRawlog(data.rawlog)
+	                                                        : data.scenario)
+	                              : std::vector<std::pair<double, double>>{};
+	const auto& gaps = landmarkGaps;
 	std::ostringstream dump;
 	const size_t n = d.rawlog.size();
 	// Progress lines on long runs: every progress_every steps, or ten per filter from
@@ -426,6 +428,8 @@ void CCompareApp::drawFigures()
 	png("compare_map.png", eval::drawMapFigure(g, series, mo));
 	if (!hasGroundTruth) return;
 	png("compare_ego_errors.png", eval::drawEgoErrorFigure(gt, series));
+	if (!landmarkGaps.empty())
+		png("compare_ego_error_gap.png", eval::drawGapErrorFigure(gt, series, landmarkGaps));
 	std::vector<eval::TFigureSeries> good;
 	for (const auto& s : series)
 		if (s.name != "static_all") good.push_back(s);
