@@ -80,6 +80,12 @@ std::vector<std::string> parseFilterList(const std::string& fl)
 	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
 	return filters;
 }
+/** The landmark gaps of the data's highway scenario (issue 13); none without a ground truth. */
+std::vector<std::pair<double, double>> dataGaps(const TDataSettings& d, bool hasGt)
+{
+	if (!hasGt) return {};
+	return highwayLandmarkGaps(d.scenario == "auto" ? scenarioBesideRawlog(d.rawlog) : d.scenario);
+}
 }  // namespace
 
 std::string CCompareApp::mapTitle(bool withGroundTruth)
@@ -210,11 +216,7 @@ void CCompareApp::run()
 	          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
 	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
 
-	landmarkGaps = hasGroundTruth ? highwayLandmarkGaps(data.scenario == "auto"
-	                                                        ? scenarioBesideRawlog(data.rawlog)
-	                                                        : data.scenario)
-	                              : std::vector<std::pair<double, double>>{};
-	const auto& gaps = landmarkGaps;
+	landmarkGaps = dataGaps(data, hasGroundTruth);
 	std::ostringstream dump;
 	const size_t n = d.rawlog.size();
 	// Progress lines on long runs: every progress_every steps, or ten per filter from
@@ -251,7 +253,8 @@ void CCompareApp::run()
 			const TEvaluation ev = evaluateRun(gt, r.est);
 			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt});
 			if (classifies) rows.back().classes = classScores(decisions);
-			if (!gaps.empty()) rows.back().gap = eval::gapMetrics(gt, r.est.ego, gaps);
+			if (!landmarkGaps.empty())
+				rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
 		}
 		runs.push_back(std::move(r));
 	}
