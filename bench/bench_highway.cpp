@@ -15,7 +15,9 @@ namespace
 {
 /** One full run of the shipped highway rawlog (121 steps). Arg: 0 = MRPT update, 1 = sparse,
  * 2 = compressed (static_update = compressed; the final global update included), 3 = sparse
- * with feature_labels = classify (issue 12: what classification costs). */
+ * with feature_labels = classify (issue 12: what classification costs), 4 = sparse with
+ * object_model = cv and the cv_* keys of config/compare_tunnel.ini (issue 13: what the
+ * object-centric model costs; tight noise, gate 0.999, inflation T = 8, a = 1e4). */
 void BM_HighwayRun(benchmark::State& state)
 {
 	const TRun& run = highwayRun();
@@ -35,15 +37,27 @@ void BM_HighwayRun(benchmark::State& state)
 			f.options.validate();
 			f.reset();
 		}
+		if (state.range(0) == 4)  // sparse, object_model = cv (issue 13)
+		{
+			f.options.object_model = "cv";
+			f.options.cv.dt = 0.5;
+			f.options.cv.accel_psd = Eigen::Vector3d(1e-6, 1e-6, 1e-8);
+			f.options.cv.velocity_prior_std = Eigen::Vector3d(0.5, 0.5, 0.05);
+			f.options.cv_gate = 0.999;
+			f.options.cv.inflation_threshold = 8;
+			f.options.cv.inflation_factor = 1e4;
+			f.options.validate();
+			f.reset();
+		}
 		for (size_t k = 0; k < run.actions.size(); ++k)
 			f.processActionObservation(run.actions[k], run.frames[k]);
 		benchmark::DoNotOptimize(f.fullMean()[0]);
 	}
 	state.counters["steps"] = double(run.actions.size());
-	const char* labels[] = {"mrpt", "sparse", "compressed", "sparse+classify"};
+	const char* labels[] = {"mrpt", "sparse", "compressed", "sparse+classify", "sparse+cv"};
 	state.SetLabel(labels[state.range(0)]);
 }
-BENCHMARK(BM_HighwayRun)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HighwayRun)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 
 /** The same static-only run through MRPT's CRangeBearingKFSLAM2D (filter 0) and the dynamic EKF
  * with MRPT's update (1) or the sparse one (2). Args: filter, landmarks (highway_static with

@@ -174,6 +174,40 @@ TEST(ObjectModelCvInflation, RuleResetsWhenConsistent)
 	EXPECT_THROW(estimator::CConstantVelocity{p}, std::invalid_argument);
 }
 
+TEST(ObjectModelCvInflation, WindowAndDecay)
+{
+	// The window averages the NIS over the object's last steps with readings; the decay brings
+	// the factor back to 1 geometrically (doc/state-layout.md "Process-noise inflation").
+	estimator::TCvParams p;
+	p.inflation_threshold = 4.0;
+	p.inflation_factor = 100.0;
+	p.inflation_window = 3;
+	p.inflation_decay = 0.1;
+	estimator::CConstantVelocity m(p);
+	m.reportInnovations(3, 2 * 1.0, 2);  // window {1}: mean 1
+	EXPECT_EQ(m.processNoiseScale(3), 1.0);
+	m.reportInnovations(3, 2 * 9.0, 2);  // window {1, 9}: mean 5 > 4
+	EXPECT_EQ(m.processNoiseScale(3), 100.0);
+	m.reportInnovations(3, 2 * 1.0, 2);  // window {1, 9, 1}: mean 11/3 <= 4: decays
+	EXPECT_DOUBLE_EQ(m.processNoiseScale(3), 10.0);
+	m.reportInnovations(3, 6 * 1.0, 6);  // window {9, 1, 1 (6 dof)}: 26 / 10 dof: decays to 1
+	EXPECT_EQ(m.processNoiseScale(3), 1.0);
+	m.reportInnovations(3, 2 * 4.5, 2);  // window {1, 1 (6 dof), 4.5}: 17 / 10 dof: stays 1
+	EXPECT_EQ(m.processNoiseScale(3), 1.0);
+	EXPECT_EQ(m.inflationCount(), 1u);
+	// The one-step rule (window 1, decay 0) inflates on that last step.
+	p.inflation_window = 1;
+	p.inflation_decay = 0;
+	estimator::CConstantVelocity one(p);
+	one.reportInnovations(3, 2 * 4.5, 2);
+	EXPECT_EQ(one.processNoiseScale(3), 100.0);
+	p.inflation_window = 0;
+	EXPECT_THROW(estimator::CConstantVelocity{p}, std::invalid_argument);
+	p.inflation_window = 2;
+	p.inflation_decay = 1.0;
+	EXPECT_THROW(estimator::CConstantVelocity{p}, std::invalid_argument);
+}
+
 TEST(ObjectModelCvInflation, IniKeys)
 {
 	const auto load = [](const std::string& extra)
@@ -191,4 +225,9 @@ TEST(ObjectModelCvInflation, IniKeys)
 	EXPECT_FALSE(load("cv_inflation_threshold = 8\n"));  // factor 1: off
 	EXPECT_THROW(load("cv_inflation_factor = 0.5\n"), std::invalid_argument);
 	EXPECT_THROW(load("cv_inflation_threshold = -1\n"), std::exception);
+	EXPECT_TRUE(
+	    load("cv_inflation_threshold = 8\ncv_inflation_factor = 100\n"
+	         "cv_inflation_window = 3\ncv_inflation_decay = 0.5\n"));
+	EXPECT_THROW(load("cv_inflation_window = 0\n"), std::invalid_argument);
+	EXPECT_THROW(load("cv_inflation_decay = 1\n"), std::invalid_argument);
 }

@@ -185,7 +185,8 @@ TEST(Alg1, WholeRunEquivalenceObjectModels)
 
 TEST(Alg1, WholeRunEquivalenceObjectModelsIllConditioned)
 {
-	// The tunnel's settings (config/compare_tunnel.ini): a process noise 10-100 times smaller
+	// The tunnel comparison's former settings (config/compare_tunnel.ini before the inflation
+	// rule of doc/results.md 4.3): a process noise 10-100 times smaller
 	// and a velocity prior 2 times tighter than the defaults. Q^-1 then dominates the
 	// information of the object blocks; the Schur complements of the prediction and the
 	// inversion that reports the covariance lose about kappa * eps (doc/framework.md). The
@@ -216,6 +217,19 @@ TEST(Alg1, ObjectModelsBadInput)
 	EXPECT_NO_THROW(make(""));
 	EXPECT_THROW(make("cv_inflation_threshold = 8\ncv_inflation_factor = 100\n"),
 	             std::invalid_argument);
+	try  // with the window and the decay too; the message names the keys
+	{
+		make(
+		    "cv_inflation_threshold = 8\ncv_inflation_factor = 1e4\ncv_inflation_window = 3\n"
+		    "cv_inflation_decay = 0.5\n");
+		ADD_FAILURE() << "the framework accepted the inflation rule";
+	}
+	catch (const std::invalid_argument& e)
+	{
+		EXPECT_NE(std::string(e.what()).find("cv_inflation_threshold"), std::string::npos)
+		    << e.what();
+	}
+	EXPECT_NO_THROW(make("cv_inflation_window = 3\ncv_inflation_decay = 0.5\n"));  // rule off
 	EXPECT_THROW(make("cv_accel_psd = [0.01 0 1e-4]\n"), std::invalid_argument);
 	EXPECT_THROW(make("cv_velocity_prior_std = [0.5 0 0.05]\n"), std::invalid_argument);
 }

@@ -8,6 +8,8 @@
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
+#include <dynslam/eval/gap_figure.h>
+#include <dynslam/eval/gap_metrics.h>
 
 #include <algorithm>
 #include <cmath>
@@ -77,6 +79,12 @@ std::vector<std::string> parseFilterList(const std::string& fl)
 			         "dynamic_ctrv, dynamic_smoothing, dynamic_classified)");
 	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
 	return filters;
+}
+/** The landmark gaps of the data's highway scenario (issue 13); none without a ground truth. */
+std::vector<std::pair<double, double>> dataGaps(const TDataSettings& d, bool hasGt)
+{
+	if (!hasGt) return {};
+	return highwayLandmarkGaps(d.scenario == "auto" ? scenarioBesideRawlog(d.rawlog) : d.scenario);
 }
 }  // namespace
 
@@ -209,6 +217,7 @@ void CCompareApp::run()
 	          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
 	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
 
+	landmarkGaps = dataGaps(data, hasGroundTruth);
 	std::ostringstream dump;
 	const size_t n = d.rawlog.size();
 	// Progress lines on long runs: every progress_every steps, or ten per filter from
@@ -249,8 +258,10 @@ void CCompareApp::run()
 		if (hasGroundTruth)
 		{
 			const TEvaluation ev = evaluateRun(gt, r.est);
-			rows.push_back({f, ev.metrics, ev.summary, std::nullopt});
+			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt});
 			if (classifies) rows.back().classes = classScores(decisions);
+			if (!landmarkGaps.empty())
+				rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
 		}
 		runs.push_back(std::move(r));
 	}
@@ -442,6 +453,8 @@ void CCompareApp::drawFigures()
 	png("compare_map.png", eval::drawMapFigure(g, series, mo));
 	if (!hasGroundTruth) return;
 	png("compare_ego_errors.png", eval::drawEgoErrorFigure(gt, series));
+	if (!landmarkGaps.empty())
+		png("compare_ego_error_gap.png", eval::drawGapErrorFigure(gt, series, landmarkGaps));
 	std::vector<eval::TFigureSeries> good;
 	for (const auto& s : series)
 		if (s.name != "static_all") good.push_back(s);

@@ -200,7 +200,7 @@ eval::TConsistencySummary CRunApp::evaluateAndReport()
 		cons = evaluation->consistency;
 		summary = evaluation->summary;
 		std::vector<eval::TMetricsRow> rows{
-		    {result.name, evaluation->metrics, summary, std::nullopt}};
+		    {result.name, evaluation->metrics, summary, std::nullopt, std::nullopt}};
 		writeOutput("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
 		std::ostringstream table;
 		eval::writeMetricsTable(table, rows);

@@ -1,5 +1,6 @@
 #include <dynslam/apps/data_files.h>
 #include <dynslam/config_utils.h>
+#include <dynslam/sim/TScenarioOptions.h>
 #include <mrpt/config/CConfigFile.h>
 
 #include <cmath>
@@ -160,6 +161,16 @@ TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps,
 		throw std::runtime_error(msg.str());
 	}
 	return gt;
+}
+
+std::vector<std::pair<double, double>> highwayLandmarkGaps(const std::string& scenarioPath)
+{
+	std::error_code ec;
+	if (scenarioPath.empty() || !std::filesystem::is_regular_file(scenarioPath, ec)) return {};
+	if (!mrpt::config::CConfigFile(scenarioPath).keyExists("Scenario", "landmark_gaps")) return {};
+	const sim::TScenarioOptions o = sim::loadScenario(scenarioPath);
+	if (o.type != sim::ScenarioType::Highway) return {};
+	return o.landmark_gaps;
 }
 
 TScenarioNoise readScenarioNoise(const std::string& path)

@@ -36,6 +36,8 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	o.cv.inflation_threshold =
 	    readNonNegative(c, s, "cv_inflation_threshold", o.cv.inflation_threshold);
 	o.cv.inflation_factor = readNonNegative(c, s, "cv_inflation_factor", o.cv.inflation_factor);
+	o.cv.inflation_window = int(readInt(c, s, "cv_inflation_window", o.cv.inflation_window));
+	o.cv.inflation_decay = readNonNegative(c, s, "cv_inflation_decay", o.cv.inflation_decay);
 }
 }  // namespace
 
@@ -78,6 +80,8 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "cv_gate",
                                           "cv_inflation_threshold",
                                           "cv_inflation_factor",
+                                          "cv_inflation_window",
+                                          "cv_inflation_decay",
                                           "feature_labels",
                                           "classify_alpha",
                                           "classify_beta",
@@ -238,6 +242,8 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "cv_gate                        = " << cv_gate << "\n";
 	out << "cv_inflation_threshold         = " << cv.inflation_threshold << "\n";
 	out << "cv_inflation_factor            = " << cv.inflation_factor << "\n";
+	out << "cv_inflation_window            = " << cv.inflation_window << "\n";
+	out << "cv_inflation_decay             = " << cv.inflation_decay << "\n";
 	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
 	out << "keep_last_poses                = " << keep_last_poses << "\n";
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";

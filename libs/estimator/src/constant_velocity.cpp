@@ -1,6 +1,7 @@
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/models/object_motion.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -21,6 +22,12 @@ void TCvParams::validate() const
 		throw std::invalid_argument("cv_inflation_threshold: must be finite and >= 0 (0 = off)");
 	if (!(inflation_factor >= 1) || !std::isfinite(inflation_factor))
 		throw std::invalid_argument("cv_inflation_factor: must be finite and >= 1 (1 = off)");
+	if (inflation_window < 1)
+		throw std::invalid_argument("cv_inflation_window = " + std::to_string(inflation_window) +
+		                            ": must be >= 1");
+	if (!(inflation_decay >= 0 && inflation_decay < 1))
+		throw std::invalid_argument("cv_inflation_decay = " + std::to_string(inflation_decay) +
+		                            ": must be in [0, 1) (0 = back to 1 at once)");
 }
 
 CConstantVelocity::CConstantVelocity(const TCvParams& p) : m_p(p) { m_p.validate(); }
@@ -28,19 +35,29 @@ CConstantVelocity::CConstantVelocity(const TCvParams& p) : m_p(p) { m_p.validate
 void CConstantVelocity::reportInnovations(int32_t object, double nisSum, int dof)
 {
 	if (!m_p.inflationOn() || dof <= 0) return;
-	if (nisSum / dof > m_p.inflation_threshold)
+	TInflationState& st = m_state[object];
+	st.window.emplace_back(nisSum, dof);
+	while (st.window.size() > size_t(m_p.inflation_window)) st.window.pop_front();
+	double nis = 0;
+	int n = 0;
+	for (const auto& [s, d] : st.window)
 	{
-		m_scale[object] = m_p.inflation_factor;
+		nis += s;
+		n += d;
+	}
+	if (nis / n > m_p.inflation_threshold)
+	{
+		st.scale = m_p.inflation_factor;
 		++m_inflations;
 	}
-	else
-		m_scale.erase(object);  // consistent again: back to the nominal noise
+	else  // consistent: decay towards the nominal noise (decay 0: at once)
+		st.scale = std::max(1.0, st.scale * m_p.inflation_decay);
 }
 
 double CConstantVelocity::processNoiseScale(int32_t object) const
 {
-	const auto it = m_scale.find(object);
-	return it == m_scale.end() ? 1.0 : it->second;
+	const auto it = m_state.find(object);
+	return it == m_state.end() ? 1.0 : it->second.scale;
 }
 
 Eigen::VectorXd CConstantVelocity::residual(const TPseudoMeasurement&,

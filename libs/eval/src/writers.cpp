@@ -211,8 +211,14 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 	const bool classes =
 	    std::any_of(rows.begin(), rows.end(), [](const TMetricsRow& r) { return r.classes; });
 	if (classes) os << ",class_precision,class_recall,class_f1,group_ari";
+	const bool gaps =
+	    std::any_of(rows.begin(), rows.end(), [](const TMetricsRow& r) { return r.gap; });
 	os << ",ego_anees,ego_nees_inside,map_anees,map_dof,nis_anees,nis_inside,"
-	      "odometry_bias_rate_final,odometry_bias_scale_final\n";
+	      "odometry_bias_rate_final,odometry_bias_scale_final";
+	if (gaps)
+		os << ",ate_gap,ate_outside_gap,err_gap_end,steps_gap,ego_nees_gap,ego_nees_gap_lower,"
+		      "ego_nees_gap_upper";
+	os << "\n";
 	for (const auto& r : rows)
 	{
 		const TRunMetrics& m = r.metrics;
@@ -246,7 +252,14 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 		}
 		else
 			os << ",,,,,,";
-		os << "," << num(m.odometry_bias_rate) << "," << num(m.odometry_bias_scale) << "\n";
+		os << "," << num(m.odometry_bias_rate) << "," << num(m.odometry_bias_scale);
+		if (gaps && r.gap)
+			os << "," << num(r.gap->ate) << "," << num(r.gap->ate_outside) << ","
+			   << num(r.gap->err_end) << "," << r.gap->steps << "," << num(r.gap->nees) << ","
+			   << num(r.gap->nees_lower) << "," << num(r.gap->nees_upper);
+		else if (gaps)
+			os << ",,,,,,,";
+		os << "\n";
 	}
 }
 

@@ -84,6 +84,9 @@ public:
 	std::vector<eval::TMetricsRow> rows;
 	std::string referenceFilter;  ///< without ground truth: the rows' reference
 	bool hasGroundTruth = false;
+	/** The scenario's landmark gaps (highway scenarios with landmark_gaps; issue 13): the gap
+	 * columns of metrics.csv and compare_ego_error_gap.png. */
+	std::vector<std::pair<double, double>> landmarkGaps;
 	TGroundTruth gt;
 	std::string groundTruthUsed, noiseUsed;
 	std::string tableText;  ///< the printed table

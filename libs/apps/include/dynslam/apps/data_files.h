@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dynslam::apps
@@ -67,6 +68,10 @@ struct TScenarioNoise
 TScenarioNoise readScenarioNoise(const std::string& path);
 /** "D/B_scenario.ini" for rawlog D/B.rawlog (whether or not it exists). */
 std::string scenarioBesideRawlog(const std::string& rawlogPath);
+/** The landmark gaps ([Scenario] landmark_gaps, metres along x) of a highway scenario file;
+ * empty if the file does not exist, has no such key or is not a highway (issue 13). A file
+ * with the key is read with sim::loadScenario (its errors propagate). */
+std::vector<std::pair<double, double>> highwayLandmarkGaps(const std::string& scenarioPath);
 
 /** Writes the scenario noise into the filter sections of an in-memory INI, so that the
  * filters use the noise the data was made with:

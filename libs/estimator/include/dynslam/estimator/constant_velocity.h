@@ -6,7 +6,9 @@
  * ego: a car driving steadily beside it is a reference where static landmarks are scarce. */
 #include <dynslam/estimator/object_motion_model.h>
 
+#include <deque>
 #include <map>
+#include <utility>
 
 namespace dynslam::estimator
 {
@@ -19,12 +21,17 @@ struct TCvParams
 	Eigen::Vector3d velocity_prior_std = Eigen::Vector3d(1.0, 1.0, 0.1);
 	/** Chi-square threshold (2 dof) of the gate on object readings (infinity: no gate). */
 	double gate = std::numeric_limits<double>::infinity();
-	/** Process-noise inflation (doc/state-layout.md): when the mean NIS per dof of an object's
-	 * readings at a step exceeds inflation_threshold, its next prediction uses the acceleration
-	 * PSD times inflation_factor; a step at or below the threshold resets the factor to 1.
-	 * Off when inflation_threshold = 0 or inflation_factor = 1 (the defaults). */
+	/** Process-noise inflation (doc/state-layout.md "Process-noise inflation"): at every step
+	 * with readings of an object, r = (sum of the NIS of its readings over its last
+	 * inflation_window steps with readings) / (their dof). r > inflation_threshold: the
+	 * object's factor on Q becomes inflation_factor; otherwise it decays to
+	 * max(1, factor * inflation_decay) (decay 0: back to 1 at once). The factor scales the
+	 * object's next predictions. Off when inflation_threshold = 0 or inflation_factor = 1 (the
+	 * defaults); window 1 and decay 0 are the rule of one step. */
 	double inflation_threshold = 0.0;
 	double inflation_factor = 1.0;
+	int inflation_window = 1;      ///< steps with readings in the NIS window (>= 1)
+	double inflation_decay = 0.0;  ///< in [0, 1): factor on the inflation per consistent step
 	bool inflationOn() const { return inflation_threshold > 0 && inflation_factor != 1.0; }
 	/** Throws std::invalid_argument naming the parameter. */
 	void validate() const;
@@ -55,15 +62,20 @@ public:
 	double processNoiseScale(int32_t object) const override;
 	void resetObjectState() override
 	{
-		m_scale.clear();
+		m_state.clear();
 		m_inflations = 0;
 	}
 	/** Steps at which some object's process noise was inflated, since construction/reset. */
 	size_t inflationCount() const { return m_inflations; }
 
 private:
+	struct TInflationState
+	{
+		std::deque<std::pair<double, int>> window;  ///< (NIS sum, dof) of the last steps
+		double scale = 1.0;                         ///< factor on Q for the next prediction
+	};
 	TCvParams m_p;
-	std::map<int32_t, double> m_scale;  ///< per object: factor on Q for its next prediction
+	std::map<int32_t, TInflationState> m_state;  ///< per object
 	size_t m_inflations = 0;
 };
 }  // namespace dynslam::estimator

@@ -6,6 +6,7 @@
  * empty. Angles in radians. */
 #include <dynslam/eval/consistency.h>
 #include <dynslam/eval/estimates.h>
+#include <dynslam/eval/gap_metrics.h>
 #include <dynslam/eval/metrics.h>
 
 #include <functional>
@@ -57,6 +58,9 @@ struct TMetricsRow
 		double precision = kNaN, recall = kNaN, f1 = kNaN, ari = kNaN;
 	};
 	std::optional<TClassScores> classes;  ///< if any row has it: 4 more columns (see below)
+	/** The ego inside the scenario's landmark gaps (gap_metrics.h): if any row has it, the
+	 * last 7 columns (see below). */
+	std::optional<TGapMetrics> gap;
 };
 
 /** Metrics CSV: a header row, then one row per filter. Columns:
@@ -68,7 +72,9 @@ struct TMetricsRow
  * class_precision,class_recall,class_f1,group_ari,
  * then ego_anees,ego_nees_inside,map_anees,map_dof,nis_anees,nis_inside (fractions in [0,1];
  * empty without consistency), then odometry_bias_rate_final [rad/s], odometry_bias_scale_final
- * (the final odometry bias estimate, TRunMetrics; empty without a bias state / scale). */
+ * (the final odometry bias estimate, TRunMetrics; empty without a bias state / scale), then
+ * (only if a row has TMetricsRow::gap; empty for the other rows) ate_gap,ate_outside_gap,
+ * err_gap_end,steps_gap,ego_nees_gap,ego_nees_gap_lower,ego_nees_gap_upper. */
 void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows);
 
 /** The same numbers as an aligned plain-text table for the terminal. */
