@@ -295,41 +295,6 @@ void CCompareApp::buildTable()
 	tableText = table.str();
 }
 
-std::optional<eval::TMetricsRow::TClassScores> CCompareApp::classScores(
-    const TClassDecisions& d) const
-{
-	const std::string file = groundTruthUsed + "_gt_classes.csv";
-	if (!std::filesystem::exists(file))
-	{
-		MRPT_LOG_WARN_FMT("no class ground truth %s: the class_* columns stay empty", file.c_str());
-		return std::nullopt;
-	}
-	const std::vector<TReadingClass> truth = readClassGroundTruth(file);
-	if (truth.size() != d.decisions.size())
-	{
-		MRPT_LOG_WARN_FMT("%s has %zu readings, the run %zu: the class_* columns stay empty",
-		                  file.c_str(), truth.size(), d.decisions.size());
-		return std::nullopt;
-	}
-	const eval::TBinaryScores s = eval::perReadingScores(truth, d.decisions);
-	return eval::TMetricsRow::TClassScores{s.precision, s.recall, s.f1,
-	                                       eval::groupingAri(truth, d.groups)};
-}
-
-void TClassDecisions::add(const estimator::TRoutedStep& step)
-{
-	using estimator::Route;
-	for (const auto& m : step.readings)
-	{
-		const bool st = m.route == Route::StaticKnown || m.route == Route::StaticNew;
-		decisions.push_back(m.candidate     ? eval::Decision::Undecided
-		                    : st            ? eval::Decision::Static
-		                    : m.object >= 0 ? eval::Decision::Moving
-		                                    : eval::Decision::Undecided);
-		groups.push_back(m.candidate || st ? -1 : m.object);
-	}
-}
-
 void CCompareApp::differenceRows()
 {
 	// The reference: the dynamic filter if it ran, else the first filter.

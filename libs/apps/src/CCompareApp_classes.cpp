@@ -1,0 +1,44 @@
+/** CCompareApp: the class scores of rows that classify (feature_labels = classify). */
+#include <dynslam/apps/CCompareApp.h>
+#include <dynslam/class_ground_truth.h>
+#include <dynslam/eval/class_metrics.h>
+
+#include <filesystem>
+
+namespace dynslam::apps
+{
+std::optional<eval::TMetricsRow::TClassScores> CCompareApp::classScores(
+    const TClassDecisions& d) const
+{
+	const std::string file = groundTruthUsed + "_gt_classes.csv";
+	if (!std::filesystem::exists(file))
+	{
+		MRPT_LOG_WARN_FMT("no class ground truth %s: the class_* columns stay empty", file.c_str());
+		return std::nullopt;
+	}
+	const std::vector<TReadingClass> truth = readClassGroundTruth(file);
+	if (truth.size() != d.decisions.size())
+	{
+		MRPT_LOG_WARN_FMT("%s has %zu readings, the run %zu: the class_* columns stay empty",
+		                  file.c_str(), truth.size(), d.decisions.size());
+		return std::nullopt;
+	}
+	const eval::TBinaryScores s = eval::perReadingScores(truth, d.decisions);
+	return eval::TMetricsRow::TClassScores{s.precision, s.recall, s.f1,
+	                                       eval::groupingAri(truth, d.groups)};
+}
+
+void TClassDecisions::add(const estimator::TRoutedStep& step)
+{
+	using estimator::Route;
+	for (const auto& m : step.readings)
+	{
+		const bool st = m.route == Route::StaticKnown || m.route == Route::StaticNew;
+		decisions.push_back(m.candidate     ? eval::Decision::Undecided
+		                    : st            ? eval::Decision::Static
+		                    : m.object >= 0 ? eval::Decision::Moving
+		                                    : eval::Decision::Undecided);
+		groups.push_back(m.candidate || st ? -1 : m.object);
+	}
+}
+}  // namespace dynslam::apps
