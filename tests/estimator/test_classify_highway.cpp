@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 using namespace dynslam;
@@ -40,8 +41,8 @@ struct TResult
 	eval::TBinaryScores reading, track;
 	eval::TDelaySummary delays;
 	double ari = 0;
-	size_t objects = 0, reclassified = 0, converted = 0, unknownIds = 0, held = 0, candidates = 0,
-	       updates = 0;
+	size_t objects = 0, reclassified = 0, converted = 0, stopped = 0, unknownIds = 0, held = 0,
+	       candidates = 0, updates = 0;
 };
 
 /** The labelled filter that knows every motion onset and stop: the readings of an object
@@ -96,6 +97,7 @@ TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& ex
 		}
 		r.reclassified += ekf.getLastStepReport().reclassified_static;
 		r.converted += ekf.getLastStepReport().converted_static;
+		r.stopped += ekf.getLastStepReport().classify_stopped;
 		r.unknownIds += ekf.getLastStepReport().skipped_unknown_id;
 		r.held += ekf.getLastStepReport().classify_held;
 		r.candidates += ekf.getLastStepReport().classify_candidates;
@@ -121,10 +123,10 @@ void print(const std::string& what, const TResult& r)
 	std::cout << what << ": ATE " << r.ate << " m (max " << r.maxErr << "), reading P/R/F1 "
 	          << r.reading.precision << "/" << r.reading.recall << "/" << r.reading.f1
 	          << ", track F1 " << r.track.f1 << ", ARI " << r.ari << ", objects " << r.objects
-	          << ", reclassified " << r.reclassified << ", converted " << r.converted << ", held "
-	          << r.held << ", candidates " << r.candidates << ", static updates " << r.updates
-	          << ", onsets detected " << r.delays.detected << "/" << r.delays.onsets.size()
-	          << " max delay " << r.delays.max_delay << "\n";
+	          << ", reclassified " << r.reclassified << ", converted " << r.converted
+	          << ", stopped " << r.stopped << ", held " << r.held << ", candidates " << r.candidates
+	          << ", static updates " << r.updates << ", onsets detected " << r.delays.detected
+	          << "/" << r.delays.onsets.size() << " max delay " << r.delays.max_delay << "\n";
 }
 }  // namespace
 
@@ -239,6 +241,34 @@ TEST(ClassifyHighway, ParkedCarInViewDrivingOffWithConstantVelocityObjects)
 	                             "object_model = cv\ncv_dt = 0.5\ncv_accel_psd = [0.01 0.01 1e-4]\n"
 	                             "cv_velocity_prior_std = [0.5 0.5 0.05]\n");
 	EXPECT_EQ(d.surgery.converted, 4u);
+}
+
+TEST(ClassifyHighway, StoppingCarBecomesStatic)
+{
+	// Agent 6 of highway_parked_driveoff.ini comes to rest at t = 34 s (step 68).
+	const sim::TScenarioOptions o = scenario("highway_parked_driveoff.ini");
+	const TResult onsets = run(o, false, "", "1e-5", true);
+	const TResult off = run(o, true);
+	print("stopping: labelled, knows the onset", onsets);
+	print("stopping: classify, stop_count 0", off);
+	std::map<int, TResult> on;
+	for (const int n : {2, 3, 5})
+	{
+		on[n] = run(o, true, "classify_stop_count = " + std::to_string(n) + "\n");
+		print("stopping: classify, stop_count " + std::to_string(n), on[n]);
+	}
+	// Measured: with 2 or 3 the 4 features of Agent 6 become static landmarks (8 / 4 more
+	// static updates), reading F1 0.984 / 0.982 against 0.977, ATE 0.0628 / 0.0632 m against
+	// 0.0631 m (the labelled filter that knows the stop: 0.0597 m); with 5 the ego has passed
+	// the car before 5 consistent readings: nothing changes.
+	EXPECT_EQ(off.stopped, 0u);
+	for (const int n : {2, 3})
+	{
+		EXPECT_EQ(on[n].stopped, 4u) << n;
+		EXPECT_GT(on[n].reading.f1, off.reading.f1) << n;
+		EXPECT_LE(on[n].ate, 1.2 * onsets.ate) << n;
+	}
+	EXPECT_EQ(on[5].stopped, 0u);
 }
 
 TEST(ClassifyHighway, MissedDetectionsAndClutterDoNotDiverge)

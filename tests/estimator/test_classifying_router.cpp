@@ -210,6 +210,44 @@ TEST(ClassifyingRouter, StaticTrackThatStartsMovingIsReclassified)
 	}
 }
 
+TEST(ClassifyingRouter, MovingTrackWhoseObjectStopsBecomesStatic)
+{
+	// A point moving 0.5 m per step that rests from step 9 on: with stop_count = 3 it becomes
+	// static at its 3rd reading consistent with a static point, and that reading starts a
+	// landmark; with stop_count = 0 (default) it stays moving.
+	for (const int count : {0, 3})
+	{
+		TSynth s(21);
+		TClassifyParams p;
+		p.stop_count = count;
+		CClassifyingRouter r(p);
+		Eigen::Vector2d f(10, 3);
+		int stoppedAt = -1;
+		for (int k = 0; k < 25; ++k)
+		{
+			r.setContext(s.ctx(k == 0 ? Eigen::Vector3d::Zero() : s.move()));
+			if (k < 10) f += Eigen::Vector2d(0.5, 0);
+			const TRoutedStep out = r.route(k, {{0, s.see(f)}}, kNone);
+			if (out.stopped == 0) continue;
+			EXPECT_LT(stoppedAt, 0) << "stopped twice";
+			stoppedAt = k;
+			ASSERT_EQ(out.readings.size(), 1u);
+			EXPECT_EQ(out.readings[0].route, Route::StaticNew);
+		}
+		if (count == 0)
+		{
+			EXPECT_EQ(stoppedAt, -1);
+			EXPECT_EQ(r.tracks().at(0).cls, TrackClass::Moving);
+			continue;
+		}
+		// Its last move is into the reading of step 9 (which restarts the static filter: it is
+		// inconsistent with step 8's); the readings of steps 10, 11, 12 are consistent with it.
+		EXPECT_EQ(stoppedAt, 9 + count);
+		EXPECT_EQ(r.tracks().at(0).cls, TrackClass::Static);
+		EXPECT_EQ(r.tracks().at(0).object, -1);
+	}
+}
+
 TEST(ClassifyingRouter, UndecidedTracksNeverUpdateTheFilter)
 {
 	// Weak evidence (motion_std at the noise level): the track stays a candidate for several
