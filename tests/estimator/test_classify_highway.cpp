@@ -8,10 +8,12 @@
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 using namespace dynslam;
@@ -39,17 +41,39 @@ struct TResult
 	eval::TBinaryScores reading, track;
 	eval::TDelaySummary delays;
 	double ari = 0;
-	size_t objects = 0, reclassified = 0, unknownIds = 0, held = 0, candidates = 0, updates = 0;
+	size_t objects = 0, reclassified = 0, converted = 0, stopped = 0, unknownIds = 0, held = 0,
+	       candidates = 0, updates = 0;
 };
 
-/** Runs the EKF on the scenario; classify: feature_labels = classify (extra: more keys). */
+/** The labelled filter that knows every motion onset and stop: the readings of an object
+ * while it stands still (true class static) get a static landmark ID (90000 + 100 object +
+ * feature), the others keep their labelled ID, so the object starts at its first moving
+ * reading (its time 0) and its parked readings were static landmarks. */
+void relabelWithOnsets(sim::TSimulatedRun& sim)
+{
+	for (const TReadingClass& c : sim.classes)
+	{
+		if (c.cls != TrueClass::Static || c.object < 0) continue;
+		auto obs = sim.frames.at(size_t(c.step))
+		               ->getObservationByClass<mrpt::obs::CObservationBearingRange>();
+		auto& d = obs->sensedData.at(size_t(c.index));
+		ASSERT_EQ(d.landmarkID, c.true_id) << "a labelled run";
+		d.landmarkID = 90000 + 100 * c.object + c.feature;
+	}
+}
+
+/** Runs the EKF on the scenario; classify: feature_labels = classify (extra: more keys);
+ * knowsOnsets: a labelled run with relabelWithOnsets. */
 TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& extra = "",
-            const std::string& sigmaV = "1e-5")
+            const std::string& sigmaV = "1e-5", bool knowsOnsets = false,
+            const std::string& common = "")
 {
 	const TGroundTruth gt = sim::buildGroundTruth(o);
-	const sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
+	sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
+	if (knowsOnsets) relabelWithOnsets(sim);
 	std::string ini = kIni;
 	ini.replace(ini.find("1e-5 1e-5"), 9, sigmaV + " " + sigmaV);
+	ini.insert(ini.find("[DynamicKFSLAM_"), common);
 	if (classify) ini.insert(ini.find("[DynamicKFSLAM_"), "feature_labels = classify\n" + extra);
 	mrpt::config::CConfigFileMemory cfg(ini);
 	CDynamicKFSLAM2D ekf;
@@ -72,6 +96,8 @@ TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& ex
 			group.push_back(m.object);
 		}
 		r.reclassified += ekf.getLastStepReport().reclassified_static;
+		r.converted += ekf.getLastStepReport().converted_static;
+		r.stopped += ekf.getLastStepReport().classify_stopped;
 		r.unknownIds += ekf.getLastStepReport().skipped_unknown_id;
 		r.held += ekf.getLastStepReport().classify_held;
 		r.candidates += ekf.getLastStepReport().classify_candidates;
@@ -97,10 +123,10 @@ void print(const std::string& what, const TResult& r)
 	std::cout << what << ": ATE " << r.ate << " m (max " << r.maxErr << "), reading P/R/F1 "
 	          << r.reading.precision << "/" << r.reading.recall << "/" << r.reading.f1
 	          << ", track F1 " << r.track.f1 << ", ARI " << r.ari << ", objects " << r.objects
-	          << ", reclassified " << r.reclassified << ", held " << r.held << ", candidates "
-	          << r.candidates << ", static updates " << r.updates << ", onsets detected "
-	          << r.delays.detected << "/" << r.delays.onsets.size() << " max delay "
-	          << r.delays.max_delay << "\n";
+	          << ", reclassified " << r.reclassified << ", converted " << r.converted
+	          << ", stopped " << r.stopped << ", held " << r.held << ", candidates " << r.candidates
+	          << ", static updates " << r.updates << ", onsets detected " << r.delays.detected
+	          << "/" << r.delays.onsets.size() << " max delay " << r.delays.max_delay << "\n";
 }
 }  // namespace
 
@@ -148,22 +174,101 @@ TEST(ClassifyHighway, NoiseLevelsAgainstTheLabelledFilterOnTheSameTrackBreaks)
 	}
 }
 
+/** A parked car that drives off: surgery (default) and restart against the labelled filter that
+ * knows the onset (relabelWithOnsets) and the one that has the car as an object throughout. */
+struct TDriveOff
+{
+	TResult labelled, onsets, surgery, restart;
+};
+TDriveOff driveOff(const std::string& cfg, const std::string& common = "")
+{
+	TDriveOff d;
+	const sim::TScenarioOptions o = scenario(cfg);
+	d.labelled = run(o, false, "", "1e-5", false, common);
+	d.onsets = run(o, false, "", "1e-5", true, common);
+	d.surgery = run(o, true, "", "1e-5", false, common);
+	d.restart = run(o, true, "classify_reclassify = restart\n", "1e-5", false, common);
+	const std::string w = cfg + (common.empty() ? "" : " (" + common.substr(0, 15) + ")");
+	print(w + " labelled", d.labelled);
+	print(w + " labelled, knows the onset", d.onsets);
+	print(w + " classify (surgery)", d.surgery);
+	print(w + " classify (restart)", d.restart);
+	for (const auto& o : d.surgery.delays.onsets)
+		std::cout << "onset object " << o.object << " feature " << o.feature << " at "
+		          << o.onset_step << " detected " << o.detect_step << "\n";
+	return d;
+}
+
 TEST(ClassifyHighway, ParkedCarDrivingOffIsReclassified)
 {
-	const TResult labelled = run(scenario("highway_parked_driveoff.ini"), false);
-	const TResult cls = run(scenario("highway_parked_driveoff.ini"), true);
-	print("labelled", labelled);
-	print("classify", cls);
-	for (const auto& d : cls.delays.onsets)
-		std::cout << "onset object " << d.object << " feature " << d.feature << " at "
-		          << d.onset_step << " detected " << d.detect_step << "\n";
+	// Agent 4 in view ~3 steps before its onset (step 40).
+	const TDriveOff d = driveOff("highway_parked_driveoff.ini");
 	// Measured: the 4 features of the car that drives off reclassified 2 steps after the onset
-	// (reclassify_count = 3 readings beyond the gate), ATE 0.063 m vs 0.067 m labelled.
-	EXPECT_EQ(cls.reclassified, 4u);
-	EXPECT_EQ(cls.delays.detected, cls.delays.onsets.size());
-	EXPECT_GE(cls.delays.onsets.size(), 4u);
-	EXPECT_LE(cls.delays.max_delay, 6);
-	EXPECT_LE(cls.ate, 1.2 * labelled.ate);
+	// (reclassify_count = 3 readings beyond the gate).
+	EXPECT_EQ(d.surgery.converted, 4u);
+	EXPECT_EQ(d.surgery.reclassified, 0u);
+	EXPECT_EQ(d.restart.reclassified, 4u);
+	EXPECT_EQ(d.restart.converted, 0u);
+	for (const TResult* r : {&d.surgery, &d.restart})
+	{
+		EXPECT_EQ(r->delays.detected, r->delays.onsets.size());
+		EXPECT_GE(r->delays.onsets.size(), 4u);
+		EXPECT_LE(r->delays.max_delay, 6);
+		EXPECT_LE(r->ate, 1.2 * d.onsets.ate);
+		EXPECT_LE(r->ate, 1.2 * d.labelled.ate);
+	}
+}
+
+TEST(ClassifyHighway, ParkedCarInViewDrivingOffSurgeryAgainstRestart)
+{
+	// Agent 4 in view ~12 steps while parked, then drives off at step 40 (issue 12's target:
+	// reclassified within 10 steps, ego ATE within 20 % of the filter that knows the onset).
+	const TDriveOff d = driveOff("highway_driveoff_in_view.ini");
+	EXPECT_EQ(d.surgery.converted, 4u);
+	EXPECT_EQ(d.restart.reclassified, 4u);
+	for (const TResult* r : {&d.surgery, &d.restart})
+	{
+		EXPECT_EQ(r->delays.detected, r->delays.onsets.size());
+		EXPECT_GE(r->delays.onsets.size(), 4u);
+		EXPECT_LE(r->delays.max_delay, 10);
+		EXPECT_LE(r->ate, 1.2 * d.onsets.ate);
+	}
+}
+
+TEST(ClassifyHighway, ParkedCarInViewDrivingOffWithConstantVelocityObjects)
+{
+	const TDriveOff d = driveOff("highway_driveoff_in_view.ini",
+	                             "object_model = cv\ncv_dt = 0.5\ncv_accel_psd = [0.01 0.01 1e-4]\n"
+	                             "cv_velocity_prior_std = [0.5 0.5 0.05]\n");
+	EXPECT_EQ(d.surgery.converted, 4u);
+}
+
+TEST(ClassifyHighway, StoppingCarBecomesStatic)
+{
+	// Agent 6 of highway_parked_driveoff.ini comes to rest at t = 34 s (step 68).
+	const sim::TScenarioOptions o = scenario("highway_parked_driveoff.ini");
+	const TResult onsets = run(o, false, "", "1e-5", true);
+	const TResult off = run(o, true);
+	print("stopping: labelled, knows the onset", onsets);
+	print("stopping: classify, stop_count 0", off);
+	std::map<int, TResult> on;
+	for (const int n : {2, 3, 5})
+	{
+		on[n] = run(o, true, "classify_stop_count = " + std::to_string(n) + "\n");
+		print("stopping: classify, stop_count " + std::to_string(n), on[n]);
+	}
+	// Measured: with 2 or 3 the 4 features of Agent 6 become static landmarks (8 / 4 more
+	// static updates), reading F1 0.984 / 0.982 against 0.977, ATE 0.0628 / 0.0632 m against
+	// 0.0631 m (the labelled filter that knows the stop: 0.0597 m); with 5 the ego has passed
+	// the car before 5 consistent readings: nothing changes.
+	EXPECT_EQ(off.stopped, 0u);
+	for (const int n : {2, 3})
+	{
+		EXPECT_EQ(on[n].stopped, 4u) << n;
+		EXPECT_GT(on[n].reading.f1, off.reading.f1) << n;
+		EXPECT_LE(on[n].ate, 1.2 * onsets.ate) << n;
+	}
+	EXPECT_EQ(on[5].stopped, 0u);
 }
 
 TEST(ClassifyHighway, MissedDetectionsAndClutterDoNotDiverge)

@@ -156,37 +156,96 @@ TEST(ClassifyingRouter, RigidMovingTracksFormOneObjectOthersTheirOwn)
 
 TEST(ClassifyingRouter, StaticTrackThatStartsMovingIsReclassified)
 {
-	TSynth s(5);
-	TClassifyParams p;
-	CClassifyingRouter r(p);
-	Eigen::Vector2d f(12, 4);
-	const int onset = 20;
-	int reclassifiedAt = -1;
-	size_t held = 0;
-	for (int k = 0; k < 40 && reclassifiedAt < 0; ++k)
+	for (const bool surgery : {true, false})
 	{
-		r.setContext(s.ctx(k == 0 ? Eigen::Vector3d::Zero() : s.move()));
-		if (k >= onset) f += Eigen::Vector2d(0.05 * (k - onset + 1), 0);  // accelerates
-		const bool known = k > 1;
-		const TRoutedStep out = r.route(k, {{0, s.see(f)}}, [&](int32_t) { return known; });
-		held += out.held;
-		if (k < onset)
+		TSynth s(5);
+		TClassifyParams p;
+		p.surgery = surgery;
+		CClassifyingRouter r(p);
+		Eigen::Vector2d f(12, 4);
+		const int onset = 20;
+		int reclassifiedAt = -1;
+		size_t held = 0;
+		for (int k = 0; k < 40 && reclassifiedAt < 0; ++k)
 		{
-			EXPECT_NE(r.tracks().at(0).cls, TrackClass::Moving) << "step " << k;
-		}
-		if (!out.reclassified.empty())
-		{
+			r.setContext(s.ctx(k == 0 ? Eigen::Vector3d::Zero() : s.move()));
+			if (k >= onset) f += Eigen::Vector2d(0.05 * (k - onset + 1), 0);  // accelerates
+			const bool known = k > 1;
+			const TRoutedStep out = r.route(k, {{0, s.see(f)}}, [&](int32_t) { return known; });
+			held += out.held;
+			if (k < onset)
+			{
+				EXPECT_NE(r.tracks().at(0).cls, TrackClass::Moving) << "step " << k;
+			}
+			if (out.reclassified.empty() && out.converted.empty()) continue;
 			reclassifiedAt = k;
-			EXPECT_EQ(out.reclassified, std::vector<int32_t>{0});
 			ASSERT_EQ(out.readings.size(), 1u);
-			EXPECT_EQ(out.readings[0].route, Route::ObjectFirstSighting);
+			const int32_t obj = r.tracks().at(0).object;
+			if (surgery)
+			{
+				// The landmark becomes f_0 of a new object whose time 0 is its last consistent
+				// reading: this step's reading is a time-t sighting.
+				EXPECT_TRUE(out.reclassified.empty());
+				ASSERT_EQ(out.converted.size(), 1u);
+				EXPECT_EQ(out.converted[0].id, 0);
+				EXPECT_EQ(out.converted[0].object, obj);
+				EXPECT_EQ(out.converted[0].feature, 0);
+				EXPECT_EQ(out.readings[0].route, Route::ObjectTimeT);
+				EXPECT_EQ(r.registry().at(obj).first_step, k - p.reclassify_count);
+				EXPECT_EQ(r.registry().at(obj).feature_ids, std::vector<int32_t>{0});
+			}
+			else
+			{
+				EXPECT_TRUE(out.converted.empty());
+				EXPECT_EQ(out.reclassified, std::vector<int32_t>{0});
+				EXPECT_EQ(out.readings[0].route, Route::ObjectFirstSighting);
+				EXPECT_EQ(r.registry().at(obj).first_step, k);
+			}
 		}
+		ASSERT_GE(reclassifiedAt, onset);
+		// reclassify_count = 3 consecutive inconsistent readings, the first ones held back.
+		EXPECT_LE(reclassifiedAt - onset, 6);
+		EXPECT_EQ(held, size_t(p.reclassify_count - 1));
+		RecordProperty(surgery ? "delay_surgery" : "delay_restart", reclassifiedAt - onset);
 	}
-	ASSERT_GE(reclassifiedAt, onset);
-	// reclassify_count = 3 consecutive inconsistent readings, the first ones held back.
-	EXPECT_LE(reclassifiedAt - onset, 6);
-	EXPECT_EQ(held, size_t(p.reclassify_count - 1));
-	RecordProperty("reclassification_delay", reclassifiedAt - onset);
+}
+
+TEST(ClassifyingRouter, MovingTrackWhoseObjectStopsBecomesStatic)
+{
+	// A point moving 0.5 m per step that rests from step 9 on: with stop_count = 3 it becomes
+	// static at its 3rd reading consistent with a static point, and that reading starts a
+	// landmark; with stop_count = 0 (default) it stays moving.
+	for (const int count : {0, 3})
+	{
+		TSynth s(21);
+		TClassifyParams p;
+		p.stop_count = count;
+		CClassifyingRouter r(p);
+		Eigen::Vector2d f(10, 3);
+		int stoppedAt = -1;
+		for (int k = 0; k < 25; ++k)
+		{
+			r.setContext(s.ctx(k == 0 ? Eigen::Vector3d::Zero() : s.move()));
+			if (k < 10) f += Eigen::Vector2d(0.5, 0);
+			const TRoutedStep out = r.route(k, {{0, s.see(f)}}, kNone);
+			if (out.stopped == 0) continue;
+			EXPECT_LT(stoppedAt, 0) << "stopped twice";
+			stoppedAt = k;
+			ASSERT_EQ(out.readings.size(), 1u);
+			EXPECT_EQ(out.readings[0].route, Route::StaticNew);
+		}
+		if (count == 0)
+		{
+			EXPECT_EQ(stoppedAt, -1);
+			EXPECT_EQ(r.tracks().at(0).cls, TrackClass::Moving);
+			continue;
+		}
+		// Its last move is into the reading of step 9 (which restarts the static filter: it is
+		// inconsistent with step 8's); the readings of steps 10, 11, 12 are consistent with it.
+		EXPECT_EQ(stoppedAt, 9 + count);
+		EXPECT_EQ(r.tracks().at(0).cls, TrackClass::Static);
+		EXPECT_EQ(r.tracks().at(0).object, -1);
+	}
 }
 
 TEST(ClassifyingRouter, UndecidedTracksNeverUpdateTheFilter)

@@ -92,7 +92,9 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_group_max_dist",
                                           "classify_reclassify_count",
                                           "classify_reclassify_gate",
-                                          "classify_candidate_landmarks"};
+                                          "classify_candidate_landmarks",
+                                          "classify_reclassify",
+                                          "classify_stop_count"};
 
 /** feature_labels and the classify_* keys (issue 12). */
 void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
@@ -111,6 +113,8 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	p.reclassify_count = int(readInt(c, s, "classify_reclassify_count", p.reclassify_count));
 	p.reclassify_gate = readDouble(c, s, "classify_reclassify_gate", p.reclassify_gate);
 	p.candidate_landmarks = readBool(c, s, "classify_candidate_landmarks", p.candidate_landmarks);
+	p.surgery = readChoice(c, s, "classify_reclassify", {"surgery", "restart"}, 0) == 0;
+	p.stop_count = int(readInt(c, s, "classify_stop_count", p.stop_count));
 }
 }  // namespace
 
@@ -278,6 +282,9 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "classify_reclassify_gate       = " << classify.reclassify_gate << "\n";
 	out << "classify_candidate_landmarks   = " << (classify.candidate_landmarks ? "true" : "false")
 	    << "\n";
+	out << "classify_reclassify            = " << (classify.surgery ? "surgery" : "restart")
+	    << "\n";
+	out << "classify_stop_count            = " << classify.stop_count << "\n";
 }
 TParseOptions TModelOptions::parseOptions() const
 {

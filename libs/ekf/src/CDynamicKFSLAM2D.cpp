@@ -184,11 +184,13 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		m_report.skipped_unknown_object_feature = m_routed.skipped_unknown_object_feature;
 		m_report.classify_candidates = m_routed.candidates;
 		m_report.classify_held = m_routed.held;
+		m_report.classify_stopped = m_routed.stopped;
 		m_report.skipped_unknown_id = m_routed.skipped_unknown_id;
-		propagateEgo();          // Alg. 7
-		predictObjects();        // object-centric motion models only (cv)
-		staticUpdate();          // Alg. 5
-		objectFeatureUpdates();  // object-centric motion models only (cv)
+		convertStaticLandmarks(m_routed.converted);  // classify: a parked car drove off
+		propagateEgo();                              // Alg. 7
+		predictObjects();                            // object-centric motion models only (cv)
+		staticUpdate();                              // Alg. 5
+		objectFeatureUpdates();                      // object-centric motion models only (cv)
 		for (const auto& m : m_routed.statics()) m_drop.noteSeen(m.reading.id, m_step);
 
 		// New entries, the object motion model and drops, committed together (one covariance

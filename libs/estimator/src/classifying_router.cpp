@@ -2,6 +2,7 @@
 #include <dynslam/estimator/classifying_router.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -29,6 +30,7 @@ void TClassifyParams::validate() const
 	if (!(group_max_dist > 0)) throw std::invalid_argument("classify_group_max_dist must be > 0");
 	if (reclassify_count < 0)
 		throw std::invalid_argument("classify_reclassify_count must be >= 0 (0: off)");
+	if (stop_count < 0) throw std::invalid_argument("classify_stop_count must be >= 0 (0: off)");
 }
 
 CClassifyingRouter::CClassifyingRouter(const TClassifyParams& p) : m_p(p) { m_p.validate(); }
@@ -98,8 +100,8 @@ void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
 			}
 			t.q_valid = false;  // a static track seen again restarts its filter
 		}
-		if (t.cls != TrackClass::Moving && t.q_valid && steps > 0)
-			t.q = predictStatic(t.q, m_ctx->u, m_ctx->U);
+		const bool filter = t.cls != TrackClass::Moving || m_p.stop_count > 0;
+		if (filter && t.q_valid && steps > 0) t.q = predictStatic(t.q, m_ctx->u, m_ctx->U);
 		++it;
 	}
 }
@@ -128,13 +130,14 @@ std::optional<TrackClass> CClassifyingRouter::addEvidence(TTrack& t, const TPoin
 	return std::nullopt;
 }
 
-bool CClassifyingRouter::checkStatic(TTrack& t, const TPoint2& z, int)
+bool CClassifyingRouter::checkStatic(TTrack& t, const TPoint2& z, int step)
 {
 	if (!t.q_valid)
 	{
 		t.q = z;
 		t.q_valid = true;
 		t.bad_streak = 0;
+		t.last_good = step;
 		return true;
 	}
 	const Eigen::Vector2d nu = z.p - t.q.p;
@@ -146,11 +149,34 @@ bool CClassifyingRouter::checkStatic(TTrack& t, const TPoint2& z, int)
 		return false;
 	}
 	t.bad_streak = 0;
+	t.last_good = step;
 	const Eigen::Matrix2d K = t.q.C * S.inverse();
 	t.q.p += K * nu;
 	t.q.C = (Eigen::Matrix2d::Identity() - K) * t.q.C;
 	t.q.C = 0.5 * (t.q.C + t.q.C.transpose());
 	return true;
+}
+
+bool CClassifyingRouter::stoppedEvidence(TTrack& t, const TPoint2& z)
+{
+	if (m_p.stop_count <= 0) return false;
+	if (t.q_valid)
+	{
+		const Eigen::Vector2d nu = z.p - t.q.p;
+		const Eigen::Matrix2d S = t.q.C + z.C;
+		if (nu.dot(S.inverse() * nu) <= chiSquareQuantile(m_p.reclassify_gate, 2))
+		{
+			const Eigen::Matrix2d K = t.q.C * S.inverse();
+			t.q.p += K * nu;
+			t.q.C = (Eigen::Matrix2d::Identity() - K) * t.q.C;
+			t.q.C = 0.5 * (t.q.C + t.q.C.transpose());
+			return ++t.still_streak >= m_p.stop_count;
+		}
+	}
+	t.q = z;  // (re)starts the static filter at this reading
+	t.q_valid = true;
+	t.still_streak = 0;
+	return false;
 }
 
 void CClassifyingRouter::makeMoving(int32_t id, TTrack& t, int step,
@@ -196,6 +222,7 @@ CClassifyingRouter::Act CClassifyingRouter::classifyOne(
 		{
 			t.cls = TrackClass::Static;
 			t.decided_step = step;
+			t.last_good = step;
 			act = Act::Static;
 		}
 		else if (d == TrackClass::Moving)
@@ -218,16 +245,51 @@ CClassifyingRouter::Act CClassifyingRouter::classifyOne(
 		else if (t.bad_streak >= m_p.reclassify_count)
 		{
 			turnedMoving.push_back(id);
-			if (isKnownStatic(id)) out.reclassified.push_back(id);
+			if (isKnownStatic(id) && m_p.surgery)
+				t.converting = true;  // its landmark becomes an f_0 (registerConverted)
+			else if (isKnownStatic(id))
+				out.reclassified.push_back(id);
 		}
 		else
 			++out.held;
+	}
+	else if (stoppedEvidence(t, z))
+	{
+		// Its object stopped: a static track again, its landmark starts with this reading.
+		t.cls = TrackClass::Static;
+		t.object = t.feature = -1;
+		t.decided_step = t.last_good = step;
+		t.bad_streak = t.still_streak = 0;
+		++out.stopped;
+		act = Act::Static;
 	}
 	else
 		act = Act::Moving;
 	++t.sightings;
 	t.last_seen = step;
 	return act;
+}
+
+void CClassifyingRouter::registerConverted(const std::vector<int32_t>& objects, int step,
+                                           TRoutedStep& out)
+{
+	for (const int32_t obj : objects)
+	{
+		const std::vector<int32_t>& members = m_objectTracks.at(obj);
+		// Time 0: the last step at which a member still read as static (the landmarks' estimate
+		// is where the features were then); always before this step.
+		int first = -1;
+		std::vector<int32_t> index;
+		for (const int32_t id : members)
+		{
+			TTrack& t = m_tracks.at(id);
+			first = std::max(first, t.last_good);
+			index.push_back(t.feature);
+			out.converted.push_back({id, obj, t.feature});
+			t.converting = false;
+		}
+		m_registry.registerObject(obj, std::min(first, step - 1), members, index);
+	}
 }
 
 void CClassifyingRouter::routeMoving(TRoutedReading& m, const TTrack& t, int step, TRoutedStep& out)
@@ -258,8 +320,15 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 		                     c, turnedMoving, isKnownStatic);
 		candidate[i] = c;
 	}
-	std::vector<int32_t> newObjects;
-	for (const int32_t id : turnedMoving) makeMoving(id, m_tracks.at(id), step, newObjects);
+	// Converted landmarks (surgery) group only with each other: their object's time 0 is
+	// before this step, while a fresh object's is this step.
+	std::vector<int32_t> newObjects, convertedObjects;
+	for (const int32_t id : turnedMoving)
+	{
+		TTrack& t = m_tracks.at(id);
+		makeMoving(id, t, step, t.converting ? convertedObjects : newObjects);
+	}
+	registerConverted(convertedObjects, step, out);
 	for (size_t i = 0; i < readings.size(); ++i)
 	{
 		TRoutedReading m;

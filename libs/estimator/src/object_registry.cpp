@@ -1,6 +1,8 @@
 #include <dynslam/estimator/object_registry.h>
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace dynslam::estimator
 {
@@ -22,6 +24,21 @@ FeatureRole CObjectRegistry::registerReading(int32_t obj, int32_t id, int32_t fe
 		return FeatureRole::FirstSighting;
 	}
 	return it->second.indexOf(id) >= 0 ? FeatureRole::TimeT : FeatureRole::Unknown;
+}
+
+void CObjectRegistry::registerObject(int32_t obj, int first_step, const std::vector<int32_t>& ids,
+                                     const std::vector<int32_t>& index)
+{
+	if (m_objects.count(obj))
+		throw std::logic_error("CObjectRegistry::registerObject: object " + std::to_string(obj) +
+		                       " exists");
+	if (ids.empty() || ids.size() != index.size())
+		throw std::logic_error("CObjectRegistry::registerObject: object " + std::to_string(obj) +
+		                       ": empty or inconsistent feature set");
+	TObjectEntry& o = m_objects[obj];
+	o.first_step = first_step;
+	o.feature_ids = ids;
+	o.feature_index = index;
 }
 
 void CObjectRegistry::recordDroppedPose(int32_t obj, const TPoseRecord& r, bool record)

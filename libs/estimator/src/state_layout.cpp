@@ -96,4 +96,15 @@ void CPaddedLayout::removeBlocks(const std::vector<bool>& remove)
 	for (const auto& b : kept) appendNumbered(b);
 	m_nextSeq = next;
 }
+void CPaddedLayout::convertToObjectFeature0(size_t b, int32_t object, int32_t feature)
+{
+	TBlock& t = m_blocks.at(b);
+	if (t.kind != BlockKind::StaticLandmark)
+		throw std::logic_error("CPaddedLayout::convertToObjectFeature0: block " +
+		                       std::to_string(b) + " is a " + toString(t.kind) +
+		                       ", not a static landmark");
+	t.kind = BlockKind::ObjectFeature0;
+	t.object = object;
+	t.feature = feature;
+}
 }  // namespace dynslam::estimator

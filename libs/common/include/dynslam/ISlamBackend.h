@@ -71,6 +71,10 @@ struct TStepReport
 	 * static landmarks reclassified moving and dropped from the state. */
 	size_t classify_candidates = 0, classify_held = 0, skipped_unknown_id = 0;
 	size_t reclassified_static = 0;
+	/** Static landmarks reclassified moving and turned into object f_0 by state surgery
+	 * (classify_reclassify = surgery; reclassified_static counts the dropped ones, restart). */
+	size_t converted_static = 0;
+	size_t classify_stopped = 0;    ///< moving tracks decided static (their object stopped)
 	size_t dropped_candidates = 0;  ///< candidate landmarks removed (decided moving, forgotten)
 };
 

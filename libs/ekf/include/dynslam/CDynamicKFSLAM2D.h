@@ -192,6 +192,14 @@ public:
 	std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> getOdometryBias() const;
 
 protected:
+	/** State surgery (feature_labels = classify, doc/classification.md): each static landmark
+	 * c.id becomes, in place, f_0 of feature c.feature of object c.object; the mean and the
+	 * covariance (cross-covariances included) are unchanged, only the block's label changes. The
+	 * step calls it with the router's TRoutedStep::converted right after routing (the router
+	 * has registered the objects). Throws std::logic_error if an ID is not a static landmark in
+	 * the state. Counted in TStepReport::converted_static. */
+	void convertStaticLandmarks(const std::vector<estimator::TRoutedStep::TConversion>& c);
+
 	// --- CKalmanFilterCapable hooks ------------------------------------------------
 	void OnGetAction(KFArray_ACT& out_u) const override;
 	void OnTransitionModel(const KFArray_ACT& in_u, KFArray_VEH& inout_x,

@@ -21,9 +21,14 @@
  * distances to it (rigidDistanceTest, chi-square at group_prob, at most group_max_dist apart);
  * one-feature objects are allowed. A static track keeps its filter: a reading beyond the
  * reclassify_gate is held back (Skip, counted), reclassify_count consecutive ones turn it moving
- * (TRoutedStep::reclassified: the filter drops the landmark; the reading becomes the first sighting
- * of a new object). ID -1 (association unknown) is skipped and counted
- * (TRoutedStep::skipped_unknown_id). */
+ * (surgery, default: TRoutedStep::converted, the landmark becomes the f_0 of a new object whose
+ * time 0 is its last consistent reading, grouped with the landmarks reclassified in the same
+ * step; restart: TRoutedStep::reclassified, the filter drops the landmark and the reading becomes
+ * the first sighting of a new object). ID -1 (association unknown) is skipped and counted
+ * (TRoutedStep::skipped_unknown_id). With stop_count > 0, a moving track keeps a static filter
+ * too (restarted at every reading beyond the reclassify_gate): stop_count consecutive readings
+ * within the gate turn it static (its object stopped; TRoutedStep::stopped), and its reading
+ * starts a static landmark. */
 #include <dynslam/estimator/classify_evidence.h>
 #include <dynslam/estimator/measurement_router.h>
 
@@ -45,6 +50,13 @@ struct TClassifyParams
 	int reclassify_count = 3;         ///< classify_reclassify_count (0: never reclassify)
 	double reclassify_gate = 0.999;   ///< classify_reclassify_gate: chi-square prob., (0, 1)
 	bool candidate_landmarks = true;  ///< classify_candidate_landmarks (see the file comment)
+	/** classify_reclassify: true (surgery, default): a reclassified static landmark becomes its
+	 * object's f_0 in place (TRoutedStep::converted); false (restart): it is dropped and its
+	 * reading starts a new object (TRoutedStep::reclassified). */
+	bool surgery = true;
+	/** classify_stop_count: a moving track becomes static after this many consecutive readings
+	 * consistent with a static point (its object stopped; 0: never). */
+	int stop_count = 0;
 	/** Throws std::invalid_argument naming the key. */
 	void validate() const;
 };
@@ -65,6 +77,9 @@ struct TTrack
 	double llr = 0;        ///< sum of the log-likelihood ratios (moving vs static)
 	int sightings = 0, first_seen = -1, last_seen = -1, decided_step = -1;
 	int bad_streak = 0;                 ///< static: consecutive readings beyond the gate
+	int still_streak = 0;               ///< moving: consecutive readings consistent with static
+	int last_good = -1;                 ///< static: step of its last reading within the gate
+	bool converting = false;            ///< reclassified in this step with surgery (known landmark)
 	int32_t object = -1, feature = -1;  ///< moving: its object and feature index
 	std::map<int, TPoint2> history;     ///< the last readings (robot frame), by step
 };
@@ -95,12 +110,17 @@ private:
 	/** Carries every live track through the step's odometry; forgets stale candidates. */
 	void predictTracks(int step, TRoutedStep& out,
 	                   const std::function<bool(int32_t)>& isKnownStatic);
+	/** A moving track's reading: true once stop_count consecutive readings were consistent with
+	 * a static point (a static filter restarted at every inconsistent reading). */
+	bool stoppedEvidence(TTrack& t, const TPoint2& z);
 	/** Adds the evidence of one reading to a candidate; returns its decision (if any). */
 	std::optional<TrackClass> addEvidence(TTrack& t, const TPoint2& z, int step);
 	/** A static track's reading: true if consistent (and used by its filter). */
 	bool checkStatic(TTrack& t, const TPoint2& z, int step);
 	/** Makes track id moving at step: joins an object created in this step or starts one. */
 	void makeMoving(int32_t id, TTrack& t, int step, std::vector<int32_t>& newObjects);
+	/** Registers the objects made of converted landmarks (surgery) and lists the conversions. */
+	void registerConverted(const std::vector<int32_t>& objects, int step, TRoutedStep& out);
 	static void remember(TTrack& t, const TPoint2& z, int step, int keep);
 	enum class Act
 	{

@@ -48,9 +48,23 @@ struct TRoutedStep
 	size_t skipped_unknown_id = 0;  ///< readings with ID -1 (no association yet: skipped)
 	size_t candidates = 0;          ///< readings of undecided tracks (not used by the filter)
 	size_t held = 0;  ///< readings of static tracks held back as inconsistent (not used)
-	/** Static landmarks decided moving in this step (a parked car drove off): the filter drops
-	 * them from the state; their reading of this step is routed as an object feature. */
+	/** Moving tracks decided static in this step (their object stopped, classify_stop_count):
+	 * their reading starts a static landmark (StaticNew). */
+	size_t stopped = 0;
+	/** Static landmarks decided moving in this step (a parked car drove off) with
+	 * classify_reclassify = restart: the filter drops them from the state; their reading of this
+	 * step is the first sighting of a new object. */
 	std::vector<int32_t> reclassified;
+	/** Static landmarks decided moving in this step with classify_reclassify = surgery: the
+	 * filter turns each, in place, into f_0 of feature `feature` of object `object` (its mean
+	 * and covariance, cross-covariances included, unchanged; doc/classification.md); the
+	 * object is registered with its time 0 before this step, so their readings of this step
+	 * are ObjectTimeT. */
+	struct TConversion
+	{
+		int32_t id = -1, object = -1, feature = -1;
+	};
+	std::vector<TConversion> converted;
 	/** Candidate landmarks to remove from the state (decided moving, or forgotten). */
 	std::vector<int32_t> dropped_candidates;
 	/** The readings with route r, in observation order. */

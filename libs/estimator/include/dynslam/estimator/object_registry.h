@@ -48,6 +48,12 @@ public:
 	/** Registers the reading of feature `id` (index `feature` within the object) of object
 	 * `obj` at `step` and says its role. A first sighting adds it to the object's feature set. */
 	FeatureRole registerReading(int32_t obj, int32_t id, int32_t feature, int step);
+	/** Registers object `obj` with its whole feature set at once and time 0 `first_step` (state
+	 * surgery: static landmarks that became its f_0, doc/classification.md). Its readings are
+	 * time t from the step after first_step on. Throws std::logic_error if obj exists, if ids is
+	 * empty or if ids and index differ in size. */
+	void registerObject(int32_t obj, int first_step, const std::vector<int32_t>& ids,
+	                    const std::vector<int32_t>& index);
 	bool has(int32_t obj) const { return m_objects.count(obj) != 0; }
 	const TObjectEntry& at(int32_t obj) const { return m_objects.at(obj); }
 	TObjectEntry& at(int32_t obj) { return m_objects.at(obj); }
