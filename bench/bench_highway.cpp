@@ -60,8 +60,9 @@ void BM_HighwayRun(benchmark::State& state)
 BENCHMARK(BM_HighwayRun)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 
 /** The same static-only run through MRPT's CRangeBearingKFSLAM2D (filter 0) and the dynamic EKF
- * with MRPT's update (1) or the sparse one (2). Args: filter, landmarks (highway_static with
- * num_landmarks overridden). Time per run; per step = run / steps. */
+ * with MRPT's update (1), the sparse one (2) or the compressed EKF (3, static_update =
+ * compressed, the pose getter only: no global update). Args: filter, landmarks (highway_static
+ * with num_landmarks overridden). Time per run; per step = run / steps. */
 void BM_StaticRun(benchmark::State& state)
 {
 	const int filter = int(state.range(0));
@@ -70,7 +71,12 @@ void BM_StaticRun(benchmark::State& state)
 	{
 		mrpt::slam::CRangeBearingKFSLAM2D rb;
 		dynslam::CDynamicKFSLAM2D dyn;
-		configureAlike(rb, dyn, run.std_range, run.std_yaw, filter == 2);
+		configureAlike(rb, dyn, run.std_range, run.std_yaw, filter >= 2);
+		if (filter == 3)
+		{
+			dyn.options.compressed_static_update = true;
+			dyn.reset();
+		}
 		for (size_t k = 0; k < run.actions.size(); ++k)
 		{
 			auto a = run.actions[k];
@@ -88,11 +94,11 @@ void BM_StaticRun(benchmark::State& state)
 		benchmark::DoNotOptimize(pose.mean.x());
 	}
 	state.counters["steps"] = double(run.actions.size());
-	state.SetLabel(filter == 0   ? "CRangeBearingKFSLAM2D"
-	               : filter == 1 ? "dynamic/mrpt"
-	                             : "dynamic/sparse");
+	const char* labels[] = {"CRangeBearingKFSLAM2D", "dynamic/mrpt", "dynamic/sparse",
+	                        "dynamic/compressed"};
+	state.SetLabel(labels[filter]);
 }
-BENCHMARK(BM_StaticRun)->ArgsProduct({{0, 1, 2}, {80, 400}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StaticRun)->ArgsProduct({{0, 1, 2, 3}, {80, 400}})->Unit(benchmark::kMillisecond);
 
 /** The Monte Carlo of the paper: 9 noise levels x 25 noise seeds = 225 highway runs, each
  * simulated in memory and filtered (dynamic EKF, sparse update), on Arg(0) threads. Wall time. */

@@ -108,3 +108,60 @@ TEST(DynamicOptions, DumpLoadsBackIdentically)
 	EXPECT_EQ(o2.keep_last_poses, f.options.keep_last_poses);
 	EXPECT_EQ(o2.measurement_model, f.options.measurement_model);
 }
+
+TEST(DynamicOptions, CompressedEngineKnobs)
+{
+	// static_update = compressed: compressed_passive_after and compressed_batch reach the engine
+	const std::string ini = replaced("keep_last_poses",
+	                                 "keep_last_poses = 2\nstatic_update = "
+	                                 "compressed\ncompressed_passive_after = "
+	                                 "5\ncompressed_batch = 2");
+	mrpt::config::CConfigFileMemory c(ini);
+	CDynamicKFSLAM2D f;
+	f.loadOptions(c);
+	const auto* e = dynamic_cast<const estimator::CCompressedUpdateEngine*>(&f.updateEngine());
+	ASSERT_NE(e, nullptr);
+	EXPECT_EQ(e->passiveAfter(), 5);
+	EXPECT_EQ(e->batch(), 2);
+	// the dump loads back
+	std::ostringstream os;
+	f.options.dumpToTextStream(os);
+	const std::string dumped = os.str();
+	mrpt::config::CConfigFileMemory c2("[X]\n" + dumped.substr(dumped.find("measurement_model")));
+	CDynamicKFSLAM2D::TOptions o2;
+	o2.loadFromConfigFile(c2, "X");
+	EXPECT_EQ(o2.compressed_passive_after, 5);
+	EXPECT_EQ(o2.compressed_batch, 2);
+	EXPECT_TRUE(o2.compressed_static_update);
+	// defaults when absent
+	CDynamicKFSLAM2D g;
+	mrpt::config::CConfigFileMemory c3(kGood);
+	g.loadOptions(c3);
+	EXPECT_EQ(g.options.compressed_passive_after, 3);
+	EXPECT_EQ(g.options.compressed_batch, 8);
+	// invalid values: a clear error naming section, key and value
+	const auto e1 =
+	    loadError(replaced("keep_last_poses", "keep_last_poses = 2\ncompressed_batch = 0"));
+	EXPECT_NE(e1.find("[DynamicKFSLAM] compressed_batch = 0: must be in [1, 1000000]"),
+	          std::string::npos)
+	    << e1;
+	const auto e2 = loadError(
+	    replaced("keep_last_poses", "keep_last_poses = 2\ncompressed_passive_after = -3"));
+	EXPECT_NE(e2.find("[DynamicKFSLAM] compressed_passive_after = -3"), std::string::npos) << e2;
+	const auto e3 = loadError(
+	    replaced("keep_last_poses", "keep_last_poses = 2\ncompressed_passive_after = 2.5"));
+	EXPECT_NE(e3.find("compressed_passive_after"), std::string::npos) << e3;
+	EXPECT_NE(e3.find("not an integer"), std::string::npos) << e3;
+	const auto e4 =
+	    loadError(replaced("keep_last_poses", "keep_last_poses = 2\ncompressed_batch = many"));
+	EXPECT_NE(e4.find("compressed_batch"), std::string::npos) << e4;
+	EXPECT_NE(e4.find("not a number"), std::string::npos) << e4;
+	const auto e5 =
+	    loadError(replaced("keep_last_poses", "keep_last_poses = 2\ncompressed_batch = 1e10"));
+	EXPECT_NE(e5.find("compressed_batch = 10000000000: must be in [1, 1000000]"), std::string::npos)
+	    << e5;
+	// an empty value
+	const auto e6 =
+	    loadError(replaced("keep_last_poses", "keep_last_poses = 2\ncompressed_batch ="));
+	EXPECT_NE(e6.find("compressed_batch"), std::string::npos) << e6;
+}

@@ -71,6 +71,8 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "robust_kernel_c",
                                           "robust_iterations",
                                           "recovery_count",
+                                          "compressed_passive_after",
+                                          "compressed_batch",
                                           "recovery_inflation",
                                           "recovery_min_updates",
                                           "object_model",
@@ -149,6 +151,16 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 		sparse_static_update = u >= 1;
 		compressed_static_update = u == 2;
 	}
+	for (auto [key, value] :
+	     {std::pair<const char*, int*>{"compressed_passive_after", &compressed_passive_after},
+	      {"compressed_batch", &compressed_batch}})
+	{
+		const long v = readInt(c, s, key, *value);
+		if (v < 1 || v > 1000000)
+			throw std::invalid_argument("[" + s + "] " + key + " = " + std::to_string(v) +
+			                            ": must be in [1, 1000000]");
+		*value = int(v);
+	}
 	innovation_gate = readNonNegative(c, s, "innovation_gate", innovation_gate);
 	first_estimate_jacobians = readBool(c, s, "first_estimate_jacobians", first_estimate_jacobians);
 	record_dropped = readBool(c, s, "record_dropped", record_dropped);
@@ -192,6 +204,12 @@ void TModelOptions::validate() const
 		throw std::invalid_argument("cv_gate = " + std::to_string(cv_gate) +
 		                            ": must be a probability in [0, 1) (0 = no gate)");
 	cv.validate();
+	if (compressed_passive_after < 1)
+		throw std::invalid_argument("compressed_passive_after = " +
+		                            std::to_string(compressed_passive_after) + ": must be >= 1");
+	if (compressed_batch < 1)
+		throw std::invalid_argument("compressed_batch = " + std::to_string(compressed_batch) +
+		                            ": must be >= 1");
 	if (drop_static_after_unseen_steps < 0)
 		throw std::invalid_argument(
 		    "drop_static_after_unseen_steps = " + std::to_string(drop_static_after_unseen_steps) +
@@ -258,6 +276,8 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	        : sparse_static_update   ? "sparse"
 	                                 : "mrpt")
 	    << "\n";
+	out << "compressed_passive_after       = " << compressed_passive_after << "\n";
+	out << "compressed_batch               = " << compressed_batch << "\n";
 	out << "innovation_gate                = " << innovation_gate << "\n";
 	out << "outlier_method                 = " << outlier_method << "\n";
 	out << "robust_kernel_c                = " << robust_kernel_c << "\n";

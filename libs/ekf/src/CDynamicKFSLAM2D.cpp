@@ -77,9 +77,9 @@ void CDynamicKFSLAM2D::reset()
 {
 	m_xkk.resize(3);
 	for (int i = 0; i < 3; ++i) m_xkk[i] = options.initial_pose[i];
-	m_pkk.setSize(3, 3);
-	for (int i = 0; i < 3; ++i)
-		for (int j = 0; j < 3; ++j) m_pkk(i, j) = options.Sigma_0(i, j);
+	m_cov.resize(3);
+	cov() = options.Sigma_0;
+	m_covSpare.release();
 	// The seams: the options' implementations unless another one was set.
 	if (!m_userRouter) m_router = estimator::makeRouter(options.feature_labels, &options.classify);
 	m_router->reset();
@@ -97,7 +97,8 @@ void CDynamicKFSLAM2D::reset()
 		else if (m == "jcbb")
 			m_engine = std::make_unique<CJcbbUpdateEngine>(options.innovation_gate);
 		else if (options.compressed_static_update)
-			m_engine = std::make_unique<estimator::CCompressedUpdateEngine>();
+			m_engine = std::make_unique<estimator::CCompressedUpdateEngine>(
+			    options.compressed_passive_after, options.compressed_batch);
 		else if (options.sparse_static_update)
 			m_engine = std::make_unique<estimator::CSparseUpdateEngine>();
 		else
@@ -150,6 +151,22 @@ void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini,
 		    "implemented and kfIKFFull does not re-linearise)");
 	KF_options.loadFromConfigFile(ini, kf);
 	reset();
+}
+
+void CDynamicKFSLAM2D::syncPkk() const
+{
+	if (!m_pkkStale) return;
+	auto& P = const_cast<KFMatrix&>(m_pkk);
+	const Eigen::Index n = m_cov.rows();
+	P.setSize(size_t(n), size_t(n));
+	P.asEigen() = m_cov.view();
+	m_pkkStale = false;
+}
+
+void CDynamicKFSLAM2D::setCov(const Eigen::Ref<const ekf::RowMatrixXd>& P)
+{
+	m_cov.resize(P.rows());
+	cov() = P;
 }
 
 // ------------------------------------------------------------------------------------------
@@ -229,7 +246,7 @@ void CDynamicKFSLAM2D::propagateEgo()
 	{
 		const Eigen::Matrix3d& S = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
 		auto x = m_xkk.asEigen();
-		auto P = m_pkk.asEigen();
+		auto P = cov();
 		const bool fej = options.first_estimate_jacobians && m_predictedEgo;
 		Eigen::Matrix3d F;
 		const Eigen::Vector3d* fejPrev = fej ? &*m_predictedEgo : nullptr;
@@ -266,7 +283,7 @@ void CDynamicKFSLAM2D::staticUpdate()
 	for (const auto& m : m_routed.with(estimator::Route::StaticKnown))
 		obs.push_back({m.reading.id, m.reading.z, m_layout.first(m_staticBlock.at(m.reading.id))});
 	auto x = m_xkk.asEigen();
-	auto P = m_pkk.asEigen();
+	auto P = cov();
 	const estimator::TUpdateResult r = m_engine->update(x, P, obs, updateContext());
 	m_report.static_updates = r.updates;
 	m_report.gated_out = r.gated_out;

@@ -17,14 +17,12 @@ void CDynamicKFSLAM2D::addOdometryBiasBlock()
 	b.dim = options.odometry_bias.dim();
 	m_layout.append(b);
 	const size_t n = size_t(m_layout.storageDim());
-	KFMatrix P(n, n);
-	P.setZero();
-	for (size_t i = 0; i < 3; ++i)
-		for (size_t j = 0; j < 3; ++j) P(i, j) = m_pkk(i, j);
+	ekf::RowMatrixXd P = ekf::RowMatrixXd::Zero(Eigen::Index(n), Eigen::Index(n));
+	P.topLeftCorner<3, 3>() = cov().topLeftCorner<3, 3>();
 	const Eigen::MatrixXd B = options.odometry_bias.prior();
 	P(3, 3) = B(0, 0);
 	P(4, 4) = b.dim == 2 ? B(1, 1) : 1.0;  // s, or the pad (mean 0, variance 1)
-	m_pkk = P;
+	setCov(P);
 	m_xkk.resize(n);
 	m_xkk[3] = 0;
 	m_xkk[4] = 0;
@@ -51,7 +49,6 @@ std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> CDynamicKFSLAM2D::get
 	if (m_layout.empty() || m_layout[0].kind != estimator::BlockKind::OdometryBias)
 		return std::nullopt;
 	const std::vector<int> idx = m_layout.indices(0);
-	return std::make_pair(Eigen::VectorXd(m_xkk.asEigen()(idx)),
-	                      ekf::marginal(m_pkk.asEigen(), idx));
+	return std::make_pair(Eigen::VectorXd(m_xkk.asEigen()(idx)), ekf::marginal(cov(), idx));
 }
 }  // namespace dynslam

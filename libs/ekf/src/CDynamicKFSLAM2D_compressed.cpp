@@ -12,11 +12,11 @@ using estimator::BlockKind;
 
 namespace
 {
-void readState(const CDynamicKFSLAM2D::KFVector& xs, const CDynamicKFSLAM2D::KFMatrix& Ps,
+void readState(const CDynamicKFSLAM2D::KFVector& xs, const ekf::CSquareBuffer& Ps,
                Eigen::VectorXd& x, ekf::RowMatrixXd& P)
 {
 	x = xs.asEigen();
-	P = Ps.asEigen();
+	P = Ps.view();
 }
 }  // namespace
 
@@ -25,12 +25,11 @@ void CDynamicKFSLAM2D::globalUpdate()
 	if (m_passive.empty()) return;
 	Eigen::VectorXd x;
 	ekf::RowMatrixXd P;
-	readState(m_xkk, m_pkk, x, P);
+	readState(m_xkk, m_cov, x, P);
 	estimator::expandState(x, P, m_layout, m_passive);
 	m_xkk.resize(size_t(x.size()));
 	m_xkk.asEigen() = x;
-	m_pkk.setSize(size_t(x.size()), size_t(x.size()));
-	m_pkk.asEigen() = P;
+	setCov(P);
 	m_passiveStatic.clear();
 	onLayoutChanged();
 }
@@ -75,13 +74,12 @@ void CDynamicKFSLAM2D::compressIfDue()
 	for (size_t b = 0; b < m_layout.size(); ++b)
 		if (passive[b] && m_layout[b].kind == BlockKind::StaticLandmark)
 			m_passiveStatic[m_layout[b].id] = m_layout[b].step;
-	m_passive.push_back(estimator::compressState(m_xkk.asEigen(), m_pkk.asEigen(), m_layout,
-	                                             passive, m_nextLevel++, x, P));
-	m_pkkSpare.setSize(0, 0);  // the spare of the full size is not needed any more
+	m_passive.push_back(estimator::compressState(m_xkk.asEigen(), m_cov.view(), m_layout, passive,
+	                                             m_nextLevel++, x, P));
+	m_covSpare.release();  // the spare of the full size is not needed any more
 	m_xkk.resize(size_t(x.size()));
 	m_xkk.asEigen() = x;
-	m_pkk.setSize(size_t(x.size()), size_t(x.size()));
-	m_pkk.asEigen() = P;
+	setCov(P);
 	onLayoutChanged();
 }
 }  // namespace dynslam

@@ -67,7 +67,7 @@ void CDynamicKFSLAM2D::predictObjects()
 {
 	if (m_motion->velocityDim(3) == 0 && m_motion->velocityDim(2) == 0) return;
 	auto x = m_xkk.asEigen();
-	auto P = m_pkk.asEigen();
+	auto P = cov();
 	for (const auto& [obj, st] : objectStates(m_layout))
 	{
 		if (st.velocity == SIZE_MAX) continue;
@@ -108,7 +108,7 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 	for (size_t b = 0; b < m_layout.size(); ++b)
 		if (m_layout[b].kind == BlockKind::ObjectFeature0) f0Block[m_layout[b].id] = b;
 	auto x = m_xkk.asEigen();
-	auto P = m_pkk.asEigen();
+	auto P = cov();
 	const double gate = m_motion->readingGate();
 	const bool track = m_motion->tracksInnovations();
 	for (const auto& [obj, readings] : byObject)
@@ -217,7 +217,7 @@ void CDynamicKFSLAM2D::planObjectVelocities(TPending& plan)
 		prior.block(Eigen::Index(r), Eigen::Index(r), Gs[i].rows(), Gs[i].rows()) = priors[i];
 	}
 	plan.a.mean = mean;
-	plan.a.cross = G * m_pkk.asEigen();
+	plan.a.cross = G * cov();
 	plan.a.cov = plan.a.cross * G.transpose() + prior;
 }
 }  // namespace dynslam

@@ -16,7 +16,7 @@ estimator::TUpdateResult CMrptUpdateEngine::update(
     Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
     const std::vector<estimator::TStaticObservation>& obs, const estimator::TUpdateContext& ctx)
 {
-	if (x.data() != &m_kf.m_xkk[0] || P.data() != &m_kf.m_pkk(0, 0))
+	if (x.data() != &m_kf.m_xkk[0] || P.data() != m_kf.m_cov.view().data())
 		throw std::invalid_argument("CMrptUpdateEngine: works on its filter's own storage only");
 	return m_kf.runMrptUpdate(obs, ctx);
 }
@@ -27,7 +27,10 @@ estimator::TUpdateResult CDynamicKFSLAM2D::runMrptUpdate(
 	m_mrptObs = obs;
 	m_mrptCtx = ctx;
 	m_mrptResult = estimator::TUpdateResult();
+	syncPkk();  // MRPT's update works on m_pkk
 	runOneKalmanIteration();
+	setCov(m_pkk.asEigen());
+	m_pkkStale = false;
 	m_mrptObs.clear();
 	return m_mrptResult;
 }

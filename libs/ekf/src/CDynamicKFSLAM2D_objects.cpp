@@ -114,9 +114,9 @@ void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 		++(first ? m_report.object_features_new : m_report.object_features_t);
 	}
 	if (z.empty()) return;
-	plan.a = ekf::featureAugmentation(
-	    options.measurement_model, Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
-	    m_pkk.asEigen().topRows(3), z, options.Sigma_v, m_in.sensor_pose);
+	plan.a = ekf::featureAugmentation(options.measurement_model,
+	                                  Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]),
+	                                  cov().topRows(3), z, options.Sigma_v, m_in.sensor_pose);
 }
 
 void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
@@ -170,7 +170,7 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 		++m_report.object_poses_added;
 	}
 	if (lins.empty()) return;
-	plan.b = ekf::objectPoseAugmentations(m_pkk.asEigen(), plan.a, lins, at, size);
+	plan.b = ekf::objectPoseAugmentations(cov(), plan.a, lins, at, size);
 	plan.blocks.insert(plan.blocks.end(), poses.begin(), poses.end());
 }
 
@@ -190,7 +190,7 @@ void CDynamicKFSLAM2D::applyObjectMotion()
 				base.push_back(m_layout.first(os.poses[size_t(it - steps.begin())]));
 			}
 			auto x = m_xkk.asEigen();
-			auto P = m_pkk.asEigen();
+			auto P = cov();
 			ekf::pseudoMeasurementUpdate(
 			    x, P, base, d,
 			    [&](const std::vector<Eigen::VectorXd>& v, std::vector<Eigen::MatrixXd>* J)
@@ -207,7 +207,7 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 	// be recorded (a pending pose is the newest of its object, K >= 1), so marginals come from P.
 	const estimator::CPaddedLayout ext = extendedLayout(plan);
 	std::vector<size_t>& remove = plan.remove;
-	const auto P = m_pkk.asEigen();
+	const auto P = cov();
 	// Time-t features, once they have served the pose augmentation (stale ones from earlier
 	// steps may already be listed by planFeatures).
 	if (m_drop.dropTimeT())
@@ -292,16 +292,14 @@ void CDynamicKFSLAM2D::commit(TPending& plan)
 	const std::vector<int> keep = ext.keptStorage(drop);
 	const Eigen::Index N = Eigen::Index(keep.size());
 
-	// The new covariance is written once, into the spare matrix, which then becomes m_pkk (the
-	// old one becomes the spare): no allocation while the state size stays the same.
-	if (m_pkkSpare.rows() != N)
-	{
-		KFMatrix fresh(static_cast<size_t>(N), static_cast<size_t>(N));
-		m_pkkSpare.swap(fresh);
-	}
-	auto Pn = m_pkkSpare.asEigen();
-	ekf::assembleExtended(m_pkk.asEigen(), plan.a, plan.b, keep, Pn);
-	m_pkk.swap(m_pkkSpare);
+	// The new covariance is written once, into the spare buffer, which then becomes the
+	// covariance (the old one becomes the spare): no allocation unless the state outgrows the
+	// buffers' capacity.
+	m_covSpare.resize(N);
+	auto Pn = m_covSpare.view();
+	ekf::assembleExtended(m_cov.view(), plan.a, plan.b, keep, Pn);
+	m_cov.swap(m_covSpare);
+	m_pkkStale = true;
 	Eigen::VectorXd x(n + m);
 	x << m_xkk.asEigen(), plan.a.mean, plan.b.mean;
 	const Eigen::VectorXd xn = x(keep);

@@ -21,7 +21,7 @@ mrpt::poses::CPosePDFGaussian CDynamicKFSLAM2D::getEgoPose() const
 	mrpt::poses::CPosePDFGaussian p;
 	p.mean = mrpt::poses::CPose2D(m_xkk[0], m_xkk[1], m_xkk[2]);
 	for (int i = 0; i < 3; ++i)
-		for (int j = 0; j < 3; ++j) p.cov(i, j) = m_pkk(i, j);
+		for (int j = 0; j < 3; ++j) p.cov(i, j) = cov()(i, j);
 	return p;
 }
 
@@ -36,7 +36,7 @@ std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks(bool i
 		TStaticLandmarkEstimate e;
 		e.id = m_layout[b].id;
 		e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
-		e.cov << m_pkk(k, k), m_pkk(k, k + 1), m_pkk(k + 1, k), m_pkk(k + 1, k + 1);
+		e.cov << cov()(k, k), cov()(k, k + 1), cov()(k + 1, k), cov()(k + 1, k + 1);
 		e.in_state = true;
 		out.push_back(e);
 	}
@@ -59,7 +59,7 @@ std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 		e.at_time0 = t.kind == BlockKind::ObjectFeature0;
 		e.step = t.step;
 		e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
-		e.cov << m_pkk(k, k), m_pkk(k, k + 1), m_pkk(k + 1, k), m_pkk(k + 1, k + 1);
+		e.cov << cov()(k, k), cov()(k, k + 1), cov()(k + 1, k), cov()(k + 1, k + 1);
 		out.push_back(e);
 	}
 	return out;
@@ -76,7 +76,7 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 		TObjectPoseEstimate e;
 		e.step = t.step;
 		e.mean = m_xkk.asEigen()(idx);
-		e.cov = ekf::marginal(m_pkk.asEigen(), idx);
+		e.cov = ekf::marginal(cov(), idx);
 		e.in_state = true;
 		out[t.object].poses.push_back(e);
 	}
@@ -197,7 +197,7 @@ void CDynamicKFSLAM2D::getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& 
 	ensureExpanded();
 	const std::vector<int> keep = ekf::keptIndices(int(m_xkk.size()), m_layout.padIndices());
 	x = m_xkk.asEigen()(keep);
-	P = m_pkk.asEigen()(keep, keep);
+	P = cov()(keep, keep);
 	if (!labels) return;
 	labels->assign({"ego.x", "ego.y", "ego.theta"});
 	for (const TBlock& t : m_layout.blocks()) appendLabels(t, *labels);

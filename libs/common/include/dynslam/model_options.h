@@ -88,6 +88,12 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * landmarks left behind are kept out of the working state and brought up to date when
 	 * needed; equal to the full EKF to rounding. */
 	bool compressed_static_update = false;
+	/** static_update = compressed: a static landmark unseen for this many steps becomes
+	 * passive (leaves the working state), >= 1 (INI key compressed_passive_after). */
+	int compressed_passive_after = 3;
+	/** static_update = compressed: landmarks are made passive only when at least this many
+	 * are due, >= 1 (INI key compressed_batch; each compression adds |active| entries). */
+	int compressed_batch = 8;
 	/** Innovation gate for static-landmark updates: a measurement whose squared
 	 * Mahalanobis distance (with its own 2x2 innovation covariance) exceeds the chi-square
 	 * quantile of this probability (2 dof) is not used, and counted

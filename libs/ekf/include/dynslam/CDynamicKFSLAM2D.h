@@ -45,6 +45,7 @@
 #include <dynslam/estimator/update_engine.h>
 #include <dynslam/model_options.h>
 #include <dynslam/models/measurement.h>
+#include <dynslam/square_buffer.h>
 #include <dynslam/step_input.h>
 #include <mrpt/bayes/CKalmanFilterCapable.h>
 #include <mrpt/config/CLoadableOptions.h>
@@ -168,6 +169,7 @@ public:
 	const KFMatrix& fullCov() const
 	{
 		ensureExpanded();
+		syncPkk();
 		return m_pkk;
 	}
 	/** static_update = compressed: the global update (compressed_state.h), which getters of the
@@ -325,6 +327,22 @@ private:
 	int m_step = -1;
 	TStepReport m_report;
 	bool m_failed = false;  ///< a step threw midway: refuse to go on until reset()
-	KFMatrix m_pkkSpare;    ///< commit() writes the new covariance here, then swaps it with m_pkk
+	// The covariance (doc/performance.md, section 9): the filter works on m_cov, a buffer that
+	// keeps its capacity; MRPT's m_pkk is a copy brought up to date by syncPkk() when it is read
+	// (fullCov(), MRPT's update engine).
+	ekf::CSquareBuffer m_cov;
+	ekf::CSquareBuffer m_covSpare;    ///< commit() writes the new covariance here, then swaps
+	mutable bool m_pkkStale = false;  ///< m_pkk differs from m_cov
+	/** The working covariance (marks m_pkk stale). */
+	ekf::CSquareBuffer::View cov()
+	{
+		m_pkkStale = true;
+		return m_cov.view();
+	}
+	ekf::CSquareBuffer::ConstView cov() const { return m_cov.view(); }
+	/** Copies m_cov to MRPT's m_pkk if it changed since the last copy. */
+	void syncPkk() const;
+	/** Resizes m_cov to n x n and writes P into it. */
+	void setCov(const Eigen::Ref<const ekf::RowMatrixXd>& P);
 };
 }  // namespace dynslam
