@@ -22,10 +22,12 @@
  * one-feature objects are allowed. A static track keeps its filter: a reading beyond the
  * reclassify_gate is held back (Skip, counted), reclassify_count consecutive ones turn it moving
  * (TRoutedStep::reclassified: the filter drops the landmark; the reading becomes the first sighting
- * of a new object). ID -1 (association unknown) is skipped and counted
+ * of a new object). ID -1 (association unknown): associated when a static association function is
+ * set (setStaticAssociation; the EKF sets MRPT's), else skipped and counted
  * (TRoutedStep::skipped_unknown_id). */
 #include <dynslam/estimator/classify_evidence.h>
 #include <dynslam/estimator/measurement_router.h>
+#include <dynslam/estimator/unknown_id_association.h>
 
 #include <map>
 #include <optional>
@@ -45,6 +47,7 @@ struct TClassifyParams
 	int reclassify_count = 3;         ///< classify_reclassify_count (0: never reclassify)
 	double reclassify_gate = 0.999;   ///< classify_reclassify_gate: chi-square prob., (0, 1)
 	bool candidate_landmarks = true;  ///< classify_candidate_landmarks (see the file comment)
+	TUnknownIdParams assoc;           ///< classify_assoc_*: ID -1 (unknown_id_association.h)
 	/** Throws std::invalid_argument naming the key. */
 	void validate() const;
 };
@@ -87,6 +90,12 @@ public:
 	void reset() override;
 
 	const TClassifyParams& params() const { return m_p; }
+	/** With a static association function, ID -1 readings are associated
+	 * (unknown_id_association.h); without one they are skipped and counted. */
+	void setStaticAssociation(StaticAssociationFn f)
+	{
+		m_unknown.setStaticAssociation(std::move(f));
+	}
 	const std::map<int32_t, TTrack>& tracks() const { return m_tracks; }
 	double upperThreshold() const;  ///< log((1 - beta) / alpha): decide moving
 	double lowerThreshold() const;  ///< log(beta / (1 - alpha)): decide static
@@ -113,6 +122,9 @@ private:
 	Act classifyOne(int32_t id, const TPoint2& z, int step, TRoutedStep& out, bool& candidate,
 	                std::vector<int32_t>& turnedMoving,
 	                const std::function<bool(int32_t)>& isKnownStatic);
+	/** Gives every -1 reading of rd a track ID (unknown_id_association.h); pts: robot frame. */
+	void resolveUnknownIds(int step, std::vector<TReading>& rd, const std::vector<TPoint2>& pts,
+	                       TRoutedStep& out);
 	/** An object reading of moving track t through the registry. */
 	void routeMoving(TRoutedReading& m, const TTrack& t, int step, TRoutedStep& out);
 
@@ -123,5 +135,6 @@ private:
 	std::map<int32_t, std::vector<int32_t>> m_objectTracks;  ///< object -> track IDs
 	int32_t m_nextObject = 0;
 	int m_lastStep = -1;
+	CUnknownIdResolver m_unknown;
 };
 }  // namespace dynslam::estimator
