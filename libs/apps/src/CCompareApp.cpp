@@ -245,6 +245,7 @@ void CCompareApp::run()
 			rows.push_back({f, ev.metrics, ev.summary, std::nullopt});
 			if (classifies) rows.back().classes = classScores(decisions);
 		}
+		if (classifies) classDecisions[f] = decisions;
 		runs.push_back(std::move(r));
 	}
 	if (!hasGroundTruth) differenceRows();
@@ -295,12 +296,15 @@ void TClassDecisions::add(const estimator::TRoutedStep& step)
 	for (const auto& m : step.readings)
 	{
 		const bool st = m.route == Route::StaticKnown || m.route == Route::StaticNew;
+		steps.push_back(stepsAdded);
+		ids.push_back(m.reading.id);
 		decisions.push_back(m.candidate     ? eval::Decision::Undecided
 		                    : st            ? eval::Decision::Static
 		                    : m.object >= 0 ? eval::Decision::Moving
 		                                    : eval::Decision::Undecided);
 		groups.push_back(m.candidate || st ? -1 : m.object);
 	}
+	++stepsAdded;
 }
 
 void CCompareApp::differenceRows()
@@ -418,6 +422,11 @@ void CCompareApp::drawFigures()
 	mo.title = mapTitle(hasGroundTruth);
 	if (g && truthBox.valid()) mo.view = truthBox.withMargin(0.03);
 	png("compare_map.png", eval::drawMapFigure(g, series, mo));
+	for (const auto& r : runs)
+		if (const auto it = classDecisions.find(r.name); it != classDecisions.end())
+			for (const auto& p : writeClassFigures(outDir, r.name, g, r.est, it->second,
+			                                       groundTruthUsed + "_gt_classes.csv"))
+				writtenFiles.push_back(p);
 	if (!hasGroundTruth) return;
 	png("compare_ego_errors.png", eval::drawEgoErrorFigure(gt, series));
 	std::vector<eval::TFigureSeries> good;
