@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 
@@ -105,6 +106,7 @@ TResolvedIds CUnknownIdResolver::resolve(const std::vector<int32_t>& ids,
 	for (size_t i = 0; i < ids.size(); ++i)
 		if (ids[i] == -1) unknown.push_back(i);
 	if (unknown.empty()) return r;
+	std::set<int32_t> taken;  // one reading per track and step, across the stages
 	// 1) static: MRPT's association (injected).
 	if (!statics.empty() && m_static)
 	{
@@ -113,11 +115,11 @@ TResolvedIds CUnknownIdResolver::resolve(const std::vector<int32_t>& ids,
 		const std::vector<int> a = m_static(obs, statics);
 		if (a.size() != obs.size())
 			throw std::logic_error("CUnknownIdResolver: static association returned a wrong size");
-		std::vector<bool> taken(statics.size(), false);  // one reading per track
 		for (size_t k = 0; k < unknown.size(); ++k)
-			if (a[k] >= 0 && size_t(a[k]) < statics.size() && !taken[size_t(a[k])])
+			if (a[k] >= 0 && size_t(a[k]) < statics.size() &&
+			    !taken.count(statics[size_t(a[k])].id))
 			{
-				taken[size_t(a[k])] = true;
+				taken.insert(statics[size_t(a[k])].id);
 				r.ids[unknown[k]] = statics.at(size_t(a[k])).id;
 				++r.to_static;
 			}
@@ -139,8 +141,9 @@ TResolvedIds CUnknownIdResolver::resolve(const std::vector<int32_t>& ids,
 	std::vector<bool> used(moving.size(), false);
 	for (const auto& [d2, i, j] : pairs)
 	{
-		if (r.ids[i] != -1 || used[j]) continue;
+		if (r.ids[i] != -1 || used[j] || taken.count(moving[j].id)) continue;
 		used[j] = true;
+		taken.insert(moving[j].id);
 		r.ids[i] = moving[j].id;
 		++r.to_moving;
 	}
@@ -159,8 +162,9 @@ TResolvedIds CUnknownIdResolver::resolve(const std::vector<int32_t>& ids,
 	std::vector<bool> usedOnce(once.size(), false);
 	for (const auto& [d, i, j] : pairs)
 	{
-		if (r.ids[i] != -1 || usedOnce[j]) continue;
+		if (r.ids[i] != -1 || usedOnce[j] || taken.count(once[j].target.id)) continue;
 		usedOnce[j] = true;
+		taken.insert(once[j].target.id);
 		r.ids[i] = once[j].target.id;
 		++r.to_second;
 	}
