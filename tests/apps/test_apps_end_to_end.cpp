@@ -10,6 +10,7 @@
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/CMonteCarloApp.h>
 #include <dynslam/apps/CRunApp.h>
+#include <mrpt/img/CImage.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -263,6 +264,38 @@ TEST(CompareApp, ClassifiedRowHasClassColumns)
 	EXPECT_EQ(header[col + 1], "group_ari");
 	EXPECT_EQ(apps_test::splitCsv(lines[1])[col], "") << "dynamic does not classify";
 	EXPECT_NE(apps_test::splitCsv(lines[2])[col], "");
+}
+
+// Issue 12 figures (doc/classification.md "Figures"): with --out and figures on, a classifying
+// row writes its class map and decision timeline; the timeline holds many readings decided
+// moving (red) and static (blue): measured on the shipped highway 98 tracks.
+TEST(CompareApp, ClassifiedRowWritesClassFigures)
+{
+	const std::string out = apps_test::freshDir("cmp_class_figures");
+	CCompareApp app;
+	TArgs a({"-c", apps_test::configFile("compare_classified.ini"), "--filters",
+	         "dynamic_classified", "-q", "--out", out});
+	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
+	app.run();
+	mrpt::img::CImage map, tl;
+	ASSERT_TRUE(map.loadFromFile(out + "/dynamic_classified_class_map.png"));
+	ASSERT_TRUE(tl.loadFromFile(out + "/dynamic_classified_class_timeline.png"));
+	EXPECT_EQ(map.getWidth(), 1600u);
+	EXPECT_EQ(map.getHeight(), 700u);
+	EXPECT_EQ(tl.getWidth(), 1310u);
+	size_t red = 0, blue = 0;
+	for (unsigned y = 0; y < tl.getHeight(); ++y)
+		for (unsigned x = 0; x < tl.getWidth(); ++x)
+		{
+			const int c0 = tl.at<uint8_t>(x, y, 0), c1 = tl.at<uint8_t>(x, y, 1),
+			          c2 = tl.at<uint8_t>(x, y, 2);
+			const bool ends = (c0 == 220 && c2 == 30) || (c0 == 30 && c2 == 220);
+			red += ends && c1 == 30;
+			blue += ends && c1 == 80;
+		}
+	std::printf("[ measured ] timeline: %zu red, %zu blue pixels\n", red, blue);
+	EXPECT_GT(red, 1000u);
+	EXPECT_GT(blue, 1000u);
 }
 
 TEST(CompareApp, ExecutableWithoutArgumentsRunsTheShippedDefault)

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <memory>
 
@@ -44,8 +45,8 @@ const TExcerpt& excerpt()
 		                                 kRawlog);
 		mrpt::config::CConfigFileMemory ini;
 		apps::loadIniFile(kIni, ini);
-		for (const std::string f :
-		     {"static_all", "static_landmarks_only", "dynamic", "dynamic_nogate"})
+		for (const std::string f : {"static_all", "static_landmarks_only", "dynamic",
+		                            "dynamic_nogate", "dynamic_classified"})
 			x->r[f] = realdata::runRealData(x->rawlog, x->gt, ini, f);
 		return x;
 	}();
@@ -150,8 +151,9 @@ TEST(RealDataExcerpt, OtherRobotsTracked)
 	EXPECT_TRUE(e.r.at("static_landmarks_only").tracked.empty());
 }
 
-// dynslam-compare itself (CCompareApp) with config/mrclam_compare.ini on the excerpt: three
-// rows, and the same ATE as the runs above (same back-ends, same data).
+// dynslam-compare itself (CCompareApp) with config/mrclam_compare.ini on the excerpt: four
+// rows (issue 12 added dynamic_classified), and the same ATE as the runs above (same back-ends,
+// same data).
 TEST(RealDataExcerpt, CompareAppRunsTheConfig)
 {
 	apps::CCompareApp app;
@@ -161,8 +163,57 @@ TEST(RealDataExcerpt, CompareAppRunsTheConfig)
 	ASSERT_TRUE(app.initialize(7, argv));
 	app.run();
 	ASSERT_TRUE(app.hasGroundTruth);
-	ASSERT_EQ(app.rows.size(), 3u);
+	ASSERT_EQ(app.rows.size(), 4u);
+	EXPECT_EQ(app.rows.back().filter, "dynamic_classified");
 	const auto& e = excerpt();
 	for (const auto& row : app.rows)
 		EXPECT_NEAR(row.metrics.ate, e.r.at(row.filter).ate, 1e-9) << row.filter;
+}
+
+// Issue 12 on real data: the excerpt imported with --anonymous (robot3_excerpt_anon, seed 1: the
+// 20 subjects permuted into IDs 0..19) through dynslam-compare's static_all and
+// dynamic_classified rows, scored against robot3_excerpt_anon_gt_classes.csv. Measured
+// (doc/real-data.md section 6): static_all 0.3205 m and dynamic_classified 0.3625 m, the same
+// ATE as on the labelled rawlog (neither filter uses the ID values, only their identity); class
+// precision 1, recall 0.257, F1 0.409, group ARI 0.260. Issue 12's target (classified ATE <=
+// static_all's and within 25 % of the labelled dynamic's 0.109 m) is NOT met here (the robots
+// move about 2 cm per step; doc). The thresholds catch a broken import or scoring, not the
+// target: ATE < 3 x the measured value, F1 > half the measured value, precision > 0.5.
+TEST(RealDataExcerpt, AnonymousImportThroughTheClassifyingFilter)
+{
+	const std::string anon =
+	    std::string(DYNSLAM_BINARY_DIR) + "/datasets/mrclam/robot3_excerpt_anon.rawlog";
+	apps::CCompareApp app;
+	app.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	const char* argv[] = {"dynslam-compare",
+	                      "-c",
+	                      kIni.c_str(),
+	                      "-r",
+	                      anon.c_str(),
+	                      "--no-figures",
+	                      "-q",
+	                      "--filters",
+	                      "static_all,dynamic_classified"};
+	ASSERT_TRUE(app.initialize(int(std::size(argv)), argv));
+	app.run();
+	ASSERT_TRUE(app.hasGroundTruth);
+	ASSERT_EQ(app.rows.size(), 2u);
+	const auto& e = excerpt();
+	const auto& all = app.rows[0];
+	const auto& cls = app.rows[1];
+	ASSERT_EQ(cls.filter, "dynamic_classified");
+	// The ID values do not matter to either filter: the labelled rawlog gives the same paths.
+	EXPECT_NEAR(all.metrics.ate, e.r.at("static_all").ate, 1e-9);
+	EXPECT_NEAR(cls.metrics.ate, e.r.at("dynamic_classified").ate, 1e-9);
+	// The landmark truth is keyed by the anonymous IDs: all 15 scored.
+	EXPECT_EQ(cls.metrics.static_map.n_xy, 15u);
+	EXPECT_LT(cls.metrics.ate, 1.0);
+	ASSERT_TRUE(cls.classes.has_value());
+	EXPECT_GT(cls.classes->f1, 0.2);
+	EXPECT_GT(cls.classes->precision, 0.5);
+	EXPECT_FALSE(all.classes.has_value());
+	std::cout << "anonymous excerpt: static_all ATE " << all.metrics.ate
+	          << " m, dynamic_classified " << cls.metrics.ate << " m, class P/R/F1 "
+	          << cls.classes->precision << " / " << cls.classes->recall << " / " << cls.classes->f1
+	          << ", ARI " << cls.classes->ari << "\n";
 }

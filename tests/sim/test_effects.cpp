@@ -170,6 +170,34 @@ TEST(SimEffects, ClutterCountRangeAndIds)
 	EXPECT_EQ(unknown, 3 * u.numSteps());
 }
 
+// unknown_id_probability (issue 12 item 4): that share of the true readings is written with ID
+// -1, the truth keeps true_id and class; the other readings are those of the run without it.
+TEST(SimEffects, UnknownIdProbabilityWritesMinusOne)
+{
+	const TSimulatedRun base = simulate(dynslam_test::highwayOptions());
+	const TSimulatedRun all = simulate(withEffects("unknown_id_probability", "1"));
+	ASSERT_EQ(all.classes.size(), base.classes.size());
+	for (size_t i = 0; i < all.classes.size(); ++i)
+	{
+		EXPECT_EQ(all.classes[i].id, -1);
+		EXPECT_EQ(all.classes[i].true_id, base.classes[i].true_id);
+		EXPECT_EQ(all.classes[i].cls, base.classes[i].cls);
+	}
+	const TSimulatedRun some = simulate(withEffects("unknown_id_probability", "0.3"));
+	ASSERT_EQ(some.classes.size(), base.classes.size());
+	size_t unknown = 0;
+	for (size_t i = 0; i < some.classes.size(); ++i)
+	{
+		if (some.classes[i].id == -1)
+			++unknown;
+		else
+			EXPECT_EQ(some.classes[i].id, base.classes[i].id);
+	}
+	const double n = double(some.classes.size()), sigma = std::sqrt(n * 0.3 * 0.7);
+	EXPECT_LE(std::abs(double(unknown) - 0.3 * n), 4 * sigma) << unknown << " of " << n;
+	EXPECT_THROW(withEffects("unknown_id_probability", "1.5"), std::exception);
+}
+
 TEST(SimEffects, AnonymousIdsAreAPermutationThatMapsBack)
 {
 	const TScenarioOptions o = withEffects("anonymous_ids", "true");

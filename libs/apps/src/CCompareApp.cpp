@@ -263,6 +263,7 @@ void CCompareApp::run()
 			if (!landmarkGaps.empty())
 				rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
 		}
+		if (classifies) classDecisions[f] = decisions;
 		runs.push_back(std::move(r));
 	}
 	if (runs.empty())
@@ -416,6 +417,11 @@ void CCompareApp::drawFigures()
 	mo.title = mapTitle(hasGroundTruth);
 	if (g && truthBox.valid()) mo.view = truthBox.withMargin(0.03);
 	png("compare_map.png", eval::drawMapFigure(g, series, mo));
+	for (const auto& r : runs)
+		if (const auto it = classDecisions.find(r.name); it != classDecisions.end())
+			for (const auto& p : writeClassFigures(outDir, r.name, g, r.est, it->second,
+			                                       groundTruthUsed + "_gt_classes.csv"))
+				writtenFiles.push_back(p);
 	if (!hasGroundTruth) return;
 	png("compare_ego_errors.png", eval::drawEgoErrorFigure(gt, series));
 	if (!landmarkGaps.empty())

@@ -34,11 +34,14 @@ void TClassDecisions::add(const estimator::TRoutedStep& step)
 	for (const auto& m : step.readings)
 	{
 		const bool st = m.route == Route::StaticKnown || m.route == Route::StaticNew;
+		steps.push_back(stepsAdded);
+		ids.push_back(m.reading.id);
 		decisions.push_back(m.candidate     ? eval::Decision::Undecided
 		                    : st            ? eval::Decision::Static
 		                    : m.object >= 0 ? eval::Decision::Moving
 		                                    : eval::Decision::Undecided);
 		groups.push_back(m.candidate || st ? -1 : m.object);
 	}
+	++stepsAdded;
 }
 }  // namespace dynslam::apps

@@ -96,7 +96,15 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_reclassify_gate",
                                           "classify_candidate_landmarks",
                                           "classify_reclassify",
-                                          "classify_stop_count"};
+                                          "classify_stop_count",
+
+                                          "classify_assoc_method",
+                                          "classify_assoc_metric",
+                                          "classify_assoc_IC_chi2_thres",
+                                          "classify_assoc_IC_metric",
+                                          "classify_assoc_IC_ml_threshold",
+                                          "classify_assoc_moving_gate",
+                                          "classify_assoc_max_step"};
 
 /** feature_labels and the classify_* keys (issue 12). */
 void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
@@ -117,6 +125,17 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	p.candidate_landmarks = readBool(c, s, "classify_candidate_landmarks", p.candidate_landmarks);
 	p.surgery = readChoice(c, s, "classify_reclassify", {"surgery", "restart"}, 0) == 0;
 	p.stop_count = int(readInt(c, s, "classify_stop_count", p.stop_count));
+	// ID -1 readings (estimator/unknown_id_association.h): MRPT's data_assoc_* names and values.
+	estimator::TUnknownIdParams& a = p.assoc;
+	const std::vector<std::string> methods{"assocNN", "assocJCBB"};
+	const std::vector<std::string> metrics{"metricMaha", "metricML"};
+	a.method = methods[size_t(readChoice(c, s, "classify_assoc_method", methods, 0))];
+	a.metric = metrics[size_t(readChoice(c, s, "classify_assoc_metric", metrics, 0))];
+	a.IC_chi2_thres = readDouble(c, s, "classify_assoc_IC_chi2_thres", a.IC_chi2_thres);
+	a.IC_metric = metrics[size_t(readChoice(c, s, "classify_assoc_IC_metric", metrics, 0))];
+	a.IC_ml_threshold = readDouble(c, s, "classify_assoc_IC_ml_threshold", a.IC_ml_threshold);
+	a.moving_gate = readDouble(c, s, "classify_assoc_moving_gate", a.moving_gate);
+	a.max_step = readDouble(c, s, "classify_assoc_max_step", a.max_step);
 }
 }  // namespace
 
@@ -305,6 +324,14 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "classify_reclassify            = " << (classify.surgery ? "surgery" : "restart")
 	    << "\n";
 	out << "classify_stop_count            = " << classify.stop_count << "\n";
+	const estimator::TUnknownIdParams& a = classify.assoc;
+	out << "classify_assoc_method          = " << a.method << "\n";
+	out << "classify_assoc_metric          = " << a.metric << "\n";
+	out << "classify_assoc_IC_chi2_thres   = " << a.IC_chi2_thres << "\n";
+	out << "classify_assoc_IC_metric       = " << a.IC_metric << "\n";
+	out << "classify_assoc_IC_ml_threshold = " << a.IC_ml_threshold << "\n";
+	out << "classify_assoc_moving_gate     = " << a.moving_gate << "\n";
+	out << "classify_assoc_max_step        = " << a.max_step << "\n";
 }
 TParseOptions TModelOptions::parseOptions() const
 {

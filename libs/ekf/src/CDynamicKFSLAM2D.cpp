@@ -8,10 +8,12 @@
 #include <dynslam/CMrptUpdateEngine.h>
 #include <dynslam/ekf_odometry_bias.h>
 #include <dynslam/ekf_steps.h>
+#include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/constant_turn_rate.h>
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/robust_update_engines.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/mrpt_static_association.h>
 #include <mrpt/system/string_utils.h>
 
 #include <limits>
@@ -81,7 +83,13 @@ void CDynamicKFSLAM2D::reset()
 	cov() = options.Sigma_0;
 	m_covSpare.release();
 	// The seams: the options' implementations unless another one was set.
-	if (!m_userRouter) m_router = estimator::makeRouter(options.feature_labels, &options.classify);
+	if (!m_userRouter)
+	{
+		m_router = estimator::makeRouter(options.feature_labels, &options.classify);
+		// feature_labels = classify: ID -1 readings associated with MRPT's data association.
+		if (auto* c = dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
+			c->setStaticAssociation(makeMrptStaticAssociation(options.classify.assoc));
+	}
 	m_router->reset();
 	if (!m_userEngine)
 	{

@@ -1,5 +1,6 @@
 /** CClassifyingRouter (classifying_router.h, doc/classification.md). */
 #include <dynslam/estimator/classifying_router.h>
+#include <dynslam/models/measurement.h>
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -31,9 +32,13 @@ void TClassifyParams::validate() const
 	if (reclassify_count < 0)
 		throw std::invalid_argument("classify_reclassify_count must be >= 0 (0: off)");
 	if (stop_count < 0) throw std::invalid_argument("classify_stop_count must be >= 0 (0: off)");
+	assoc.validate();
 }
 
-CClassifyingRouter::CClassifyingRouter(const TClassifyParams& p) : m_p(p) { m_p.validate(); }
+CClassifyingRouter::CClassifyingRouter(const TClassifyParams& p) : m_p(p), m_unknown(p.assoc)
+{
+	m_p.validate();
+}
 
 double CClassifyingRouter::upperThreshold() const { return std::log((1 - m_p.beta) / m_p.alpha); }
 double CClassifyingRouter::lowerThreshold() const { return std::log(m_p.beta / (1 - m_p.alpha)); }
@@ -46,6 +51,7 @@ void CClassifyingRouter::reset()
 	m_nextObject = 0;
 	m_lastStep = -1;
 	m_ctx.reset();
+	m_unknown.reset();
 }
 
 void CClassifyingRouter::validate(const std::vector<TReading>& readings,
@@ -63,6 +69,10 @@ void CClassifyingRouter::validate(const std::vector<TReading>& readings,
 			                         "(association unknown)");
 		if (id >= 0 && !seen.insert(id).second)
 			throw std::runtime_error(who + ": duplicate " + where);
+		if (id >= kFirstResolvedId)
+			throw std::runtime_error(who + ": " + where +
+			                         ": IDs >= 1000000000 are reserved for the tracks of ID -1 "
+			                         "readings (feature_labels = classify)");
 	}
 }
 
@@ -299,25 +309,76 @@ void CClassifyingRouter::routeMoving(TRoutedReading& m, const TTrack& t, int ste
 	routeObjectReading(m_registry, step, m, out);
 }
 
+void CClassifyingRouter::resolveUnknownIds(int step, std::vector<TReading>& rd,
+                                           const std::vector<TPoint2>& pts, TRoutedStep& out)
+{
+	std::vector<int32_t> ids;
+	std::set<int32_t> explicitIds;
+	for (const TReading& r : rd)
+	{
+		ids.push_back(r.id);
+		if (r.id >= 0) explicitIds.insert(r.id);
+	}
+	if (explicitIds.size() == rd.size()) return;
+	// The reading noise at a predicted point, added to the prediction's covariance.
+	const auto withNoise = [&](TPoint2 q)
+	{
+		const Eigen::Vector2d z = models::observeFromSensor(m_ctx->model, Eigen::Vector3d::Zero(),
+		                                                    m_ctx->sensor_pose, q.p);
+		q.C += readingInRobotFrame(*m_ctx, z).C;
+		return q;
+	};
+	std::vector<TAssocTarget> statics, moving;
+	for (const auto& [id, t] : m_tracks)
+		if (t.cls != TrackClass::Moving && t.q_valid && !explicitIds.count(id))
+			statics.push_back({id, withNoise(t.q)});
+	// Moving and candidate tracks seen twice: constant velocity; candidates seen once: the
+	// second-sighting radius. Static tracks are the static association's.
+	std::vector<TTrackPrediction> once;
+	for (const TTrackPrediction& p : m_unknown.predictions(step, m_p.motion_std))
+	{
+		const auto it = m_tracks.find(p.target.id);
+		if (it == m_tracks.end() || it->second.cls == TrackClass::Static ||
+		    explicitIds.count(p.target.id))
+			continue;
+		if (p.has_vel)
+			moving.push_back({p.target.id, withNoise(p.target.pred)});
+		else if (it->second.cls == TrackClass::Candidate)
+			once.push_back(p);
+	}
+	const TResolvedIds r = m_unknown.resolve(ids, pts, statics, moving, once);
+	for (size_t i = 0; i < rd.size(); ++i) rd[i].id = r.ids[i];
+	out.unknown_id_static += r.to_static;
+	out.unknown_id_moving += r.to_moving + r.to_second;
+	out.unknown_id_new += r.new_tracks;
+}
+
 TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& readings,
                                       const std::function<bool(int32_t)>& isKnownStatic)
 {
 	if (!m_ctx) throw std::logic_error("CClassifyingRouter::route: setContext() was not called");
 	TRoutedStep out;
 	predictTracks(step, out, isKnownStatic);
-	std::vector<Act> act(readings.size(), Act::Skip);
-	std::vector<bool> candidate(readings.size(), false);
-	std::vector<int32_t> turnedMoving;  // decided (or reclassified) moving now, in order
-	for (size_t i = 0; i < readings.size(); ++i)
+	std::vector<TReading> rd = readings;  // -1 IDs resolved below (if active)
+	std::vector<TPoint2> pts;
+	for (const TReading& r : rd) pts.push_back(readingInRobotFrame(*m_ctx, r.z));
+	if (m_unknown.active())
 	{
-		if (readings[i].id < 0)
+		m_unknown.predict(m_ctx->u, m_ctx->U);
+		resolveUnknownIds(step, rd, pts, out);
+	}
+	std::vector<Act> act(rd.size(), Act::Skip);
+	std::vector<bool> candidate(rd.size(), false);
+	std::vector<int32_t> turnedMoving;  // decided (or reclassified) moving now, in order
+	for (size_t i = 0; i < rd.size(); ++i)
+	{
+		if (rd[i].id < 0)
 		{
 			++out.skipped_unknown_id;
 			continue;
 		}
 		bool c = false;
-		act[i] = classifyOne(readings[i].id, readingInRobotFrame(*m_ctx, readings[i].z), step, out,
-		                     c, turnedMoving, isKnownStatic);
+		act[i] = classifyOne(rd[i].id, pts[i], step, out, c, turnedMoving, isKnownStatic);
 		candidate[i] = c;
 	}
 	// Converted landmarks (surgery) group only with each other: their object's time 0 is
@@ -329,12 +390,12 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 		makeMoving(id, t, step, t.converting ? convertedObjects : newObjects);
 	}
 	registerConverted(convertedObjects, step, out);
-	for (size_t i = 0; i < readings.size(); ++i)
+	for (size_t i = 0; i < rd.size(); ++i)
 	{
 		TRoutedReading m;
-		m.reading = readings[i];
+		m.reading = rd[i];
 		m.candidate = candidate[i];
-		const int32_t id = readings[i].id;
+		const int32_t id = rd[i].id;
 		const auto it = id >= 0 ? m_tracks.find(id) : m_tracks.end();
 		if (it != m_tracks.end() && it->second.cls == TrackClass::Moving) act[i] = Act::Moving;
 		if (act[i] == Act::Static && m.candidate)
@@ -343,6 +404,7 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 			m.route = isKnownStatic(id) ? Route::StaticKnown : Route::StaticNew;
 		else if (act[i] == Act::Moving)
 			routeMoving(m, it->second, step, out);
+		if (m_unknown.active() && id >= 0) m_unknown.observe(id, pts[i], step);
 		out.readings.push_back(m);
 	}
 	return out;

@@ -1,5 +1,6 @@
 #include <dynslam/app_support.h>
 #include <dynslam/mrclam/CMrclamApp.h>
+#include <dynslam/mrclam/anonymous.h>
 #include <dynslam/mrclam/rawlog_writer.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/config/CConfigFile.h>
@@ -35,6 +36,12 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	    "S", cmd);
 	TCLAP::ValueArg<std::string> argBase(
 	    "", "base", "base name of the output files (default robotN)", false, "", "B", cmd);
+	TCLAP::SwitchArg argAnon("", "anonymous",
+	                         "anonymous IDs: robots and landmarks permuted into one range 0..19 "
+	                         "(issue 12, doc/real-data.md section 6)",
+	                         cmd);
+	TCLAP::ValueArg<unsigned> argSeed("", "seed", "with --anonymous: the permutation's seed", false,
+	                                  1, "S", cmd);
 	TCLAP::SwitchArg argNoise("", "estimate-noise",
 	                          "estimate measurement and odometry noise from the ground truth", cmd);
 	TCLAP::SwitchArg argAll("", "all-robots", "with --estimate-noise: robots 1..5", cmd);
@@ -51,6 +58,11 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	estimate_noise = argNoise.getValue();
 	all_robots = argAll.getValue();
 	leave_out = argLeaveOut.getValue();
+	anonymous = argAnon.getValue();
+	anonymous_seed = argSeed.getValue();
+	if (argSeed.isSet() && !anonymous) throw std::invalid_argument("--seed needs --anonymous");
+	if (anonymous && estimate_noise)
+		throw std::invalid_argument("--anonymous is an import option, not for --estimate-noise");
 	if (argLeaveOut.isSet() && (!all_robots || !isRobotSubject(leave_out)))
 		throw std::invalid_argument("--leave-out needs --all-robots and a robot 1..5");
 	if (!config_file.empty()) loadSectionOfFile(config_file, "MRCLAM_Import", options);
@@ -79,7 +91,8 @@ void CMrclamApp::runImport()
 	if (out_dir.empty()) throw std::invalid_argument("--out is required for an import");
 	const std::string b = base.empty() ? "robot" + std::to_string(robot) : base;
 	const TDataset data = loadDataset(dataset_dir, robot);
-	const TImportResult res = importRobot(data, options.import);
+	TImportResult res = importRobot(data, options.import);
+	if (anonymous) makeAnonymous(res, anonymous_seed);
 	summary = res.summary;
 	writeImport(res, options, out_dir, b);
 	const std::string text = summary.toText();

@@ -103,6 +103,12 @@ std::string TImportSummary::toText() const
 	for (const auto& [s, c] : per_subject)
 		o << "  subject " << s << (isRobotSubject(s) ? " (robot)" : " (landmark)") << ": " << c
 		  << "\n";
+	if (!anonymous_ids.empty())
+	{
+		o << "anonymous IDs (seed " << anonymous_seed << "), subject -> ID:";
+		for (const auto& [s, id] : anonymous_ids) o << " " << s << "->" << id;
+		o << "\n";
+	}
 	return o.str();
 }
 

@@ -1,3 +1,4 @@
+#include <dynslam/mrclam/anonymous.h>
 #include <dynslam/mrclam/rawlog_writer.h>
 #include <dynslam/odometry_action.h>
 #include <dynslam/rawlog_file_writer.h>
@@ -72,6 +73,7 @@ void writeImport(const TImportResult& res, const TMrclamOptions& opts, const std
 	{ return (std::filesystem::path(dir) / (base + suffix)).string(); };
 	writeRawlog(res, opts.import, file(".rawlog"));
 	writeGroundTruth(res.gt, dir, base);
+	writeClassGroundTruth(classGroundTruth(res), file("_gt_classes.csv"));
 	{
 		std::ofstream f(file("_summary.txt"));
 		f << res.summary.toText();
@@ -90,7 +92,10 @@ void writeImport(const TImportResult& res, const TMrclamOptions& opts, const std
 	  << "steps = " << s.steps << "\n"
 	  << "t_first = " << s.t_first << "\n"
 	  << "t_last = " << s.t_last << "\n"
-	  << "origin_vicon = [" << s.origin.x() << " " << s.origin.y() << " " << s.origin.z() << "]\n\n"
+	  << "origin_vicon = [" << s.origin.x() << " " << s.origin.y() << " " << s.origin.z() << "]\n"
+	  << "ids = " << (s.anonymous_ids.empty() ? "labelled" : "anonymous") << "\n";
+	if (!s.anonymous_ids.empty()) f << "anonymous_seed = " << s.anonymous_seed << "\n";
+	f << "\n"
 	  << "[DynamicKFSLAM]\n"
 	  << "initial_pose = [0 0 0]\n"
 	  << "Sigma_0 = [0 0 0]\n\n";

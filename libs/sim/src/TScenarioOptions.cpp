@@ -307,9 +307,10 @@ void readHighway(const CConfigFileBase& c, THighwayOptions& h)
 void readEffects(const CConfigFileBase& c, TReadingEffects& e)
 {
 	const std::string E = "Effects";
-	cfg::rejectUnknownKeys(c, E,
-	                       {"anonymous_ids", "missed_detection_probability", "clutter_per_step",
-	                        "clutter_ids", "track_break_gap", "track_break_probability"});
+	cfg::rejectUnknownKeys(
+	    c, E,
+	    {"anonymous_ids", "missed_detection_probability", "clutter_per_step", "clutter_ids",
+	     "track_break_gap", "track_break_probability", "unknown_id_probability"});
 	e.anonymous_ids = cfg::readBool(c, E, "anonymous_ids", false);
 	e.missed_detection_probability = cfg::readNonNegative(c, E, "missed_detection_probability", 0);
 	if (e.missed_detection_probability >= 1)
@@ -322,6 +323,9 @@ void readEffects(const CConfigFileBase& c, TReadingEffects& e)
 	if (e.track_break_probability > 1)
 		cfg::fail(E, "track_break_probability", fmt(e.track_break_probability),
 		          "must be in [0, 1]");
+	e.unknown_id_probability = cfg::readNonNegative(c, E, "unknown_id_probability", 0);
+	if (e.unknown_id_probability > 1)
+		cfg::fail(E, "unknown_id_probability", fmt(e.unknown_id_probability), "must be in [0, 1]");
 }
 }  // namespace
 

@@ -97,6 +97,8 @@ void dumpEffects(std::ostream& o, const TReadingEffects& e)
 	o << "clutter_ids = " << (e.clutter_unknown_ids ? "unknown" : "fresh") << "\n";
 	o << "track_break_gap = " << e.track_break_gap << "\n";
 	o << "track_break_probability = " << fmt(e.track_break_probability) << "\n";
+	if (e.unknown_id_probability > 0)
+		o << "unknown_id_probability = " << fmt(e.unknown_id_probability) << "\n";
 }
 }  // namespace
 

@@ -116,6 +116,10 @@ void CReadingEffects::apply(size_t k, mrpt::obs::CObservationBearingRange& obs,
 		TMeas m = obs.sensedData[i];
 		TReadingClass r = truth[i];
 		r.id = m.landmarkID = trackId(r.true_id, k);
+		// ID unknown in this reading (one draw per kept reading, only when the option is on).
+		if (m_e.unknown_id_probability > 0 &&
+		    m_rng.drawUniform(0.0, 1.0) < m_e.unknown_id_probability)
+			r.id = m.landmarkID = -1;
 		meas.push_back(m);
 		rows.push_back(r);
 	}

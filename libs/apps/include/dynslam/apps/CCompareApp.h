@@ -31,6 +31,7 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/COutputLogger.h>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,8 +43,19 @@ struct TClassDecisions
 {
 	std::vector<eval::Decision> decisions;
 	std::vector<int64_t> groups;  ///< the estimated object of each reading (-1: none)
+	std::vector<int> steps;       ///< the step of each reading
+	std::vector<int32_t> ids;     ///< the track ID the filter used (-1 readings: as resolved)
+	int stepsAdded = 0;           ///< add() calls so far (= the next step)
 	void add(const estimator::TRoutedStep& step);
 };
+
+/** With --out and figures: `<filter>_class_map.png` and `<filter>_class_timeline.png`
+ * (eval/class_figures.h) of a classifying run, the truth read from `classTruthFile` if it exists.
+ * Returns the paths written. */
+std::vector<std::string> writeClassFigures(const std::string& outDir, const std::string& filter,
+                                           const TGroundTruth* gt, const eval::TRunEstimates& est,
+                                           const TClassDecisions& d,
+                                           const std::string& classTruthFile);
 
 class CCompareApp : public mrpt::system::COutputLogger
 {
@@ -79,6 +91,7 @@ public:
 	 * no figure line; the other filters run on, the table's footnote and OUT/failed_filters.txt
 	 * name them. */
 	std::vector<std::string> failedFilters;
+	std::map<std::string, TClassDecisions> classDecisions;  ///< of the classifying filters
 	/** Metrics per filter; without ground truth the RMS differences of each filter to
 	 * referenceFilter (the dynamic filter if it ran, else the first). */
 	std::vector<eval::TMetricsRow> rows;

@@ -24,13 +24,15 @@
  * (surgery, default: TRoutedStep::converted, the landmark becomes the f_0 of a new object whose
  * time 0 is its last consistent reading, grouped with the landmarks reclassified in the same
  * step; restart: TRoutedStep::reclassified, the filter drops the landmark and the reading becomes
- * the first sighting of a new object). ID -1 (association unknown) is skipped and counted
- * (TRoutedStep::skipped_unknown_id). With stop_count > 0, a moving track keeps a static filter
- * too (restarted at every reading beyond the reclassify_gate): stop_count consecutive readings
- * within the gate turn it static (its object stopped; TRoutedStep::stopped), and its reading
- * starts a static landmark. */
+ * the first sighting of a new object). ID -1 (association unknown): associated when a static
+ * association function is set (setStaticAssociation; the EKF sets MRPT's), else skipped and
+ * counted (TRoutedStep::skipped_unknown_id). With stop_count > 0, a moving track keeps a static
+ * filter too (restarted at every reading beyond the reclassify_gate): stop_count consecutive
+ * readings within the gate turn it static (its object stopped; TRoutedStep::stopped), and its
+ * reading starts a static landmark. */
 #include <dynslam/estimator/classify_evidence.h>
 #include <dynslam/estimator/measurement_router.h>
+#include <dynslam/estimator/unknown_id_association.h>
 
 #include <map>
 #include <optional>
@@ -57,6 +59,7 @@ struct TClassifyParams
 	/** classify_stop_count: a moving track becomes static after this many consecutive readings
 	 * consistent with a static point (its object stopped; 0: never). */
 	int stop_count = 0;
+	TUnknownIdParams assoc;  ///< classify_assoc_*: ID -1 (unknown_id_association.h)
 	/** Throws std::invalid_argument naming the key. */
 	void validate() const;
 };
@@ -102,6 +105,12 @@ public:
 	void reset() override;
 
 	const TClassifyParams& params() const { return m_p; }
+	/** With a static association function, ID -1 readings are associated
+	 * (unknown_id_association.h); without one they are skipped and counted. */
+	void setStaticAssociation(StaticAssociationFn f)
+	{
+		m_unknown.setStaticAssociation(std::move(f));
+	}
 	const std::map<int32_t, TTrack>& tracks() const { return m_tracks; }
 	double upperThreshold() const;  ///< log((1 - beta) / alpha): decide moving
 	double lowerThreshold() const;  ///< log(beta / (1 - alpha)): decide static
@@ -133,6 +142,9 @@ private:
 	Act classifyOne(int32_t id, const TPoint2& z, int step, TRoutedStep& out, bool& candidate,
 	                std::vector<int32_t>& turnedMoving,
 	                const std::function<bool(int32_t)>& isKnownStatic);
+	/** Gives every -1 reading of rd a track ID (unknown_id_association.h); pts: robot frame. */
+	void resolveUnknownIds(int step, std::vector<TReading>& rd, const std::vector<TPoint2>& pts,
+	                       TRoutedStep& out);
 	/** An object reading of moving track t through the registry. */
 	void routeMoving(TRoutedReading& m, const TTrack& t, int step, TRoutedStep& out);
 
@@ -143,5 +155,6 @@ private:
 	std::map<int32_t, std::vector<int32_t>> m_objectTracks;  ///< object -> track IDs
 	int32_t m_nextObject = 0;
 	int m_lastStep = -1;
+	CUnknownIdResolver m_unknown;
 };
 }  // namespace dynslam::estimator

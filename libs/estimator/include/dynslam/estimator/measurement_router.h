@@ -46,8 +46,11 @@ struct TRoutedStep
 	size_t skipped_unknown_object_feature = 0;  ///< object feature without an f_0
 	/** feature_labels = classify only (CClassifyingRouter); 0 / empty for the ID-range rule. */
 	size_t skipped_unknown_id = 0;  ///< readings with ID -1 (no association yet: skipped)
-	size_t candidates = 0;          ///< readings of undecided tracks (not used by the filter)
-	size_t held = 0;  ///< readings of static tracks held back as inconsistent (not used)
+	/** ID -1 readings associated (unknown_id_association.h): with a static or candidate track,
+	 * with a moving track, or started as a new track. */
+	size_t unknown_id_static = 0, unknown_id_moving = 0, unknown_id_new = 0;
+	size_t candidates = 0;  ///< readings of undecided tracks (not used by the filter)
+	size_t held = 0;        ///< readings of static tracks held back as inconsistent (not used)
 	/** Moving tracks decided static in this step (their object stopped, classify_stop_count):
 	 * their reading starts a static landmark (StaticNew). */
 	size_t stopped = 0;

@@ -3,6 +3,7 @@
  * The dynslam-mrclam app (MRPT's KFSLAMApp pattern: a thin main() around this class).
  *
  *   dynslam-mrclam --dataset DIR --robot N --out DIR [--config INI] [--duration S] [--base B]
+ *                  [--anonymous [--seed S]]
  *   dynslam-mrclam --dataset DIR --estimate-noise (--robot N | --all-robots [--leave-out N])
  *                  [--out DIR] [--config INI]
  *
@@ -11,7 +12,8 @@
  * --estimate-noise: residual statistics against the ground truth (noise_estimation.h), per
  * robot and pooled; printed and, with --out, saved as `noise_estimate.txt`; with --out also
  * `noise_estimate.ini` (the pooled estimate as [MRCLAM_Import] keys, TNoiseEstimate::toIni).
- * --leave-out N: all robots but N (the leave-one-robot-out check). */
+ * --leave-out N: all robots but N (the leave-one-robot-out check). --anonymous: the IDs of
+ * anonymous.h (seed --seed, default 1); every import also writes `<B>_gt_classes.csv`. */
 #include <dynslam/mrclam/CMrclamOptions.h>
 #include <dynslam/mrclam/import.h>
 #include <dynslam/mrclam/noise_estimation.h>
@@ -39,7 +41,9 @@ public:
 	std::string dataset_dir, out_dir, config_file, base;
 	int robot = 0;
 	bool estimate_noise = false, all_robots = false;
-	int leave_out = 0;  ///< with all_robots: a robot 1..5 left out of the estimate (0: none)
+	int leave_out = 0;       ///< with all_robots: a robot 1..5 left out of the estimate (0: none)
+	bool anonymous = false;  ///< import with anonymous IDs (anonymous.h)
+	uint32_t anonymous_seed = 1;  ///< the permutation's seed
 	TMrclamOptions options;
 
 	// --- results ---

@@ -90,6 +90,9 @@ struct TImportSummary
 	double max_range_seen = 0;  ///< [m] among kept measurements
 	double max_gt_gap = 0;      ///< [s] largest Vicon gap (any robot) inside the window
 	Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< ego Vicon pose at step 0
+	/** --anonymous (anonymous.h): subject -> the ID written; empty for labelled IDs. */
+	std::map<int, int32_t> anonymous_ids;
+	uint32_t anonymous_seed = 0;  ///< the permutation's seed (anonymous imports)
 	size_t landmarkMeasurements() const;
 	size_t robotMeasurements() const;
 	/** Human-readable, stable text (printed by the app and saved beside the rawlog). */

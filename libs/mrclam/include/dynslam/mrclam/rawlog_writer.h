@@ -15,7 +15,8 @@
  *    fieldOfView_yaw = 2 pi, fieldOfView_pitch = 0, sensor at the robot origin,
  *    sensor_std_range / sensor_std_yaw = std_range / std_bearing, validCovariances = false;
  *    one TMeasurement per kept measurement (range, yaw = bearing, pitch = 0, landmarkID).
- * Plus the companion files `<base>_summary.txt` and `<base>_import.ini`. */
+ * Plus the companion files `<base>_summary.txt`, `<base>_import.ini` and the class ground truth
+ * `<base>_gt_classes.csv` (anonymous.h). */
 #include <dynslam/mrclam/CMrclamOptions.h>
 #include <dynslam/mrclam/import.h>
 
@@ -27,7 +28,8 @@ namespace dynslam::mrclam
 void writeRawlog(const TImportResult& res, const TImportOptions& opts, const std::string& path);
 
 /** Writes into `dir` (created if missing): `<base>.rawlog`, the ground truth
- * (dynslam::writeGroundTruth, files `<base>_gt_*`), `<base>_summary.txt` and
+ * (dynslam::writeGroundTruth, files `<base>_gt_*`), `<base>_gt_classes.csv` (anonymous.h),
+ * `<base>_summary.txt` and
  * `<base>_import.ini` (effective options, the world origin, and the filter start
  * [DynamicKFSLAM] initial_pose / Sigma_0). */
 void writeImport(const TImportResult& res, const TMrclamOptions& opts, const std::string& dir,

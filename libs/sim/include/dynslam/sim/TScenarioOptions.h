@@ -117,10 +117,13 @@ struct TReadingEffects
 	bool clutter_unknown_ids = false;         ///< clutter_ids = unknown (-1) | fresh (default)
 	int track_break_gap = 0;  ///< a track unseen for >= this many steps gets a new ID (0: off)
 	double track_break_probability = 0;  ///< per reading of a seen track: a new ID from now on
+	/** Per true reading: the ID written is -1 (MRPT's "association unknown"; the track keeps
+	 * its ID for its other readings). */
+	double unknown_id_probability = 0;
 	bool any() const
 	{
 		return anonymous_ids || missed_detection_probability > 0 || clutter_per_step > 0 ||
-		       track_break_gap > 0 || track_break_probability > 0;
+		       track_break_gap > 0 || track_break_probability > 0 || unknown_id_probability > 0;
 	}
 };
 

@@ -1,0 +1,36 @@
+/** dynslam-compare's classification figures (CCompareApp.h, writeClassFigures). */
+#include <dynslam/apps/CCompareApp.h>
+#include <dynslam/apps/app_common.h>
+#include <dynslam/eval/class_figures.h>
+#include <dynslam/eval/figures.h>
+
+#include <filesystem>
+
+namespace dynslam::apps
+{
+std::vector<std::string> writeClassFigures(const std::string& outDir, const std::string& filter,
+                                           const TGroundTruth* gt, const eval::TRunEstimates& est,
+                                           const TClassDecisions& d,
+                                           const std::string& classTruthFile)
+{
+	std::vector<TReadingClass> truth;
+	if (std::filesystem::exists(classTruthFile))
+	{
+		truth = readClassGroundTruth(classTruthFile);
+		if (truth.size() != d.decisions.size()) truth.clear();  // another run: decisions only
+	}
+	std::vector<std::string> written;
+	const auto save = [&](const std::string& name, const mrpt::img::CImage& img)
+	{
+		const std::string p = (std::filesystem::path(outDir) / (filter + name)).string();
+		eval::savePng(img, p);
+		written.push_back(p);
+	};
+	save("_class_map.png",
+	     eval::drawClassMap(gt, est, truth, filter + ": the map coloured by the decided class"));
+	save("_class_timeline.png",
+	     eval::drawDecisionTimeline({d.steps, d.ids, d.decisions}, truth,
+	                                filter + ": decision per track and step"));
+	return written;
+}
+}  // namespace dynslam::apps
