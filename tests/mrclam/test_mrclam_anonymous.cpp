@@ -11,8 +11,8 @@
 #include <mrpt/config/CConfigFile.h>
 
 #include <filesystem>
-#include <iterator>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 

@@ -436,6 +436,11 @@ void CCompareApp::drawFigures()
 		png("compare_ego_errors_without_static_all.png", eval::drawEgoErrorFigure(gt, good, eo));
 	}
 
+	drawStartSnapshot(series);
+}
+
+void CCompareApp::drawStartSnapshot(const std::vector<eval::TFigureSeries>& series)
+{
 	// Snapshot after the first seconds, when the moving features start to drag the static
 	// filter: every filter re-run on the first steps only, drawn with equal aspect.
 	const double snapSeconds = 4.0;
@@ -470,7 +475,9 @@ void CCompareApp::drawFigures()
 	t << "Estimates at step " << K << " (t = " << gt.t[K] - gt.t.front()
 	  << " s): ego paths and maps so far, 3-sigma ellipses";
 	zo.title = t.str();
-	png("compare_map_start.png", eval::drawMapFigure(g, snapSeries, zo));
+	const std::string p = joinPath(outDir, "compare_map_start.png");
+	eval::savePng(eval::drawMapFigure(&gt, snapSeries, zo), p);
+	writtenFiles.push_back(p);
 }
 
 }  // namespace dynslam::apps

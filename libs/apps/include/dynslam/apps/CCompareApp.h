@@ -26,6 +26,7 @@
 #include <dynslam/apps/rawlog_io.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/eval/class_metrics.h>
+#include <dynslam/eval/figures.h>
 #include <dynslam/eval/writers.h>
 #include <dynslam/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -117,6 +118,8 @@ private:
 	TRawlog m_rawlog;  ///< kept for the snapshot figure
 	void writeOutputs(const std::string& optionsDump);
 	void drawFigures();
+	/** compare_map_start.png: every filter re-run on the first 4 s (ground truth needed). */
+	void drawStartSnapshot(const std::vector<eval::TFigureSeries>& series);
 	void differenceRows();
 	void buildTable();          ///< tableText: the rows, the footnote, the diverged filters
 	void writeVisualOutputs();  ///< --scene, --video
