@@ -178,3 +178,39 @@ TEST(Figures, CanvasScalingAndClipping)
 	ASSERT_EQ(t.size(), 6u);
 	EXPECT_DOUBLE_EQ(t[1], 200);
 }
+
+TEST(Figures, EstimatedObjectTracksMoveTheCentroidByXi)
+{
+	// object 4: features at (0, 0) and (2, 0) (centroid (1, 0)); poses at steps 0, 1 and 3:
+	// the track is the centroid moved by xi_xy, broken by a NaN where step 2 is missing
+	TRunEstimates est;
+	for (const double x : {0.0, 2.0})
+	{
+		TObjectFeatureEstimate f;
+		f.object = 4;
+		f.mean = Eigen::Vector2d(x, 0);
+		est.object_features.push_back(f);
+	}
+	for (const int k : {3, 0, 1})  // any order
+	{
+		TObjectPoseEstimate p;
+		p.object = 4;
+		p.step = k;
+		p.mean = Eigen::Vector3d(k, 0.5 * k, 0);
+		p.cov = Eigen::Matrix3d::Identity();
+		est.object_poses.push_back(p);
+	}
+	TObjectPoseEstimate orphan;  // object 9 has no feature estimate: left out
+	orphan.object = 9;
+	orphan.mean = Eigen::Vector3d::Zero();
+	orphan.cov = Eigen::Matrix3d::Identity();
+	est.object_poses.push_back(orphan);
+	const auto tracks = estimatedObjectTracks(est);
+	ASSERT_EQ(tracks.size(), 1u);
+	const auto& t = tracks.at(4);
+	ASSERT_EQ(t.size(), 4u);
+	EXPECT_TRUE(t[0].isApprox(Eigen::Vector2d(1, 0)));
+	EXPECT_TRUE(t[1].isApprox(Eigen::Vector2d(2, 0.5)));
+	EXPECT_TRUE(std::isnan(t[2].x()));
+	EXPECT_TRUE(t[3].isApprox(Eigen::Vector2d(4, 1.5)));
+}

@@ -1,5 +1,6 @@
 /** Classification figures (class_figures.h). */
 #include <dynslam/eval/class_figures.h>
+#include <dynslam/eval/figures.h>
 #include <dynslam/eval/plot_canvas.h>
 
 #include <algorithm>
@@ -68,27 +69,8 @@ mrpt::img::CImage drawClassMap(const TGroundTruth* gt, const TRunEstimates& est,
 	cv.polyline(path, TColor(0, 0, 0), 2);
 	legend.push_back({"ego (estimate)", TColor(0, 0, 0), 0});
 	// Moving: the estimated object tracks (centroid of f_0 moved by xi), f_0 marked.
-	std::map<int32_t, Eigen::Vector2d> sum;
-	std::map<int32_t, int> n;
-	for (const auto& f : est.object_features)
-	{
-		sum.try_emplace(f.object, Eigen::Vector2d::Zero());
-		sum[f.object] += f.mean;
-		++n[f.object];
-		cv.mark(f.mean[0], f.mean[1], kMoving, 'x', 3);
-	}
-	std::map<int32_t, std::vector<std::pair<int, Eigen::Vector2d>>> tracks;
-	for (const auto& p : est.object_poses)
-		if (n.count(p.object))
-			tracks[p.object].emplace_back(p.step, sum[p.object] / n[p.object] + p.mean.head<2>());
-	for (auto& [o, t] : tracks)
-	{
-		std::sort(t.begin(), t.end(),
-		          [](const auto& a, const auto& b) { return a.first < b.first; });
-		std::vector<Eigen::Vector2d> pts;
-		for (const auto& [k, p] : t) pts.push_back(p);
-		cv.polyline(pts, kMoving, 1);
-	}
+	for (const auto& f : est.object_features) cv.mark(f.mean[0], f.mean[1], kMoving, 'x', 3);
+	for (const auto& [o, track] : estimatedObjectTracks(est)) cv.polyline(track, kMoving, 1);
 	if (!est.object_features.empty()) legend.push_back({"decided moving (objects)", kMoving, 'x'});
 	// Static: the final map, orange where the truth says the track moves (or is clutter).
 	const auto cls = trueClassOfIds(truth);

@@ -50,38 +50,6 @@ std::vector<Eigen::Vector2d> truthCentroids(const TObjectGroundTruth& o)
 	return c;
 }
 
-/// Estimated object tracks: centroid of the time-0 feature estimates + xi_xy, per pose estimate.
-std::map<int32_t, std::vector<Eigen::Vector2d>> estimatedTracks(const TRunEstimates& est)
-{
-	std::map<int32_t, Eigen::Vector2d> sum;
-	std::map<int32_t, int> n;
-	for (const auto& f : est.object_features)
-	{
-		sum.try_emplace(f.object, Eigen::Vector2d::Zero());
-		sum[f.object] += f.mean;
-		++n[f.object];
-	}
-	std::map<int32_t, std::vector<std::pair<int, Eigen::Vector2d>>> byStep;
-	for (const auto& p : est.object_poses)
-		if (n.count(p.object))
-			byStep[p.object].emplace_back(p.step, sum[p.object] / n[p.object] + p.mean.head<2>());
-	std::map<int32_t, std::vector<Eigen::Vector2d>> tracks;
-	for (auto& [o, v] : byStep)
-	{
-		std::sort(v.begin(), v.end(),
-		          [](const auto& a, const auto& b) { return a.first < b.first; });
-		int last = -2;
-		for (const auto& [step, p] : v)
-		{
-			if (step != last + 1 && !tracks[o].empty())
-				tracks[o].push_back(Eigen::Vector2d::Constant(kNaN));  // break a gap
-			tracks[o].push_back(p);
-			last = step;
-		}
-	}
-	return tracks;
-}
-
 std::vector<Eigen::Vector2d> egoPath(const std::vector<TEgoEstimate>& ego)
 {
 	std::vector<const TEgoEstimate*> v;
@@ -160,7 +128,7 @@ mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigur
 				cv.mark(l.mean[0], l.mean[1], s.color, 's', 2);
 			}
 		if (opt.show_objects)
-			for (const auto& [o, track] : estimatedTracks(*s.est))
+			for (const auto& [o, track] : estimatedObjectTracks(*s.est))
 			{
 				cv.polyline(track, s.color, 1);
 				for (const auto& p : track) cv.mark(p[0], p[1], s.color, '.');
@@ -279,5 +247,36 @@ mrpt::img::CImage drawConsistencyFigure(const TConsistencyStats& stats,
 void savePng(const mrpt::img::CImage& img, const std::string& path)
 {
 	if (!img.saveToFile(path)) throw std::runtime_error("cannot write image '" + path + "'");
+}
+
+std::map<int32_t, std::vector<Eigen::Vector2d>> estimatedObjectTracks(const TRunEstimates& est)
+{
+	std::map<int32_t, Eigen::Vector2d> sum;
+	std::map<int32_t, int> n;
+	for (const auto& f : est.object_features)
+	{
+		sum.try_emplace(f.object, Eigen::Vector2d::Zero());
+		sum[f.object] += f.mean;
+		++n[f.object];
+	}
+	std::map<int32_t, std::vector<std::pair<int, Eigen::Vector2d>>> byStep;
+	for (const auto& p : est.object_poses)
+		if (n.count(p.object))
+			byStep[p.object].emplace_back(p.step, sum[p.object] / n[p.object] + p.mean.head<2>());
+	std::map<int32_t, std::vector<Eigen::Vector2d>> tracks;
+	for (auto& [o, v] : byStep)
+	{
+		std::sort(v.begin(), v.end(),
+		          [](const auto& a, const auto& b) { return a.first < b.first; });
+		int last = -2;
+		for (const auto& [step, p] : v)
+		{
+			if (step != last + 1 && !tracks[o].empty())
+				tracks[o].push_back(Eigen::Vector2d::Constant(kNaN));  // break a gap
+			tracks[o].push_back(p);
+			last = step;
+		}
+	}
+	return tracks;
 }
 }  // namespace dynslam::eval

@@ -17,6 +17,7 @@
 #include <dynslam/ground_truth.h>
 #include <mrpt/img/CImage.h>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -76,4 +77,9 @@ mrpt::img::CImage drawConsistencyFigure(const TConsistencyStats& stats,
 
 /** Saves as PNG (or by extension); throws std::runtime_error naming the path on failure. */
 void savePng(const mrpt::img::CImage& img, const std::string& path);
+
+/** Estimated object tracks, per object: the centroid of its time-0 feature estimates moved by
+ * xi_xy, at each pose estimate in step order; a NaN point breaks the line where steps are
+ * missing. Objects without feature estimates are left out. */
+std::map<int32_t, std::vector<Eigen::Vector2d>> estimatedObjectTracks(const TRunEstimates& est);
 }  // namespace dynslam::eval
