@@ -6,6 +6,7 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 
+#include "object_model_setup.h"
 #include "tiny_scenario.h"
 
 using namespace dynslam;
@@ -23,19 +24,6 @@ TinyScenarioOptions scenario(unsigned seed)
 	o.cartesian_noise = true;
 	o.steps = 30;
 	return o;
-}
-
-void configure(CDynamicKFSLAM2D& f, const TinyScenarioOptions& o, const std::string& model)
-{
-	f.options.measurement_model = models::MeasurementModel::Cartesian;
-	f.options.Sigma_v = o.Sigma_v;
-	f.options.Sigma_0.setZero();
-	f.options.Sigma_xi = Eigen::Matrix2d::Identity() * 1e-6;
-	f.options.object_model = model;
-	f.options.cv.dt = 1.0;
-	f.options.cv.accel_psd = Eigen::Vector3d(1e-4, 1e-4, 1e-6);
-	f.options.cv.velocity_prior_std = Eigen::Vector3d(0.1, 0.1, 0.05);
-	f.reset();
 }
 
 /** Removes every reading of object `obj` except those of step `keep`. */
@@ -102,8 +90,8 @@ TEST(ObjectModelBadInput, ObjectSeenOnceKeepsNoVelocityAndChangesNothingElse)
 		auto none = dynslam_test::makeTinyScenario(o);
 		seeObjectOnlyAt(none, 0, SIZE_MAX);  // object 0 never seen
 		CDynamicKFSLAM2D a, b;
-		configure(a, o, model);
-		configure(b, o, model);
+		dynslam_test::configureObjectModel(a, o, model);
+		dynslam_test::configureObjectModel(b, o, model);
 		for (size_t k = 0; k < once.actions.size(); ++k)
 		{
 			ASSERT_NO_THROW(a.processActionObservation(once.actions[k], once.frames[k]));
@@ -126,7 +114,7 @@ TEST(ObjectModelBadInput, CtrvObjectWithZeroSpeedStaysPut)
 	auto sc = dynslam_test::makeTinyScenario(o);
 	freezeObject0(sc, o);
 	CDynamicKFSLAM2D f;
-	configure(f, o, "ctrv");
+	dynslam_test::configureObjectModel(f, o, "ctrv");
 	for (size_t k = 0; k < sc.actions.size(); ++k)
 		ASSERT_NO_THROW(f.processActionObservation(sc.actions[k], sc.frames[k]));
 	const Eigen::VectorXd x = f.fullMean().asEigen();

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include "object_model_setup.h"
 #include "tiny_scenario.h"
 
 using namespace dynslam;
@@ -26,19 +27,6 @@ TinyScenarioOptions arcScenario(unsigned seed, int landmarks)
 	o.object_turn_rate = 0.04;  // objects 0 and 1 turn by 0.04 and 0.08 rad per step
 	o.objects_on_arcs = true;
 	return o;
-}
-
-void configure(CDynamicKFSLAM2D& f, const TinyScenarioOptions& o, const std::string& model)
-{
-	f.options.measurement_model = models::MeasurementModel::Cartesian;
-	f.options.Sigma_v = o.Sigma_v;
-	f.options.Sigma_0.setZero();
-	f.options.Sigma_xi = Eigen::Matrix2d::Identity() * 1e-6;
-	f.options.object_model = model;
-	f.options.cv.dt = 1.0;
-	f.options.cv.accel_psd = Eigen::Vector3d(1e-4, 1e-4, 1e-6);
-	f.options.cv.velocity_prior_std = Eigen::Vector3d(0.1, 0.1, 0.05);
-	f.reset();
 }
 
 /** The centre of object ob at step k (on its circle). */
@@ -74,7 +62,7 @@ TErrors runOnce(const TinyScenarioOptions& o, const std::string& model)
 	for (int i = 0; i < 2 * o.landmarks; ++i) U(g);
 	const auto objs = dynslam_test::makeTinyObjects(o, g, U);
 	CDynamicKFSLAM2D f;
-	configure(f, o, model);
+	dynslam_test::configureObjectModel(f, o, model);
 	for (size_t k = 0; k < sc.actions.size(); ++k)
 		f.processActionObservation(sc.actions[k], sc.frames[k]);
 	TErrors e;
@@ -125,8 +113,8 @@ TEST(ObjectModelCtrv, OneFeatureObjectIsTheCvFilter)
 	o.features_per_object = 1;
 	const auto sc = dynslam_test::makeTinyScenario(o);
 	CDynamicKFSLAM2D a, b;
-	configure(a, o, "cv");
-	configure(b, o, "ctrv");
+	dynslam_test::configureObjectModel(a, o, "cv");
+	dynslam_test::configureObjectModel(b, o, "ctrv");
 	for (size_t k = 0; k < sc.actions.size(); ++k)
 	{
 		a.processActionObservation(sc.actions[k], sc.frames[k]);

@@ -16,23 +16,17 @@
 #include <map>
 #include <sstream>
 
+#include "highway_filter_setup.h"
+
 using namespace dynslam;
 
 namespace
 {
-const std::string kIni =
-    "[DynamicKFSLAM]\n"
-    "measurement_model = cartesian\n"
-    "Sigma_v = [1e-5 1e-5]\n"
-    "motion_noise = action\n"
-    "Sigma_0 = [1e-5 1e-5 1e-7]\n"
-    "Sigma_xi = [0.1 0.1]\n"
-    "[DynamicKFSLAM_KalmanFilter]\n"
-    "method = kfEKFNaive\n";
+const std::string kIni = dynslam_test::highwayFilterIni();
 
 sim::TScenarioOptions scenario(const std::string& cfg)
 {
-	return sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/" + cfg);
+	return dynslam_test::shippedScenario(cfg);
 }
 
 struct TResult

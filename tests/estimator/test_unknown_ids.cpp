@@ -19,6 +19,8 @@
 #include <map>
 #include <set>
 
+#include "highway_filter_setup.h"
+
 using namespace dynslam;
 using namespace dynslam::estimator;
 
@@ -156,18 +158,10 @@ TEST(UnknownIds, RouterAssociatesMinusOneWithItsTrack)
 
 namespace
 {
-const std::string kIni =
-    "[DynamicKFSLAM]\n"
-    "measurement_model = cartesian\n"
-    "Sigma_v = [1e-5 1e-5]\n"
-    "motion_noise = action\n"
-    "Sigma_0 = [1e-5 1e-5 1e-7]\n"
-    "Sigma_xi = [0.1 0.1]\n"
+const std::string kIni = dynslam_test::highwayFilterIni(
     "feature_labels = classify\n"
     // the fastest car of the highway drives 19.5 m/s: 9.75 m per 0.5 s step, + 20 %
-    "classify_assoc_max_step = 12\n"
-    "[DynamicKFSLAM_KalmanFilter]\n"
-    "method = kfEKFNaive\n";
+    "classify_assoc_max_step = 12\n");
 
 struct TRun
 {
