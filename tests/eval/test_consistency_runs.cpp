@@ -54,7 +54,8 @@ eval::TRunEstimates runOnce(const TGroundTruth& gt, const sim::TScenarioOptions&
 		est.ego.push_back(e);
 	}
 	for (const auto& [obj, tr] : f.getObjectTracks())
-		for (const auto& p : tr.poses) est.object_poses.push_back({obj, p.step, p.mean, p.cov});
+		for (const auto& p : tr.poses)
+			est.object_poses.push_back({obj, p.step, p.mean, p.cov, p.velocity, p.velocity_cov});
 	return est;
 }
 

@@ -40,7 +40,35 @@ struct TWorst
 	int steps = 0;
 	size_t poses = 0, smoothing = 0, dropped_static = 0, dropped_time_t = 0;
 	size_t object_updates = 0, gated = 0;  ///< object-centric models (cv, ctrv)
+	size_t velocities = 0;  ///< final object-track poses with a velocity, equal in both
 };
+
+/** The object tracks at the end of the run: the same poses, and the same velocities recorded
+ * with them (eval::objectVelocityErrors scores these), in both back-ends. */
+void compareTracks(const CDynamicKFSLAM2D& ekf, const CAlg1Backend& alg, TWorst& w)
+{
+	const auto te = ekf.getObjectTracks(), ta = alg.getObjectTracks();
+	ASSERT_EQ(te.size(), ta.size());
+	for (const auto& [obj, tr] : te)
+	{
+		ASSERT_EQ(ta.count(obj), 1u) << "object " << obj;
+		const auto& pa = ta.at(obj).poses;
+		ASSERT_EQ(tr.poses.size(), pa.size()) << "object " << obj;
+		for (size_t i = 0; i < pa.size(); ++i)
+		{
+			const auto &e = tr.poses[i], &a = pa[i];
+			EXPECT_EQ(e.step, a.step) << "object " << obj;
+			ASSERT_EQ(e.velocity.size(), a.velocity.size())
+			    << "object " << obj << " step " << e.step;
+			if (e.velocity.size() == 0) continue;
+			++w.velocities;
+			const double scale = 1.0 + e.velocity.cwiseAbs().maxCoeff();
+			EXPECT_LT((e.velocity - a.velocity).cwiseAbs().maxCoeff(), 1e-6 * scale);
+			EXPECT_LT((e.velocity_cov - a.velocity_cov).cwiseAbs().maxCoeff(),
+			          1e-6 * (1.0 + e.velocity_cov.cwiseAbs().maxCoeff()));
+		}
+	}
+}
 
 /** Runs both on the scenario and compares at every step. */
 TWorst runBoth(const sim::TScenarioOptions& so, uint64_t seed, const std::string& extraModel)
@@ -101,6 +129,7 @@ TWorst runBoth(const sim::TScenarioOptions& so, uint64_t seed, const std::string
 		EXPECT_NEAR(alg.getLastStepReport().nis_static, ekf.getLastStepReport().nis_static,
 		            1e-6 * std::max(1.0, ekf.getLastStepReport().nis_static));
 	}
+	compareTracks(ekf, alg, w);
 	return w;
 }
 
@@ -125,7 +154,8 @@ TWorst report(const char* what, const TWorst& w, double tol = 1e-9)
 
 TEST(Alg1, WholeRunEquivalenceHighway)
 {
-	report("highway (120 steps)", runBoth(scenario("highway.ini", -1), 1, ""));
+	const TWorst w = report("highway (120 steps)", runBoth(scenario("highway.ini", -1), 1, ""));
+	EXPECT_EQ(w.velocities, 0u);  // the paper's model has no velocity state
 }
 
 TEST(Alg1, WholeRunEquivalenceGeneratedScenarios)
@@ -160,6 +190,7 @@ TEST(Alg1, WholeRunEquivalenceObjectModels)
 		const std::string m = "object_model = " + model + "\n" + cv;
 		const TWorst g = report(("generated, " + model).c_str(), runBoth(so, 6, m));
 		EXPECT_GT(g.object_updates, 20u) << model;
+		EXPECT_GT(g.velocities, 10u) << model;  // one per object and step since its 2nd sighting
 		const TWorst k =
 		    report(("generated, " + model + ", keep time-t features, K = 3").c_str(),
 		           runBoth(so, 7, m + "drop_time_t_features = false\nkeep_last_poses = 3\n"));

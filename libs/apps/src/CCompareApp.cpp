@@ -258,10 +258,11 @@ void CCompareApp::run()
 		if (hasGroundTruth)
 		{
 			const TEvaluation ev = evaluateRun(gt, r.est);
-			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt});
+			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt});
 			if (classifies) rows.back().classes = classScores(decisions);
 			if (!landmarkGaps.empty())
 				rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
+			rows.back().velocity = eval::objectVelocityErrors(gt, r.est);
 		}
 		if (classifies) classDecisions[f] = decisions;
 		runs.push_back(std::move(r));

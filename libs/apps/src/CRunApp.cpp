@@ -199,8 +199,9 @@ eval::TConsistencySummary CRunApp::evaluateAndReport()
 		evaluation = evaluateRun(gt, result.est);
 		cons = evaluation->consistency;
 		summary = evaluation->summary;
-		std::vector<eval::TMetricsRow> rows{
-		    {result.name, evaluation->metrics, summary, std::nullopt, std::nullopt}};
+		std::vector<eval::TMetricsRow> rows{{result.name, evaluation->metrics, summary,
+		                                     std::nullopt, std::nullopt,
+		                                     eval::objectVelocityErrors(gt, result.est)}};
 		writeOutput("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
 		std::ostringstream table;
 		eval::writeMetricsTable(table, rows);

@@ -39,7 +39,8 @@ eval::TRunEstimates collect(ISlamBackend& be, const std::vector<eval::TEgoEstima
 	for (const auto& f : be.getObjectFeatures())
 		if (f.at_time0) e.object_features.push_back({f.object, f.feature, f.mean, f.cov});
 	for (const auto& [obj, tr] : be.getObjectTracks())
-		for (const auto& p : tr.poses) e.object_poses.push_back({obj, p.step, p.mean, p.cov});
+		for (const auto& p : tr.poses)
+			e.object_poses.push_back({obj, p.step, p.mean, p.cov, p.velocity, p.velocity_cov});
 	e.ms_per_step = ms;
 	return e;
 }

@@ -179,6 +179,8 @@ void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est
 			e.step = p.step;
 			e.mean = p.mean;
 			e.cov = p.cov;
+			e.velocity = p.velocity;
+			e.velocity_cov = p.velocity_cov;
 			est.object_poses.push_back(e);
 		}
 }

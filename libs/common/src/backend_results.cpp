@@ -11,6 +11,8 @@ TObjectPoseEstimate toEstimate(const estimator::TPoseRecord& r)
 	e.step = r.step;
 	e.mean = r.mean.head(r.dim);
 	e.cov = r.cov.topLeftCorner(r.dim, r.dim);
+	e.velocity = r.velocity.head(r.vdim);
+	e.velocity_cov = r.velocity_cov.topLeftCorner(r.vdim, r.vdim);
 	e.in_state = false;
 	return e;
 }
@@ -21,11 +23,19 @@ estimator::TPoseRecord toRecord(const TObjectPoseEstimate& e)
 	if ((d != 2 && d != 3) || e.cov.rows() != d || e.cov.cols() != d)
 		throw std::invalid_argument(
 		    "toRecord: a pose has 2 or 3 entries and a matching covariance");
+	const auto vd = e.velocity.size();
+	if ((vd != 0 && vd != d) || e.velocity_cov.rows() != vd || e.velocity_cov.cols() != vd)
+		throw std::invalid_argument(
+		    "toRecord: a velocity has none or as many entries as the pose, and a matching "
+		    "covariance");
 	estimator::TPoseRecord r;
 	r.step = e.step;
 	r.dim = int(d);
 	r.mean.head(d) = e.mean;
 	r.cov.topLeftCorner(d, d) = e.cov;
+	r.vdim = int(vd);
+	r.velocity.head(vd) = e.velocity;
+	r.velocity_cov.topLeftCorner(vd, vd) = e.velocity_cov;
 	return r;
 }
 

@@ -80,9 +80,13 @@ void CDynamicKFSLAM2D::predictObjects()
 		e.dim = int(ip.size());
 		e.mean.head(e.dim) = x(ip);
 		e.cov.topLeftCorner(e.dim, e.dim) = ekf::marginal(P, ip);
+		const std::vector<int> iv = m_layout.indices(st.velocity);
+		e.vdim = int(iv.size());
+		e.velocity.head(e.vdim) = x(iv);
+		e.velocity_cov.topLeftCorner(e.vdim, e.vdim) = ekf::marginal(P, iv);
 		m_router->registry().recordDroppedPose(obj, e, m_drop.record());
 
-		const std::vector<int> idx = concat(ip, m_layout.indices(st.velocity));
+		const std::vector<int> idx = concat(ip, iv);
 		Eigen::MatrixXd F, Q;
 		const Eigen::VectorXd s = m_motion->predict(x(idx), &F, &Q);
 		const double scale = m_motion->processNoiseScale(obj);  // inflation rule (issue 13)

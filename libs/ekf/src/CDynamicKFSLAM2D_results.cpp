@@ -68,6 +68,10 @@ std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 {
 	std::map<int32_t, TObjectTrack> out = tracksFromRegistry(m_router->registry());
+	std::map<int32_t, std::vector<int>> velocityIdx;  // object_model = cv | ctrv
+	for (size_t b = 0; b < m_layout.size(); ++b)
+		if (m_layout[b].kind == BlockKind::ObjectVelocity)
+			velocityIdx[m_layout[b].object] = m_layout.indices(b);
 	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
 		const TBlock& t = m_layout[b];
@@ -77,6 +81,12 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 		e.step = t.step;
 		e.mean = m_xkk.asEigen()(idx);
 		e.cov = ekf::marginal(cov(), idx);
+		// The velocity belongs to the newest pose: the only one of a velocity model in state.
+		if (const auto v = velocityIdx.find(t.object); v != velocityIdx.end() && t.step == m_step)
+		{
+			e.velocity = m_xkk.asEigen()(v->second);
+			e.velocity_cov = ekf::marginal(cov(), v->second);
+		}
 		e.in_state = true;
 		out[t.object].poses.push_back(e);
 	}

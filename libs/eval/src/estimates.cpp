@@ -70,6 +70,12 @@ void checkEstimates(const TRunEstimates& est)
 		if (p.cov.rows() != n || p.cov.cols() != n)
 			throw std::invalid_argument(name + ": covariance size does not match the mean");
 		if (!p.mean.allFinite()) throw std::invalid_argument(name + ": non-finite mean");
+		const auto v = p.velocity.size();
+		if (v != 0 && (v != n || p.velocity_cov.rows() != v || p.velocity_cov.cols() != v))
+			throw std::invalid_argument(name +
+			                            ": a velocity has as many entries as the pose "
+			                            "and a matching covariance");
+		if (!p.velocity.allFinite()) throw std::invalid_argument(name + ": non-finite velocity");
 	}
 	if (est.nis.size() != est.nis_dof.size())
 		throw std::invalid_argument("estimates: nis and nis_dof differ in length (" +

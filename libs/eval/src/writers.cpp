@@ -218,6 +218,9 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 	if (gaps)
 		os << ",ate_gap,ate_outside_gap,err_gap_end,steps_gap,ego_nees_gap,ego_nees_gap_lower,"
 		      "ego_nees_gap_upper";
+	const bool velocities =
+	    std::any_of(rows.begin(), rows.end(), [](const TMetricsRow& r) { return r.velocity; });
+	if (velocities) os << ",obj_speed_rmse,obj_omega_rmse,obj_velocity_anees,obj_velocity_n";
 	os << "\n";
 	for (const auto& r : rows)
 	{
@@ -259,6 +262,11 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 			   << num(r.gap->nees_lower) << "," << num(r.gap->nees_upper);
 		else if (gaps)
 			os << ",,,,,,,";
+		if (velocities && r.velocity)
+			os << "," << num(r.velocity->speed_rmse) << "," << num(r.velocity->omega_rmse) << ","
+			   << num(r.velocity->anees) << "," << r.velocity->n;
+		else if (velocities)
+			os << ",,,,";
 		os << "\n";
 	}
 }

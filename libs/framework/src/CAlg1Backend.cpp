@@ -350,6 +350,11 @@ std::map<int32_t, TObjectTrack> CAlg1Backend::getObjectTracks() const
 			e.step = k.step;
 			e.mean = m_cost.value(k);
 			e.cov = marginalCov(k);
+			if (const TVarKey v = TVarKey::objectVelocity(k.id, k.step); m_cost.has(v))
+			{
+				e.velocity = m_cost.value(v);
+				e.velocity_cov = marginalCov(v);
+			}
 			e.in_state = true;
 			out[k.id].poses.push_back(e);
 		}

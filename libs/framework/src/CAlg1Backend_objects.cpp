@@ -57,6 +57,8 @@ void CAlg1Backend::predictObjects()
 		e.step = xi.step;
 		e.mean = m_cost.value(xi);
 		e.cov = marginalCov(xi);
+		e.velocity = m_cost.value(v);
+		e.velocity_cov = marginalCov(v);
 		m_router->registry().recordDroppedPose(obj, toRecord(e), m_drop.record());
 		const int d = m_cost.dim(xi), dv = m_cost.dim(v);
 		Eigen::VectorXd s(d + dv);

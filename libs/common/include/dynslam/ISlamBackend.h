@@ -38,7 +38,12 @@ struct TObjectPoseEstimate
 	int step;
 	Eigen::VectorXd mean;  ///< (dx, dy, dtheta), or (dx, dy) for one-feature objects
 	Eigen::MatrixXd cov;   ///< marginal covariance
-	bool in_state;         ///< false: dropped, recorded with its marginal covariance at drop time
+	/** Velocity at that step, for object models with a velocity state (object_model = cv |
+	 * ctrv: world-frame velocity of the reference point, and turn rate for 3-dof poses;
+	 * models/object_motion.h) and its marginal covariance; empty otherwise. */
+	Eigen::VectorXd velocity;
+	Eigen::MatrixXd velocity_cov;
+	bool in_state;  ///< false: dropped, recorded with its marginal covariance at drop time
 };
 
 /** Everything known of one moving object. */

@@ -19,6 +19,12 @@ struct TPoseRecord
 	int step = -1, dim = 0;  ///< dim 3 (dx, dy, dtheta) or 2 (dx, dy)
 	Eigen::Vector3d mean = Eigen::Vector3d::Zero();
 	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+	/** Velocity of the pose's step (object_model = cv | ctrv: the world-frame velocity of the
+	 * reference point and the turn rate, models/object_motion.h), vdim entries (= dim); vdim 0:
+	 * the model has no velocity state. */
+	int vdim = 0;
+	Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+	Eigen::Matrix3d velocity_cov = Eigen::Matrix3d::Zero();
 };
 
 struct TObjectEntry

@@ -58,6 +58,11 @@ struct TObjectPoseEstimate
 	int step = 0;
 	Eigen::VectorXd mean;
 	Eigen::MatrixXd cov;
+	/** Velocity at that step of a model with a velocity state (object_model = cv | ctrv:
+	 * world-frame (vx, vy) of the reference point, and omega for 3-dof poses) and its
+	 * covariance; empty otherwise (velocity_metrics.h). */
+	Eigen::VectorXd velocity;
+	Eigen::MatrixXd velocity_cov;
 };
 
 /** Everything one run produced. */

@@ -8,6 +8,7 @@
 #include <dynslam/eval/estimates.h>
 #include <dynslam/eval/gap_metrics.h>
 #include <dynslam/eval/metrics.h>
+#include <dynslam/eval/velocity_metrics.h>
 
 #include <functional>
 #include <optional>
@@ -61,6 +62,9 @@ struct TMetricsRow
 	/** The ego inside the scenario's landmark gaps (gap_metrics.h): if any row has it, the
 	 * last 7 columns (see below). */
 	std::optional<TGapMetrics> gap;
+	/** Object velocities of a model with a velocity state (velocity_metrics.h): if any row has
+	 * it, 4 more columns after the gap columns (see below). */
+	std::optional<TVelocityErrors> velocity;
 };
 
 /** Metrics CSV: a header row, then one row per filter. Columns:
@@ -74,7 +78,9 @@ struct TMetricsRow
  * empty without consistency), then odometry_bias_rate_final [rad/s], odometry_bias_scale_final
  * (the final odometry bias estimate, TRunMetrics; empty without a bias state / scale), then
  * (only if a row has TMetricsRow::gap; empty for the other rows) ate_gap,ate_outside_gap,
- * err_gap_end,steps_gap,ego_nees_gap,ego_nees_gap_lower,ego_nees_gap_upper. */
+ * err_gap_end,steps_gap,ego_nees_gap,ego_nees_gap_lower,ego_nees_gap_upper, then (only if a
+ * row has TMetricsRow::velocity; empty for the other rows) obj_speed_rmse [m/s],
+ * obj_omega_rmse [rad/s],obj_velocity_anees,obj_velocity_n. */
 void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows);
 
 /** The same numbers as an aligned plain-text table for the terminal. */
