@@ -1,16 +1,52 @@
 /** dynslam-bench main: Google Benchmark's, plus --peak-memory (one default highway run, then
- * the process's peak resident set size from getrusage). Run it through scripts/bench.sh. */
+ * the process's peak resident set size from getrusage) and --isa=sse2|avx2 (the kernel variant,
+ * dynslam/kernels.h; default: DYNSLAM_ISA, else the best the CPU runs; reported in the context
+ * as dynslam_isa). Run it through scripts/bench.sh. */
 #include <benchmark/benchmark.h>
+#include <dynslam/kernels.h>
 
 #include <cstring>
 #include <iostream>
+#include <stdexcept>
+#include <string>
 
 #include "bench_setup.h"
 
 using namespace dynslam_bench;
 
+namespace
+{
+/** Takes --isa=NAME out of argv (Google Benchmark rejects unknown flags) and selects it. */
+bool selectIsa(int& argc, char** argv)
+{
+	int out = 1;
+	for (int i = 1; i < argc; ++i)
+	{
+		const std::string a = argv[i];
+		if (a.rfind("--isa=", 0) != 0)
+		{
+			argv[out++] = argv[i];
+			continue;
+		}
+		try
+		{
+			dynslam::kernels::setActiveIsa(dynslam::kernels::parseIsa(a.substr(6)));
+		}
+		catch (const std::runtime_error& e)
+		{
+			std::cerr << "dynslam-bench: " << a << ": " << e.what() << "\n";
+			return false;
+		}
+	}
+	argc = out;
+	argv[out] = nullptr;
+	return true;
+}
+}  // namespace
+
 int main(int argc, char** argv)
 {
+	if (!selectIsa(argc, argv)) return 1;
 	for (int i = 1; i < argc; ++i)
 		if (std::strcmp(argv[i], "--peak-memory") == 0)
 		{
@@ -26,6 +62,8 @@ int main(int argc, char** argv)
 			          << "\nstate_dim " << f.fullMean().size() << "\n";
 			return 0;
 		}
+	benchmark::AddCustomContext("dynslam_isa",
+	                            dynslam::kernels::isaName(dynslam::kernels::activeIsa()));
 	benchmark::Initialize(&argc, argv);
 	if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 	benchmark::RunSpecifiedBenchmarks();

@@ -1,4 +1,5 @@
 #include <dynslam/ekf_steps.h>
+#include <dynslam/kernels.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
 #include <dynslam/models/smoothing.h>
@@ -252,20 +253,22 @@ double sparseUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
 		throw std::invalid_argument("sparseUpdate: P does not match x");
 	checkIndices("sparseUpdate", idx, x.size());
 	if (m == 0) return 0.0;
-	const Eigen::MatrixXd PHt = P(Eigen::all, idx) * H.transpose();  // n x m
-	Eigen::MatrixXd S = H * PHt(idx, Eigen::all) + R;
-	S = 0.5 * (S + S.transpose()).eval();
-	const Eigen::LLT<Eigen::MatrixXd> llt(S);
-	if (llt.info() != Eigen::Success)
+	// The arithmetic is a dispatched kernel (dynslam/kernels.h: SSE2 or AVX2/FMA variant).
+	kernels::TSparseUpdateArgs k;
+	k.x = x.data();
+	k.P = P.data();
+	k.n = P.rows();
+	k.ldP = P.outerStride();
+	k.idx = idx.data();
+	k.k = Eigen::Index(idx.size());
+	k.H = H.data();
+	k.m = m;
+	k.nu = nu.data();
+	k.R = R.data();
+	double nis = 0;
+	if (!kernels::sparseUpdate(k, nis))
 		throw std::runtime_error("sparseUpdate: innovation covariance not positive definite");
-	// W = PHt L^-T: K = W L^-1, K nu = W (L^-1 nu), K S K^T = W W^T.
-	const Eigen::MatrixXd W = llt.matrixL().solve(PHt.transpose()).transpose();  // n x m
-	const Eigen::VectorXd v = llt.matrixL().solve(nu);
-	x.noalias() += W * v;
-	P.selfadjointView<Eigen::Lower>().rankUpdate(W, -1.0);
-	for (Eigen::Index i = 0; i + 1 < P.rows(); ++i)
-		P.row(i).tail(P.rows() - 1 - i) = P.col(i).tail(P.rows() - 1 - i).transpose();
-	return v.squaredNorm();
+	return nis;
 }
 
 double pseudoMeasurementUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,

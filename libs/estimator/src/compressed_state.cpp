@@ -1,4 +1,5 @@
 #include <dynslam/estimator/compressed_state.h>
+#include <dynslam/kernels.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -51,6 +52,35 @@ void restoreCreationOrder(const CPaddedLayout& out, const Eigen::VectorXd& xo,
 	x = xo(perm);
 	P = Po(perm, perm);
 	layout = std::move(sorted);
+}
+/** One level of the global update: xB = x + cross^T beta, CB = G cross,
+ * BB = P + cross^T Q cross, symmetrized (a dispatched kernel, dynslam/kernels.h). */
+void expandLevel(const TPassiveLevel& lv, const Eigen::MatrixXd& G, const Eigen::MatrixXd& Q,
+                 const Eigen::VectorXd& beta, Eigen::VectorXd& xB, Eigen::MatrixXd& CB,
+                 Eigen::MatrixXd& BB)
+{
+	const Eigen::Index p = lv.P.rows(), m0 = lv.m0;
+	if (lv.x.size() != p || lv.P.cols() != p || lv.cross.rows() != m0 || lv.cross.cols() != p ||
+	    Q.rows() != m0 || Q.cols() != m0 || G.cols() != m0 || beta.size() != m0)
+		throw std::logic_error("expandState: level " + std::to_string(lv.level) +
+		                       " has inconsistent sizes");
+	xB.resize(p);
+	CB.resize(G.rows(), p);
+	BB.resize(p, p);
+	kernels::TExpandLevelArgs k;
+	k.G = G.data();
+	k.nf = G.rows();
+	k.m0 = m0;
+	k.Q = Q.data();
+	k.beta = beta.data();
+	k.cross = lv.cross.data();
+	k.p = p;
+	k.P = lv.P.data();
+	k.x = lv.x.data();
+	k.xB = xB.data();
+	k.CB = CB.data();
+	k.BB = BB.data();
+	kernels::expandLevel(k);
 }
 }  // namespace
 
@@ -148,10 +178,9 @@ void expandState(Eigen::VectorXd& x, ekf::RowMatrixXd& P, CPaddedLayout& layout,
 		if (G.cols() != lv.m0 || G.rows() != nf)
 			throw std::logic_error("expandState: level " + std::to_string(lv.level) +
 			                       " does not match the state");
-		const Eigen::VectorXd xB = lv.x + lv.cross.transpose() * beta;
-		const Eigen::MatrixXd CB = G * lv.cross;
-		Eigen::MatrixXd BB = lv.P + lv.cross.transpose() * (Q * lv.cross);
-		BB = 0.5 * (BB + BB.transpose()).eval();
+		Eigen::VectorXd xB;
+		Eigen::MatrixXd CB, BB;
+		expandLevel(lv, G, Q, beta, xB, CB, BB);
 		std::vector<int> F, S;
 		splitPassive(lv.blocks, F, S);
 		const Eigen::Index nF = Eigen::Index(F.size());

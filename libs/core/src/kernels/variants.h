@@ -1,0 +1,17 @@
+#pragma once
+/** The per-ISA kernel variants behind the dispatcher of dynslam/kernels.h: the same source
+ * (kernels_body.h) compiled once per instruction set, each in its own namespace. */
+#include <dynslam/kernels.h>
+
+#define DYNSLAM_KERNEL_DECLARATIONS                                                 \
+	bool sparseUpdate(const ::dynslam::kernels::TSparseUpdateArgs& a, double& nis); \
+	void expandLevel(const ::dynslam::kernels::TExpandLevelArgs& a);
+
+namespace dynslam::kernels::sse2
+{
+DYNSLAM_KERNEL_DECLARATIONS
+}
+namespace dynslam::kernels::avx2
+{
+DYNSLAM_KERNEL_DECLARATIONS
+}
