@@ -6,6 +6,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -193,53 +194,101 @@ std::vector<std::pair<Eigen::Index, Eigen::Index>> runsOf(const std::vector<int>
 }
 }  // namespace
 
-void assembleExtended(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
-                      const Augmentation& b, const std::vector<int>& keep,
-                      Eigen::Ref<RowMatrixXd> out)
+namespace
 {
-	const Eigen::Index n = P.rows(), ma = a.mean.size(), mb = b.mean.size(),
-	                   k = Eigen::Index(keep.size());
-	if (P.cols() != n || a.cross.rows() != ma || a.cross.cols() != n || a.cov.rows() != ma ||
-	    a.cov.cols() != ma || b.cross.rows() != mb || (mb > 0 && b.cross.cols() != n + ma) ||
-	    b.cov.rows() != mb || b.cov.cols() != mb || out.rows() != k || out.cols() != k)
-		throw std::invalid_argument("assembleExtended: inconsistent sizes");
-	checkIndices("assembleExtended", keep, n + ma + mb);
+/** keep = [old (< n) ; a's (n .. n + ma) ; b's], each relative to its group. */
+struct TKeepSplit
+{
+	std::vector<int> old, a, b;
+};
+TKeepSplit splitKeep(const char* who, const Eigen::Index n, const Augmentation& a,
+                     const Augmentation& b, const std::vector<int>& keep)
+{
+	const Eigen::Index ma = a.mean.size(), mb = b.mean.size(), k = Eigen::Index(keep.size());
+	if (a.cross.rows() != ma || a.cross.cols() != n || a.cov.rows() != ma || a.cov.cols() != ma ||
+	    b.cross.rows() != mb || (mb > 0 && b.cross.cols() != n + ma) || b.cov.rows() != mb ||
+	    b.cov.cols() != mb)
+		throw std::invalid_argument(std::string(who) + ": inconsistent sizes");
+	checkIndices(who, keep, n + ma + mb);
 	for (Eigen::Index i = 1; i < k; ++i)
 		if (keep[i] <= keep[i - 1])
-			throw std::invalid_argument("assembleExtended: keep must be ascending");
-	// keep = [old (< n) ; a's (n .. n + ma) ; b's], each relative to its group
-	std::vector<int> kOld, kA, kB;
+			throw std::invalid_argument(std::string(who) + ": keep must be ascending");
+	TKeepSplit s;
 	for (const int i : keep)
-		(i < n        ? kOld
-		 : i < n + ma ? kA
-		              : kB)
+		(i < n        ? s.old
+		 : i < n + ma ? s.a
+		              : s.b)
 		    .push_back(i < n        ? i
 		               : i < n + ma ? i - int(n)
 		                            : i - int(n + ma));
-	const Eigen::Index k0 = Eigen::Index(kOld.size()), ka = Eigen::Index(kA.size()),
-	                   kb = Eigen::Index(kB.size());
-	// Old block by runs of consecutive indices (row-major: contiguous copies).
-	const auto runs = runsOf(kOld);
-	for (Eigen::Index i = 0; i < k0; ++i)
-		for (const auto& [c, len] : runs)
-			out.row(i).segment(c, len) = P.row(kOld[i]).segment(kOld[c], len);
+	return s;
+}
+
+/** Everything of the assembled covariance but its old block (top-left k0 x k0, in place). */
+void writeNewEntries(Eigen::Ref<RowMatrixXd> out, const Eigen::Index n, const Augmentation& a,
+                     const Augmentation& b, const TKeepSplit& s)
+{
+	const Eigen::Index k = out.rows(), k0 = Eigen::Index(s.old.size()),
+	                   ka = Eigen::Index(s.a.size()), kb = Eigen::Index(s.b.size());
 	if (ka > 0)
 	{
-		out.block(k0, 0, ka, k0) = a.cross(kA, kOld);
-		out.block(k0, k0, ka, ka) = a.cov(kA, kA);
+		out.block(k0, 0, ka, k0) = a.cross(s.a, s.old);
+		out.block(k0, k0, ka, ka) = a.cov(s.a, s.a);
 	}
 	if (kb > 0)
 	{
-		out.block(k0 + ka, 0, kb, k0) = b.cross(kB, kOld);
-		std::vector<int> kAinB(kA);
+		out.block(k0 + ka, 0, kb, k0) = b.cross(s.b, s.old);
+		std::vector<int> kAinB(s.a);
 		for (int& i : kAinB) i += int(n);
-		out.block(k0 + ka, k0, kb, ka) = b.cross(kB, kAinB);
-		out.block(k0 + ka, k0 + ka, kb, kb) = b.cov(kB, kB);
+		out.block(k0 + ka, k0, kb, ka) = b.cross(s.b, kAinB);
+		out.block(k0 + ka, k0 + ka, kb, kb) = b.cov(s.b, s.b);
 	}
 	// upper blocks: transposes of the lower ones
 	out.topRightCorner(k0, k - k0) = out.bottomLeftCorner(k - k0, k0).transpose();
 	if (ka > 0 && kb > 0)
 		out.block(k0, k0 + ka, ka, kb) = out.block(k0 + ka, k0, kb, ka).transpose();
+}
+}  // namespace
+
+void assembleExtended(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                      const Augmentation& b, const std::vector<int>& keep,
+                      Eigen::Ref<RowMatrixXd> out)
+{
+	const Eigen::Index n = P.rows(), k = Eigen::Index(keep.size());
+	if (P.cols() != n || out.rows() != k || out.cols() != k)
+		throw std::invalid_argument("assembleExtended: inconsistent sizes");
+	const TKeepSplit s = splitKeep("assembleExtended", n, a, b, keep);
+	// Old block by runs of consecutive indices (row-major: contiguous copies).
+	const auto runs = runsOf(s.old);
+	for (Eigen::Index i = 0; i < Eigen::Index(s.old.size()); ++i)
+		for (const auto& [c, len] : runs)
+			out.row(i).segment(c, len) = P.row(s.old[i]).segment(s.old[c], len);
+	writeNewEntries(out, n, a, b, s);
+}
+
+void assembleInPlace(double* data, Eigen::Index stride, Eigen::Index n, const Augmentation& a,
+                     const Augmentation& b, const std::vector<int>& keep)
+{
+	const Eigen::Index k = Eigen::Index(keep.size());
+	if (!data || n < 0 || n > stride || k > stride)
+		throw std::invalid_argument("assembleInPlace: inconsistent sizes");
+	const TKeepSplit s = splitKeep("assembleInPlace", n, a, b, keep);
+	// The old block compacted towards the top-left corner, rows ascending and segments
+	// ascending: each source lies at or after its destination and after every earlier
+	// destination (s.old ascending, s.old[i] >= i), so nothing is read after being overwritten.
+	// Rows and segments that do not move (before the first dropped index) are not touched.
+	const auto runs = runsOf(s.old);
+	for (Eigen::Index i = 0; i < Eigen::Index(s.old.size()); ++i)
+	{
+		double* dst = data + i * stride;
+		const double* src = data + Eigen::Index(s.old[i]) * stride;
+		for (const auto& [c, len] : runs)
+			if (dst + c != src + s.old[c])
+				std::memmove(dst + c, src + s.old[c], size_t(len) * sizeof(double));
+	}
+	Eigen::Map<RowMatrixXd, Eigen::Unaligned, Eigen::OuterStride<>> out(
+	    data, k, k, Eigen::OuterStride<>(stride));
+	writeNewEntries(out, n, a, b, s);
 }
 
 double sparseUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,

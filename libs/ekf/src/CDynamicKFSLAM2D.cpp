@@ -81,7 +81,6 @@ void CDynamicKFSLAM2D::reset()
 	for (int i = 0; i < 3; ++i) m_xkk[i] = options.initial_pose[i];
 	m_cov.resize(3);
 	cov() = options.Sigma_0;
-	m_covSpare.release();
 	// The seams: the options' implementations unless another one was set.
 	if (!m_userRouter)
 	{

@@ -76,7 +76,6 @@ void CDynamicKFSLAM2D::compressIfDue()
 			m_passiveStatic[m_layout[b].id] = m_layout[b].step;
 	m_passive.push_back(estimator::compressState(m_xkk.asEigen(), m_cov.view(), m_layout, passive,
 	                                             m_nextLevel++, x, P));
-	m_covSpare.release();  // the spare of the full size is not needed any more
 	m_xkk.resize(size_t(x.size()));
 	m_xkk.asEigen() = x;
 	setCov(P);

@@ -292,13 +292,22 @@ void CDynamicKFSLAM2D::commit(TPending& plan)
 	const std::vector<int> keep = ext.keptStorage(drop);
 	const Eigen::Index N = Eigen::Index(keep.size());
 
-	// The new covariance is written once, into the spare buffer, which then becomes the
-	// covariance (the old one becomes the spare): no allocation unless the state outgrows the
-	// buffers' capacity.
-	m_covSpare.resize(N);
-	auto Pn = m_covSpare.view();
-	ekf::assembleExtended(m_cov.view(), plan.a, plan.b, keep, Pn);
-	m_cov.swap(m_covSpare);
+	// The new covariance is written in place (doc/performance.md, section 10): the kept old
+	// entries move towards the top-left corner (not at all if nothing old is dropped), the new
+	// ones are written after them. Only a state that outgrows the buffer's side is copied into
+	// a larger buffer.
+	if (m_cov.keeps(N))
+	{
+		ekf::assembleInPlace(m_cov.data(), m_cov.stride(), n, plan.a, plan.b, keep);
+		m_cov.resize(N);
+	}
+	else
+	{
+		ekf::CSquareBuffer next;
+		next.resize(N);
+		ekf::assembleExtended(m_cov.view(), plan.a, plan.b, keep, next.view());
+		m_cov.swap(next);
+	}
 	m_pkkStale = true;
 	Eigen::VectorXd x(n + m);
 	x << m_xkk.asEigen(), plan.a.mean, plan.b.mean;

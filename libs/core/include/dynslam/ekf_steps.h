@@ -96,6 +96,13 @@ Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, con
 void assembleExtended(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
                       const Augmentation& b, const std::vector<int>& keep,
                       Eigen::Ref<RowMatrixXd> out);
+/** assembleExtended in place: the n x n covariance is stored row-major at data with outer
+ * stride `stride` (>= n and >= keep.size()); the kept old entries are moved towards the
+ * top-left corner (nothing moves if nothing old is dropped) and the new ones written after
+ * them, so the result is the keep.size() x keep.size() matrix at data with the same stride.
+ * Bit-identical to assembleExtended (copies only). */
+void assembleInPlace(double* data, Eigen::Index stride, Eigen::Index n, const Augmentation& a,
+                     const Augmentation& b, const std::vector<int>& keep);
 
 /** EKF update by a measurement that depends only on the entries idx of the state (Alg. 5 and
  * Alg. 6 are both of this form):

@@ -1,16 +1,18 @@
 #pragma once
 /** @file square_buffer.h
  * A square row-major matrix in a buffer that keeps its capacity, pure Eigen (doc/performance.md,
- * section 9). The filter's covariance changes size on most steps of a run (a new landmark, a
- * dropped pose): MRPT's CMatrixDynamic allocates a new buffer and zero-fills it twice on every
- * size change, and with glibc a growing sequence of blocks above the mmap threshold is mapped
- * fresh from the kernel each time (page faults). This buffer only grows, geometrically, and
- * leaves the contents of a resize unspecified (the caller writes every entry). Copying it is
- * not needed by the filter and not provided. */
+ * sections 9 and 10). The filter's covariance changes size on most steps of a run (a new
+ * landmark, a dropped pose). The buffer is a side x side row-major array (side >= n, the outer
+ * stride of the view, fixed until the next reallocation), so the n x n matrix can grow and
+ * shrink in place: new entries are written after the old block without moving it, drops are
+ * compacted towards the top-left corner (ekf::assembleInPlace). It reallocates only when n
+ * outgrows the side, geometrically. Freed buffers are kept in a small per-thread cache and
+ * handed to the next buffer of that thread (a Monte Carlo sweep runs one filter after the
+ * other: no fresh pages from the kernel per run). Copying is not needed by the filter and not
+ * provided. */
 #include <dynslam/ekf_steps.h>
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <utility>
@@ -20,45 +22,49 @@ namespace dynslam::ekf
 class CSquareBuffer
 {
 public:
-	using View = Eigen::Map<RowMatrixXd>;
-	using ConstView = Eigen::Map<const RowMatrixXd>;
+	using View = Eigen::Map<RowMatrixXd, Eigen::Unaligned, Eigen::OuterStride<>>;
+	using ConstView = Eigen::Map<const RowMatrixXd, Eigen::Unaligned, Eigen::OuterStride<>>;
 
-	/** n x n, contents unspecified. Reallocates (uninitialized) only if n^2 exceeds the
-	 * capacity, or is under 1/16 of a capacity above 64^2 (after a compression: the buffer does
-	 * not hoard the memory of a larger state); the new capacity is s^2 entries with s = n plus
-	 * n/2 (at most 512), at least 64. */
-	void resize(Eigen::Index n)
+	CSquareBuffer() = default;
+	CSquareBuffer(const CSquareBuffer&) = delete;
+	CSquareBuffer& operator=(const CSquareBuffer&) = delete;
+	~CSquareBuffer() { release(); }
+
+	/** Whether resize(n) keeps the buffer (and so the entries of the top-left block of
+	 * min(n, rows()) that it had): n fits the side, and n^2 is not under 1/16 of a buffer
+	 * above 64^2 (after a compression: the buffer does not hoard the memory of a larger
+	 * state). */
+	bool keeps(Eigen::Index n) const { return fits(m_side, n); }
+	/** Whether a buffer of this side keeps size n (see keeps()). */
+	static bool fits(size_t side, Eigen::Index n)
 	{
-		const size_t need = size_t(n) * size_t(n);
-		if (need > m_capacity || (m_capacity > 64 * 64 && 16 * need < m_capacity))
-		{
-			const size_t side = std::max<size_t>(64, size_t(n) + std::min<size_t>(n / 2, 512));
-			m_buf.reset();  // before the new one: never both at once
-			m_buf.reset(new double[side * side]);
-			m_capacity = side * side;
-		}
-		m_n = n;
+		const size_t need = size_t(n) * size_t(n), cap = side * side;
+		return size_t(n) <= side && !(cap > 64 * 64 && 16 * need < cap);
 	}
-	/** Frees the buffer (size 0). */
-	void release()
-	{
-		m_buf.reset();
-		m_capacity = 0;
-		m_n = 0;
-	}
+	/** n x n. Keeps the buffer if keeps(n), with its contents; otherwise reallocates with
+	 * side n plus n/2 (at most 512), at least 64, contents unspecified. */
+	void resize(Eigen::Index n);
+	/** Frees the buffer (size 0; into the thread's cache). */
+	void release();
 	Eigen::Index rows() const { return m_n; }
-	View view() { return View(m_buf.get(), m_n, m_n); }
-	ConstView view() const { return ConstView(m_buf.get(), m_n, m_n); }
+	/** The outer stride of the view (the buffer's side). */
+	Eigen::Index stride() const { return Eigen::Index(m_side); }
+	double* data() { return m_buf.get(); }
+	View view() { return View(m_buf.get(), m_n, m_n, Eigen::OuterStride<>(stride())); }
+	ConstView view() const
+	{
+		return ConstView(m_buf.get(), m_n, m_n, Eigen::OuterStride<>(stride()));
+	}
 	void swap(CSquareBuffer& o)
 	{
 		m_buf.swap(o.m_buf);
-		std::swap(m_capacity, o.m_capacity);
+		std::swap(m_side, o.m_side);
 		std::swap(m_n, o.m_n);
 	}
 
 private:
 	std::unique_ptr<double[]> m_buf;
-	size_t m_capacity = 0;
+	size_t m_side = 0;
 	Eigen::Index m_n = 0;
 };
 }  // namespace dynslam::ekf

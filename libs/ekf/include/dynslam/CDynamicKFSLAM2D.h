@@ -331,7 +331,6 @@ private:
 	// keeps its capacity; MRPT's m_pkk is a copy brought up to date by syncPkk() when it is read
 	// (fullCov(), MRPT's update engine).
 	ekf::CSquareBuffer m_cov;
-	ekf::CSquareBuffer m_covSpare;    ///< commit() writes the new covariance here, then swaps
 	mutable bool m_pkkStale = false;  ///< m_pkk differs from m_cov
 	/** The working covariance (marks m_pkk stale). */
 	ekf::CSquareBuffer::View cov()
