@@ -16,8 +16,8 @@ namespace
 /** One full run of the shipped highway rawlog (121 steps). Arg: 0 = MRPT update, 1 = sparse,
  * 2 = compressed (static_update = compressed; the final global update included), 3 = sparse
  * with feature_labels = classify (issue 12: what classification costs), 4 = sparse with
- * object_model = cv and the cv_* keys of config/compare_tunnel.ini (issue 13: what the
- * object-centric model costs; tight noise, gate 0.999, inflation T = 8, a = 1e4). */
+ * object_model = cv and the cv_* keys config/compare_tunnel.ini had until 2026-11-24 (issue 13:
+ * what the object-centric model costs; tight noise, gate 0.999, inflation T = 8, a = 1e4). */
 void BM_HighwayRun(benchmark::State& state)
 {
 	const TRun& run = highwayRun();

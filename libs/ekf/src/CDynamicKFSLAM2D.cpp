@@ -135,6 +135,9 @@ void CDynamicKFSLAM2D::reset()
 	m_routed = estimator::TRoutedStep();
 	m_step = -1;
 	m_report = TStepReport();
+	m_lostNow.clear();
+	m_awaitingVel.clear();
+	m_reinitNow.clear();
 	m_failed = false;
 	m_firstEstimate.clear();
 	m_predictedEgo.reset();
@@ -229,6 +232,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 			planObjectVelocities(plan);  // object-centric motion models only (cv)
 		}
 		planDrops(plan);
+		planFallbacks(plan);  // object-centric motion models only (cv_fallback_steps)
 		commit(plan);
 		recordFirstEstimates();  // first-estimate Jacobians (optional)
 		compressIfDue();         // compressed EKF only

@@ -158,7 +158,10 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 			nus.push_back(nu);
 		}
 		if (track) m_motion->reportInnovations(obj, nisSum, 2 * int(readings.size()));
-		if (Hs.empty()) continue;  // every reading gated out: the object coasts on its prediction
+		// Every reading gated out: the object coasts on its prediction; at the model's count of
+		// such steps in a row it is lost (planFallbacks removes its motion state).
+		if (m_motion->reportGating(obj, Hs.empty())) m_lostNow.insert(obj);
+		if (Hs.empty()) continue;
 		const Eigen::Index m = Eigen::Index(Hs.size());
 		Eigen::MatrixXd H(2 * m, idx.size()), R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
 		Eigen::VectorXd nu(2 * m);
@@ -175,6 +178,53 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 	}
 }
 
+bool CDynamicKFSLAM2D::velocityInit(int32_t obj, size_t pose, TVelocityInit& out)
+{
+	const std::vector<int> ip = m_layout.indices(pose);
+	const int d = m_motion->velocityDim(int(ip.size()));
+	if (d == 0) return false;
+	const auto x = m_xkk.asEigen();
+	Eigen::VectorXd xi = x(ip);
+	int steps = m_step - m_router->registry().at(obj).first_step;
+	std::vector<int> ipPrev;  // after a fallback: the pose before this one
+	if (m_awaitingVel.count(obj))
+	{
+		size_t prev = SIZE_MAX;
+		for (size_t b = 0; b < m_layout.size(); ++b)
+			if (m_layout[b].kind == BlockKind::ObjectPose && m_layout[b].object == obj &&
+			    m_layout[b].step < m_step &&
+			    (prev == SIZE_MAX || m_layout[b].step > m_layout[prev].step))
+				prev = b;
+		if (prev == SIZE_MAX) return false;  // one pose since the fallback: wait for the next
+		ipPrev = m_layout.indices(prev);
+		xi -= x(ipPrev);  // the motion between the two poses
+		if (xi.size() == 3) xi[2] = models::wrapToPi(xi[2]);
+		steps = m_step - m_layout[prev].step;
+	}
+	Eigen::MatrixXd J_v_xi, Sigma;
+	const Eigen::VectorXd v = m_motion->initialVelocity(xi, steps, &J_v_xi, &Sigma);
+	TBlock& b = out.block;
+	b.kind = BlockKind::ObjectVelocity;
+	b.object = obj;
+	b.step = m_step;
+	b.dim = d;
+	const Eigen::Index m = 2 * b.slots();
+	out.G = Eigen::MatrixXd::Zero(m, m_xkk.size());
+	out.G(Eigen::seqN(0, d), ip) = J_v_xi;
+	if (!ipPrev.empty()) out.G(Eigen::seqN(0, d), ipPrev) = -J_v_xi;
+	out.mean = Eigen::VectorXd::Zero(m);
+	out.mean.head(d) = v;
+	out.prior = Eigen::MatrixXd::Identity(m, m);  // pads: 1
+	out.prior.topLeftCorner(d, d) = Sigma;
+	if (!ipPrev.empty())
+	{
+		m_awaitingVel.erase(obj);
+		m_reinitNow.insert(obj);
+		++m_report.object_reinits;
+	}
+	return true;
+}
+
 void CDynamicKFSLAM2D::planObjectVelocities(TPending& plan)
 {
 	if (m_motion->velocityDim(3) == 0 && m_motion->velocityDim(2) == 0) return;
@@ -186,28 +236,12 @@ void CDynamicKFSLAM2D::planObjectVelocities(TPending& plan)
 	{
 		if (st.velocity != SIZE_MAX || st.pose == SIZE_MAX || m_layout[st.pose].step != m_step)
 			continue;
-		const int steps = m_step - m_router->registry().at(obj).first_step;
-		const std::vector<int> ip = m_layout.indices(st.pose);
-		const int d = m_motion->velocityDim(int(ip.size()));
-		if (d == 0) continue;
-		Eigen::MatrixXd J_v_xi, Sigma;
-		const Eigen::VectorXd v =
-		    m_motion->initialVelocity(m_xkk.asEigen()(ip), steps, &J_v_xi, &Sigma);
-		TBlock b;
-		b.kind = BlockKind::ObjectVelocity;
-		b.object = obj;
-		b.step = m_step;
-		b.dim = d;
-		Eigen::MatrixXd G = Eigen::MatrixXd::Zero(2 * b.slots(), n);
-		G(Eigen::seqN(0, d), ip) = J_v_xi;
-		Eigen::VectorXd mean = Eigen::VectorXd::Zero(2 * b.slots());
-		mean.head(d) = v;
-		Eigen::MatrixXd prior = Eigen::MatrixXd::Identity(2 * b.slots(), 2 * b.slots());  // pads: 1
-		prior.topLeftCorner(d, d) = Sigma;
-		Gs.push_back(G);
-		means.push_back(mean);
-		priors.push_back(prior);
-		plan.blocks.push_back(b);
+		TVelocityInit vi;
+		if (!velocityInit(obj, st.pose, vi)) continue;
+		Gs.push_back(vi.G);
+		means.push_back(vi.mean);
+		priors.push_back(vi.prior);
+		plan.blocks.push_back(vi.block);
 	}
 	if (Gs.empty()) return;
 	Eigen::Index m = 0;
@@ -223,5 +257,60 @@ void CDynamicKFSLAM2D::planObjectVelocities(TPending& plan)
 	plan.a.mean = mean;
 	plan.a.cross = G * cov();
 	plan.a.cov = plan.a.cross * G.transpose() + prior;
+}
+
+void CDynamicKFSLAM2D::planFallbacks(TPending& plan)
+{
+	if (m_lostNow.empty() && m_reinitNow.empty()) return;
+	const estimator::CPaddedLayout ext = extendedLayout(plan);
+	std::set<size_t> listed(plan.remove.begin(), plan.remove.end());
+	const auto P = cov();
+	const auto remove = [&](size_t b)
+	{
+		if (!listed.insert(b).second) return;
+		if (ext[b].kind == BlockKind::ObjectPose)  // recorded like a dropped pose
+		{
+			const std::vector<int> idx = m_layout.indices(b);
+			estimator::TPoseRecord e;
+			e.step = m_layout[b].step;
+			e.dim = int(idx.size());
+			e.mean.head(e.dim) = m_xkk.asEigen()(idx);
+			e.cov.topLeftCorner(e.dim, e.dim) = ekf::marginal(P, idx);
+			m_router->registry().recordDroppedPose(ext[b].object, e, m_drop.record());
+			++m_report.dropped_poses;
+		}
+		plan.remove.push_back(b);
+	};
+	// Lost: velocity and pose leave the state (marginalised out); the object's f_0 stay, and
+	// its next readings are time-t features again (the paper's formulation, Alg. 3, 4).
+	// Re-initialised: the older pose that gave the velocity goes (one pose per object).
+	std::map<int32_t, size_t> newest;
+	for (size_t b = 0; b < ext.size(); ++b)
+		if (ext[b].kind == BlockKind::ObjectPose && m_reinitNow.count(ext[b].object))
+		{
+			const auto it = newest.find(ext[b].object);
+			if (it == newest.end() || ext[it->second].step < ext[b].step) newest[ext[b].object] = b;
+		}
+	for (size_t b = 0; b < ext.size(); ++b)
+	{
+		const TBlock& t = ext[b];
+		const bool lost = m_lostNow.count(t.object) != 0;
+		if (lost && (t.kind == BlockKind::ObjectVelocity || t.kind == BlockKind::ObjectPose))
+		{
+			if (b >= m_layout.size())
+				throw std::logic_error("CDynamicKFSLAM2D: a lost object has a pending block");
+			remove(b);
+		}
+		else if (t.kind == BlockKind::ObjectPose && m_reinitNow.count(t.object) &&
+		         newest.at(t.object) != b)
+			remove(b);
+	}
+	for (const int32_t obj : m_lostNow)
+	{
+		m_awaitingVel.insert(obj);
+		++m_report.object_fallbacks;
+	}
+	m_lostNow.clear();
+	m_reinitNow.clear();
 }
 }  // namespace dynslam

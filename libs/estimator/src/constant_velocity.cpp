@@ -28,6 +28,9 @@ void TCvParams::validate() const
 	if (!(inflation_decay >= 0 && inflation_decay < 1))
 		throw std::invalid_argument("cv_inflation_decay = " + std::to_string(inflation_decay) +
 		                            ": must be in [0, 1) (0 = back to 1 at once)");
+	if (fallback_steps < 0)
+		throw std::invalid_argument("cv_fallback_steps = " + std::to_string(fallback_steps) +
+		                            ": must be >= 0 (0 = off)");
 }
 
 CConstantVelocity::CConstantVelocity(const TCvParams& p) : m_p(p) { m_p.validate(); }
@@ -52,6 +55,21 @@ void CConstantVelocity::reportInnovations(int32_t object, double nisSum, int dof
 	}
 	else  // consistent: decay towards the nominal noise (decay 0: at once)
 		st.scale = std::max(1.0, st.scale * m_p.inflation_decay);
+}
+
+bool CConstantVelocity::reportGating(int32_t object, bool allGatedOut)
+{
+	if (m_p.fallback_steps == 0) return false;
+	if (!allGatedOut)
+	{
+		m_gatedSteps.erase(object);
+		return false;
+	}
+	if (++m_gatedSteps[object] < m_p.fallback_steps) return false;
+	m_gatedSteps.erase(object);  // lost: its next velocity starts afresh
+	m_state.erase(object);
+	++m_fallbacks;
+	return true;
 }
 
 double CConstantVelocity::processNoiseScale(int32_t object) const

@@ -26,6 +26,10 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeObjectCen
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] cv_inflation_threshold / cv_inflation_factor: the process-noise "
 		    "inflation rule is not implemented in the framework (the dynamic EKF only)");
+	if (p.fallback_steps > 0)
+		throw std::invalid_argument(
+		    "[DynamicKFSLAM] cv_fallback_steps: the fallback of a lost object is not "
+		    "implemented in the framework (the dynamic EKF only)");
 	if ((p.accel_psd.array() <= 0).any())
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] cv_accel_psd: every entry must be > 0 in the framework (its motion "

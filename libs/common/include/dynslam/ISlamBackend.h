@@ -69,6 +69,9 @@ struct TStepReport
 	size_t gated_out = 0;  ///< static measurements rejected by the innovation gate
 	/** object_model = cv: object readings used as updates, rejected by cv_gate. */
 	size_t object_feature_updates = 0, object_gated_out = 0;
+	/** cv_fallback_steps > 0: objects lost at this step (velocity and pose removed, back to the
+	 * paper's formulation) and objects given a new velocity from two poses after a fallback. */
+	size_t object_fallbacks = 0, object_reinits = 0;
 	double nis_static = 0;  ///< NIS of the static update (0 if none)
 	size_t nis_static_dof = 0;
 	/** feature_labels = classify (doc/classification.md): readings of undecided tracks and of

@@ -63,7 +63,9 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * prediction), cv_inflation_threshold / cv_inflation_factor (per-object process-noise
 	 * inflation: mean NIS per dof of an object's readings at a step above the threshold ->
 	 * its next prediction's acceleration PSD times the factor; 0 / 1 = off, the defaults;
-	 * doc/state-layout.md). */
+	 * doc/state-layout.md), cv_fallback_steps (an object whose readings were all gated out
+	 * at that many consecutive steps falls back to the paper's formulation until two poses
+	 * give it a new velocity; 0 = off, the default). */
 	estimator::TCvParams cv;
 	double cv_gate = 0;
 	bool drop_time_t_features = true;  ///< drop f_t after pose augmentation

@@ -286,8 +286,24 @@ private:
 	/** Sightings of features of objects with a velocity: measurement updates of ego, pose and
 	 * body-frame features (gated by the model's readingGate()). */
 	void objectFeatureUpdates();
-	/** Velocity blocks for the objects whose first pose was added in this step. */
+	/** Velocity blocks for the objects whose first pose was added in this step (after a
+	 * fallback: whose second pose since the fallback was added in this step). */
 	void planObjectVelocities(TPending& plan);
+	/** Fallback of a lost object (cv_fallback_steps): removes the velocity and pose of the
+	 * objects lost in this step and the poses older than the newest of those re-initialised. */
+	void planFallbacks(TPending& plan);
+	/** One object's velocity block and its prior v = G x + n, n ~ N(0, prior). */
+	struct TVelocityInit
+	{
+		estimator::TBlock block;
+		Eigen::MatrixXd G, prior;
+		Eigen::VectorXd mean;
+	};
+	/** The velocity of obj from its pose block `pose` of this step; false: none yet. */
+	bool velocityInit(int32_t obj, size_t pose, TVelocityInit& out);
+	std::set<int32_t> m_lostNow;      ///< objects lost in this step (objectFeatureUpdates)
+	std::set<int32_t> m_awaitingVel;  ///< lost objects that have no velocity yet
+	std::set<int32_t> m_reinitNow;    ///< lost objects given a velocity in this step
 	/** Objects that have a velocity block (their readings are updates, not time-t features). */
 	std::set<int32_t> objectsWithVelocity() const;
 	// compressed EKF (static_update = compressed, CDynamicKFSLAM2D_compressed.cpp)

@@ -33,6 +33,11 @@ struct TCvParams
 	int inflation_window = 1;      ///< steps with readings in the NIS window (>= 1)
 	double inflation_decay = 0.0;  ///< in [0, 1): factor on the inflation per consistent step
 	bool inflationOn() const { return inflation_threshold > 0 && inflation_factor != 1.0; }
+	/** Fallback of a lost object (doc/state-layout.md "Fallback of a lost object"): after
+	 * fallback_steps consecutive steps whose readings of an object were all gated out, the
+	 * object's velocity and pose leave the state; it is then handled by the paper's
+	 * formulation (Alg. 3, 4) until two of its poses give a new velocity. 0 = off (default). */
+	int fallback_steps = 0;
 	/** Throws std::invalid_argument naming the parameter. */
 	void validate() const;
 };
@@ -60,13 +65,18 @@ public:
 	bool tracksInnovations() const override { return m_p.inflationOn(); }
 	void reportInnovations(int32_t object, double nisSum, int dof) override;
 	double processNoiseScale(int32_t object) const override;
+	bool reportGating(int32_t object, bool allGatedOut) override;
 	void resetObjectState() override
 	{
 		m_state.clear();
+		m_gatedSteps.clear();
 		m_inflations = 0;
+		m_fallbacks = 0;
 	}
 	/** Steps at which some object's process noise was inflated, since construction/reset. */
 	size_t inflationCount() const { return m_inflations; }
+	/** Objects handed back to the paper's formulation since construction/reset. */
+	size_t fallbackCount() const { return m_fallbacks; }
 
 private:
 	struct TInflationState
@@ -76,6 +86,7 @@ private:
 	};
 	TCvParams m_p;
 	std::map<int32_t, TInflationState> m_state;  ///< per object
-	size_t m_inflations = 0;
+	std::map<int32_t, int> m_gatedSteps;         ///< consecutive all-gated-out steps per object
+	size_t m_inflations = 0, m_fallbacks = 0;
 };
 }  // namespace dynslam::estimator

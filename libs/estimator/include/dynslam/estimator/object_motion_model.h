@@ -67,6 +67,10 @@ public:
 	virtual void reportInnovations(int32_t /*object*/, double /*nisSum*/, int /*dof*/) {}
 	/** Factor on the process noise Q of the object's next prediction (1: none). */
 	virtual double processNoiseScale(int32_t /*object*/) const { return 1.0; }
+	/** Fallback of a lost object: called at every step with readings of an object that has a
+	 * velocity; allGatedOut = the gate rejected all of them. True: the object is lost and its
+	 * motion state leaves the filter now (the model has then forgotten its per-object state). */
+	virtual bool reportGating(int32_t /*object*/, bool /*allGatedOut*/) { return false; }
 	/** Forgets all per-object state (the filter's reset). */
 	virtual void resetObjectState() {}
 };
