@@ -37,6 +37,7 @@ struct TResult
 	double ari = 0;
 	size_t objects = 0, reclassified = 0, converted = 0, stopped = 0, unknownIds = 0, held = 0,
 	       candidates = 0, updates = 0;
+	size_t restarted = 0, split = 0, joined = 0, joinedF0 = 0;  ///< doc/classification.md
 };
 
 /** The labelled filter that knows every motion onset and stop: the readings of an object
@@ -96,6 +97,10 @@ TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& ex
 		r.held += ekf.getLastStepReport().classify_held;
 		r.candidates += ekf.getLastStepReport().classify_candidates;
 		r.updates += ekf.getLastStepReport().static_updates;
+		r.restarted += ekf.getLastStepReport().classify_restarted;
+		r.split += ekf.getLastStepReport().classify_split;
+		r.joined += ekf.getLastStepReport().classify_joined;
+		r.joinedF0 += ekf.getLastStepReport().object_features_joined;
 		const auto e = ekf.getEgoPose().mean;
 		const double d2 = std::pow(e.x() - gt.ego[k][0], 2) + std::pow(e.y() - gt.ego[k][1], 2);
 		se += d2;
@@ -120,7 +125,9 @@ void print(const std::string& what, const TResult& r)
 	          << ", reclassified " << r.reclassified << ", converted " << r.converted
 	          << ", stopped " << r.stopped << ", held " << r.held << ", candidates " << r.candidates
 	          << ", static updates " << r.updates << ", onsets detected " << r.delays.detected
-	          << "/" << r.delays.onsets.size() << " max delay " << r.delays.max_delay << "\n";
+	          << "/" << r.delays.onsets.size() << " max delay " << r.delays.max_delay
+	          << ", restarted " << r.restarted << ", split " << r.split << ", joined " << r.joined
+	          << " (f_0 " << r.joinedF0 << ")\n";
 }
 }  // namespace
 
