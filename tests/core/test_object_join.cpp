@@ -34,8 +34,8 @@ ekf::ObjectPoseLinearization joined(const Eigen::VectorXd& x, int nc)
 {
 	const Eigen::Matrix2d Sigma = Eigen::Vector2d(0.01, 0.02).asDiagonal();
 	if (nc == 1)  // one founder (feature 0): translation-only pose
-		return ekf::appendJoinedFeatures(
-		    x, ekf::linearizeObjectPose(x, {0}, {6}, {0}, Sigma), 1, {10}, 2);
+		return ekf::appendJoinedFeatures(x, ekf::linearizeObjectPose(x, {0}, {6}, {0}, Sigma), 1,
+		                                 {10}, 2);
 	return ekf::appendJoinedFeatures(
 	    x, ekf::linearizeObjectPose(x, {0, 2, 4}, {6, 8}, {0, 2}, Sigma, 3), 3, {10}, 4);
 }
@@ -53,7 +53,8 @@ TEST(ObjectJoin, FoundersFixTheCentroid)
 	             std::invalid_argument);
 	// Jacobians with the founders' centroid.
 	Eigen::VectorXd v(16);
-	v << Eigen::Map<const Eigen::VectorXd>(o.f0.data(), 8), Eigen::Map<const Eigen::VectorXd>(ft.data(), 8);
+	v << Eigen::Map<const Eigen::VectorXd>(o.f0.data(), 8),
+	    Eigen::Map<const Eigen::VectorXd>(ft.data(), 8);
 	const core_test::VecFn g = [](const Eigen::VectorXd& w)
 	{
 		const Eigen::Matrix2Xd a = Eigen::Map<const Eigen::Matrix2Xd>(w.data(), 2, 4);
@@ -113,9 +114,8 @@ TEST(ObjectJoin, JoinerTimeZeroPositionAndJacobian)
 		};
 		Eigen::VectorXd w(idx.size());
 		for (size_t i = 0; i < idx.size(); ++i) w[Eigen::Index(i)] = x[idx[i]];
-		EXPECT_TRUE(core_test::checkJacobian(j.Gamma, f, w, d == 3 ? std::vector<int>{2}
-		                                                           : std::vector<int>{},
-		                                     worst))
+		EXPECT_TRUE(core_test::checkJacobian(
+		    j.Gamma, f, w, d == 3 ? std::vector<int>{2} : std::vector<int>{}, worst))
 		    << "nc = " << nc;
 		// Noise: the pose's, mapped to the joiner (shared), pads independent with variance 1.
 		EXPECT_LT((j.noise - j.noise.transpose()).norm(), 1e-15);

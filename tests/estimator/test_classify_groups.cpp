@@ -4,10 +4,10 @@
  * its object is split off. Synthetic tracks (router_synth.h). */
 #include <gtest/gtest.h>
 
-#include "router_synth.h"
-
 #include <functional>
 #include <set>
+
+#include "router_synth.h"
 
 using namespace dynslam;
 using namespace dynslam::estimator;
@@ -24,8 +24,8 @@ struct TRun
 	std::set<int32_t> inState;
 	std::vector<TRoutedStep> out;
 	explicit TRun(const TClassifyParams& p) : r(p) {}
-	void run(int steps, const std::function<std::vector<std::pair<int32_t, Eigen::Vector2d>>(int)>&
-	                        world)
+	void run(int steps,
+	         const std::function<std::vector<std::pair<int32_t, Eigen::Vector2d>>(int)>& world)
 	{
 		for (int k = int(out.size()); k < steps; ++k)
 		{

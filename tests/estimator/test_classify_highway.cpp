@@ -52,10 +52,12 @@ void f0Errors(const CDynamicKFSLAM2D& ekf, const TGroundTruth& gt,
 	for (const auto& f : ekf.getObjectFeatures())
 	{
 		if (!f.at_time0) continue;
-		const auto c = std::find_if(classes.begin(), classes.end(), [&](const TReadingClass& rc)
-		                            { return rc.id == f.id && rc.object >= 0; });
+		const auto c =
+		    std::find_if(classes.begin(), classes.end(),
+		                 [&](const TReadingClass& rc) { return rc.id == f.id && rc.object >= 0; });
 		const auto o = std::find_if(gt.objects.begin(), gt.objects.end(),
-		                            [&](const auto& g) { return c != classes.end() && g.object == c->object; });
+		                            [&](const auto& g)
+		                            { return c != classes.end() && g.object == c->object; });
 		if (o == gt.objects.end()) continue;
 		const int t0 = tracks.at(f.object).first_step;
 		const double e = (f.mean - o->features[size_t(t0)].col(c->feature)).norm();

@@ -6,10 +6,10 @@
 #include <dynslam/models/se2.h>
 #include <gtest/gtest.h>
 
-#include "router_synth.h"
-
 #include <cmath>
 #include <random>
+
+#include "router_synth.h"
 
 using namespace dynslam;
 using namespace dynslam::estimator;

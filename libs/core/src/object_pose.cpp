@@ -36,9 +36,8 @@ Eigen::Matrix2Xd objectPoseMap(const Eigen::Vector3d& xi, const Eigen::Matrix2Xd
 		J_ft_f0->resize(2 * n, 2 * n);
 		for (Eigen::Index k = 0; k < n; ++k)
 			for (Eigen::Index j = 0; j < n; ++j)
-				J_ft_f0->block<2, 2>(2 * k, 2 * j) =
-				    (j < nc ? common : Eigen::Matrix2d::Zero()) +
-				    (k == j ? R : Eigen::Matrix2d::Zero());
+				J_ft_f0->block<2, 2>(2 * k, 2 * j) = (j < nc ? common : Eigen::Matrix2d::Zero()) +
+				                                     (k == j ? R : Eigen::Matrix2d::Zero());
 	}
 	return ft;
 }
@@ -80,8 +79,8 @@ Eigen::Vector3d objectPoseInverse(const Eigen::Matrix2Xd& f0, const Eigen::Matri
 	const Eigen::Index n = f0.cols(), m = ft.cols();
 	const std::vector<int> seen = checkedCorrespondences(n, m, seenIn);
 	if (centroidCols < 0 || centroidCols > n)
-		throw std::invalid_argument("objectPoseInverse: centroidCols = " +
-		                            std::to_string(centroidCols) + " not in [0, n]");
+		throw std::invalid_argument(
+		    "objectPoseInverse: centroidCols = " + std::to_string(centroidCols) + " not in [0, n]");
 	const Eigen::Index nc = centroidCols == 0 ? n : centroidCols;
 	if (m < 2)
 		throw std::domain_error("objectPoseInverse: rotation undetermined with " +

@@ -208,8 +208,8 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 				poses.push_back(f);
 				++m_report.object_features_joined;
 			}
-			lins.back() = ekf::appendJoinedFeatures(x, lins.back(), info.founders, ft,
-			                                        2 * p.slots());
+			lins.back() =
+			    ekf::appendJoinedFeatures(x, lins.back(), info.founders, ft, 2 * p.slots());
 		}
 		size += 2 * p.slots() + 2 * Eigen::Index(fit.joiners.size());
 	}

@@ -68,8 +68,7 @@ ObjectPoseLinearization linearizeObjectPose(const Eigen::Ref<const Eigen::Vector
                                             const std::vector<int>& f0_idx,
                                             const std::vector<int>& ft_idx,
                                             const std::vector<int>& seen,
-                                            const Eigen::Matrix2d& Sigma_xi,
-                                            int centroidCols = 0);
+                                            const Eigen::Matrix2d& Sigma_xi, int centroidCols = 0);
 
 /** Late joining (doc/classification.md): `pose` (a linearizeObjectPose result whose first
  * 2 * nc entries of idx are the object's founders' f0, nc = centroid columns) extended by the

@@ -92,11 +92,11 @@ struct TTrack
 	bool q_valid = false;  ///< false: re-initialised at the next sighting
 	double llr = 0;        ///< sum of the log-likelihood ratios (moving vs static)
 	int sightings = 0, first_seen = -1, last_seen = -1, decided_step = -1;
-	int bad_streak = 0;                 ///< static: consecutive readings beyond the gate
-	int still_streak = 0;               ///< moving: consecutive readings consistent with static
-	int split_streak = 0;               ///< moving: consecutive readings inconsistent with its object
-	int last_good = -1;                 ///< static: step of its last reading within the gate
-	bool converting = false;            ///< reclassified in this step with surgery (known landmark)
+	int bad_streak = 0;       ///< static: consecutive readings beyond the gate
+	int still_streak = 0;     ///< moving: consecutive readings consistent with static
+	int split_streak = 0;     ///< moving: consecutive readings inconsistent with its object
+	int last_good = -1;       ///< static: step of its last reading within the gate
+	bool converting = false;  ///< reclassified in this step with surgery (known landmark)
 	int32_t object = -1, feature = -1;  ///< moving: its object and feature index
 	std::map<int, TPoint2> history;     ///< the last readings (robot frame), by step
 };
