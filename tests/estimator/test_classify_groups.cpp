@@ -77,7 +77,8 @@ TEST(ClassifyGroups, IdReusedByAnotherPointAfterABreakRestartsTheTrack)
 		}
 		return w;
 	};
-	TClassifyParams p;  // reuse_gap = 5 (default)
+	TClassifyParams p;
+	p.reuse_gap = 5;  // default 0: off
 	TRun run(p);
 	run.run(24, world);
 	const TRoutedStep& back = run.out[14];

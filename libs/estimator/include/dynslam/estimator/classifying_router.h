@@ -63,8 +63,10 @@ struct TClassifyParams
 	/** classify_reuse_gap: a track unseen for at least this many steps whose reading is
 	 * inconsistent with its assignment (a static track: beyond reclassify_gate; a moving one:
 	 * with every other seen feature of its object) restarts as a new candidate under a fresh
-	 * track ID (its ID was reused by another point; TRoutedStep::restarted; 0: never). */
-	int reuse_gap = 5;
+	 * track ID (its ID was reused by another point; TRoutedStep::restarted; 0: never, the
+	 * default: on real data it competes with the reclassification of slow movers held static,
+	 * doc/classification.md). */
+	int reuse_gap = 0;
 	/** classify_split_count: consecutive readings of a moving track inconsistent with every
 	 * other seen feature of its object that split it off: it restarts as a new candidate
 	 * (TRoutedStep::split; the readings before are held back; 0: never). */
