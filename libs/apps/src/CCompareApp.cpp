@@ -293,6 +293,7 @@ void CCompareApp::buildTable()
 		      << "' row, not errors (ego per step; map: the static landmarks both filters have; "
 		         "ATE column: RMS ego position distance); ms/step: wall time of one filter step "
 		         "on this machine.\n";
+	for (const auto& [f, d] : classDecisions) table << d.countsLine(f);
 	for (const auto& fail : failedFilters) table << "NOT IN THE TABLE: " << fail << "\n";
 	tableText = table.str();
 }

@@ -42,6 +42,19 @@ void TClassDecisions::add(const estimator::TRoutedStep& step)
 		                                    : eval::Decision::Undecided);
 		groups.push_back(m.candidate || st ? -1 : m.object);
 	}
+	restarted += step.restarted;
+	split += step.split;
+	joined += step.joined;
+	held += step.held;
+	skipped_unknown_id += step.skipped_unknown_id;
 	++stepsAdded;
+}
+
+std::string TClassDecisions::countsLine(const std::string& filter) const
+{
+	return filter + ": tracks restarted after a break (ID reused) " + std::to_string(restarted) +
+	       ", split off their object " + std::to_string(split) + ", joined an earlier object " +
+	       std::to_string(joined) + "; readings held back " + std::to_string(held) +
+	       ", ID -1 skipped " + std::to_string(skipped_unknown_id) + "\n";
 }
 }  // namespace dynslam::apps

@@ -99,6 +99,9 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_candidate_landmarks",
                                           "classify_reclassify",
                                           "classify_stop_count",
+                                          "classify_reuse_gap",
+                                          "classify_split_count",
+                                          "classify_join",
 
                                           "classify_assoc_method",
                                           "classify_assoc_metric",
@@ -127,6 +130,9 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	p.candidate_landmarks = readBool(c, s, "classify_candidate_landmarks", p.candidate_landmarks);
 	p.surgery = readChoice(c, s, "classify_reclassify", {"surgery", "restart"}, 0) == 0;
 	p.stop_count = int(readInt(c, s, "classify_stop_count", p.stop_count));
+	p.reuse_gap = int(readInt(c, s, "classify_reuse_gap", p.reuse_gap));
+	p.split_count = int(readInt(c, s, "classify_split_count", p.split_count));
+	p.join = readBool(c, s, "classify_join", p.join);
 	// ID -1 readings (estimator/unknown_id_association.h): MRPT's data_assoc_* names and values.
 	estimator::TUnknownIdParams& a = p.assoc;
 	const std::vector<std::string> methods{"assocNN", "assocJCBB"};
@@ -327,6 +333,9 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "classify_reclassify            = " << (classify.surgery ? "surgery" : "restart")
 	    << "\n";
 	out << "classify_stop_count            = " << classify.stop_count << "\n";
+	out << "classify_reuse_gap             = " << classify.reuse_gap << "\n";
+	out << "classify_split_count           = " << classify.split_count << "\n";
+	out << "classify_join                  = " << (classify.join ? "true" : "false") << "\n";
 	const estimator::TUnknownIdParams& a = classify.assoc;
 	out << "classify_assoc_method          = " << a.method << "\n";
 	out << "classify_assoc_metric          = " << a.metric << "\n";

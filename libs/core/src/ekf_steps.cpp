@@ -60,7 +60,7 @@ ObjectPoseLinearization linearizeObjectPose(const Eigen::Ref<const Eigen::Vector
                                             const std::vector<int>& f0_idx,
                                             const std::vector<int>& ft_idx,
                                             const std::vector<int>& seen,
-                                            const Eigen::Matrix2d& Sigma_xi)
+                                            const Eigen::Matrix2d& Sigma_xi, int centroidCols)
 {
 	const int n = int(f0_idx.size()), m = int(ft_idx.size());
 	if (n < 1 || m < 1) throw std::invalid_argument("objectPoseAugmentation: no features");
@@ -83,7 +83,7 @@ ObjectPoseLinearization linearizeObjectPose(const Eigen::Ref<const Eigen::Vector
 		G2 = g2;
 	}
 	else
-		lin.xi = models::objectPoseInverse(f0, ft, seen, &G1, &G2);
+		lin.xi = models::objectPoseInverse(f0, ft, seen, &G1, &G2, centroidCols);
 
 	lin.idx.reserve(2 * (n + m));
 	for (int k : f0_idx) lin.idx.insert(lin.idx.end(), {k, k + 1});
@@ -109,6 +109,65 @@ Augmentation objectPoseAugmentation(const Eigen::Ref<const Eigen::VectorXd>& x,
 	Augmentation none;
 	none.cross.resize(0, x.size());
 	return objectPoseAugmentations(P, none, {lin}, {0}, lin.xi.size());
+}
+
+ObjectPoseLinearization appendJoinedFeatures(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                             const ObjectPoseLinearization& pose, int nc,
+                                             const std::vector<int>& ft_idx, int padTo)
+{
+	const Eigen::Index d = pose.xi.size(), K = Eigen::Index(pose.idx.size());
+	const Eigen::Index J = Eigen::Index(ft_idx.size()), rows = padTo + 2 * J;
+	if ((d != 2 && d != 3) || padTo < d || nc < 1 || 2 * nc > K || pose.Gamma.rows() != d ||
+	    pose.Gamma.cols() != K || pose.noise.rows() != d || pose.noise.cols() != d)
+		throw std::invalid_argument("appendJoinedFeatures: inconsistent sizes");
+	checkIndices("appendJoinedFeatures", ft_idx, x.size(), 2);
+	ObjectPoseLinearization out;
+	out.xi = Eigen::VectorXd::Zero(rows);
+	out.xi.head(d) = pose.xi;
+	out.idx = pose.idx;
+	for (const int k : ft_idx) out.idx.insert(out.idx.end(), {k, k + 1});
+	out.Gamma = Eigen::MatrixXd::Zero(rows, K + 2 * J);
+	out.Gamma.topLeftCorner(d, K) = pose.Gamma;
+	out.noise = Eigen::MatrixXd::Zero(rows, rows);
+	out.noise.topLeftCorner(d, d) = pose.noise;
+	for (Eigen::Index i = d; i < padTo; ++i) out.noise(i, i) = 1;  // pads
+	Eigen::Vector2d c0 = Eigen::Vector2d::Zero();
+	for (int k = 0; k < nc; ++k) c0 += x.segment<2>(pose.idx[size_t(2 * k)]) / double(nc);
+	std::vector<Eigen::MatrixXd> J_xi;  // d f0_j / d xi
+	J_xi.resize(size_t(J));
+	for (Eigen::Index j = 0; j < J; ++j)
+	{
+		const Eigen::Vector2d ft = x.segment<2>(ft_idx[size_t(j)]);
+		const Eigen::Index r0 = padTo + 2 * j;
+		Eigen::Matrix2d J_ft = Eigen::Matrix2d::Identity();
+		if (d == 2)
+		{
+			out.xi.segment<2>(r0) = ft - pose.xi;
+			J_xi[size_t(j)] = -Eigen::Matrix2d::Identity();
+		}
+		else
+		{
+			const Eigen::Matrix2d Rt = models::rot2(pose.xi[2]).transpose();
+			const Eigen::Vector2d r = ft - c0 - pose.xi.head<2>();
+			out.xi.segment<2>(r0) = Rt * r + c0;
+			J_xi[size_t(j)].resize(2, 3);
+			J_xi[size_t(j)] << -Rt, models::rot2Derivative(pose.xi[2]).transpose() * r;
+			J_ft = Rt;
+			const Eigen::Matrix2d J_c0 = (Eigen::Matrix2d::Identity() - Rt) / double(nc);
+			for (int k = 0; k < nc; ++k) out.Gamma.block<2, 2>(r0, 2 * k) += J_c0;
+		}
+		out.Gamma.block(r0, 0, 2, K) += J_xi[size_t(j)] * pose.Gamma;
+		out.Gamma.block<2, 2>(r0, K + 2 * j) = J_ft;
+		out.noise.block(r0, 0, 2, d) = J_xi[size_t(j)] * pose.noise;
+		out.noise.block(0, r0, d, 2) = out.noise.block(r0, 0, 2, d).transpose();
+		for (Eigen::Index q = 0; q <= j; ++q)
+		{
+			const Eigen::Matrix2d c = J_xi[size_t(j)] * pose.noise * J_xi[size_t(q)].transpose();
+			out.noise.block<2, 2>(r0, padTo + 2 * q) = c;
+			out.noise.block<2, 2>(padTo + 2 * q, r0) = c.transpose();
+		}
+	}
+	return out;
 }
 
 Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,

@@ -9,11 +9,14 @@
 namespace dynslam::models
 {
 Eigen::Matrix2Xd objectPoseMap(const Eigen::Vector3d& xi, const Eigen::Matrix2Xd& f0,
-                               Eigen::MatrixXd* J_ft_xi, Eigen::MatrixXd* J_ft_f0)
+                               Eigen::MatrixXd* J_ft_xi, Eigen::MatrixXd* J_ft_f0, int centroidCols)
 {
 	const Eigen::Index n = f0.cols();
 	if (n < 1) throw std::invalid_argument("objectPoseMap: object without features");
-	const Eigen::Vector2d c0 = f0.rowwise().mean();
+	if (centroidCols < 0 || centroidCols > n)
+		throw std::invalid_argument("objectPoseMap: centroidCols not in [0, n]");
+	const Eigen::Index nc = centroidCols == 0 ? n : centroidCols;
+	const Eigen::Vector2d c0 = f0.leftCols(nc).rowwise().mean();
 	const Eigen::Matrix2d R = rot2(xi[2]), dR = rot2Derivative(xi[2]);
 	Eigen::Matrix2Xd ft(2, n);
 	for (Eigen::Index k = 0; k < n; ++k) ft.col(k) = R * (f0.col(k) - c0) + c0 + xi.head<2>();
@@ -28,13 +31,13 @@ Eigen::Matrix2Xd objectPoseMap(const Eigen::Vector3d& xi, const Eigen::Matrix2Xd
 	}
 	if (J_ft_f0)
 	{
-		// d ft_k / d f0_j = R delta_kj + (I - R) / n
-		const Eigen::Matrix2d common = (Eigen::Matrix2d::Identity() - R) / double(n);
+		// d ft_k / d f0_j = R delta_kj + (I - R) / nc (j < nc: a centroid column)
+		const Eigen::Matrix2d common = (Eigen::Matrix2d::Identity() - R) / double(nc);
 		J_ft_f0->resize(2 * n, 2 * n);
 		for (Eigen::Index k = 0; k < n; ++k)
 			for (Eigen::Index j = 0; j < n; ++j)
-				J_ft_f0->block<2, 2>(2 * k, 2 * j) =
-				    common + (k == j ? R : Eigen::Matrix2d::Zero());
+				J_ft_f0->block<2, 2>(2 * k, 2 * j) = (j < nc ? common : Eigen::Matrix2d::Zero()) +
+				                                     (k == j ? R : Eigen::Matrix2d::Zero());
 	}
 	return ft;
 }
@@ -71,15 +74,19 @@ std::vector<int> checkedCorrespondences(Eigen::Index n, Eigen::Index m,
 
 Eigen::Vector3d objectPoseInverse(const Eigen::Matrix2Xd& f0, const Eigen::Matrix2Xd& ft,
                                   const std::vector<int>& seenIn, Eigen::MatrixXd* Gamma1,
-                                  Eigen::MatrixXd* Gamma2)
+                                  Eigen::MatrixXd* Gamma2, int centroidCols)
 {
 	const Eigen::Index n = f0.cols(), m = ft.cols();
 	const std::vector<int> seen = checkedCorrespondences(n, m, seenIn);
+	if (centroidCols < 0 || centroidCols > n)
+		throw std::invalid_argument(
+		    "objectPoseInverse: centroidCols = " + std::to_string(centroidCols) + " not in [0, n]");
+	const Eigen::Index nc = centroidCols == 0 ? n : centroidCols;
 	if (m < 2)
 		throw std::domain_error("objectPoseInverse: rotation undetermined with " +
 		                        std::to_string(m) + " seen feature(s)");
 
-	const Eigen::Vector2d c0 = f0.rowwise().mean();
+	const Eigen::Vector2d c0 = f0.leftCols(nc).rowwise().mean();
 	Eigen::Matrix2Xd a(2, m);
 	for (Eigen::Index i = 0; i < m; ++i) a.col(i) = f0.col(seen[i]);
 	const Eigen::Vector2d abar = a.rowwise().mean(), bbar = ft.rowwise().mean();
@@ -133,9 +140,9 @@ Eigen::Vector3d objectPoseInverse(const Eigen::Matrix2Xd& f0, const Eigen::Matri
 		if (Gamma1)
 		{
 			Gamma1->setZero(3, 2 * n);
-			const Eigen::Matrix2d In = Eigen::Matrix2d::Identity() / double(n);
-			// c0 terms, common to every f0 column: -R (-I/n) - I/n = (R - I)/n
-			for (Eigen::Index k = 0; k < n; ++k) Gamma1->block<2, 2>(0, 2 * k) = R * In - In;
+			const Eigen::Matrix2d In = Eigen::Matrix2d::Identity() / double(nc);
+			// c0 terms, common to every centroid column: -R (-I/nc) - I/nc = (R - I)/nc
+			for (Eigen::Index k = 0; k < nc; ++k) Gamma1->block<2, 2>(0, 2 * k) = R * In - In;
 			for (Eigen::Index i = 0; i < m; ++i)
 			{
 				const int k = seen[i];

@@ -84,7 +84,11 @@ void CDynamicKFSLAM2D::reset()
 	// The seams: the options' implementations unless another one was set.
 	if (!m_userRouter)
 	{
-		m_router = estimator::makeRouter(options.feature_labels, &options.classify);
+		// Late joining gives a joiner an f_0 from the paper model's pose; object-centric models
+		// (cv, ctrv) keep body-frame features of a fixed set: no joining there.
+		estimator::TClassifyParams classify = options.classify;
+		classify.join = classify.join && !options.objectCentric();
+		m_router = estimator::makeRouter(options.feature_labels, &classify);
 		// feature_labels = classify: ID -1 readings associated with MRPT's data association.
 		if (auto* c = dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
 			c->setStaticAssociation(makeMrptStaticAssociation(options.classify.assoc));
@@ -213,6 +217,9 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		m_report.classify_held = m_routed.held;
 		m_report.classify_stopped = m_routed.stopped;
 		m_report.skipped_unknown_id = m_routed.skipped_unknown_id;
+		m_report.classify_restarted = m_routed.restarted;
+		m_report.classify_split = m_routed.split;
+		m_report.classify_joined = m_routed.joined;
 		convertStaticLandmarks(m_routed.converted);  // classify: a parked car drove off
 		propagateEgo();                              // Alg. 7
 		predictObjects();                            // object-centric motion models only (cv)

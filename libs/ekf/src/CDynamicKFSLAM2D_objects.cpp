@@ -40,6 +40,40 @@ std::map<int32_t, TObjectBlocks> indexObjects(const estimator::CPaddedLayout& L,
 	return out;
 }
 
+/** An object's pose fit at this step: its features with an f_0 block (founders first, in
+ * feature-set order; only the founder for a one-founder object), the seen ones among them, and
+ * the seen features without an f_0 yet (late joiners, doc/classification.md). */
+struct TObjectFit
+{
+	std::vector<int> f0_idx, ft_idx, seen;
+	std::vector<size_t> joiners;  ///< their time-t blocks
+};
+TObjectFit objectFit(const estimator::CPaddedLayout& ext, const estimator::TObjectEntry& info,
+                     const TObjectBlocks& os)
+{
+	TObjectFit fit;
+	std::map<int32_t, int> pos;  // feature ID -> column of f0_idx
+	for (const int32_t id : info.feature_ids)
+	{
+		const auto it = os.f0.find(id);
+		if (it == os.f0.end() || (info.founders == 1 && !fit.f0_idx.empty())) continue;
+		pos[id] = int(fit.f0_idx.size());
+		fit.f0_idx.push_back(ext.first(it->second));
+	}
+	for (const size_t b : os.ft)
+	{
+		const auto it = pos.find(ext[b].id);
+		if (it != pos.end())
+		{
+			fit.ft_idx.push_back(ext.first(b));
+			fit.seen.push_back(it->second);
+		}
+		else if (!os.f0.count(ext[b].id))
+			fit.joiners.push_back(b);
+	}
+	return fit;
+}
+
 TBlock featureBlock(BlockKind kind, const estimator::TRoutedReading& m, int step)
 {
 	TBlock b;
@@ -135,22 +169,17 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 	{
 		if (os.ft.empty()) continue;
 		const estimator::TObjectEntry& info = m_router->registry().at(obj);
-		const int nf = int(info.feature_ids.size()), m = int(os.ft.size());
-		if (nf >= 2 && m < 2)
+		const TObjectFit fit = objectFit(ext, info, os);
+		if (fit.f0_idx.empty() || (info.founders >= 2 && fit.ft_idx.size() < 2) ||
+		    (info.founders == 1 && fit.ft_idx.size() != 1))
 		{
 			++m_report.skipped_pose_degenerate;  // rotation undetermined from one feature
 			continue;
 		}
-		std::vector<int> f0_idx, ft_idx, seen;
-		for (const int32_t id : info.feature_ids) f0_idx.push_back(ext.first(os.f0.at(id)));
-		for (const size_t b : os.ft)
-		{
-			ft_idx.push_back(ext.first(b));
-			seen.push_back(info.indexOf(ext[b].id));
-		}
 		try
 		{
-			lins.push_back(ekf::linearizeObjectPose(x, f0_idx, ft_idx, seen, options.Sigma_xi));
+			lins.push_back(ekf::linearizeObjectPose(x, fit.f0_idx, fit.ft_idx, fit.seen,
+			                                        options.Sigma_xi, info.founders));
 		}
 		catch (const std::domain_error& e)
 		{
@@ -165,9 +194,24 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 		p.step = m_step;
 		p.dim = int(lins.back().xi.size());
 		at.push_back(size);
-		size += 2 * p.slots();
 		poses.push_back(p);
 		++m_report.object_poses_added;
+		if (!fit.joiners.empty())
+		{
+			// Late joiners: their f_0 from this step's pose and reading, right after the pose.
+			std::vector<int> ft;
+			for (const size_t b : fit.joiners)
+			{
+				ft.push_back(ext.first(b));
+				TBlock f = ext[b];
+				f.kind = BlockKind::ObjectFeature0;
+				poses.push_back(f);
+				++m_report.object_features_joined;
+			}
+			lins.back() =
+			    ekf::appendJoinedFeatures(x, lins.back(), info.founders, ft, 2 * p.slots());
+		}
+		size += 2 * p.slots() + 2 * Eigen::Index(fit.joiners.size());
 	}
 	if (lins.empty()) return;
 	plan.b = ekf::objectPoseAugmentations(cov(), plan.a, lins, at, size);

@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace dynslam::estimator
 {
@@ -76,6 +77,18 @@ double chiSquareQuantile(double p, int dof)
 	return k * t * t * t;
 }
 
+namespace
+{
+/** The distance of two points and its variance along their direction. */
+std::pair<double, double> distanceOf(const TPoint2& a, const TPoint2& b)
+{
+	const Eigen::Vector2d diff = a.p - b.p;
+	const double n = diff.norm();
+	const Eigen::Vector2d g = n > 0 ? Eigen::Vector2d(diff / n) : Eigen::Vector2d(1, 0);
+	return {n, std::max(g.dot((a.C + b.C) * g), 1e-12)};
+}
+}  // namespace
+
 TRigidTest rigidDistanceTest(const std::map<int, TPoint2>& a, const std::map<int, TPoint2>& b)
 {
 	std::vector<double> d, var;
@@ -83,11 +96,9 @@ TRigidTest rigidDistanceTest(const std::map<int, TPoint2>& a, const std::map<int
 	{
 		const auto it = b.find(step);
 		if (it == b.end()) continue;
-		const Eigen::Vector2d diff = pa.p - it->second.p;
-		const double n = diff.norm();
-		const Eigen::Vector2d g = n > 0 ? Eigen::Vector2d(diff / n) : Eigen::Vector2d(1, 0);
+		const auto [n, v] = distanceOf(pa, it->second);
 		d.push_back(n);
-		var.push_back(std::max(g.dot((pa.C + it->second.C) * g), 1e-12));
+		var.push_back(v);
 	}
 	TRigidTest out;
 	out.common = int(d.size());
@@ -101,6 +112,27 @@ TRigidTest rigidDistanceTest(const std::map<int, TPoint2>& a, const std::map<int
 	out.mean_dist = swd / sw;
 	for (size_t i = 0; i < d.size(); ++i)
 		out.chi2 += (d[i] - out.mean_dist) * (d[i] - out.mean_dist) / var[i];
+	return out;
+}
+
+TRigidNow rigidNowTest(const std::map<int, TPoint2>& a, const TPoint2& za,
+                       const std::map<int, TPoint2>& b, const TPoint2& zb)
+{
+	TRigidNow out;
+	double sw = 0, swd = 0;
+	for (const auto& [step, pa] : a)
+	{
+		const auto it = b.find(step);
+		if (it == b.end()) continue;
+		const auto [d, v] = distanceOf(pa, it->second);
+		sw += 1 / v;
+		swd += d / v;
+		++out.past;
+	}
+	if (out.past == 0) return out;
+	const auto [d, v] = distanceOf(za, zb);
+	const double e = d - swd / sw;
+	out.z2 = e * e / (v + 1 / sw);
 	return out;
 }
 }  // namespace dynslam::estimator

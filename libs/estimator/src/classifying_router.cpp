@@ -32,6 +32,8 @@ void TClassifyParams::validate() const
 	if (reclassify_count < 0)
 		throw std::invalid_argument("classify_reclassify_count must be >= 0 (0: off)");
 	if (stop_count < 0) throw std::invalid_argument("classify_stop_count must be >= 0 (0: off)");
+	if (reuse_gap < 0) throw std::invalid_argument("classify_reuse_gap must be >= 0 (0: off)");
+	if (split_count < 0) throw std::invalid_argument("classify_split_count must be >= 0 (0: off)");
 	assoc.validate();
 }
 
@@ -48,6 +50,7 @@ void CClassifyingRouter::reset()
 	m_tracks.clear();
 	m_registry.clear();
 	m_objectTracks.clear();
+	m_alias.clear();
 	m_nextObject = 0;
 	m_lastStep = -1;
 	m_ctx.reset();
@@ -190,7 +193,8 @@ bool CClassifyingRouter::stoppedEvidence(TTrack& t, const TPoint2& z)
 }
 
 void CClassifyingRouter::makeMoving(int32_t id, TTrack& t, int step,
-                                    std::vector<int32_t>& newObjects)
+                                    std::vector<int32_t>& newObjects, TRoutedStep& out,
+                                    const std::vector<int32_t>& exclude)
 {
 	t.cls = TrackClass::Moving;
 	t.q_valid = false;
@@ -211,6 +215,18 @@ void CClassifyingRouter::makeMoving(int32_t id, TTrack& t, int step,
 		members.push_back(id);
 		return;
 	}
+	// Late joining: an object of an earlier step (not for converted landmarks, whose object
+	// starts before this step with its f_0 from the landmarks).
+	if (!t.converting)
+		if (const int32_t obj = joinableObject(t, exclude); obj >= 0)
+		{
+			t.object = obj;
+			t.feature = int32_t(m_registry.at(obj).feature_ids.size());
+			m_registry.addFeature(obj, id, t.feature);
+			m_objectTracks[obj].push_back(id);
+			++out.joined;
+			return;
+		}
 	t.object = m_nextObject++;
 	t.feature = 0;
 	m_objectTracks[t.object] = {id};
@@ -361,12 +377,20 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 	predictTracks(step, out, isKnownStatic);
 	std::vector<TReading> rd = readings;  // -1 IDs resolved below (if active)
 	std::vector<TPoint2> pts;
-	for (const TReading& r : rd) pts.push_back(readingInRobotFrame(*m_ctx, r.z));
+	std::vector<int32_t> external;  // the input IDs
+	for (TReading& r : rd)
+	{
+		pts.push_back(readingInRobotFrame(*m_ctx, r.z));
+		external.push_back(r.id);
+		if (const auto a = m_alias.find(r.id); a != m_alias.end()) r.id = a->second;
+	}
 	if (m_unknown.active())
 	{
 		m_unknown.predict(m_ctx->u, m_ctx->U);
 		resolveUnknownIds(step, rd, pts, out);
 	}
+	std::set<int32_t> held;  // moving readings inconsistent with their object, held back
+	checkAssignments(step, rd, pts, external, out, held);
 	std::vector<Act> act(rd.size(), Act::Skip);
 	std::vector<bool> candidate(rd.size(), false);
 	std::vector<int32_t> turnedMoving;  // decided (or reclassified) moving now, in order
@@ -387,7 +411,9 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 	for (const int32_t id : turnedMoving)
 	{
 		TTrack& t = m_tracks.at(id);
-		makeMoving(id, t, step, t.converting ? convertedObjects : newObjects);
+		std::vector<int32_t> exclude = newObjects;
+		exclude.insert(exclude.end(), convertedObjects.begin(), convertedObjects.end());
+		makeMoving(id, t, step, t.converting ? convertedObjects : newObjects, out, exclude);
 	}
 	registerConverted(convertedObjects, step, out);
 	for (size_t i = 0; i < rd.size(); ++i)
@@ -397,7 +423,9 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 		m.candidate = candidate[i];
 		const int32_t id = rd[i].id;
 		const auto it = id >= 0 ? m_tracks.find(id) : m_tracks.end();
-		if (it != m_tracks.end() && it->second.cls == TrackClass::Moving) act[i] = Act::Moving;
+		if (it != m_tracks.end() && it->second.cls == TrackClass::Moving)
+			act[i] = held.count(id) ? Act::Skip : Act::Moving;
+		if (held.count(id)) ++out.held;
 		if (act[i] == Act::Static && m.candidate)
 			m.route = isKnownStatic(id) ? Route::Skip : Route::StaticNew;
 		else if (act[i] == Act::Static)

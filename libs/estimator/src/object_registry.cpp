@@ -21,6 +21,7 @@ FeatureRole CObjectRegistry::registerReading(int32_t obj, int32_t id, int32_t fe
 		o.first_step = step;
 		o.feature_ids.push_back(id);
 		o.feature_index.push_back(feature);
+		o.founders = int(o.feature_ids.size());
 		return FeatureRole::FirstSighting;
 	}
 	return it->second.indexOf(id) >= 0 ? FeatureRole::TimeT : FeatureRole::Unknown;
@@ -39,6 +40,18 @@ void CObjectRegistry::registerObject(int32_t obj, int first_step, const std::vec
 	o.first_step = first_step;
 	o.feature_ids = ids;
 	o.feature_index = index;
+	o.founders = int(ids.size());
+}
+
+void CObjectRegistry::addFeature(int32_t obj, int32_t id, int32_t feature)
+{
+	const auto it = m_objects.find(obj);
+	if (it == m_objects.end() || it->second.indexOf(id) >= 0)
+		throw std::logic_error("CObjectRegistry::addFeature: object " + std::to_string(obj) +
+		                       (it == m_objects.end() ? " does not exist" : " has feature ") +
+		                       (it == m_objects.end() ? "" : std::to_string(id)));
+	it->second.feature_ids.push_back(id);
+	it->second.feature_index.push_back(feature);
 }
 
 void CObjectRegistry::recordDroppedPose(int32_t obj, const TPoseRecord& r, bool record)

@@ -84,6 +84,11 @@ struct TStepReport
 	size_t converted_static = 0;
 	size_t classify_stopped = 0;    ///< moving tracks decided static (their object stopped)
 	size_t dropped_candidates = 0;  ///< candidate landmarks removed (decided moving, forgotten)
+	/** Tracks restarted under a fresh ID after a break (reading inconsistent with the track's
+	 * assignment: its ID reused), split off their object, joined an earlier object (router);
+	 * late joiners given their f_0 (EKF, the object's pose computable). */
+	size_t classify_restarted = 0, classify_split = 0, classify_joined = 0;
+	size_t object_features_joined = 0;
 };
 
 /** Common interface of the back-ends. */

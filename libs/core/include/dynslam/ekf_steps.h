@@ -68,7 +68,20 @@ ObjectPoseLinearization linearizeObjectPose(const Eigen::Ref<const Eigen::Vector
                                             const std::vector<int>& f0_idx,
                                             const std::vector<int>& ft_idx,
                                             const std::vector<int>& seen,
-                                            const Eigen::Matrix2d& Sigma_xi);
+                                            const Eigen::Matrix2d& Sigma_xi, int centroidCols = 0);
+
+/** Late joining (doc/classification.md): `pose` (a linearizeObjectPose result whose first
+ * 2 * nc entries of idx are the object's founders' f0, nc = centroid columns) extended by the
+ * time-0 positions of features that join the object at this step, f0_j = (g^o)^-1(xi, ft_j):
+ *   3-dof: f0_j = R(dtheta)^T (ft_j - c0 - (dx, dy)) + c0, c0 the founders' centroid;
+ *   2-dof (one founder): f0_j = ft_j - xi.
+ * Entries of the result: xi (d), pads (mean 0, variance 1, uncorrelated) up to padTo >= d,
+ * then 2 per joiner in order; idx gains each joiner's time-t feature (ft_idx: the x-entry);
+ * noise gains the pose noise mapped to the joiners (they share it with xi).
+ * @throws std::invalid_argument on inconsistent sizes. */
+ObjectPoseLinearization appendJoinedFeatures(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                             const ObjectPoseLinearization& pose, int nc,
+                                             const std::vector<int>& ft_idx, int padTo);
 
 // --- Batched augmentation -----------------------------------------------------------------
 // A step adds several groups of entries (new features, then object poses computed from them)

@@ -47,7 +47,13 @@ struct TClassDecisions
 	std::vector<int> steps;       ///< the step of each reading
 	std::vector<int32_t> ids;     ///< the track ID the filter used (-1 readings: as resolved)
 	int stepsAdded = 0;           ///< add() calls so far (= the next step)
+	/** The router's counts over the run (estimator::TRoutedStep): tracks restarted after a
+	 * break (ID reused), split off their object, joined an earlier object; readings held back,
+	 * ID -1 readings skipped. */
+	size_t restarted = 0, split = 0, joined = 0, held = 0, skipped_unknown_id = 0;
 	void add(const estimator::TRoutedStep& step);
+	/** One line of those counts, for the summary under the table. */
+	std::string countsLine(const std::string& filter) const;
 };
 
 /** With --out and figures: `<filter>_class_map.png` and `<filter>_class_timeline.png`

@@ -25,10 +25,11 @@
 namespace dynslam::models
 {
 /** g^o(xi, f0): returns f_t (2 x n). J_ft_xi: d vec(ft)/d xi (2n x 3); J_ft_f0:
- * d vec(ft)/d vec(f0) (2n x 2n). */
+ * d vec(ft)/d vec(f0) (2n x 2n). c0: the centroid of the first centroidCols columns (0: all;
+ * see objectPoseInverse). */
 Eigen::Matrix2Xd objectPoseMap(const Eigen::Vector3d& xi, const Eigen::Matrix2Xd& f0,
                                Eigen::MatrixXd* J_ft_xi = nullptr,
-                               Eigen::MatrixXd* J_ft_f0 = nullptr);
+                               Eigen::MatrixXd* J_ft_f0 = nullptr, int centroidCols = 0);
 
 /** gamma(f0, ft): closed-form 2-D Procrustes fit of the object pose.
  * @param f0 all n time-0 features (2 x n).
@@ -37,6 +38,9 @@ Eigen::Matrix2Xd objectPoseMap(const Eigen::Vector3d& xi, const Eigen::Matrix2Xd
  *        means all, in order (m == n).
  * @param Gamma1 out: d xi / d vec(f0) (3 x 2n).
  * @param Gamma2 out: d xi / d vec(ft) (3 x 2m).
+ * @param centroidCols c0 is the centroid of the first centroidCols columns of f0 (0: all). An
+ *        object's founders (its features at time 0) define c0; features that joined later
+ *        (doc/classification.md, "Late joining") follow them and leave c0 unchanged.
  * @throws std::invalid_argument on inconsistent sizes or indices;
  * @throws std::domain_error when the rotation is undetermined: fewer than 2 seen features, or
  *         the seen features all coincide (at time 0 or at time t). Collinear features are
@@ -44,7 +48,7 @@ Eigen::Matrix2Xd objectPoseMap(const Eigen::Vector3d& xi, const Eigen::Matrix2Xd
 Eigen::Vector3d objectPoseInverse(const Eigen::Matrix2Xd& f0, const Eigen::Matrix2Xd& ft,
                                   const std::vector<int>& seen = {},
                                   Eigen::MatrixXd* Gamma1 = nullptr,
-                                  Eigen::MatrixXd* Gamma2 = nullptr);
+                                  Eigen::MatrixXd* Gamma2 = nullptr, int centroidCols = 0);
 
 /** Translation-only pose of a one-feature object: xi = ft - f0, with Gamma1 = -I, Gamma2 = I. */
 Eigen::Vector2d objectTranslationInverse(const Eigen::Vector2d& f0, const Eigen::Vector2d& ft,

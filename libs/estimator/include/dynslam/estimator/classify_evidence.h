@@ -44,4 +44,16 @@ struct TRigidTest
 	double mean_dist = 0;  ///< weighted mean distance [m]
 };
 TRigidTest rigidDistanceTest(const std::map<int, TPoint2>& a, const std::map<int, TPoint2>& b);
+
+/** Is the distance of two points now (za, zb) the one their tracks kept before (a, b: step ->
+ * point, without the current step)? The weighted mean of the earlier distances (as
+ * rigidDistanceTest) against d_now: z2 = (d_now - mean)^2 / (var_now + 1 / sum w), 1 dof;
+ * past = the number of earlier common steps (0: untestable, z2 = 0). */
+struct TRigidNow
+{
+	int past = 0;
+	double z2 = 0;
+};
+TRigidNow rigidNowTest(const std::map<int, TPoint2>& a, const TPoint2& za,
+                       const std::map<int, TPoint2>& b, const TPoint2& zb);
 }  // namespace dynslam::estimator

@@ -36,6 +36,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 
 namespace dynslam::estimator
 {
@@ -59,6 +60,20 @@ struct TClassifyParams
 	/** classify_stop_count: a moving track becomes static after this many consecutive readings
 	 * consistent with a static point (its object stopped; 0: never). */
 	int stop_count = 0;
+	/** classify_reuse_gap: a track unseen for at least this many steps whose reading is
+	 * inconsistent with its assignment (a static track: beyond reclassify_gate; a moving one:
+	 * with every other seen feature of its object) restarts as a new candidate under a fresh
+	 * track ID (its ID was reused by another point; TRoutedStep::restarted; 0: never, the
+	 * default: on real data it competes with the reclassification of slow movers held static,
+	 * doc/classification.md). */
+	int reuse_gap = 0;
+	/** classify_split_count: consecutive readings of a moving track inconsistent with every
+	 * other seen feature of its object that split it off: it restarts as a new candidate
+	 * (TRoutedStep::split; the readings before are held back; 0: never). */
+	int split_count = 3;
+	/** classify_join: a track decided moving may join an object that exists already if its
+	 * distances to that object's features stayed constant (TRoutedStep::joined). */
+	bool join = true;
 	TUnknownIdParams assoc;  ///< classify_assoc_*: ID -1 (unknown_id_association.h)
 	/** Throws std::invalid_argument naming the key. */
 	void validate() const;
@@ -79,10 +94,11 @@ struct TTrack
 	bool q_valid = false;  ///< false: re-initialised at the next sighting
 	double llr = 0;        ///< sum of the log-likelihood ratios (moving vs static)
 	int sightings = 0, first_seen = -1, last_seen = -1, decided_step = -1;
-	int bad_streak = 0;                 ///< static: consecutive readings beyond the gate
-	int still_streak = 0;               ///< moving: consecutive readings consistent with static
-	int last_good = -1;                 ///< static: step of its last reading within the gate
-	bool converting = false;            ///< reclassified in this step with surgery (known landmark)
+	int bad_streak = 0;       ///< static: consecutive readings beyond the gate
+	int still_streak = 0;     ///< moving: consecutive readings consistent with static
+	int split_streak = 0;     ///< moving: consecutive readings inconsistent with its object
+	int last_good = -1;       ///< static: step of its last reading within the gate
+	bool converting = false;  ///< reclassified in this step with surgery (known landmark)
 	int32_t object = -1, feature = -1;  ///< moving: its object and feature index
 	std::map<int, TPoint2> history;     ///< the last readings (robot frame), by step
 };
@@ -126,8 +142,10 @@ private:
 	std::optional<TrackClass> addEvidence(TTrack& t, const TPoint2& z, int step);
 	/** A static track's reading: true if consistent (and used by its filter). */
 	bool checkStatic(TTrack& t, const TPoint2& z, int step);
-	/** Makes track id moving at step: joins an object created in this step or starts one. */
-	void makeMoving(int32_t id, TTrack& t, int step, std::vector<int32_t>& newObjects);
+	/** Makes track id moving at step: joins an object created in this step, or one of an
+	 * earlier step not in `exclude` (late joining, counted in out.joined), or starts one. */
+	void makeMoving(int32_t id, TTrack& t, int step, std::vector<int32_t>& newObjects,
+	                TRoutedStep& out, const std::vector<int32_t>& exclude);
 	/** Registers the objects made of converted landmarks (surgery) and lists the conversions. */
 	void registerConverted(const std::vector<int32_t>& objects, int step, TRoutedStep& out);
 	static void remember(TTrack& t, const TPoint2& z, int step, int keep);
@@ -145,6 +163,25 @@ private:
 	/** Gives every -1 reading of rd a track ID (unknown_id_association.h); pts: robot frame. */
 	void resolveUnknownIds(int step, std::vector<TReading>& rd, const std::vector<TPoint2>& pts,
 	                       TRoutedStep& out);
+	/** Restarts of tracks inconsistent with their assignment (classify_reuse_gap, _split_count):
+	 * renames rd's IDs of restarted tracks; fills held with moving readings held back. */
+	void checkAssignments(int step, std::vector<TReading>& rd, const std::vector<TPoint2>& pts,
+	                      const std::vector<int32_t>& external, TRoutedStep& out,
+	                      std::set<int32_t>& held);
+	/** Whether moving track id's reading z is inconsistent with every other seen feature of its
+	 * object (now: the step's readings by track); false if none can be compared. */
+	bool inconsistentWithObject(int32_t id, const TPoint2& z,
+	                            const std::map<int32_t, TPoint2>& now) const;
+	/** Track id is a moving feature of object obj (members of stopped tracks are stale). */
+	bool isMember(int32_t id, int32_t obj) const;
+	/** Gives the reading of track id a new track ID (a new candidate); returns it. */
+	int32_t restartTrack(int32_t id, int32_t externalId);
+	/** Late joining: an existing object (not in `exclude`) whose features keep constant distances
+	 * to track t, or -1. */
+	int32_t joinableObject(const TTrack& t, const std::vector<int32_t>& exclude) const;
+	/** The rigid test of t against the live members of obj with at least 2 common steps; false
+	 * if there is none. */
+	bool rigidWithObject(const TTrack& t, int32_t obj) const;
 	/** An object reading of moving track t through the registry. */
 	void routeMoving(TRoutedReading& m, const TTrack& t, int step, TRoutedStep& out);
 
@@ -154,6 +191,7 @@ private:
 	CObjectRegistry m_registry;
 	std::map<int32_t, std::vector<int32_t>> m_objectTracks;  ///< object -> track IDs
 	int32_t m_nextObject = 0;
+	std::map<int32_t, int32_t> m_alias;  ///< input track ID -> its track after restarts
 	int m_lastStep = -1;
 	CUnknownIdResolver m_unknown;
 };

@@ -54,6 +54,14 @@ struct TRoutedStep
 	/** Moving tracks decided static in this step (their object stopped, classify_stop_count):
 	 * their reading starts a static landmark (StaticNew). */
 	size_t stopped = 0;
+	/** Tracks restarted as new candidates under a fresh ID (classify_reuse_gap): after a break,
+	 * a reading inconsistent with the track's assignment (its ID reused by another point). */
+	size_t restarted = 0;
+	/** Moving tracks split off their object (classify_split_count): restarted as candidates. */
+	size_t split = 0;
+	/** Tracks decided moving that joined an object created in an earlier step (late joining:
+	 * the filter gives them an f_0 from the object's pose). */
+	size_t joined = 0;
 	/** Static landmarks decided moving in this step (a parked car drove off) with
 	 * classify_reclassify = restart: the filter drops them from the state; their reading of this
 	 * step is the first sighting of a new object. */

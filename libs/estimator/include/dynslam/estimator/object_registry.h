@@ -33,10 +33,13 @@ struct TObjectEntry
 	std::vector<int32_t> feature_ids;        ///< features seen at time 0, in observation order
 	std::vector<int32_t> feature_index;      ///< their feature index within the object
 	std::vector<TPoseRecord> dropped_poses;  ///< ascending step
+	/** The features seen at time 0 (the first `founders` of feature_ids): they define the pose's
+	 * centroid c0 and its dimension. Features that joined later (addFeature) follow them. */
+	int founders = 0;
 	/** Index of feature `id` in feature_ids, or -1 if it is not in the feature set. */
 	int indexOf(int32_t id) const;
-	/** 1 feature: translation-only pose (2 entries); otherwise (dx, dy, dtheta). */
-	int poseDim() const { return feature_ids.size() == 1 ? 2 : 3; }
+	/** 1 founder: translation-only pose (2 entries); otherwise (dx, dy, dtheta). */
+	int poseDim() const { return founders == 1 ? 2 : 3; }
 };
 
 /** How a reading of an object feature relates to the registry (see the file comment). */
@@ -60,6 +63,10 @@ public:
 	 * empty or if ids and index differ in size. */
 	void registerObject(int32_t obj, int first_step, const std::vector<int32_t>& ids,
 	                    const std::vector<int32_t>& index);
+	/** Late joining (doc/classification.md): feature `id` (index `feature`) joins object `obj`
+	 * after its time 0; its readings are time t from now on (the filter gives it an f_0 from its
+	 * first one). Throws std::logic_error if obj does not exist or already has id. */
+	void addFeature(int32_t obj, int32_t id, int32_t feature);
 	bool has(int32_t obj) const { return m_objects.count(obj) != 0; }
 	const TObjectEntry& at(int32_t obj) const { return m_objects.at(obj); }
 	TObjectEntry& at(int32_t obj) { return m_objects.at(obj); }

@@ -99,6 +99,9 @@ public:
 	/** A reading of a track (every reading with an ID, after resolve). */
 	void observe(int32_t id, const TPoint2& z, int step);
 	void forget(int32_t id) { m_movers.erase(id); }
+	/** A fresh track ID from the counter of the -1 tracks (a restarted track,
+	 * classifying_router.h). */
+	int32_t newId() { return m_next++; }
 	/** Forgets the moving tracks and restarts the ID counter (keeps the association function). */
 	void reset();
 	const TUnknownIdParams& params() const { return m_p; }
