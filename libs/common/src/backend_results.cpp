@@ -11,8 +11,6 @@ TObjectPoseEstimate toEstimate(const estimator::TPoseRecord& r)
 	e.step = r.step;
 	e.mean = r.mean.head(r.dim);
 	e.cov = r.cov.topLeftCorner(r.dim, r.dim);
-	e.velocity = r.velocity.head(r.vdim);
-	e.velocity_cov = r.velocity_cov.topLeftCorner(r.vdim, r.vdim);
 	e.in_state = false;
 	return e;
 }
@@ -23,19 +21,25 @@ estimator::TPoseRecord toRecord(const TObjectPoseEstimate& e)
 	if ((d != 2 && d != 3) || e.cov.rows() != d || e.cov.cols() != d)
 		throw std::invalid_argument(
 		    "toRecord: a pose has 2 or 3 entries and a matching covariance");
-	const auto vd = e.velocity.size();
-	if ((vd != 0 && vd != d) || e.velocity_cov.rows() != vd || e.velocity_cov.cols() != vd)
-		throw std::invalid_argument(
-		    "toRecord: a velocity has none or as many entries as the pose, and a matching "
-		    "covariance");
 	estimator::TPoseRecord r;
 	r.step = e.step;
 	r.dim = int(d);
 	r.mean.head(d) = e.mean;
 	r.cov.topLeftCorner(d, d) = e.cov;
-	r.vdim = int(vd);
-	r.velocity.head(vd) = e.velocity;
-	r.velocity_cov.topLeftCorner(vd, vd) = e.velocity_cov;
+	return r;
+}
+
+estimator::TVelocityRecord toVelocityRecord(const TObjectPoseEstimate& e)
+{
+	const auto d = e.velocity.size();
+	if ((d != 2 && d != 3) || e.velocity_cov.rows() != d || e.velocity_cov.cols() != d)
+		throw std::invalid_argument(
+		    "toVelocityRecord: a velocity has 2 or 3 entries and a matching covariance");
+	estimator::TVelocityRecord r;
+	r.step = e.step;
+	r.dim = int(d);
+	r.velocity.head(d) = e.velocity;
+	r.cov.topLeftCorner(d, d) = e.velocity_cov;
 	return r;
 }
 
@@ -50,6 +54,14 @@ std::map<int32_t, TObjectTrack> tracksFromRegistry(const estimator::CObjectRegis
 		tr.num_features = int(o.feature_ids.size());
 		tr.poses.reserve(o.dropped_poses.size());
 		for (const auto& r : o.dropped_poses) tr.poses.push_back(toEstimate(r));
+		size_t i = 0;  // both ascending in step: attach each velocity to its pose
+		for (const auto& v : o.dropped_velocities)
+		{
+			while (i < tr.poses.size() && tr.poses[i].step < v.step) ++i;
+			if (i == tr.poses.size() || tr.poses[i].step != v.step) continue;  // pose not kept
+			tr.poses[i].velocity = v.velocity.head(v.dim);
+			tr.poses[i].velocity_cov = v.cov.topLeftCorner(v.dim, v.dim);
+		}
 	}
 	return out;
 }

@@ -80,11 +80,14 @@ void CDynamicKFSLAM2D::predictObjects()
 		e.dim = int(ip.size());
 		e.mean.head(e.dim) = x(ip);
 		e.cov.topLeftCorner(e.dim, e.dim) = ekf::marginal(P, ip);
-		const std::vector<int> iv = m_layout.indices(st.velocity);
-		e.vdim = int(iv.size());
-		e.velocity.head(e.vdim) = x(iv);
-		e.velocity_cov.topLeftCorner(e.vdim, e.vdim) = ekf::marginal(P, iv);
 		m_router->registry().recordDroppedPose(obj, e, m_drop.record());
+		const std::vector<int> iv = m_layout.indices(st.velocity);
+		estimator::TVelocityRecord ev;
+		ev.step = e.step;
+		ev.dim = int(iv.size());
+		ev.velocity.head(ev.dim) = x(iv);
+		ev.cov.topLeftCorner(ev.dim, ev.dim) = ekf::marginal(P, iv);
+		m_router->registry().recordDroppedVelocity(obj, ev, m_drop.record());
 
 		const std::vector<int> idx = concat(ip, iv);
 		Eigen::MatrixXd F, Q;
@@ -197,7 +200,8 @@ bool CDynamicKFSLAM2D::velocityInit(int32_t obj, size_t pose, TVelocityInit& out
 				prev = b;
 		if (prev == SIZE_MAX) return false;  // one pose since the fallback: wait for the next
 		ipPrev = m_layout.indices(prev);
-		xi -= x(ipPrev);  // the motion between the two poses
+		for (size_t i = 0; i < ipPrev.size(); ++i)  // the motion between the two poses (a loop:
+			xi[Eigen::Index(i)] -= x[ipPrev[i]];    // GCC 12 warns on x(ipPrev) here)
 		if (xi.size() == 3) xi[2] = models::wrapToPi(xi[2]);
 		steps = m_step - m_layout[prev].step;
 	}

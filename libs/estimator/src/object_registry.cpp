@@ -59,6 +59,11 @@ void CObjectRegistry::recordDroppedPose(int32_t obj, const TPoseRecord& r, bool 
 	if (record) m_objects.at(obj).dropped_poses.push_back(r);
 }
 
+void CObjectRegistry::recordDroppedVelocity(int32_t obj, const TVelocityRecord& r, bool record)
+{
+	if (record) m_objects.at(obj).dropped_velocities.push_back(r);
+}
+
 bool CObjectRegistry::isTimeT(int32_t obj, int step) const
 {
 	const auto it = m_objects.find(obj);

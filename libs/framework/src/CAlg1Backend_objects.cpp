@@ -64,6 +64,7 @@ void CAlg1Backend::predictObjects()
 		e.velocity = m_cost.value(v);
 		e.velocity_cov = marginalCov(v);
 		m_router->registry().recordDroppedPose(obj, toRecord(e), m_drop.record());
+		m_router->registry().recordDroppedVelocity(obj, toVelocityRecord(e), m_drop.record());
 		const int d = m_cost.dim(xi), dv = m_cost.dim(v);
 		Eigen::VectorXd s(d + dv);
 		s << m_cost.value(xi), m_cost.value(v);

@@ -18,4 +18,7 @@ void sortTrackPoses(std::map<int32_t, TObjectTrack>& tracks);
 TObjectPoseEstimate toEstimate(const estimator::TPoseRecord& r);
 /** A pose as a dropped-pose record (dim 2 or 3). */
 estimator::TPoseRecord toRecord(const TObjectPoseEstimate& e);
+/** The velocity of a pose as a record (2 or 3 entries; throws std::invalid_argument otherwise).
+ * tracksFromRegistry attaches it to the dropped pose of the same step. */
+estimator::TVelocityRecord toVelocityRecord(const TObjectPoseEstimate& e);
 }  // namespace dynslam

@@ -19,12 +19,16 @@ struct TPoseRecord
 	int step = -1, dim = 0;  ///< dim 3 (dx, dy, dtheta) or 2 (dx, dy)
 	Eigen::Vector3d mean = Eigen::Vector3d::Zero();
 	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-	/** Velocity of the pose's step (object_model = cv | ctrv: the world-frame velocity of the
-	 * reference point and the turn rate, models/object_motion.h), vdim entries (= dim); vdim 0:
-	 * the model has no velocity state. */
-	int vdim = 0;
+};
+
+/** The velocity of a dropped pose's step (object_model = cv | ctrv: the world-frame velocity of
+ * the reference point and the turn rate, models/object_motion.h). Kept apart from TPoseRecord
+ * so the paper's models, which have none, do not pay for it in long runs. */
+struct TVelocityRecord
+{
+	int step = -1, dim = 0;  ///< dim = the pose's dim
 	Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-	Eigen::Matrix3d velocity_cov = Eigen::Matrix3d::Zero();
+	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
 };
 
 struct TObjectEntry
@@ -33,6 +37,7 @@ struct TObjectEntry
 	std::vector<int32_t> feature_ids;        ///< features seen at time 0, in observation order
 	std::vector<int32_t> feature_index;      ///< their feature index within the object
 	std::vector<TPoseRecord> dropped_poses;  ///< ascending step
+	std::vector<TVelocityRecord> dropped_velocities;  ///< ascending step (velocity models only)
 	/** The features seen at time 0 (the first `founders` of feature_ids): they define the pose's
 	 * centroid c0 and its dimension. Features that joined later (addFeature) follow them. */
 	int founders = 0;
@@ -73,6 +78,8 @@ public:
 	const std::map<int32_t, TObjectEntry>& objects() const { return m_objects; }
 	/** Records a dropped pose (ignored if `record` is false: memory stays bounded). */
 	void recordDroppedPose(int32_t obj, const TPoseRecord& r, bool record);
+	/** The velocity of a dropped pose (recorded with it, same step). */
+	void recordDroppedVelocity(int32_t obj, const TVelocityRecord& r, bool record);
 	/** True if `step` is a time-t step of object obj (the object exists and was first seen
 	 * earlier). */
 	bool isTimeT(int32_t obj, int step) const;
