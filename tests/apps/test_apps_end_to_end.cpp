@@ -204,15 +204,15 @@ TEST(CompareApp, TunnelObjectModelsCvHelpsTheEgo)
 	EXPECT_LT(app.rows[2].gap->ate, 0.5 * app.rows[0].gap->ate);  // the target, in the gap
 	EXPECT_LT(app.rows[2].gap->nees, app.rows[2].gap->nees_upper);  // not overconfident
 	// Object velocities (eval::objectVelocityErrors): only the models with a velocity state.
-	// Measured 2026-11-24 (cars at ~25 m/s): speed RMSE 0.0032 (cv) / 0.0174 (ctrv) m/s over
-	// 240 velocities each.
+	// Measured 2026-11-24 with the shipped keys (cars at ~25 m/s): speed RMSE 0.0055 (cv) /
+	// 0.0718 (ctrv) m/s over 240 velocities each; a sign or unit error gives metres per second.
 	EXPECT_FALSE(app.rows[0].velocity.has_value());
 	EXPECT_FALSE(app.rows[1].velocity.has_value());
 	for (size_t i : {2u, 3u})
 	{
 		ASSERT_TRUE(app.rows[i].velocity.has_value()) << app.rows[i].filter;
 		EXPECT_GE(app.rows[i].velocity->n, 200u) << app.rows[i].filter;
-		EXPECT_LT(app.rows[i].velocity->speed_rmse, 0.1) << app.rows[i].filter;
+		EXPECT_LT(app.rows[i].velocity->speed_rmse, 0.3) << app.rows[i].filter;
 	}
 }
 
