@@ -42,3 +42,32 @@ TEST(TrackVelocities, EachVelocityGoesToThePoseOfItsStep)
 	e.velocity_cov = Eigen::MatrixXd::Zero(4, 4);
 	EXPECT_THROW(toVelocityRecord(e), std::invalid_argument);
 }
+
+TEST(TrackVelocities, RecordsRoundTripPosesAndVelocitiesOfTwoAndThreeEntries)
+{
+	for (int d : {2, 3})
+	{
+		TObjectPoseEstimate e;
+		e.step = 7;
+		e.mean = Eigen::VectorXd::LinSpaced(d, 1.0, double(d));
+		e.cov = Eigen::MatrixXd::Identity(d, d) * 0.5;
+		e.cov(0, d - 1) = e.cov(d - 1, 0) = 0.1;
+		e.velocity = Eigen::VectorXd::LinSpaced(d, 10.0, 10.0 + d);
+		e.velocity_cov = e.cov * 2.0;
+		const auto p = toRecord(e);
+		const auto v = toVelocityRecord(e);
+		EXPECT_EQ(p.step, 7);
+		EXPECT_EQ(v.step, 7);
+		ASSERT_EQ(p.dim, d);
+		ASSERT_EQ(v.dim, d);
+		const auto back = toEstimate(p);
+		EXPECT_EQ(back.mean, e.mean);
+		EXPECT_EQ(back.cov, e.cov);
+		EXPECT_EQ(Eigen::VectorXd(v.velocity.head(d)), e.velocity);
+		EXPECT_EQ(Eigen::MatrixXd(v.cov.topLeftCorner(d, d)), e.velocity_cov);
+	}
+	TObjectPoseEstimate bad;
+	bad.mean = Eigen::VectorXd::Zero(3);
+	bad.cov = Eigen::MatrixXd::Zero(2, 2);  // covariance of the wrong shape
+	EXPECT_THROW(toRecord(bad), std::invalid_argument);
+}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 namespace dynslam
 {
@@ -15,31 +16,37 @@ TObjectPoseEstimate toEstimate(const estimator::TPoseRecord& r)
 	return e;
 }
 
+namespace
+{
+/** Packs a 2- or 3-vector and its covariance into the fixed-size fields of a record; returns
+ * the dimension. Throws std::invalid_argument naming `who` for any other shape. */
+int packFixed(const Eigen::VectorXd& v, const Eigen::MatrixXd& c, Eigen::Vector3d& outV,
+              Eigen::Matrix3d& outC, const char* who)
+{
+	const auto d = v.size();
+	if ((d != 2 && d != 3) || c.rows() != d || c.cols() != d)
+		throw std::invalid_argument(std::string(who) +
+		                            ": a pose or velocity has 2 or 3 entries and a matching "
+		                            "covariance");
+	outV.head(d) = v;
+	outC.topLeftCorner(d, d) = c;
+	return int(d);
+}
+}  // namespace
+
 estimator::TPoseRecord toRecord(const TObjectPoseEstimate& e)
 {
-	const auto d = e.mean.size();
-	if ((d != 2 && d != 3) || e.cov.rows() != d || e.cov.cols() != d)
-		throw std::invalid_argument(
-		    "toRecord: a pose has 2 or 3 entries and a matching covariance");
 	estimator::TPoseRecord r;
 	r.step = e.step;
-	r.dim = int(d);
-	r.mean.head(d) = e.mean;
-	r.cov.topLeftCorner(d, d) = e.cov;
+	r.dim = packFixed(e.mean, e.cov, r.mean, r.cov, "toRecord");
 	return r;
 }
 
 estimator::TVelocityRecord toVelocityRecord(const TObjectPoseEstimate& e)
 {
-	const auto d = e.velocity.size();
-	if ((d != 2 && d != 3) || e.velocity_cov.rows() != d || e.velocity_cov.cols() != d)
-		throw std::invalid_argument(
-		    "toVelocityRecord: a velocity has 2 or 3 entries and a matching covariance");
 	estimator::TVelocityRecord r;
 	r.step = e.step;
-	r.dim = int(d);
-	r.velocity.head(d) = e.velocity;
-	r.cov.topLeftCorner(d, d) = e.velocity_cov;
+	r.dim = packFixed(e.velocity, e.velocity_cov, r.velocity, r.cov, "toVelocityRecord");
 	return r;
 }
 
