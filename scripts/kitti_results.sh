@@ -16,7 +16,11 @@
 # metrics.csv, estimates, figures) and OUT_DIR/S/report/ (summary.csv, objects.csv, map.png),
 # then OUT_DIR/summary.csv and OUT_DIR/table.md. Development only: no test needs this script.
 # KITTI_NO_COMPARE=1 skips dynslam-compare (the report runs the same three filters; this halves
-# the run time on a loaded machine).
+# the run time on a loaded machine). KITTI_INI=FILE replaces config/compare_kitti.ini (both
+# tools); KITTI_FILTERS=a,b,... is the report's --filters (default static_all,
+# static_landmarks_only,dynamic,dynamic_nogate), e.g. for the object models of doc/kitti.md 5.6:
+#   KITTI_NO_COMPARE=1 KITTI_FILTERS=static_landmarks_only,dynamic,dynamic_cv,dynamic_ctrv \
+#     scripts/kitti_results.sh DIR out/kitti_motion build "0005 0006 0007 0008 0009 0010"
 set -euo pipefail
 
 if [[ $# -lt 1 ]]; then
@@ -41,6 +45,10 @@ IMPORT=$(find_exe dynslam-kitti)
 COMPARE=$(find_exe dynslam-compare)
 REPORT=$(find_exe dynslam-kitti-report)
 
+INI=${KITTI_INI:-$SRC/config/compare_kitti.ini}
+FILTERS=()
+if [[ -n "${KITTI_FILTERS:-}" ]]; then FILTERS=(--filters "$KITTI_FILTERS"); fi
+
 mkdir -p "$OUT"
 : > "$OUT/summary.csv"
 for S in $SEQS; do
@@ -49,10 +57,11 @@ for S in $SEQS; do
 	"$IMPORT" --labels "$DATA/label_02" --poses "$DATA/poses" --sequence "$S" --out "$D" \
 		-c "$SRC/config/kitti.ini" > "$OUT/$S.import.log"
 	if [[ -z "${KITTI_NO_COMPARE:-}" ]]; then
-		"$COMPARE" -q -c "$SRC/config/compare_kitti.ini" -r "$D/kitti_$S.rawlog" --out "$D/compare" \
+		"$COMPARE" -q -c "$INI" -r "$D/kitti_$S.rawlog" --out "$D/compare" \
 			> "$OUT/$S.compare.log"
 	fi
-	"$REPORT" -c "$SRC/config/compare_kitti.ini" -r "$D/kitti_$S.rawlog" --out "$D/report" --label "$S"
+	"$REPORT" -c "$INI" -r "$D/kitti_$S.rawlog" --out "$D/report" --label "$S" \
+		${FILTERS[@]+"${FILTERS[@]}"}
 	if [[ ! -s "$OUT/summary.csv" ]]; then head -n 1 "$D/report/summary.csv" > "$OUT/summary.csv"; fi
 	tail -n +2 "$D/report/summary.csv" >> "$OUT/summary.csv"
 done

@@ -64,7 +64,19 @@ void writeRow(std::ostream& sum, std::ostream& obj, const std::string& label,
 	    << sc.read_double(R, "floor_trans_rmse", NAN) << ','
 	    << sc.read_double(R, "floor_rot_rmse", NAN) * kDeg << ',' << sc.read_int(R, "floor_n", 0)
 	    << ',' << sc.read_double(R, "static_corner_rms", NAN) << ',' << r.gated_out << ','
-	    << r.static_updates << ',' << r.run.est.ms_per_step << "\n";
+	    << r.static_updates << ',' << r.run.est.ms_per_step << ','
+	    << r.eval.summary.ego.anees << ',';
+	if (r.velocity)
+		sum << r.velocity->speed_rmse << ',' << r.velocity->omega_rmse << ','
+		    << r.velocity->anees << ',' << r.velocity->n << ',';
+	else
+		sum << ",,,,";
+	sum << val(r.objects_seen.position_rmse) << ','
+	    << (dyn ? std::to_string(r.objects_seen.position_n) : "") << ',';
+	if (r.velocity_seen)
+		sum << r.velocity_seen->speed_rmse << ',' << r.velocity_seen->n << "\n";
+	else
+		sum << ",\n";
 	if (dyn)
 		for (const auto& [o, e] : r.objects.motion_per_object)
 			obj << label << ',' << f << ',' << o << ',' << r.objects.position_rmse_per_object.at(o)
@@ -106,7 +118,9 @@ int main(int argc, char** argv)
 		sum << "label,filter,steps,path_length,moving_tracks,static_tracks,ate,rpe10_t,rpe10_r_deg,"
 		       "map_rmse,landmarks_scored,obj_pos_rmse,obj_pos_n,motion_t_rmse,motion_r_rmse_deg,"
 		       "motion_t_mean,motion_r_mean_deg,motion_n,floor_t_rmse,floor_r_rmse_deg,floor_n,"
-		       "static_corner_rms,gated_out,static_updates,ms_per_step\n";
+		       "static_corner_rms,gated_out,static_updates,ms_per_step,ego_anees,obj_speed_rmse,"
+		       "obj_omega_rmse,obj_velocity_anees,obj_velocity_n,obj_pos_rmse_seen,obj_pos_n_seen,"
+		       "obj_speed_rmse_seen,obj_velocity_n_seen\n";
 		obj << "label,filter,object,pos_rmse,motion_n,motion_t_rmse,motion_r_rmse_deg\n";
 		std::vector<kitti_eval::TKittiRunResult> results;
 		const auto odo = kitti_eval::deadReckoning(raw, gt);
@@ -117,7 +131,7 @@ int main(int argc, char** argv)
 		    << sc.read_double(R, "floor_trans_rmse", NAN) << ','
 		    << sc.read_double(R, "floor_rot_rmse", NAN) * kDeg << ','
 		    << sc.read_int(R, "floor_n", 0) << ',' << sc.read_double(R, "static_corner_rms", NAN)
-		    << ",,,\n";
+		    << ",,,,,,,,,,,,\n";
 		for (const std::string& f : apps::splitList(aFilters.getValue()))
 		{
 			try
@@ -128,7 +142,7 @@ int main(int argc, char** argv)
 			{
 				// a filter that diverges (NaN state) is a result, not a reason to stop
 				std::cout << label << " " << f << ": FAILED: " << e.what() << "\n";
-				sum << label << ',' << f << ",failed,,,,nan,nan,nan,nan,,,,,,,,,,,,,,,\n";
+				sum << label << ',' << f << ",failed,,,,nan,nan,nan,nan,,,,,,,,,,,,,,,,,,,,,,,,\n";
 				continue;
 			}
 			const auto& r = results.back();

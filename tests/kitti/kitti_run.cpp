@@ -36,6 +36,16 @@ TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
 	r.landmarks_scored = sm.n_xy;
 	r.rpe = eval::relativePoseError(gt, r.run.est.ego, 10);
 	r.objects = eval::objectErrors(gt, r.run.est);
+	r.velocity = eval::objectVelocityErrors(gt, r.run.est);
+	eval::TRunEstimates seen = r.run.est;
+	seen.object_poses.clear();
+	for (const auto& p : r.run.est.object_poses)
+		if (p.object >= 0 && size_t(p.object) < gt.objects.size() && p.step >= 0 &&
+		    size_t(p.step) < gt.objects[size_t(p.object)].visible.size() &&
+		    gt.objects[size_t(p.object)].visible[size_t(p.step)])
+			seen.object_poses.push_back(p);
+	r.objects_seen = eval::objectErrors(gt, seen);
+	r.velocity_seen = eval::objectVelocityErrors(gt, seen);
 	if (classifies && !classes.empty())
 	{
 		r.class_reading = eval::perReadingScores(classes, decisions.decisions);

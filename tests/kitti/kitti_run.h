@@ -11,10 +11,12 @@
 #include <dynslam/class_ground_truth.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/motion_metrics.h>
+#include <dynslam/eval/velocity_metrics.h>
 #include <dynslam/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,7 +25,7 @@ namespace dynslam::kitti_eval
 struct TKittiRunResult
 {
 	std::string filter;  ///< static_all | static_landmarks_only | dynamic | dynamic_nogate |
-	                     ///< dynamic_classified
+	                     ///< dynamic_classified | dynamic_cv | dynamic_ctrv
 	apps::TFilterRun run;
 	apps::TEvaluation eval;
 	double ate = 0;                ///< [m], no alignment (the world frame is the true start)
@@ -31,6 +33,14 @@ struct TKittiRunResult
 	double map_rmse = 0;           ///< sqrt(rmse_x^2 + rmse_y^2) of the final static map [m]
 	size_t landmarks_scored = 0;
 	eval::TObjectErrors objects;  ///< dynamic only
+	/** Object velocities (object_model = cv | ctrv: dynamic_cv, dynamic_ctrv); nullopt for the
+	 * filters without a velocity state. */
+	std::optional<eval::TVelocityErrors> velocity;
+	/** The same two on the steps where the object was read (gt visible) only: a model with a
+	 * velocity state also predicts objects out of view (coasting), the paper's model keeps
+	 * their last pose; scored on the seen steps, the filters are compared like for like. */
+	eval::TObjectErrors objects_seen;
+	std::optional<eval::TVelocityErrors> velocity_seen;
 	size_t gated_out = 0, static_updates = 0;
 	/** dynamic_classified with a class truth given: "moving" per reading and per track, and the
 	 * grouping ARI (eval/class_metrics.h). */
