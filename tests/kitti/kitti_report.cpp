@@ -64,11 +64,11 @@ void writeRow(std::ostream& sum, std::ostream& obj, const std::string& label,
 	    << sc.read_double(R, "floor_trans_rmse", NAN) << ','
 	    << sc.read_double(R, "floor_rot_rmse", NAN) * kDeg << ',' << sc.read_int(R, "floor_n", 0)
 	    << ',' << sc.read_double(R, "static_corner_rms", NAN) << ',' << r.gated_out << ','
-	    << r.static_updates << ',' << r.run.est.ms_per_step << ','
-	    << r.eval.summary.ego.anees << ',';
+	    << r.static_updates << ',' << r.run.est.ms_per_step << ',' << r.eval.summary.ego.anees
+	    << ',';
 	if (r.velocity)
-		sum << r.velocity->speed_rmse << ',' << r.velocity->omega_rmse << ','
-		    << r.velocity->anees << ',' << r.velocity->n << ',';
+		sum << r.velocity->speed_rmse << ',' << r.velocity->omega_rmse << ',' << r.velocity->anees
+		    << ',' << r.velocity->n << ',';
 	else
 		sum << ",,,,";
 	sum << val(r.objects_seen.position_rmse) << ','
