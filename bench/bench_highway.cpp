@@ -16,8 +16,9 @@ namespace
 /** One full run of the shipped highway rawlog (121 steps). Arg: 0 = MRPT update, 1 = sparse,
  * 2 = compressed (static_update = compressed; the final global update included), 3 = sparse
  * with feature_labels = classify (issue 12: what classification costs), 4 = sparse with
- * object_model = cv and the cv_* keys config/compare_tunnel.ini had until 2026-11-24 (issue 13:
- * what the object-centric model costs; tight noise, gate 0.999, inflation T = 8, a = 1e4). */
+ * object_model = cv and the shipped cv_* keys of config/compare_tunnel.ini, setting B of
+ * doc/results.md 4.3.1 (issue 13: what the object-centric model costs; cv_accel_psd = [1e-6 1e-6
+ * 1e-8], cv_gate = 0.5, no fallback, no inflation). */
 void BM_HighwayRun(benchmark::State& state)
 {
 	const TRun& run = highwayRun();
@@ -43,9 +44,7 @@ void BM_HighwayRun(benchmark::State& state)
 			f.options.cv.dt = 0.5;
 			f.options.cv.accel_psd = Eigen::Vector3d(1e-6, 1e-6, 1e-8);
 			f.options.cv.velocity_prior_std = Eigen::Vector3d(0.5, 0.5, 0.05);
-			f.options.cv_gate = 0.999;
-			f.options.cv.inflation_threshold = 8;
-			f.options.cv.inflation_factor = 1e4;
+			f.options.cv_gate = 0.5;
 			f.options.validate();
 			f.reset();
 		}
