@@ -48,6 +48,27 @@ Eigen::Vector2d sighting(models::MeasurementModel m, const Eigen::Vector3d& x,
 	           : models::observeObjectFeatureFromSensor(m, x, s, xi, f0, k, J_z_x, J_z_xi, J_z_f0);
 }
 
+/** The used readings of an object stacked into one update: H, nu and R = blockdiag(Sigma_v +
+ * cth h h^T), h = the reading's column on the ego heading (H's column 2), cth = c P_thth
+ * (cv_heading_inflation; 0: R = blockdiag(Sigma_v), today's update). */
+void stackReadings(const std::vector<Eigen::MatrixXd>& Hs, const std::vector<Eigen::Vector2d>& nus,
+                   const Eigen::Matrix2d& Sigma_v, double cth, Eigen::MatrixXd& H,
+                   Eigen::VectorXd& nu, Eigen::MatrixXd& R)
+{
+	const Eigen::Index m = Eigen::Index(Hs.size());
+	H.resize(2 * m, Hs.front().cols());
+	nu.resize(2 * m);
+	R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+	for (Eigen::Index r = 0; r < m; ++r)
+	{
+		H.middleRows(2 * r, 2) = Hs[size_t(r)];
+		nu.segment(2 * r, 2) = nus[size_t(r)];
+		R.block(2 * r, 2 * r, 2, 2) = Sigma_v;
+		const Eigen::Vector2d h = Hs[size_t(r)].col(2);  // d z / d ego heading
+		if (cth > 0) R.block(2 * r, 2 * r, 2, 2) += cth * h * h.transpose();
+	}
+}
+
 std::vector<int> concat(std::vector<int> a, const std::vector<int>& b)
 {
 	a.insert(a.end(), b.begin(), b.end());
@@ -166,14 +187,9 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 		if (m_motion->reportGating(obj, Hs.empty())) m_lostNow.insert(obj);
 		if (Hs.empty()) continue;
 		const Eigen::Index m = Eigen::Index(Hs.size());
-		Eigen::MatrixXd H(2 * m, idx.size()), R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
-		Eigen::VectorXd nu(2 * m);
-		for (Eigen::Index r = 0; r < m; ++r)
-		{
-			H.middleRows(2 * r, 2) = Hs[size_t(r)];
-			nu.segment(2 * r, 2) = nus[size_t(r)];
-			R.block(2 * r, 2 * r, 2, 2) = options.Sigma_v;
-		}
+		Eigen::MatrixXd H, R;
+		Eigen::VectorXd nu;
+		stackReadings(Hs, nus, options.Sigma_v, options.cv.heading_inflation * P(2, 2), H, nu, R);
 		ekf::sparseUpdate(x, P, idx, H, nu, R);
 		if (d == 3) x[ip[2]] = models::wrapToPi(x[ip[2]]);
 		OnNormalizeStateVector();

@@ -28,6 +28,9 @@ void TCvParams::validate() const
 	if (!(inflation_decay >= 0 && inflation_decay < 1))
 		throw std::invalid_argument("cv_inflation_decay = " + std::to_string(inflation_decay) +
 		                            ": must be in [0, 1) (0 = back to 1 at once)");
+	if (!(heading_inflation >= 0) || !std::isfinite(heading_inflation))
+		throw std::invalid_argument("cv_heading_inflation = " + std::to_string(heading_inflation) +
+		                            ": must be finite and >= 0 (0 = off)");
 	if (fallback_steps < 0)
 		throw std::invalid_argument("cv_fallback_steps = " + std::to_string(fallback_steps) +
 		                            ": must be >= 0 (0 = off)");

@@ -30,6 +30,10 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeObjectCen
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] cv_fallback_steps: the fallback of a lost object is not "
 		    "implemented in the framework (the dynamic EKF only)");
+	if (p.heading_inflation > 0)
+		throw std::invalid_argument(
+		    "[DynamicKFSLAM] cv_heading_inflation: the heading inflation of object readings is "
+		    "not implemented in the framework (the dynamic EKF only)");
 	if ((p.accel_psd.array() <= 0).any())
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] cv_accel_psd: every entry must be > 0 in the framework (its motion "

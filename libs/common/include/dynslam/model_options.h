@@ -65,7 +65,9 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * its next prediction's acceleration PSD times the factor; 0 / 1 = off, the defaults;
 	 * doc/state-layout.md), cv_fallback_steps (an object whose readings were all gated out
 	 * at that many consecutive steps falls back to the paper's formulation until two poses
-	 * give it a new velocity; 0 = off, the default). */
+	 * give it a new velocity; 0 = off, the default), cv_heading_inflation (object readings' noise
+	 * Sigma_v + c P_thth h h^T, h the reading's Jacobian on the ego heading; 0 = off, the
+	 * default; estimator::TCvParams::heading_inflation). */
 	estimator::TCvParams cv;
 	double cv_gate = 0;
 	bool drop_time_t_features = true;  ///< drop f_t after pose augmentation

@@ -38,6 +38,14 @@ struct TCvParams
 	 * object's velocity and pose leave the state; it is then handled by the paper's
 	 * formulation (Alg. 3, 4) until two of its poses give a new velocity. 0 = off (default). */
 	int fallback_steps = 0;
+	/** Heading inflation c (doc/state-layout.md "Heading inflation of object readings"): each
+	 * object reading used in an update gets the noise Sigma_v + c P_thth h h^T, h its Jacobian
+	 * column on the ego heading and P_thth the ego heading variance before the object update:
+	 * an object's information on the ego shrinks when the ego heading is poorly known (at the
+	 * Table I levels with large odometry noise that variance is mostly the unobservable prior
+	 * heading, which the object readings otherwise leak into the estimate; doc/results.md
+	 * 4.3.2). The gate is unchanged. 0 = off (default). EKF only. */
+	double heading_inflation = 0.0;
 	/** Throws std::invalid_argument naming the parameter. */
 	void validate() const;
 };
