@@ -21,33 +21,10 @@ import os
 import subprocess
 import sys
 
+from cv_grid import parse_setting, write_ini  # the same INI writer and setting format
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 BASE_INI = os.path.join(HERE, "..", "config", "compare_kitti.ini")
-
-
-def write_ini(base, keys, path):
-    """base INI with keys replaced or added at the top of [DynamicKFSLAM]."""
-    out = []
-    for line in open(base):
-        s = line.split("#")[0].strip()
-        key = s.split("=", 1)[0].strip() if "=" in s else None
-        if key and key in keys:
-            continue
-        out.append(line)
-        if s == "[DynamicKFSLAM]":
-            out.extend("%s = %s\n" % kv for kv in keys.items())
-    with open(path, "w") as f:
-        f.writelines(out)
-
-
-def parse_setting(line):
-    name, _, rest = line.partition(":")
-    keys = {}
-    for kv in rest.split(";"):
-        if kv.strip():
-            k, _, v = kv.partition("=")
-            keys[k.strip()] = v.strip()
-    return name.strip(), keys
 
 
 def main():
