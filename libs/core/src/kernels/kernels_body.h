@@ -19,6 +19,27 @@ using RowMatrixXd = ::Eigen::Matrix<double, ::Eigen::Dynamic, ::Eigen::Dynamic, 
 using RowMap = ::Eigen::Map<RowMatrixXd, 0, ::Eigen::OuterStride<>>;
 using ColMap = ::Eigen::Map<const ::Eigen::MatrixXd>;
 using IndexMap = ::Eigen::Map<const ::Eigen::VectorXi>;
+
+/** P(j, i) = P(i, j) for j < i (row-major, row stride ld): the lower triangle copied onto the
+ * upper one in 16 x 16 tiles, so that the strided side of a tile stays in the L1 cache (a
+ * column-at-a-time copy touches every row below the diagonal once per column). Copies only: the
+ * result is the same as the plain loop's, bit for bit. No std:: templates here (weak symbols,
+ * see kernels_avx2.cpp). */
+void mirrorLowerToUpper(double* P, ::Eigen::Index n, ::Eigen::Index ld)
+{
+	constexpr ::Eigen::Index T = 16;
+	for (::Eigen::Index i0 = 0; i0 < n; i0 += T)
+	{
+		const ::Eigen::Index i1 = i0 + T < n ? i0 + T : n;
+		for (::Eigen::Index j0 = 0; j0 <= i0; j0 += T)
+			for (::Eigen::Index i = i0; i < i1; ++i)
+			{
+				const double* src = P + i * ld;
+				const ::Eigen::Index j1 = j0 + T < i ? j0 + T : i;
+				for (::Eigen::Index j = j0; j < j1; ++j) P[j * ld + i] = src[j];
+			}
+	}
+}
 }  // namespace
 
 bool sparseUpdate(const TSparseUpdateArgs& a, double& nis)
@@ -39,8 +60,7 @@ bool sparseUpdate(const TSparseUpdateArgs& a, double& nis)
 	const ::Eigen::VectorXd v = llt.matrixL().solve(nu);
 	x.noalias() += W * v;
 	P.selfadjointView<::Eigen::Lower>().rankUpdate(W, -1.0);
-	for (::Eigen::Index i = 0; i + 1 < P.rows(); ++i)
-		P.row(i).tail(P.rows() - 1 - i) = P.col(i).tail(P.rows() - 1 - i).transpose();
+	mirrorLowerToUpper(a.P, a.n, a.ldP);
 	nis = v.squaredNorm();
 	return true;
 }
