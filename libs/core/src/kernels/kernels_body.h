@@ -40,6 +40,24 @@ void mirrorLowerToUpper(double* P, ::Eigen::Index n, ::Eigen::Index ld)
 			}
 	}
 }
+/** The update's temporaries, kept per thread between calls (no allocation while the sizes do
+ * not grow). The types are those the expressions of before evaluated into, so the arithmetic
+ * is unchanged: PHt, S and W column-major, the solve's result in the plain type of
+ * solve(PHt^T) (row-major m x n). */
+struct TUpdateWorkspace
+{
+	::Eigen::MatrixXd PHt, S, W;
+	decltype(::Eigen::LLT<::Eigen::MatrixXd>().matrixL().solve(
+	    ::Eigen::MatrixXd().transpose()))::PlainObject Wt;
+	::Eigen::VectorXd v;
+	::Eigen::LLT<::Eigen::MatrixXd> llt;
+};
+
+TUpdateWorkspace& updateWorkspace()
+{
+	static thread_local TUpdateWorkspace w;
+	return w;
+}
 }  // namespace
 
 bool sparseUpdate(const TSparseUpdateArgs& a, double& nis)
@@ -50,18 +68,23 @@ bool sparseUpdate(const TSparseUpdateArgs& a, double& nis)
 	const ColMap H(a.H, a.m, a.k), R(a.R, a.m, a.m);
 	const ::Eigen::Map<const ::Eigen::VectorXd> nu(a.nu, a.m);
 
-	const ::Eigen::MatrixXd PHt = P(::Eigen::all, idx) * H.transpose();  // n x m
-	::Eigen::MatrixXd S = H * PHt(idx, ::Eigen::all) + R;
-	S = 0.5 * (S + S.transpose()).eval();
-	const ::Eigen::LLT<::Eigen::MatrixXd> llt(S);
-	if (llt.info() != ::Eigen::Success) return false;
-	// W = PHt L^-T: K = W L^-1, K nu = W (L^-1 nu), K S K^T = W W^T.
-	const ::Eigen::MatrixXd W = llt.matrixL().solve(PHt.transpose()).transpose();  // n x m
-	const ::Eigen::VectorXd v = llt.matrixL().solve(nu);
-	x.noalias() += W * v;
-	P.selfadjointView<::Eigen::Lower>().rankUpdate(W, -1.0);
+	TUpdateWorkspace& w = updateWorkspace();
+	w.PHt.noalias() = P(::Eigen::all, idx) * H.transpose();  // n x m
+	w.S = H * w.PHt(idx, ::Eigen::all) + R;
+	w.S = 0.5 * (w.S + w.S.transpose()).eval();
+	w.llt.compute(w.S);
+	if (w.llt.info() != ::Eigen::Success) return false;
+	// W = PHt L^-T: K = W L^-1, K nu = W (L^-1 nu), K S K^T = W W^T. The solve is what
+	// solve(PHt^T) evaluates (copy, then in place, in the solve's own plain type).
+	w.Wt = w.PHt.transpose();
+	w.llt.matrixL().solveInPlace(w.Wt);
+	w.W = w.Wt.transpose();  // n x m
+	w.v = nu;
+	w.llt.matrixL().solveInPlace(w.v);
+	x.noalias() += w.W * w.v;
+	P.selfadjointView<::Eigen::Lower>().rankUpdate(w.W, -1.0);
 	mirrorLowerToUpper(a.P, a.n, a.ldP);
-	nis = v.squaredNorm();
+	nis = w.v.squaredNorm();
 	return true;
 }
 
