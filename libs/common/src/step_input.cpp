@@ -69,15 +69,19 @@ estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& ac
 	for (size_t i = 0; i < obs->sensedData.size(); ++i)
 	{
 		const auto& m = obs->sensedData[i];
-		const std::string where = "measurement " + std::to_string(i) + " (landmark ID " +
-		                          std::to_string(m.landmarkID) + ")";
+		// The reading named in an error (built only then: this runs for every reading).
+		const auto where = [&]
+		{
+			return "measurement " + std::to_string(i) + " (landmark ID " +
+			       std::to_string(m.landmarkID) + ")";
+		};
 		if (!std::isfinite(m.range) || !std::isfinite(m.yaw) || !std::isfinite(m.pitch))
-			throw std::runtime_error(who + ": NaN or Inf in " + where);
+			throw std::runtime_error(who + ": NaN or Inf in " + where());
 		if (m.pitch != 0)
-			throw std::runtime_error(who + ": non-zero pitch in " + where + " (2-D SLAM)");
-		if (!(m.range >= 0)) throw std::runtime_error(who + ": negative range in " + where);
+			throw std::runtime_error(who + ": non-zero pitch in " + where() + " (2-D SLAM)");
+		if (!(m.range >= 0)) throw std::runtime_error(who + ": negative range in " + where());
 		if (opts.model == models::MeasurementModel::RangeBearing && m.range == 0)
-			throw std::runtime_error(who + ": zero range in " + where + " (bearing undefined)");
+			throw std::runtime_error(who + ": zero range in " + where() + " (bearing undefined)");
 		in.readings.push_back({m.landmarkID, models::fromRangeBearing(opts.model, m.range, m.yaw)});
 	}
 	return in;

@@ -220,7 +220,11 @@ Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, con
 			throw std::invalid_argument("objectPoseAugmentations: inconsistent linearization");
 		const Eigen::MatrixXd rows = extendedRows(P, a, lin.idx);
 		out.mean.segment(r, d) = lin.xi;
-		out.cross.middleRows(r, d).noalias() = lin.Gamma * rows;
+		// Into a contiguous temporary, then copied: the product zero-fills its destination
+		// first, which for these d rows of a column-major matrix was one memset per column.
+		Eigen::MatrixXd GammaRows;
+		GammaRows.noalias() = lin.Gamma * rows;
+		out.cross.middleRows(r, d) = GammaRows;
 		Eigen::MatrixXd c = lin.Gamma * rows(Eigen::all, lin.idx) * lin.Gamma.transpose();
 		c += lin.noise;
 		out.cov.block(r, r, d, d) = 0.5 * (c + c.transpose());

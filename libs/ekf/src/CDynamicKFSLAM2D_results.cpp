@@ -101,10 +101,35 @@ std::vector<size_t> CDynamicKFSLAM2D::padIndices() const
 	return std::vector<size_t>(p.begin(), p.end());
 }
 
+namespace
+{
+/** map = {id -> block} of the (id, block) pairs (the last block of an ID listed twice), updated
+ * in place: the nodes of the IDs it keeps are reused (a step's commit used to clear and
+ * rebuild the whole map, one allocation per static landmark). */
+void assignInPlace(std::map<int32_t, size_t>& map, std::vector<std::pair<int32_t, size_t>>& pairs)
+{
+	std::stable_sort(pairs.begin(), pairs.end(),
+	                 [](const auto& a, const auto& b) { return a.first < b.first; });
+	auto it = map.begin();
+	for (size_t i = 0; i < pairs.size(); ++i)
+	{
+		if (i + 1 < pairs.size() && pairs[i + 1].first == pairs[i].first) continue;
+		const auto& [id, block] = pairs[i];
+		while (it != map.end() && it->first < id) it = map.erase(it);
+		if (it != map.end() && it->first == id)
+			(it++)->second = block;
+		else
+			map.emplace_hint(it, id, block);
+	}
+	map.erase(it, map.end());
+}
+}  // namespace
+
 void CDynamicKFSLAM2D::onLayoutChanged()
 {
 	m_slots.clear();
-	m_staticBlock.clear();
+	static thread_local std::vector<std::pair<int32_t, size_t>> statics;
+	statics.clear();
 	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
 		const TBlock& t = m_layout[b];
@@ -117,7 +142,7 @@ void CDynamicKFSLAM2D::onLayoutChanged()
 		{
 			case BlockKind::StaticLandmark:
 				s.kind = SlotKind::StaticLandmark;
-				m_staticBlock[t.id] = b;
+				statics.emplace_back(t.id, b);
 				break;
 			case BlockKind::ObjectFeature0:
 				s.kind = SlotKind::ObjectFeature0;
@@ -152,6 +177,7 @@ void CDynamicKFSLAM2D::onLayoutChanged()
 			m_slots.push_back(s);
 		}
 	}
+	assignInPlace(m_staticBlock, statics);
 }
 
 namespace

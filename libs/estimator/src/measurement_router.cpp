@@ -2,7 +2,7 @@
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/landmark_ids.h>
 
-#include <set>
+#include <algorithm>
 #include <stdexcept>
 
 namespace dynslam::estimator
@@ -77,18 +77,27 @@ std::vector<TReading> readingsOf(const std::vector<TRoutedReading>& r)
 
 void CIdRangeRouter::validate(const std::vector<TReading>& readings, const std::string& who) const
 {
-	std::set<int32_t> seen;
+	// The IDs seen so far, sorted (a step has tens of readings: cheaper than a std::set); the
+	// messages are only built for an error.
+	std::vector<int32_t> seen;
+	seen.reserve(readings.size());
+	const auto where = [&](size_t i)
+	{
+		return "measurement " + std::to_string(i) + " (landmark ID " +
+		       std::to_string(readings[i].id) + ")";
+	};
 	for (size_t i = 0; i < readings.size(); ++i)
 	{
 		const int32_t id = readings[i].id;
-		const std::string where =
-		    "measurement " + std::to_string(i) + " (landmark ID " + std::to_string(id) + ")";
 		if (ids::classify(id) == ids::IdKind::Invalid)
 			throw std::runtime_error(
-			    who + ": " + where +
+			    who + ": " + where(i) +
 			    " is in no known ID range (static 0..99999, object features >= 100000; see "
 			    "dynslam/landmark_ids.h)");
-		if (!seen.insert(id).second) throw std::runtime_error(who + ": duplicate " + where);
+		const auto it = std::lower_bound(seen.begin(), seen.end(), id);
+		if (it != seen.end() && *it == id)
+			throw std::runtime_error(who + ": duplicate " + where(i));
+		seen.insert(it, id);
 	}
 }
 

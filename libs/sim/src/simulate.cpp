@@ -129,6 +129,11 @@ public:
 						m_ids.push_back(id);
 			}
 		std::sort(m_ids.begin(), m_ids.end());
+		// At most this many readings: the vector is grown once (the sweep of the Monte Carlo
+		// app simulates 225 runs of 121 steps).
+		size_t readings = m_ids.size();
+		for (const TObjectGroundTruth& og : m_gt.objects) readings += size_t(og.num_features);
+		obs->sensedData.reserve(readings);
 		m_truth.clear();
 		for (int32_t id : m_ids)
 			if (addMeasurement(*obs, xs, m_gt.landmarks.at(id), id))

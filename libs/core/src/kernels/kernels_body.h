@@ -19,6 +19,45 @@ using RowMatrixXd = ::Eigen::Matrix<double, ::Eigen::Dynamic, ::Eigen::Dynamic, 
 using RowMap = ::Eigen::Map<RowMatrixXd, 0, ::Eigen::OuterStride<>>;
 using ColMap = ::Eigen::Map<const ::Eigen::MatrixXd>;
 using IndexMap = ::Eigen::Map<const ::Eigen::VectorXi>;
+
+/** P(j, i) = P(i, j) for j < i (row-major, row stride ld): the lower triangle copied onto the
+ * upper one in 16 x 16 tiles, so that the strided side of a tile stays in the L1 cache (a
+ * column-at-a-time copy touches every row below the diagonal once per column). Copies only: the
+ * result is the same as the plain loop's, bit for bit. No std:: templates here (weak symbols,
+ * see kernels_avx2.cpp). */
+void mirrorLowerToUpper(double* P, ::Eigen::Index n, ::Eigen::Index ld)
+{
+	constexpr ::Eigen::Index T = 16;
+	for (::Eigen::Index i0 = 0; i0 < n; i0 += T)
+	{
+		const ::Eigen::Index i1 = i0 + T < n ? i0 + T : n;
+		for (::Eigen::Index j0 = 0; j0 <= i0; j0 += T)
+			for (::Eigen::Index i = i0; i < i1; ++i)
+			{
+				const double* src = P + i * ld;
+				const ::Eigen::Index j1 = j0 + T < i ? j0 + T : i;
+				for (::Eigen::Index j = j0; j < j1; ++j) P[j * ld + i] = src[j];
+			}
+	}
+}
+/** The update's temporaries, kept per thread between calls (no allocation while the sizes do
+ * not grow). The types are those the expressions of before evaluated into, so the arithmetic
+ * is unchanged: PHt, S and W column-major, the solve's result in the plain type of
+ * solve(PHt^T) (row-major m x n). */
+struct TUpdateWorkspace
+{
+	::Eigen::MatrixXd PHt, S, W;
+	decltype(::Eigen::LLT<::Eigen::MatrixXd>().matrixL().solve(
+	    ::Eigen::MatrixXd().transpose()))::PlainObject Wt;
+	::Eigen::VectorXd v;
+	::Eigen::LLT<::Eigen::MatrixXd> llt;
+};
+
+TUpdateWorkspace& updateWorkspace()
+{
+	static thread_local TUpdateWorkspace w;
+	return w;
+}
 }  // namespace
 
 bool sparseUpdate(const TSparseUpdateArgs& a, double& nis)
@@ -29,19 +68,23 @@ bool sparseUpdate(const TSparseUpdateArgs& a, double& nis)
 	const ColMap H(a.H, a.m, a.k), R(a.R, a.m, a.m);
 	const ::Eigen::Map<const ::Eigen::VectorXd> nu(a.nu, a.m);
 
-	const ::Eigen::MatrixXd PHt = P(::Eigen::all, idx) * H.transpose();  // n x m
-	::Eigen::MatrixXd S = H * PHt(idx, ::Eigen::all) + R;
-	S = 0.5 * (S + S.transpose()).eval();
-	const ::Eigen::LLT<::Eigen::MatrixXd> llt(S);
-	if (llt.info() != ::Eigen::Success) return false;
-	// W = PHt L^-T: K = W L^-1, K nu = W (L^-1 nu), K S K^T = W W^T.
-	const ::Eigen::MatrixXd W = llt.matrixL().solve(PHt.transpose()).transpose();  // n x m
-	const ::Eigen::VectorXd v = llt.matrixL().solve(nu);
-	x.noalias() += W * v;
-	P.selfadjointView<::Eigen::Lower>().rankUpdate(W, -1.0);
-	for (::Eigen::Index i = 0; i + 1 < P.rows(); ++i)
-		P.row(i).tail(P.rows() - 1 - i) = P.col(i).tail(P.rows() - 1 - i).transpose();
-	nis = v.squaredNorm();
+	TUpdateWorkspace& w = updateWorkspace();
+	w.PHt.noalias() = P(::Eigen::all, idx) * H.transpose();  // n x m
+	w.S = H * w.PHt(idx, ::Eigen::all) + R;
+	w.S = 0.5 * (w.S + w.S.transpose()).eval();
+	w.llt.compute(w.S);
+	if (w.llt.info() != ::Eigen::Success) return false;
+	// W = PHt L^-T: K = W L^-1, K nu = W (L^-1 nu), K S K^T = W W^T. The solve is what
+	// solve(PHt^T) evaluates (copy, then in place, in the solve's own plain type).
+	w.Wt = w.PHt.transpose();
+	w.llt.matrixL().solveInPlace(w.Wt);
+	w.W = w.Wt.transpose();  // n x m
+	w.v = nu;
+	w.llt.matrixL().solveInPlace(w.v);
+	x.noalias() += w.W * w.v;
+	P.selfadjointView<::Eigen::Lower>().rankUpdate(w.W, -1.0);
+	mirrorLowerToUpper(a.P, a.n, a.ldP);
+	nis = w.v.squaredNorm();
 	return true;
 }
 
