@@ -9,6 +9,7 @@
 #include <dynslam/sim/scenario.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
+#include <dynslam/detection_groups.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/random/RandomGenerators.h>
@@ -152,6 +153,17 @@ public:
 		if (m_o.effects.any()) m_effects.apply(k, *obs, m_truth);
 		sfOut = CSensoryFrame::Create();
 		sfOut->insert(obs);
+		if (m_o.effects.detection_groups)
+		{
+			// The box ID of every object reading (moving or parked): its object index.
+			std::vector<int32_t> ids, groups;
+			for (size_t i = 0; i < obs->sensedData.size(); ++i)
+			{
+				ids.push_back(obs->sensedData[i].landmarkID);
+				groups.push_back(m_truth.at(i).object);
+			}
+			sfOut->insert(makeDetectionGroups(ids, groups));
+		}
 	}
 
 	/** Class ground truth of step k's readings (in the order of the observation). */
