@@ -111,7 +111,8 @@ TEST(ClassifyHints, ContradictingHintsAreCountedAndTheMotionGroupingKept)
 	const auto world = [&](int k)
 	{
 		TSeen w;
-		for (int f = 0; f < 3; ++f) w.emplace_back(f, car({10, 3}, v, k, f), f == 1 && k >= 8 ? 9 : 5);
+		for (int f = 0; f < 3; ++f)
+			w.emplace_back(f, car({10, 3}, v, k, f), f == 1 && k >= 8 ? 9 : 5);
 		return w;
 	};
 	TClassifyParams p;
@@ -184,8 +185,8 @@ TEST(ClassifyHints, CarReappearingUnderNewIdsContinuesItsObject)
 	const TCase cases[] = {
 	    {"hints: the same box", true, TClassifyParams::Link::Hints, same, 5, true},
 	    {"default (hints off): no link", false, TClassifyParams::Link::Hints, same, 5, false},
-	    {"all, without hints: the nearest in the gate", false, TClassifyParams::Link::All, same,
-	     5, true},
+	    {"all, without hints: the nearest in the gate", false, TClassifyParams::Link::All, same, 5,
+	     true},
 	    {"the same box, motion contradicts (reversed)", true, TClassifyParams::Link::Hints,
 	     Eigen::Vector2d(-3, 0), 5, false},
 	    {"another box", true, TClassifyParams::Link::All, same, 7, false},
@@ -282,8 +283,7 @@ void expectParseError(const std::string& text, const std::string& part)
 	catch (const std::runtime_error& e)
 	{
 		EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-		EXPECT_NE(std::string(e.what()).find("DETECTION_GROUPS comment, line"),
-		          std::string::npos)
+		EXPECT_NE(std::string(e.what()).find("DETECTION_GROUPS comment, line"), std::string::npos)
 		    << e.what();
 	}
 }

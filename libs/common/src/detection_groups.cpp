@@ -44,9 +44,8 @@ void readDetectionGroups(const mrpt::obs::CSensoryFrame& SF,
 		{
 			const auto first = line.find_first_not_of(" \t\r");
 			if (first == std::string::npos || line[first] == '#') continue;
-			const std::string where =
-			    who + ": " + kDetectionGroupsLabel + " comment, line " + std::to_string(n) + " '" +
-			    line + "'";
+			const std::string where = who + ": " + kDetectionGroupsLabel + " comment, line " +
+			                          std::to_string(n) + " '" + line + "'";
 			std::istringstream ls(line);
 			long index = 0, id = 0, group = 0;
 			std::string rest;
@@ -56,8 +55,8 @@ void readDetectionGroups(const mrpt::obs::CSensoryFrame& SF,
 				throw std::runtime_error(where + ": index out of range (the step has " +
 				                         std::to_string(readings.size()) + " readings)");
 			if (readings[size_t(index)].id != id)
-				throw std::runtime_error(where + ": reading " + std::to_string(index) +
-				                         " has ID " + std::to_string(readings[size_t(index)].id));
+				throw std::runtime_error(where + ": reading " + std::to_string(index) + " has ID " +
+				                         std::to_string(readings[size_t(index)].id));
 			if (group < 0 || group > INT32_MAX)
 				throw std::runtime_error(where + ": a group is an ID >= 0");
 			if (!seen.insert(index).second)

@@ -344,8 +344,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "classify_reuse_gap             = " << classify.reuse_gap << "\n";
 	out << "classify_split_count           = " << classify.split_count << "\n";
 	out << "classify_join                  = " << (classify.join ? "true" : "false") << "\n";
-	out << "classify_use_hints             = " << (classify.use_hints ? "true" : "false")
-	    << "\n";
+	out << "classify_use_hints             = " << (classify.use_hints ? "true" : "false") << "\n";
 	const char* links[] = {"off", "hints", "all"};
 	out << "classify_link                  = " << links[int(classify.link)] << "\n";
 	out << "classify_link_gap              = " << classify.link_gap << "\n";

@@ -47,6 +47,28 @@ struct TObjMotion
 };
 }  // namespace
 
+bool CClassifyingRouter::newObjectMotion(int32_t obj, int step,
+                                         const std::map<int32_t, TPoint2>& now, Eigen::Vector2d& c,
+                                         Eigen::Vector2d& v, int& first) const
+{
+	c = v = Eigen::Vector2d::Zero();
+	first = step;
+	int n = 0, nv = 0;
+	for (const int32_t id : m_objectTracks.at(obj))
+	{
+		first = std::min(first, m_tracks.at(id).first_seen);
+		const auto z = now.find(id);
+		if (z == now.end()) continue;
+		c += z->second.p, ++n;
+		Eigen::Vector2d vi;
+		if (m_unknown.velocityWith(id, z->second, step, vi)) v += vi, ++nv;
+	}
+	if (n == 0 || nv == 0) return false;
+	c /= n;
+	v /= nv;
+	return true;
+}
+
 void CClassifyingRouter::linkNewObjects(int step, const std::vector<int32_t>& newObjects,
                                         const std::map<int32_t, TPoint2>& now, TRoutedStep& out)
 {
@@ -84,20 +106,8 @@ void CClassifyingRouter::linkNewObjects(int step, const std::vector<int32_t>& ne
 	for (const int32_t obj : newObjects)
 	{
 		TObjMotion o;
-		o.last = step;
-		int n = 0;
-		for (const int32_t id : m_objectTracks.at(obj))
-		{
-			o.last = std::min(o.last, m_tracks.at(id).first_seen);
-			const auto z = now.find(id);
-			if (z == now.end()) continue;
-			o.c += z->second.p, ++n;
-			Eigen::Vector2d v;
-			if (m_unknown.velocityWith(id, z->second, step, v)) o.v += v, ++o.nv;
-		}
-		if (n == 0 || o.nv == 0) continue;
-		o.c /= n;
-		o.v /= o.nv;
+		o.obj = obj;
+		if (!newObjectMotion(obj, step, now, o.c, o.v, o.last)) continue;
 		const int32_t hint = m_p.use_hints ? objectHint(obj) : -1;
 		if (hintsOnly && hint < 0) continue;
 		std::vector<size_t> passed, same;
@@ -126,8 +136,8 @@ void CClassifyingRouter::linkNewObjects(int step, const std::vector<int32_t>& ne
 			const double g = step - lost[i].last;
 			return (o.c - lost[i].c).squaredNorm() / (s2 * g * g + half * half);
 		};
-		const size_t best = *std::min_element(cand.begin(), cand.end(),
-		                                      [&](size_t a, size_t b) { return dist(a) < dist(b); });
+		const size_t best = *std::min_element(
+		    cand.begin(), cand.end(), [&](size_t a, size_t b) { return dist(a) < dist(b); });
 		const int32_t from = lost[best].obj;
 		const auto root = m_identity.find(from);
 		m_identity[obj] = root == m_identity.end() ? from : root->second;

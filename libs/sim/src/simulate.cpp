@@ -1,6 +1,7 @@
 /** @file simulate.cpp
  * Noisy odometry and range-bearing observations from the ground truth (see doc/simulator.md:
  * sensor model, noise conversion, draw order). */
+#include <dynslam/detection_groups.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/measurement.h>
 #include <dynslam/models/se2.h>
@@ -9,7 +10,6 @@
 #include <dynslam/sim/scenario.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
-#include <dynslam/detection_groups.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/random/RandomGenerators.h>

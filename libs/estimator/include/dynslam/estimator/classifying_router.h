@@ -216,6 +216,10 @@ private:
 		return m_p.link == TClassifyParams::Link::All ||
 		       (m_p.link == TClassifyParams::Link::Hints && m_p.use_hints);
 	}
+	/** A new object's centroid c and mean velocity v (robot frame, this step; now: the step's
+	 * readings by track) and its first sighting; false if none of its features has both. */
+	bool newObjectMotion(int32_t obj, int step, const std::map<int32_t, TPoint2>& now,
+	                     Eigen::Vector2d& c, Eigen::Vector2d& v, int& first) const;
 	/** Links each object created in this step to a lost object (classify_link_gap). */
 	void linkNewObjects(int step, const std::vector<int32_t>& newObjects,
 	                    const std::map<int32_t, TPoint2>& now, TRoutedStep& out);
@@ -230,7 +234,7 @@ private:
 	CObjectRegistry m_registry;
 	std::map<int32_t, std::vector<int32_t>> m_objectTracks;  ///< object -> track IDs
 	int32_t m_nextObject = 0;
-	std::map<int32_t, int32_t> m_alias;  ///< input track ID -> its track after restarts
+	std::map<int32_t, int32_t> m_alias;     ///< input track ID -> its track after restarts
 	std::map<int32_t, int32_t> m_identity;  ///< object -> the object it continues (links)
 	std::set<int32_t> m_continued;          ///< objects already continued by a newer one
 	int m_lastStep = -1;

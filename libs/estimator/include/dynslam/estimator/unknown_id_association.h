@@ -71,9 +71,9 @@ struct TResolvedIds
 /** The resolver's prediction of one track (its last reading carried to the current step). */
 struct TTrackPrediction
 {
-	TAssocTarget target;   ///< covariance without the reading noise
-	bool has_vel = false;  ///< seen twice: constant-velocity prediction
-	int gap = 1;           ///< steps since the last reading
+	TAssocTarget target;                            ///< covariance without the reading noise
+	bool has_vel = false;                           ///< seen twice: constant-velocity prediction
+	int gap = 1;                                    ///< steps since the last reading
 	Eigen::Vector2d vel = Eigen::Vector2d::Zero();  ///< displacement per step (current frame)
 };
 
