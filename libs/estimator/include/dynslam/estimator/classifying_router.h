@@ -29,7 +29,9 @@
  * counted (TRoutedStep::skipped_unknown_id). With stop_count > 0, a moving track keeps a static
  * filter too (restarted at every reading beyond the reclassify_gate): stop_count consecutive
  * readings within the gate turn it static (its object stopped; TRoutedStep::stopped), and its
- * reading starts a static landmark. */
+ * reading starts a static landmark. With use_hints, the readings' detection groups
+ * (TReading::hint) keep different boxes apart and link a new object to a lost one of the same box;
+ * link = All links without hints by a motion gate (classifying_router_links.cpp). */
 #include <dynslam/estimator/classify_evidence.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/unknown_id_association.h>
