@@ -279,6 +279,7 @@ TEST(KittiOptions, ShippedIniEqualsTheDefaults)
 	EXPECT_EQ(i.odo_std_xy_per_m, d.odo_std_xy_per_m);
 	EXPECT_EQ(i.odo_std_phi, d.odo_std_phi);
 	EXPECT_EQ(i.odo_std_phi_per_m, d.odo_std_phi_per_m);
+	EXPECT_EQ(i.detection_groups, d.detection_groups);
 }
 
 TEST(KittiOptions, BadValuesNameSectionAndKey)

@@ -40,13 +40,17 @@ void TClassDecisions::add(const estimator::TRoutedStep& step)
 		                    : st            ? eval::Decision::Static
 		                    : m.object >= 0 ? eval::Decision::Moving
 		                                    : eval::Decision::Undecided);
-		groups.push_back(m.candidate || st ? -1 : m.object);
+		groups.push_back(m.candidate || st ? -1 : m.identity >= 0 ? m.identity : m.object);
 	}
 	restarted += step.restarted;
 	split += step.split;
 	joined += step.joined;
 	held += step.held;
 	skipped_unknown_id += step.skipped_unknown_id;
+	linked += step.linked;
+	link_ambiguous += step.link_ambiguous;
+	hint_track_conflicts += step.hint_track_conflicts;
+	hint_group_conflicts += step.hint_group_conflicts;
 	++stepsAdded;
 }
 
@@ -55,6 +59,11 @@ std::string TClassDecisions::countsLine(const std::string& filter) const
 	return filter + ": tracks restarted after a break (ID reused) " + std::to_string(restarted) +
 	       ", split off their object " + std::to_string(split) + ", joined an earlier object " +
 	       std::to_string(joined) + "; readings held back " + std::to_string(held) +
-	       ", ID -1 skipped " + std::to_string(skipped_unknown_id) + "\n";
+	       ", ID -1 skipped " + std::to_string(skipped_unknown_id) +
+	       "; objects linked after a break " + std::to_string(linked) + " (" +
+	       std::to_string(link_ambiguous) +
+	       " with two or more candidates: the nearest); contradicting hints: readings " +
+	       std::to_string(hint_track_conflicts) + ", object-steps " +
+	       std::to_string(hint_group_conflicts) + "\n";
 }
 }  // namespace dynslam::apps

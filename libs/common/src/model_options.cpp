@@ -104,6 +104,9 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_reuse_gap",
                                           "classify_split_count",
                                           "classify_join",
+                                          "classify_use_hints",
+                                          "classify_link",
+                                          "classify_link_gap",
 
                                           "classify_assoc_method",
                                           "classify_assoc_metric",
@@ -135,6 +138,11 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	p.reuse_gap = int(readInt(c, s, "classify_reuse_gap", p.reuse_gap));
 	p.split_count = int(readInt(c, s, "classify_split_count", p.split_count));
 	p.join = readBool(c, s, "classify_join", p.join);
+	p.use_hints = readBool(c, s, "classify_use_hints", p.use_hints);
+	using Link = estimator::TClassifyParams::Link;
+	const int link = int(readChoice(c, s, "classify_link", {"off", "hints", "all"}, 1));
+	p.link = link == 0 ? Link::Off : link == 1 ? Link::Hints : Link::All;
+	p.link_gap = int(readInt(c, s, "classify_link_gap", p.link_gap));
 	// ID -1 readings (estimator/unknown_id_association.h): MRPT's data_assoc_* names and values.
 	estimator::TUnknownIdParams& a = p.assoc;
 	const std::vector<std::string> methods{"assocNN", "assocJCBB"};
@@ -339,6 +347,10 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "classify_reuse_gap             = " << classify.reuse_gap << "\n";
 	out << "classify_split_count           = " << classify.split_count << "\n";
 	out << "classify_join                  = " << (classify.join ? "true" : "false") << "\n";
+	out << "classify_use_hints             = " << (classify.use_hints ? "true" : "false") << "\n";
+	const char* links[] = {"off", "hints", "all"};
+	out << "classify_link                  = " << links[int(classify.link)] << "\n";
+	out << "classify_link_gap              = " << classify.link_gap << "\n";
 	const estimator::TUnknownIdParams& a = classify.assoc;
 	out << "classify_assoc_method          = " << a.method << "\n";
 	out << "classify_assoc_metric          = " << a.metric << "\n";

@@ -1,3 +1,4 @@
+#include <dynslam/detection_groups.h>
 #include <dynslam/step_input.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -84,6 +85,7 @@ estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& ac
 			throw std::runtime_error(who + ": zero range in " + where() + " (bearing undefined)");
 		in.readings.push_back({m.landmarkID, models::fromRangeBearing(opts.model, m.range, m.yaw)});
 	}
+	readDetectionGroups(*SF, in.readings, who);  // optional hints (detection_groups.h)
 	return in;
 }
 }  // namespace dynslam

@@ -34,6 +34,7 @@ void TClassifyParams::validate() const
 	if (stop_count < 0) throw std::invalid_argument("classify_stop_count must be >= 0 (0: off)");
 	if (reuse_gap < 0) throw std::invalid_argument("classify_reuse_gap must be >= 0 (0: off)");
 	if (split_count < 0) throw std::invalid_argument("classify_split_count must be >= 0 (0: off)");
+	if (link_gap < 1) throw std::invalid_argument("classify_link_gap must be >= 1");
 	assoc.validate();
 }
 
@@ -51,6 +52,8 @@ void CClassifyingRouter::reset()
 	m_registry.clear();
 	m_objectTracks.clear();
 	m_alias.clear();
+	m_identity.clear();
+	m_continued.clear();
 	m_nextObject = 0;
 	m_lastStep = -1;
 	m_ctx.reset();
@@ -202,7 +205,7 @@ void CClassifyingRouter::makeMoving(int32_t id, TTrack& t, int step,
 	for (const int32_t obj : newObjects)
 	{
 		std::vector<int32_t>& members = m_objectTracks[obj];
-		bool rigid = true;
+		bool rigid = !hintsDiffer(t, obj);  // another box: never one object
 		for (const int32_t other : members)
 		{
 			const TRigidTest r = rigidDistanceTest(t.history, m_tracks.at(other).history);
@@ -384,11 +387,8 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 		external.push_back(r.id);
 		if (const auto a = m_alias.find(r.id); a != m_alias.end()) r.id = a->second;
 	}
-	if (m_unknown.active())
-	{
-		m_unknown.predict(m_ctx->u, m_ctx->U);
-		resolveUnknownIds(step, rd, pts, out);
-	}
+	if (predictsMotion()) m_unknown.predict(m_ctx->u, m_ctx->U);
+	if (m_unknown.active()) resolveUnknownIds(step, rd, pts, out);
 	std::set<int32_t> held;  // moving readings inconsistent with their object, held back
 	checkAssignments(step, rd, pts, external, out, held);
 	std::vector<Act> act(rd.size(), Act::Skip);
@@ -402,6 +402,7 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 			continue;
 		}
 		bool c = false;
+		noteHint(m_tracks[rd[i].id], rd[i].hint, out);
 		act[i] = classifyOne(rd[i].id, pts[i], step, out, c, turnedMoving, isKnownStatic);
 		candidate[i] = c;
 	}
@@ -416,6 +417,13 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 		makeMoving(id, t, step, t.converting ? convertedObjects : newObjects, out, exclude);
 	}
 	registerConverted(convertedObjects, step, out);
+	if (links())
+	{
+		std::map<int32_t, TPoint2> now;
+		for (size_t i = 0; i < rd.size(); ++i)
+			if (rd[i].id >= 0) now[rd[i].id] = pts[i];
+		linkNewObjects(step, newObjects, now, out);
+	}
 	for (size_t i = 0; i < rd.size(); ++i)
 	{
 		TRoutedReading m;
@@ -432,9 +440,15 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 			m.route = isKnownStatic(id) ? Route::StaticKnown : Route::StaticNew;
 		else if (act[i] == Act::Moving)
 			routeMoving(m, it->second, step, out);
-		if (m_unknown.active() && id >= 0) m_unknown.observe(id, pts[i], step);
+		if (m.object >= 0)
+		{
+			const auto root = m_identity.find(m.object);
+			m.identity = root == m_identity.end() ? m.object : root->second;
+		}
+		if (predictsMotion() && id >= 0) m_unknown.observe(id, pts[i], step);
 		out.readings.push_back(m);
 	}
+	countGroupHintConflicts(out);
 	return out;
 }
 }  // namespace dynslam::estimator

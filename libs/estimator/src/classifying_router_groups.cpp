@@ -115,12 +115,18 @@ int32_t CClassifyingRouter::joinableObject(const TTrack& t,
                                            const std::vector<int32_t>& exclude) const
 {
 	if (!m_p.join) return -1;
-	for (const auto& [obj, members] : m_objectTracks)
+	// With hints: the objects of the track's own hint first; never one of another hint.
+	for (const bool ownHintPass : {true, false})
 	{
-		if (members.empty() || !m_registry.has(obj) ||
-		    std::find(exclude.begin(), exclude.end(), obj) != exclude.end())
-			continue;
-		if (rigidWithObject(t, obj)) return obj;
+		if (ownHintPass && (!m_p.use_hints || t.hint < 0)) continue;
+		for (const auto& [obj, members] : m_objectTracks)
+		{
+			if (members.empty() || !m_registry.has(obj) ||
+			    std::find(exclude.begin(), exclude.end(), obj) != exclude.end() ||
+			    hintsDiffer(t, obj) || (ownHintPass && objectHint(obj) != t.hint))
+				continue;
+			if (rigidWithObject(t, obj)) return obj;
+		}
 	}
 	return -1;
 }

@@ -68,9 +68,23 @@ std::vector<TTrackPrediction> CUnknownIdResolver::predictions(int step, double m
 		t.gap = std::max(1, step - m.last_step);
 		t.target.pred.C += Eigen::Matrix2d::Identity() * motion_std * motion_std * t.gap;
 		t.has_vel = m.has_vel;
+		t.vel = m.vel;
 		out.push_back(t);
 	}
 	return out;
+}
+
+bool CUnknownIdResolver::velocityWith(int32_t id, const TPoint2& z, int step,
+                                      Eigen::Vector2d& vel) const
+{
+	const auto it = m_movers.find(id);
+	if (it == m_movers.end()) return false;
+	const TMover& m = it->second;
+	const int g = std::max(1, step - m.last_step);
+	const Eigen::Vector2d prev =
+	    m.has_vel ? Eigen::Vector2d(m.last.p - double(g) * m.vel) : m.last.p;
+	vel = (z.p - prev) / double(g);
+	return true;
 }
 
 void CUnknownIdResolver::observe(int32_t id, const TPoint2& z, int step)

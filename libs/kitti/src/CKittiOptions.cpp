@@ -13,7 +13,7 @@ void TKittiOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
 	rejectUnknownKeys(c, sec,
 	                  {"dt", "max_range", "fov_deg", "static_radius", "noise", "odometry_noise",
 	                   "seed", "std_range", "std_bearing", "odo_std_xy", "odo_std_xy_per_m",
-	                   "odo_std_phi", "odo_std_phi_per_m"});
+	                   "odo_std_phi", "odo_std_phi_per_m", "detection_groups"});
 	auto& o = import;
 	o.dt = readPositive(c, sec, "dt", o.dt);
 	o.max_range = readPositive(c, sec, "max_range", o.max_range);
@@ -36,6 +36,7 @@ void TKittiOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
 	o.odo_std_xy_per_m = readNonNegative(c, sec, "odo_std_xy_per_m", o.odo_std_xy_per_m);
 	o.odo_std_phi = readPositive(c, sec, "odo_std_phi", o.odo_std_phi);
 	o.odo_std_phi_per_m = readNonNegative(c, sec, "odo_std_phi_per_m", o.odo_std_phi_per_m);
+	o.detection_groups = readBool(c, sec, "detection_groups", o.detection_groups);
 }
 
 void TKittiOptions::dumpToTextStream(std::ostream& out) const
@@ -56,6 +57,7 @@ void TKittiOptions::dumpToTextStream(std::ostream& out) const
 	    << "odo_std_xy = " << o.odo_std_xy << "\n"
 	    << "odo_std_xy_per_m = " << o.odo_std_xy_per_m << "\n"
 	    << "odo_std_phi = " << o.odo_std_phi << "\n"
-	    << "odo_std_phi_per_m = " << o.odo_std_phi_per_m << "\n";
+	    << "odo_std_phi_per_m = " << o.odo_std_phi_per_m << "\n"
+	    << "detection_groups = " << (o.detection_groups ? "true" : "false") << "\n";
 }
 }  // namespace dynslam::kitti

@@ -1,3 +1,4 @@
+#include <dynslam/detection_groups.h>
 #include <dynslam/kitti/rawlog_writer.h>
 #include <dynslam/odometry_action.h>
 #include <dynslam/rawlog_file_writer.h>
@@ -54,6 +55,17 @@ mrpt::obs::CSensoryFrame makeFrame(const TStep& s, const TImportOptions& o)
 	}
 	mrpt::obs::CSensoryFrame sf;
 	sf.insert(obs);
+	if (o.detection_groups)
+	{
+		// The hint of every corner: its box, the KITTI track ID (detection_groups.h).
+		std::vector<int32_t> ids, groups;
+		for (const auto& r : s.readings)
+		{
+			ids.push_back(r.id);
+			groups.push_back(r.track);
+		}
+		sf.insert(makeDetectionGroups(ids, groups));
+	}
 	return sf;
 }
 

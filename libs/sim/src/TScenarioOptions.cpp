@@ -307,11 +307,12 @@ void readHighway(const CConfigFileBase& c, THighwayOptions& h)
 void readEffects(const CConfigFileBase& c, TReadingEffects& e)
 {
 	const std::string E = "Effects";
-	cfg::rejectUnknownKeys(
-	    c, E,
-	    {"anonymous_ids", "missed_detection_probability", "clutter_per_step", "clutter_ids",
-	     "track_break_gap", "track_break_probability", "unknown_id_probability"});
+	cfg::rejectUnknownKeys(c, E,
+	                       {"anonymous_ids", "missed_detection_probability", "clutter_per_step",
+	                        "clutter_ids", "track_break_gap", "track_break_probability",
+	                        "unknown_id_probability", "detection_groups"});
 	e.anonymous_ids = cfg::readBool(c, E, "anonymous_ids", false);
+	e.detection_groups = cfg::readBool(c, E, "detection_groups", false);
 	e.missed_detection_probability = cfg::readNonNegative(c, E, "missed_detection_probability", 0);
 	if (e.missed_detection_probability >= 1)
 		cfg::fail(E, "missed_detection_probability", fmt(e.missed_detection_probability),

@@ -89,7 +89,7 @@ void dumpAgent(std::ostream& o, const THighwayAgent& a, bool isEgo)
  * is unchanged. */
 void dumpEffects(std::ostream& o, const TReadingEffects& e)
 {
-	if (!e.any() && !e.clutter_unknown_ids) return;
+	if (!e.any() && !e.clutter_unknown_ids && !e.detection_groups) return;
 	o << "\n[Effects]\n";
 	o << "anonymous_ids = " << (e.anonymous_ids ? "true" : "false") << "\n";
 	o << "missed_detection_probability = " << fmt(e.missed_detection_probability) << "\n";
@@ -99,6 +99,7 @@ void dumpEffects(std::ostream& o, const TReadingEffects& e)
 	o << "track_break_probability = " << fmt(e.track_break_probability) << "\n";
 	if (e.unknown_id_probability > 0)
 		o << "unknown_id_probability = " << fmt(e.unknown_id_probability) << "\n";
+	if (e.detection_groups) o << "detection_groups = true\n";
 }
 }  // namespace
 

@@ -1,6 +1,7 @@
 /** @file simulate.cpp
  * Noisy odometry and range-bearing observations from the ground truth (see doc/simulator.md:
  * sensor model, noise conversion, draw order). */
+#include <dynslam/detection_groups.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/measurement.h>
 #include <dynslam/models/se2.h>
@@ -157,6 +158,17 @@ public:
 		if (m_o.effects.any()) m_effects.apply(k, *obs, m_truth);
 		sfOut = CSensoryFrame::Create();
 		sfOut->insert(obs);
+		if (m_o.effects.detection_groups)
+		{
+			// The box ID of every object reading (moving or parked): its object index.
+			std::vector<int32_t> ids, groups;
+			for (size_t i = 0; i < obs->sensedData.size(); ++i)
+			{
+				ids.push_back(obs->sensedData[i].landmarkID);
+				groups.push_back(m_truth.at(i).object);
+			}
+			sfOut->insert(makeDetectionGroups(ids, groups));
+		}
 	}
 
 	/** Class ground truth of step k's readings (in the order of the observation). */

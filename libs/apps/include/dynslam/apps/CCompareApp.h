@@ -43,14 +43,20 @@ namespace dynslam::apps
 struct TClassDecisions
 {
 	std::vector<eval::Decision> decisions;
-	std::vector<int64_t> groups;  ///< the estimated object of each reading (-1: none)
-	std::vector<int> steps;       ///< the step of each reading
-	std::vector<int32_t> ids;     ///< the track ID the filter used (-1 readings: as resolved)
-	int stepsAdded = 0;           ///< add() calls so far (= the next step)
+	/** The estimated object identity of each reading (-1: none): its object, or the object it
+	 * continues after a track break (TRoutedReading::identity). */
+	std::vector<int64_t> groups;
+	std::vector<int> steps;    ///< the step of each reading
+	std::vector<int32_t> ids;  ///< the track ID the filter used (-1 readings: as resolved)
+	int stepsAdded = 0;        ///< add() calls so far (= the next step)
 	/** The router's counts over the run (estimator::TRoutedStep): tracks restarted after a
 	 * break (ID reused), split off their object, joined an earlier object; readings held back,
 	 * ID -1 readings skipped. */
 	size_t restarted = 0, split = 0, joined = 0, held = 0, skipped_unknown_id = 0;
+	/** Links of new objects to lost ones (and of those, with two or more candidates), readings
+	 * whose hint contradicts their track's, object-steps with contradicting hints
+	 * (classify_use_hints, classify_link_gap). */
+	size_t linked = 0, link_ambiguous = 0, hint_track_conflicts = 0, hint_group_conflicts = 0;
 	void add(const estimator::TRoutedStep& step);
 	/** One line of those counts, for the summary under the table. */
 	std::string countsLine(const std::string& filter) const;

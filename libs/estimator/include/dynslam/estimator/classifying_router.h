@@ -29,7 +29,9 @@
  * counted (TRoutedStep::skipped_unknown_id). With stop_count > 0, a moving track keeps a static
  * filter too (restarted at every reading beyond the reclassify_gate): stop_count consecutive
  * readings within the gate turn it static (its object stopped; TRoutedStep::stopped), and its
- * reading starts a static landmark. */
+ * reading starts a static landmark. With use_hints, the readings' detection groups
+ * (TReading::hint) keep different boxes apart and link a new object to a lost one of the same box;
+ * link = All links without hints by a motion gate (classifying_router_links.cpp). */
 #include <dynslam/estimator/classify_evidence.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/unknown_id_association.h>
@@ -74,6 +76,25 @@ struct TClassifyParams
 	/** classify_join: a track decided moving may join an object that exists already if its
 	 * distances to that object's features stayed constant (TRoutedStep::joined). */
 	bool join = true;
+	/** classify_use_hints: the readings' detection groups (TReading::hint, a box ID) are
+	 * evidence for grouping: a moving track never joins an object whose hint differs from its
+	 * own, objects of its own hint are tried first, and a new object continues a lost object of
+	 * its hint (classify_link_gap). A hint never overrides contradicting motion evidence. */
+	bool use_hints = false;
+	/** classify_link: which new objects may continue (identity, TRoutedReading::identity) an
+	 * object lost after a track break: none (Off), only objects of the same hint (Hints, the
+	 * default: with use_hints off no link is made), or also without hints, the nearest in the
+	 * gate (All). See linkNewObjects and doc/classification.md. */
+	enum class Link : uint8_t
+	{
+		Off,
+		Hints,
+		All
+	};
+	Link link = Link::Hints;
+	/** classify_link_gap: the longest break [steps] between the lost object's last sighting and
+	 * the new one's first that a link may span, >= 1. */
+	int link_gap = 80;
 	TUnknownIdParams assoc;  ///< classify_assoc_*: ID -1 (unknown_id_association.h)
 	/** Throws std::invalid_argument naming the key. */
 	void validate() const;
@@ -100,6 +121,7 @@ struct TTrack
 	int last_good = -1;       ///< static: step of its last reading within the gate
 	bool converting = false;  ///< reclassified in this step with surgery (known landmark)
 	int32_t object = -1, feature = -1;  ///< moving: its object and feature index
+	int32_t hint = -1;                  ///< its first detection group (classify_use_hints)
 	std::map<int, TPoint2> history;     ///< the last readings (robot frame), by step
 };
 
@@ -182,6 +204,29 @@ private:
 	/** The rigid test of t against the live members of obj with at least 2 common steps; false
 	 * if there is none. */
 	bool rigidWithObject(const TTrack& t, int32_t obj) const;
+	/** Hints: records the reading's hint on track t (conflicts counted in out). */
+	void noteHint(TTrack& t, int32_t hint, TRoutedStep& out) const;
+	/** Whether track t and object obj carry different hints (never grouped). */
+	bool hintsDiffer(const TTrack& t, int32_t obj) const;
+	/** The hint of object obj: the first hint of its members (-1: none). */
+	int32_t objectHint(int32_t obj) const;
+	/** Whether the step-wide motion predictions (m_unknown) are kept: -1 association or links. */
+	bool predictsMotion() const { return m_unknown.active() || links(); }
+	/** Whether links can be made (classify_link, classify_use_hints). */
+	bool links() const
+	{
+		return m_p.link == TClassifyParams::Link::All ||
+		       (m_p.link == TClassifyParams::Link::Hints && m_p.use_hints);
+	}
+	/** A new object's centroid c and mean velocity v (robot frame, this step; now: the step's
+	 * readings by track) and its first sighting; false if none of its features has both. */
+	bool newObjectMotion(int32_t obj, int step, const std::map<int32_t, TPoint2>& now,
+	                     Eigen::Vector2d& c, Eigen::Vector2d& v, int& first) const;
+	/** Links each object created in this step to a lost object (classify_link_gap). */
+	void linkNewObjects(int step, const std::vector<int32_t>& newObjects,
+	                    const std::map<int32_t, TPoint2>& now, TRoutedStep& out);
+	/** Counts the objects whose readings of this step carry different hints. */
+	void countGroupHintConflicts(TRoutedStep& out) const;
 	/** An object reading of moving track t through the registry. */
 	void routeMoving(TRoutedReading& m, const TTrack& t, int step, TRoutedStep& out);
 
@@ -191,7 +236,9 @@ private:
 	CObjectRegistry m_registry;
 	std::map<int32_t, std::vector<int32_t>> m_objectTracks;  ///< object -> track IDs
 	int32_t m_nextObject = 0;
-	std::map<int32_t, int32_t> m_alias;  ///< input track ID -> its track after restarts
+	std::map<int32_t, int32_t> m_alias;     ///< input track ID -> its track after restarts
+	std::map<int32_t, int32_t> m_identity;  ///< object -> the object it continues (links)
+	std::set<int32_t> m_continued;          ///< objects already continued by a newer one
 	int m_lastStep = -1;
 	CUnknownIdResolver m_unknown;
 };

@@ -37,6 +37,10 @@ struct TRoutedReading
 	/** The reading of a track not yet classified (feature_labels = classify): a StaticNew
 	 * candidate landmark (never an update of the ego) or a Skip. */
 	bool candidate = false;
+	/** Object readings (feature_labels = classify): the object identity, i.e. the object this
+	 * reading's object continues after a track break (classify_link_gap; the first object of
+	 * the chain), else `object`. The estimator's blocks are those of `object`. */
+	int32_t identity = -1;
 };
 
 /** The routed readings of one step, in observation order, and what was skipped. */
@@ -62,6 +66,14 @@ struct TRoutedStep
 	/** Tracks decided moving that joined an object created in an earlier step (late joining:
 	 * the filter gives them an f_0 from the object's pose). */
 	size_t joined = 0;
+	/** Hints (classify_use_hints, doc/classification.md "Hints"): readings whose hint differs
+	 * from their track's first hint (the track keeps the first; the reading's is not used), and
+	 * objects whose readings of this step carry two or more different hints (the grouping,
+	 * decided by motion, is kept). */
+	size_t hint_track_conflicts = 0, hint_group_conflicts = 0;
+	/** New objects linked to an object lost before (classify_link: the same identity), and of
+	 * those, the ones with two or more lost objects in the gate (the nearest was taken). */
+	size_t linked = 0, link_ambiguous = 0;
 	/** Static landmarks decided moving in this step (a parked car drove off) with
 	 * classify_reclassify = restart: the filter drops them from the state; their reading of this
 	 * step is the first sighting of a new object. */

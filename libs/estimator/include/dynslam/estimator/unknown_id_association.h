@@ -71,9 +71,10 @@ struct TResolvedIds
 /** The resolver's prediction of one track (its last reading carried to the current step). */
 struct TTrackPrediction
 {
-	TAssocTarget target;   ///< covariance without the reading noise
-	bool has_vel = false;  ///< seen twice: constant-velocity prediction
-	int gap = 1;           ///< steps since the last reading
+	TAssocTarget target;                            ///< covariance without the reading noise
+	bool has_vel = false;                           ///< seen twice: constant-velocity prediction
+	int gap = 1;                                    ///< steps since the last reading
+	Eigen::Vector2d vel = Eigen::Vector2d::Zero();  ///< displacement per step (current frame)
 };
 
 class CUnknownIdResolver
@@ -99,6 +100,9 @@ public:
 	/** A reading of a track (every reading with an ID, after resolve). */
 	void observe(int32_t id, const TPoint2& z, int step);
 	void forget(int32_t id) { m_movers.erase(id); }
+	/** The displacement per step (current robot frame) that observe(id, z, step) would set;
+	 * false if track id has no earlier reading. */
+	bool velocityWith(int32_t id, const TPoint2& z, int step, Eigen::Vector2d& vel) const;
 	/** A fresh track ID from the counter of the -1 tracks (a restarted track,
 	 * classifying_router.h). */
 	int32_t newId() { return m_next++; }

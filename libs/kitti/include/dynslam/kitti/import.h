@@ -66,6 +66,10 @@ struct TImportOptions
 	double odo_std_phi = 0.002;                ///< [rad]
 	double odo_std_phi_per_m = 0.001;          ///< [rad/m]
 	bool anonymous = false;
+	/** detection_groups: each step also writes a DETECTION_GROUPS comment
+	 * (dynslam/detection_groups.h): every corner's group is its KITTI track ID (the box it
+	 * belongs to), the optional hint of the classifying filter. Off: the rawlog is unchanged. */
+	bool detection_groups = false;
 };
 
 /** One track (persistent KITTI track ID). */

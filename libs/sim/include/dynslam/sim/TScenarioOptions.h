@@ -120,6 +120,11 @@ struct TReadingEffects
 	/** Per true reading: the ID written is -1 (MRPT's "association unknown"; the track keeps
 	 * its ID for its other readings). */
 	double unknown_id_probability = 0;
+	/** detection_groups: each step also writes a DETECTION_GROUPS comment
+	 * (dynslam/detection_groups.h) giving every reading of an object (moving or parked) its
+	 * object index as a box ID (a detector's box that survives track breaks); static landmarks
+	 * and clutter get none. Off: the rawlog is unchanged. Not a reading effect (no draws). */
+	bool detection_groups = false;
 	bool any() const
 	{
 		return anonymous_ids || missed_detection_probability > 0 || clutter_per_step > 0 ||
