@@ -6,6 +6,8 @@
  * (fixed in the camera frame, so it moves in the world). The parked car leaves the 90 deg field
  * of view at frame 8 (bearing 56 deg) and is not annotated after it.
  */
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,7 +19,8 @@ namespace kitti_test
 {
 inline std::string tempDir(const std::string& name)
 {
-	const auto d = std::filesystem::temp_directory_path() / ("dynslam_kitti_test_" + name);
+	const auto d = std::filesystem::temp_directory_path() /
+	               ("dynslam_kitti_test_" + name + "_" + std::to_string(::getpid()));
 	std::filesystem::remove_all(d);
 	std::filesystem::create_directories(d / "label_02");
 	std::filesystem::create_directories(d / "poses");

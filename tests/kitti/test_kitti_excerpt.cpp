@@ -8,6 +8,7 @@
 #include <dynslam/landmark_ids.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -39,7 +40,7 @@ TExcerpt convert(bool anonymous)
 	const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
 	const std::string dir = (std::filesystem::temp_directory_path() /
 	                         ("dynslam_kitti_excerpt_" + std::string(info ? info->name() : "main") +
-	                          (anonymous ? "_anon" : "")))
+	                          (anonymous ? "_anon" : "") + "_" + std::to_string(getpid())))
 	                            .string();
 	std::filesystem::remove_all(dir);
 	kitti::writeImport(res, o, dir, "kitti_0000");

@@ -14,6 +14,7 @@
 #include <dynslam/mrclam/rawlog_writer.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -45,8 +46,9 @@ TModelRun runModel(const std::string& model)
 	o.import.odometry_noise.model = model == "inflated"
 	                                    ? mrclam::TOdometryNoiseModel::Model::inflated
 	                                    : mrclam::TOdometryNoiseModel::Model::white;
-	const auto dir =
-	    (std::filesystem::temp_directory_path() / ("dynslam_realdata_noise_" + model)).string();
+	const auto dir = (std::filesystem::temp_directory_path() /
+	                  ("dynslam_realdata_noise_" + model + "_" + std::to_string(getpid())))
+	                     .string();
 	std::filesystem::remove_all(dir);
 	const auto res = mrclam::importRobot(mrclam::loadDataset(kExcerpt, 3), o.import);
 	mrclam::writeImport(res, o, dir, "robot3");

@@ -6,6 +6,7 @@
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservationBearingRange.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -397,7 +398,8 @@ TEST(SimEffects, BadOptionsNameTheKey)
 TEST(SimEffects, ClassFileRoundTripAndAppWritesIt)
 {
 	const TSimulatedRun run = simulate(loadScenario(cfgPath("highway_clutter.ini")));
-	const auto dir = std::filesystem::temp_directory_path() / "dynslam_test_classes";
+	const auto dir = std::filesystem::temp_directory_path() /
+	                 ("dynslam_test_classes_" + std::to_string(getpid()));
 	std::filesystem::create_directories(dir);
 	const std::string p = (dir / "x_gt_classes.csv").string();
 	writeClassGroundTruth(run.classes, p);
