@@ -45,6 +45,9 @@ TEST(KittiHints, CornersCarryTheirTrackIdAsHint)
 				hinted += in.readings[i].hint >= 0;
 			}
 		}
-		if (groups) EXPECT_GT(hinted, 0u);
+		if (groups)
+		{
+			EXPECT_GT(hinted, 0u);
+		}
 	}
 }
