@@ -40,6 +40,7 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	o.cv.inflation_decay = readNonNegative(c, s, "cv_inflation_decay", o.cv.inflation_decay);
 	o.cv.fallback_steps = int(readInt(c, s, "cv_fallback_steps", o.cv.fallback_steps));
 	o.cv.heading_inflation = readNonNegative(c, s, "cv_heading_inflation", o.cv.heading_inflation);
+	o.cv.ego_velocity_std = readNonNegative(c, s, "cv_ego_velocity_std", o.cv.ego_velocity_std);
 }
 }  // namespace
 
@@ -88,6 +89,7 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "cv_inflation_decay",
                                           "cv_fallback_steps",
                                           "cv_heading_inflation",
+                                          "cv_ego_velocity_std",
                                           "feature_labels",
                                           "classify_alpha",
                                           "classify_beta",
@@ -305,6 +307,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "cv_inflation_decay             = " << cv.inflation_decay << "\n";
 	out << "cv_fallback_steps              = " << cv.fallback_steps << "\n";
 	out << "cv_heading_inflation           = " << cv.heading_inflation << "\n";
+	out << "cv_ego_velocity_std            = " << cv.ego_velocity_std << "\n";
 	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
 	out << "keep_last_poses                = " << keep_last_poses << "\n";
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";
