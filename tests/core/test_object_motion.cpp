@@ -152,3 +152,49 @@ TEST(EkfSteps, PredictSubsetMatchesDense)
 	                                         Q.topLeftCorner(2, 2)),
 	             std::out_of_range);
 }
+
+TEST(EkfSteps, SchmidtUpdateIsTheJosephFormWithZeroGainRows)
+{
+	// ekf::schmidtUpdate against the dense Schmidt-Kalman update: K = P H^T S^-1 with its rows
+	// outside upd set to zero, x += K nu, P = (I - K H) P (I - K H)^T + K R K^T (the Joseph
+	// form, exact for any gain); with upd = every index it is sparseUpdate.
+	dynslam_test::rng(1304);
+	const int n = 13;
+	const MatrixXd P0 = core_test::randomSPD(n);
+	const VectorXd x0 = core_test::randomVector(n, -5, 5);
+	const std::vector<int> idx{0, 1, 2, 6, 7, 10};  // the reading's columns
+	const std::vector<int> upd{6, 7, 8, 10, 11};    // corrected (8, 11: correlated only)
+	const MatrixXd Hs = core_test::randomVector(4 * 6, -1, 1).reshaped(4, 6);
+	const MatrixXd R = core_test::randomSPD(4, 0.1);
+	const VectorXd nu = core_test::randomVector(4, -1, 1);
+	MatrixXd H = MatrixXd::Zero(4, n);
+	for (int c = 0; c < 6; ++c) H.col(idx[size_t(c)]) = Hs.col(c);
+	const MatrixXd S = H * P0 * H.transpose() + R;
+	MatrixXd K = P0 * H.transpose() * S.inverse();
+	for (int i = 0; i < n; ++i)
+		if (std::find(upd.begin(), upd.end(), i) == upd.end()) K.row(i).setZero();
+	const MatrixXd IKH = MatrixXd::Identity(n, n) - K * H;
+	const MatrixXd Pd = IKH * P0 * IKH.transpose() + K * R * K.transpose();
+	VectorXd x = x0;
+	dynslam::ekf::RowMatrixXd P = P0;
+	const double nis = dynslam::ekf::schmidtUpdate(x, P, idx, upd, Hs, nu, R);
+	EXPECT_NEAR(nis, nu.dot(S.inverse() * nu), 1e-10);
+	EXPECT_LT((x - (x0 + K * nu)).cwiseAbs().maxCoeff(), 1e-12);
+	EXPECT_LT((MatrixXd(P) - Pd).cwiseAbs().maxCoeff(), 1e-12);
+	EXPECT_EQ(MatrixXd(P), MatrixXd(P).transpose());
+	for (const int i : {0, 1, 2, 3})  // considered: mean and their block unchanged, exactly
+	{
+		EXPECT_EQ(x[i], x0[i]);
+		for (const int j : {0, 1, 2, 3}) EXPECT_EQ(P(i, j), P0(i, j));
+	}
+	std::vector<int> all(n);
+	for (int i = 0; i < n; ++i) all[size_t(i)] = i;
+	VectorXd xa = x0, xs = x0;
+	dynslam::ekf::RowMatrixXd Pa = P0, Ps = P0;
+	dynslam::ekf::schmidtUpdate(xa, Pa, idx, all, Hs, nu, R);
+	dynslam::ekf::sparseUpdate(xs, Ps, idx, Hs, nu, R);
+	EXPECT_LT((xa - xs).cwiseAbs().maxCoeff(), 1e-12);
+	EXPECT_LT((MatrixXd(Pa) - MatrixXd(Ps)).cwiseAbs().maxCoeff(), 1e-12);
+	EXPECT_THROW(dynslam::ekf::schmidtUpdate(x, P, idx, {0, 99}, Hs, nu, R), std::out_of_range);
+	EXPECT_THROW(dynslam::ekf::schmidtUpdate(x, P, {0, 1}, upd, Hs, nu, R), std::invalid_argument);
+}

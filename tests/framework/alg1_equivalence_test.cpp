@@ -265,6 +265,8 @@ TEST(Alg1, ObjectModelsBadInput)
 	EXPECT_NO_THROW(make("cv_fallback_steps = 0\n"));                              // off
 	EXPECT_THROW(make("cv_heading_inflation = 3\n"), std::invalid_argument);       // EKF only
 	EXPECT_NO_THROW(make("cv_heading_inflation = 0\n"));                           // off
+	EXPECT_THROW(make("cv_ego_velocity_std = 0.02\n"), std::invalid_argument);     // EKF only
+	EXPECT_NO_THROW(make("cv_ego_velocity_std = 0\n"));                            // off
 	EXPECT_THROW(make("cv_accel_psd = [0.01 0 1e-4]\n"), std::invalid_argument);
 	EXPECT_THROW(make("cv_velocity_prior_std = [0.5 0 0.05]\n"), std::invalid_argument);
 }

@@ -40,6 +40,7 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	o.cv.inflation_decay = readNonNegative(c, s, "cv_inflation_decay", o.cv.inflation_decay);
 	o.cv.fallback_steps = int(readInt(c, s, "cv_fallback_steps", o.cv.fallback_steps));
 	o.cv.heading_inflation = readNonNegative(c, s, "cv_heading_inflation", o.cv.heading_inflation);
+	o.cv.ego_velocity_std = readNonNegative(c, s, "cv_ego_velocity_std", o.cv.ego_velocity_std);
 }
 }  // namespace
 
@@ -88,6 +89,7 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "cv_inflation_decay",
                                           "cv_fallback_steps",
                                           "cv_heading_inflation",
+                                          "cv_ego_velocity_std",
                                           "feature_labels",
                                           "classify_alpha",
                                           "classify_beta",
@@ -279,6 +281,28 @@ void TModelOptions::validate() const
 		    ": need >= 1, > 1 and >= 0");
 }
 
+namespace
+{
+/** object_model and the cv_* keys of the dump. */
+void dumpObjectModel(std::ostream& out, const TModelOptions& o)
+{
+	using config::formatMatrix;
+	out << "object_model                   = " << o.object_model << "\n";
+	out << "cv_dt                          = " << o.cv.dt << "\n";
+	out << "cv_accel_psd                   = " << formatMatrix(o.cv.accel_psd.transpose()) << "\n";
+	out << "cv_velocity_prior_std          = " << formatMatrix(o.cv.velocity_prior_std.transpose())
+	    << "\n";
+	out << "cv_gate                        = " << o.cv_gate << "\n";
+	out << "cv_inflation_threshold         = " << o.cv.inflation_threshold << "\n";
+	out << "cv_inflation_factor            = " << o.cv.inflation_factor << "\n";
+	out << "cv_inflation_window            = " << o.cv.inflation_window << "\n";
+	out << "cv_inflation_decay             = " << o.cv.inflation_decay << "\n";
+	out << "cv_fallback_steps              = " << o.cv.fallback_steps << "\n";
+	out << "cv_heading_inflation           = " << o.cv.heading_inflation << "\n";
+	out << "cv_ego_velocity_std            = " << o.cv.ego_velocity_std << "\n";
+}
+}  // namespace
+
 void TModelOptions::dumpToTextStream(std::ostream& out) const
 {
 	using config::formatMatrix;
@@ -293,18 +317,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "Sigma_xi                       = " << formatMatrix(Sigma_xi) << "\n";
 	out << "smoothing                      = " << (smoothing ? "true" : "false") << "\n";
 	out << "Sigma_s                        = " << formatMatrix(Sigma_s) << "\n";
-	out << "object_model                   = " << object_model << "\n";
-	out << "cv_dt                          = " << cv.dt << "\n";
-	out << "cv_accel_psd                   = " << formatMatrix(cv.accel_psd.transpose()) << "\n";
-	out << "cv_velocity_prior_std          = " << formatMatrix(cv.velocity_prior_std.transpose())
-	    << "\n";
-	out << "cv_gate                        = " << cv_gate << "\n";
-	out << "cv_inflation_threshold         = " << cv.inflation_threshold << "\n";
-	out << "cv_inflation_factor            = " << cv.inflation_factor << "\n";
-	out << "cv_inflation_window            = " << cv.inflation_window << "\n";
-	out << "cv_inflation_decay             = " << cv.inflation_decay << "\n";
-	out << "cv_fallback_steps              = " << cv.fallback_steps << "\n";
-	out << "cv_heading_inflation           = " << cv.heading_inflation << "\n";
+	dumpObjectModel(out, *this);
 	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
 	out << "keep_last_poses                = " << keep_last_poses << "\n";
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";

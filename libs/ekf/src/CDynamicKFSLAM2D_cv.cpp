@@ -10,6 +10,7 @@
 #include <dynslam/models/se2.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <stdexcept>
 
@@ -73,6 +74,14 @@ std::vector<int> concat(std::vector<int> a, const std::vector<int>& b)
 {
 	a.insert(a.end(), b.begin(), b.end());
 	return a;
+}
+
+/** The std of an object's velocity: sqrt of the largest eigenvalue of its (vx, vy) block. */
+double velocityStd(const Eigen::Ref<const ekf::RowMatrixXd>& P, const std::vector<int>& iv)
+{
+	const std::vector<int> xy{iv[0], iv[1]};
+	const Eigen::Matrix2d B = P(xy, xy);
+	return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(B).eigenvalues()[1]);
 }
 }  // namespace
 
@@ -190,7 +199,13 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 		Eigen::MatrixXd H, R;
 		Eigen::VectorXd nu;
 		stackReadings(Hs, nus, options.Sigma_v, options.cv.heading_inflation * P(2, 2), H, nu, R);
-		ekf::sparseUpdate(x, P, idx, H, nu, R);
+		const std::vector<int> iv = m_layout.indices(states.at(obj).velocity);
+		const double egoStd = options.cv.ego_velocity_std;
+		if (egoStd > 0 && velocityStd(P, iv) > egoStd)  // not converged: the object alone
+			ekf::schmidtUpdate(x, P, idx, concat(std::vector<int>(idx.begin() + 3, idx.end()), iv),
+			                   H, nu, R);
+		else
+			ekf::sparseUpdate(x, P, idx, H, nu, R);
 		if (d == 3) x[ip[2]] = models::wrapToPi(x[ip[2]]);
 		OnNormalizeStateVector();
 		m_report.object_feature_updates += size_t(m);

@@ -31,6 +31,9 @@ void TCvParams::validate() const
 	if (!(heading_inflation >= 0) || !std::isfinite(heading_inflation))
 		throw std::invalid_argument("cv_heading_inflation = " + std::to_string(heading_inflation) +
 		                            ": must be finite and >= 0 (0 = off)");
+	if (!(ego_velocity_std >= 0) || !std::isfinite(ego_velocity_std))
+		throw std::invalid_argument("cv_ego_velocity_std = " + std::to_string(ego_velocity_std) +
+		                            ": must be finite and >= 0 (0 = off)");
 	if (fallback_steps < 0)
 		throw std::invalid_argument("cv_fallback_steps = " + std::to_string(fallback_steps) +
 		                            ": must be >= 0 (0 = off)");

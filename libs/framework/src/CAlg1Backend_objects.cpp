@@ -34,6 +34,10 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeObjectCen
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] cv_heading_inflation: the heading inflation of object readings is "
 		    "not implemented in the framework (the dynamic EKF only)");
+	if (p.ego_velocity_std > 0)
+		throw std::invalid_argument(
+		    "[DynamicKFSLAM] cv_ego_velocity_std: the Schmidt update of unconverged objects is "
+		    "not implemented in the framework (the dynamic EKF only)");
 	if ((p.accel_psd.array() <= 0).any())
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] cv_accel_psd: every entry must be > 0 in the framework (its motion "

@@ -67,7 +67,9 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * at that many consecutive steps falls back to the paper's formulation until two poses
 	 * give it a new velocity; 0 = off, the default), cv_heading_inflation (object readings' noise
 	 * Sigma_v + c P_thth h h^T, h the reading's Jacobian on the ego heading; 0 = off, the
-	 * default; estimator::TCvParams::heading_inflation). */
+	 * default; estimator::TCvParams::heading_inflation), cv_ego_velocity_std (an object's
+	 * readings correct only the object while its velocity std is above it [m/s]; 0 = off, the
+	 * default; estimator::TCvParams::ego_velocity_std). */
 	estimator::TCvParams cv;
 	double cv_gate = 0;
 	bool drop_time_t_features = true;  ///< drop f_t after pose augmentation

@@ -46,6 +46,13 @@ struct TCvParams
 	 * heading, which the object readings otherwise leak into the estimate; doc/results.md
 	 * 4.3.2). The gate is unchanged. 0 = off (default). EKF only. */
 	double heading_inflation = 0.0;
+	/** Objects that tell the ego only once converged (doc/state-layout.md): while the std of
+	 * an object's velocity (the largest of its (vx, vy) block) is above this [m/s], its readings
+	 * correct only the object's own entries (pose, velocity, body-frame features; a Schmidt
+	 * update, ekf::schmidtUpdate); the ego, the static map and the other objects are then
+	 * considered, not corrected. 0 = off (default): every reading corrects the whole state. EKF
+	 * only. */
+	double ego_velocity_std = 0.0;
 	/** Throws std::invalid_argument naming the parameter. */
 	void validate() const;
 };

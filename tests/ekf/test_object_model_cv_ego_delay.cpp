@@ -1,0 +1,125 @@
+/** object_model = cv (issue 13): objects that tell the ego only once converged
+ * (cv_ego_velocity_std, doc/state-layout.md "Objects that tell the ego only once converged").
+ * While an object's velocity std is above the key, its readings correct only the object (a
+ * Schmidt update): the ego and the static map then evolve exactly as in the paper's filter,
+ * where object readings never update them. Off (0), the filter is today's to the last digit. */
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ground_truth.h>
+#include <dynslam/sim/scenario.h>
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <sstream>
+
+using namespace dynslam;
+
+namespace
+{
+/** The paper's highway at level w3v1 (where the objects' readings move the ego most). */
+sim::TScenarioOptions w3v1()
+{
+	sim::TScenarioOptions o = sim::loadScenario(DYNSLAM_DATASETS_DIR "/highway_scenario.ini");
+	o.setNoiseLevel("w3v1");
+	return o;
+}
+
+void configure(CDynamicKFSLAM2D& f, const sim::TScenarioOptions& o, const std::string& model,
+               double egoStd)
+{
+	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+	f.options.measurement_model = models::MeasurementModel::Cartesian;
+	f.options.Sigma_v = o.Sigma_v;
+	f.options.Sigma_0 = o.Sigma_0;
+	f.options.object_model = model;
+	f.options.cv.dt = o.dt;
+	f.options.cv.accel_psd = Eigen::Vector3d(1e-6, 1e-6, 1e-8);
+	f.options.cv.velocity_prior_std = Eigen::Vector3d(0.5, 0.5, 0.05);
+	f.options.cv.ego_velocity_std = egoStd;
+	f.reset();
+}
+
+Eigen::VectorXd state(const CDynamicKFSLAM2D& f)
+{
+	Eigen::VectorXd x;
+	Eigen::MatrixXd P;
+	f.getStateWithoutPads(x, P);
+	Eigen::VectorXd out(x.size() + P.size());
+	out << x, P.reshaped();
+	return out;
+}
+
+/** The ego's mean and covariance (the first 3 entries in every layout). */
+Eigen::VectorXd ego(const CDynamicKFSLAM2D& f)
+{
+	Eigen::VectorXd x;
+	Eigen::MatrixXd P;
+	f.getStateWithoutPads(x, P);
+	Eigen::VectorXd out(12);
+	out << x.head<3>(), P.topLeftCorner(3, 3).reshaped();
+	return out;
+}
+}  // namespace
+
+TEST(ObjectModelCvEgoDelay, UnconvergedObjectsLeaveTheEgoAsInThePaperFilter)
+{
+	// One seeded w3v1 highway run through: the paper's filter; cv with the key so small that no
+	// object ever converges (every object update a Schmidt update); cv off (0) and cv with a key
+	// no velocity std reaches (1e9: never a Schmidt update); cv with 0.05 m/s (some of each).
+	sim::TScenarioOptions o = w3v1();
+	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, 9001);
+	CDynamicKFSLAM2D paper, never, off, always, mid;
+	configure(paper, o, "paper", 0);
+	configure(never, o, "cv", 1e-12);
+	configure(off, o, "cv", 0);
+	configure(always, o, "cv", 1e9);
+	configure(mid, o, "cv", 0.05);
+	double worstNever = 0, worstOff = 0, worstMid = 0;
+	size_t updates = 0;
+	for (size_t k = 0; k < 40; ++k)
+	{
+		for (CDynamicKFSLAM2D* f : {&paper, &never, &off, &always, &mid})
+			f->processActionObservation(run.actions[k], run.frames[k]);
+		updates += never.getLastStepReport().object_feature_updates;
+		ASSERT_EQ(state(off), state(always)) << "step " << k;
+		const Eigen::VectorXd p = ego(paper);
+		worstNever = std::max(worstNever, (ego(never) - p).cwiseAbs().maxCoeff());
+		worstOff = std::max(worstOff, (ego(off) - p).cwiseAbs().maxCoeff());
+		worstMid = std::max(worstMid, (ego(mid) - ego(off)).cwiseAbs().maxCoeff());
+	}
+	std::printf(
+	    "[ measured ] %zu object updates; largest ego difference to the paper's filter: "
+	    "Schmidt always %.3g, off %.3g; 0.05 m/s vs off %.3g\n",
+	    updates, worstNever, worstOff, worstMid);
+	ASSERT_GT(updates, 100u);
+	EXPECT_LT(worstNever, 1e-12);  // the objects never touch the ego
+	EXPECT_GT(worstOff, 1e-6);     // the test is not vacuous: used, they move it
+	EXPECT_GT(worstMid, 1e-9);     // the early Schmidt updates change the ego's path
+}
+
+TEST(ObjectModelCvEgoDelay, OptionsDumpAndBadInput)
+{
+	const auto load = [](const std::string& extra)
+	{
+		mrpt::config::CConfigFileMemory ini;
+		ini.setContent(std::string("[DynamicKFSLAM]\nmeasurement_model = cartesian\n"
+		                           "Sigma_v = [1e-4 1e-4]\nobject_model = cv\ncv_dt = 0.5\n") +
+		               extra);
+		CDynamicKFSLAM2D f;
+		f.loadOptions(ini);
+		return f.options.cv.ego_velocity_std;
+	};
+	EXPECT_EQ(load(""), 0.0);  // off by default
+	EXPECT_EQ(load("cv_ego_velocity_std = 0.02\n"), 0.02);
+	EXPECT_THROW(load("cv_ego_velocity_std = -1\n"), std::invalid_argument);
+	estimator::TCvParams p;
+	p.ego_velocity_std = std::numeric_limits<double>::infinity();
+	EXPECT_THROW(p.validate(), std::invalid_argument);
+	p.ego_velocity_std = std::nan("");
+	EXPECT_THROW(p.validate(), std::invalid_argument);
+	CDynamicKFSLAM2D f;
+	f.options.cv.ego_velocity_std = 0.02;
+	std::ostringstream dump;
+	f.options.dumpToTextStream(dump);
+	EXPECT_NE(dump.str().find("cv_ego_velocity_std            = 0.02"), std::string::npos);
+}
