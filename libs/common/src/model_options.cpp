@@ -107,6 +107,7 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_use_hints",
                                           "classify_link",
                                           "classify_link_gap",
+                                          "classify_static_test",
 
                                           "classify_assoc_method",
                                           "classify_assoc_metric",
@@ -143,6 +144,9 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	const int link = int(readChoice(c, s, "classify_link", {"off", "hints", "all"}, 1));
 	p.link = link == 0 ? Link::Off : link == 1 ? Link::Hints : Link::All;
 	p.link_gap = int(readInt(c, s, "classify_link_gap", p.link_gap));
+	using Test = estimator::TClassifyParams::StaticTest;
+	p.static_test = readChoice(c, s, "classify_static_test", {"robot", "map"}, 0) == 0 ? Test::Robot
+	                                                                                   : Test::Map;
 	// ID -1 readings (estimator/unknown_id_association.h): MRPT's data_assoc_* names and values.
 	estimator::TUnknownIdParams& a = p.assoc;
 	const std::vector<std::string> methods{"assocNN", "assocJCBB"};
@@ -351,6 +355,9 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	const char* links[] = {"off", "hints", "all"};
 	out << "classify_link                  = " << links[int(classify.link)] << "\n";
 	out << "classify_link_gap              = " << classify.link_gap << "\n";
+	out << "classify_static_test           = "
+	    << (classify.static_test == estimator::TClassifyParams::StaticTest::Map ? "map" : "robot")
+	    << "\n";
 	const estimator::TUnknownIdParams& a = classify.assoc;
 	out << "classify_assoc_method          = " << a.method << "\n";
 	out << "classify_assoc_metric          = " << a.metric << "\n";
