@@ -5,6 +5,9 @@
 #include <dynslam/estimator/classifying_router.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
 #include "router_synth.h"
 
 using namespace dynslam;
@@ -64,4 +67,29 @@ TEST(ClassifyStaticTest, MapInnovationDecidesTheReclassification)
 	EXPECT_EQ(reclassifiedAt(T::Map, true, 0.0, 0, drives), -1);
 	// ... and falls back to the robot-frame test without a landmark in the state.
 	EXPECT_EQ(reclassifiedAt(T::Map, false, 0.0, 0, drives), robot);
+}
+
+// chiSquareQuantile remembers the normal quantile of its last few probabilities (the router's
+// hot path, doc/performance.md 14): the values must not depend on what was asked before.
+// Reference values: the Wilson-Hilferty formula with the standard normal quantiles
+// z(0.99) = 2.326347874, z(0.999) = 3.090232306, z(0.9) = 1.281551566.
+TEST(ClassifyStaticTest, ChiSquareQuantileIsTheSameWhateverWasAskedBefore)
+{
+	const auto wh = [](double z, double k)
+	{
+		const double c = 2 / (9 * k), t = 1 - c + z * std::sqrt(c);
+		return k * t * t * t;
+	};
+	const double z99 = 2.326347874, z999 = 3.090232306, z90 = 1.281551566;
+	const std::vector<double> ps{0.99, 0.999, 0.9, 0.5, 0.95, 0.75, 0.99, 0.9, 0.999};
+	for (int round = 0; round < 3; ++round)
+		for (const double p : ps)
+		{
+			const double q = chiSquareQuantile(p, 5);
+			if (p == 0.99) EXPECT_NEAR(q, wh(z99, 5), 1e-7);
+			if (p == 0.999) EXPECT_NEAR(q, wh(z999, 5), 1e-7);
+			if (p == 0.9) EXPECT_NEAR(q, wh(z90, 5), 1e-7);
+			if (p == 0.5) EXPECT_NEAR(q, wh(0, 5), 1e-9);
+		}
+	EXPECT_NEAR(chiSquareQuantile(0.99, 2), -2 * std::log(0.01), 1e-12);
 }
