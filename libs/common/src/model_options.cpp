@@ -283,6 +283,48 @@ void TModelOptions::validate() const
 		    ": need >= 1, > 1 and >= 0");
 }
 
+namespace
+{
+/** The feature_labels = classify keys of the dump. */
+void dumpClassify(std::ostream& out, const std::string& feature_labels,
+                  const estimator::TClassifyParams& classify)
+{
+	out << "feature_labels                 = " << feature_labels << "\n";
+	out << "classify_alpha                 = " << classify.alpha << "\n";
+	out << "classify_beta                  = " << classify.beta << "\n";
+	out << "classify_motion_std            = " << classify.motion_std << "\n";
+	out << "classify_max_window            = " << classify.max_window << "\n";
+	out << "classify_forget_steps          = " << classify.forget_steps << "\n";
+	out << "classify_group_prob            = " << classify.group_prob << "\n";
+	out << "classify_group_max_dist        = " << classify.group_max_dist << "\n";
+	out << "classify_reclassify_count      = " << classify.reclassify_count << "\n";
+	out << "classify_reclassify_gate       = " << classify.reclassify_gate << "\n";
+	out << "classify_candidate_landmarks   = " << (classify.candidate_landmarks ? "true" : "false")
+	    << "\n";
+	out << "classify_reclassify            = " << (classify.surgery ? "surgery" : "restart")
+	    << "\n";
+	out << "classify_stop_count            = " << classify.stop_count << "\n";
+	out << "classify_reuse_gap             = " << classify.reuse_gap << "\n";
+	out << "classify_split_count           = " << classify.split_count << "\n";
+	out << "classify_join                  = " << (classify.join ? "true" : "false") << "\n";
+	out << "classify_use_hints             = " << (classify.use_hints ? "true" : "false") << "\n";
+	const char* links[] = {"off", "hints", "all"};
+	out << "classify_link                  = " << links[int(classify.link)] << "\n";
+	out << "classify_link_gap              = " << classify.link_gap << "\n";
+	out << "classify_static_test           = "
+	    << (classify.static_test == estimator::TClassifyParams::StaticTest::Map ? "map" : "robot")
+	    << "\n";
+	const estimator::TUnknownIdParams& a = classify.assoc;
+	out << "classify_assoc_method          = " << a.method << "\n";
+	out << "classify_assoc_metric          = " << a.metric << "\n";
+	out << "classify_assoc_IC_chi2_thres   = " << a.IC_chi2_thres << "\n";
+	out << "classify_assoc_IC_metric       = " << a.IC_metric << "\n";
+	out << "classify_assoc_IC_ml_threshold = " << a.IC_ml_threshold << "\n";
+	out << "classify_assoc_moving_gate     = " << a.moving_gate << "\n";
+	out << "classify_assoc_max_step        = " << a.max_step << "\n";
+}
+}  // namespace
+
 void TModelOptions::dumpToTextStream(std::ostream& out) const
 {
 	using config::formatMatrix;
@@ -333,39 +375,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "record_dropped                 = " << (record_dropped ? "true" : "false") << "\n";
 	odometry_bias.dump(out);
 	if (feature_labels == "ids") return;  // the classify_* keys only matter with classify
-	out << "feature_labels                 = " << feature_labels << "\n";
-	out << "classify_alpha                 = " << classify.alpha << "\n";
-	out << "classify_beta                  = " << classify.beta << "\n";
-	out << "classify_motion_std            = " << classify.motion_std << "\n";
-	out << "classify_max_window            = " << classify.max_window << "\n";
-	out << "classify_forget_steps          = " << classify.forget_steps << "\n";
-	out << "classify_group_prob            = " << classify.group_prob << "\n";
-	out << "classify_group_max_dist        = " << classify.group_max_dist << "\n";
-	out << "classify_reclassify_count      = " << classify.reclassify_count << "\n";
-	out << "classify_reclassify_gate       = " << classify.reclassify_gate << "\n";
-	out << "classify_candidate_landmarks   = " << (classify.candidate_landmarks ? "true" : "false")
-	    << "\n";
-	out << "classify_reclassify            = " << (classify.surgery ? "surgery" : "restart")
-	    << "\n";
-	out << "classify_stop_count            = " << classify.stop_count << "\n";
-	out << "classify_reuse_gap             = " << classify.reuse_gap << "\n";
-	out << "classify_split_count           = " << classify.split_count << "\n";
-	out << "classify_join                  = " << (classify.join ? "true" : "false") << "\n";
-	out << "classify_use_hints             = " << (classify.use_hints ? "true" : "false") << "\n";
-	const char* links[] = {"off", "hints", "all"};
-	out << "classify_link                  = " << links[int(classify.link)] << "\n";
-	out << "classify_link_gap              = " << classify.link_gap << "\n";
-	out << "classify_static_test           = "
-	    << (classify.static_test == estimator::TClassifyParams::StaticTest::Map ? "map" : "robot")
-	    << "\n";
-	const estimator::TUnknownIdParams& a = classify.assoc;
-	out << "classify_assoc_method          = " << a.method << "\n";
-	out << "classify_assoc_metric          = " << a.metric << "\n";
-	out << "classify_assoc_IC_chi2_thres   = " << a.IC_chi2_thres << "\n";
-	out << "classify_assoc_IC_metric       = " << a.IC_metric << "\n";
-	out << "classify_assoc_IC_ml_threshold = " << a.IC_ml_threshold << "\n";
-	out << "classify_assoc_moving_gate     = " << a.moving_gate << "\n";
-	out << "classify_assoc_max_step        = " << a.max_step << "\n";
+	dumpClassify(out, feature_labels, classify);
 }
 TParseOptions TModelOptions::parseOptions() const
 {
