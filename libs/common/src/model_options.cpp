@@ -109,6 +109,7 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_use_hints",
                                           "classify_link",
                                           "classify_link_gap",
+                                          "classify_static_test",
 
                                           "classify_assoc_method",
                                           "classify_assoc_metric",
@@ -145,6 +146,9 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	const int link = int(readChoice(c, s, "classify_link", {"off", "hints", "all"}, 1));
 	p.link = link == 0 ? Link::Off : link == 1 ? Link::Hints : Link::All;
 	p.link_gap = int(readInt(c, s, "classify_link_gap", p.link_gap));
+	using Test = estimator::TClassifyParams::StaticTest;
+	p.static_test = readChoice(c, s, "classify_static_test", {"robot", "map"}, 0) == 0 ? Test::Robot
+	                                                                                   : Test::Map;
 	// ID -1 readings (estimator/unknown_id_association.h): MRPT's data_assoc_* names and values.
 	estimator::TUnknownIdParams& a = p.assoc;
 	const std::vector<std::string> methods{"assocNN", "assocJCBB"};
@@ -301,6 +305,45 @@ void dumpObjectModel(std::ostream& out, const TModelOptions& o)
 	out << "cv_heading_inflation           = " << o.cv.heading_inflation << "\n";
 	out << "cv_ego_velocity_std            = " << o.cv.ego_velocity_std << "\n";
 }
+
+/** The feature_labels = classify keys of the dump. */
+void dumpClassify(std::ostream& out, const std::string& feature_labels,
+                  const estimator::TClassifyParams& classify)
+{
+	out << "feature_labels                 = " << feature_labels << "\n";
+	out << "classify_alpha                 = " << classify.alpha << "\n";
+	out << "classify_beta                  = " << classify.beta << "\n";
+	out << "classify_motion_std            = " << classify.motion_std << "\n";
+	out << "classify_max_window            = " << classify.max_window << "\n";
+	out << "classify_forget_steps          = " << classify.forget_steps << "\n";
+	out << "classify_group_prob            = " << classify.group_prob << "\n";
+	out << "classify_group_max_dist        = " << classify.group_max_dist << "\n";
+	out << "classify_reclassify_count      = " << classify.reclassify_count << "\n";
+	out << "classify_reclassify_gate       = " << classify.reclassify_gate << "\n";
+	out << "classify_candidate_landmarks   = " << (classify.candidate_landmarks ? "true" : "false")
+	    << "\n";
+	out << "classify_reclassify            = " << (classify.surgery ? "surgery" : "restart")
+	    << "\n";
+	out << "classify_stop_count            = " << classify.stop_count << "\n";
+	out << "classify_reuse_gap             = " << classify.reuse_gap << "\n";
+	out << "classify_split_count           = " << classify.split_count << "\n";
+	out << "classify_join                  = " << (classify.join ? "true" : "false") << "\n";
+	out << "classify_use_hints             = " << (classify.use_hints ? "true" : "false") << "\n";
+	const char* links[] = {"off", "hints", "all"};
+	out << "classify_link                  = " << links[int(classify.link)] << "\n";
+	out << "classify_link_gap              = " << classify.link_gap << "\n";
+	out << "classify_static_test           = "
+	    << (classify.static_test == estimator::TClassifyParams::StaticTest::Map ? "map" : "robot")
+	    << "\n";
+	const estimator::TUnknownIdParams& a = classify.assoc;
+	out << "classify_assoc_method          = " << a.method << "\n";
+	out << "classify_assoc_metric          = " << a.metric << "\n";
+	out << "classify_assoc_IC_chi2_thres   = " << a.IC_chi2_thres << "\n";
+	out << "classify_assoc_IC_metric       = " << a.IC_metric << "\n";
+	out << "classify_assoc_IC_ml_threshold = " << a.IC_ml_threshold << "\n";
+	out << "classify_assoc_moving_gate     = " << a.moving_gate << "\n";
+	out << "classify_assoc_max_step        = " << a.max_step << "\n";
+}
 }  // namespace
 
 void TModelOptions::dumpToTextStream(std::ostream& out) const
@@ -342,36 +385,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "record_dropped                 = " << (record_dropped ? "true" : "false") << "\n";
 	odometry_bias.dump(out);
 	if (feature_labels == "ids") return;  // the classify_* keys only matter with classify
-	out << "feature_labels                 = " << feature_labels << "\n";
-	out << "classify_alpha                 = " << classify.alpha << "\n";
-	out << "classify_beta                  = " << classify.beta << "\n";
-	out << "classify_motion_std            = " << classify.motion_std << "\n";
-	out << "classify_max_window            = " << classify.max_window << "\n";
-	out << "classify_forget_steps          = " << classify.forget_steps << "\n";
-	out << "classify_group_prob            = " << classify.group_prob << "\n";
-	out << "classify_group_max_dist        = " << classify.group_max_dist << "\n";
-	out << "classify_reclassify_count      = " << classify.reclassify_count << "\n";
-	out << "classify_reclassify_gate       = " << classify.reclassify_gate << "\n";
-	out << "classify_candidate_landmarks   = " << (classify.candidate_landmarks ? "true" : "false")
-	    << "\n";
-	out << "classify_reclassify            = " << (classify.surgery ? "surgery" : "restart")
-	    << "\n";
-	out << "classify_stop_count            = " << classify.stop_count << "\n";
-	out << "classify_reuse_gap             = " << classify.reuse_gap << "\n";
-	out << "classify_split_count           = " << classify.split_count << "\n";
-	out << "classify_join                  = " << (classify.join ? "true" : "false") << "\n";
-	out << "classify_use_hints             = " << (classify.use_hints ? "true" : "false") << "\n";
-	const char* links[] = {"off", "hints", "all"};
-	out << "classify_link                  = " << links[int(classify.link)] << "\n";
-	out << "classify_link_gap              = " << classify.link_gap << "\n";
-	const estimator::TUnknownIdParams& a = classify.assoc;
-	out << "classify_assoc_method          = " << a.method << "\n";
-	out << "classify_assoc_metric          = " << a.metric << "\n";
-	out << "classify_assoc_IC_chi2_thres   = " << a.IC_chi2_thres << "\n";
-	out << "classify_assoc_IC_metric       = " << a.IC_metric << "\n";
-	out << "classify_assoc_IC_ml_threshold = " << a.IC_ml_threshold << "\n";
-	out << "classify_assoc_moving_gate     = " << a.moving_gate << "\n";
-	out << "classify_assoc_max_step        = " << a.max_step << "\n";
+	dumpClassify(out, feature_labels, classify);
 }
 TParseOptions TModelOptions::parseOptions() const
 {

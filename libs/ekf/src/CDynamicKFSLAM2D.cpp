@@ -209,6 +209,9 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		ctx.sensor_pose = m_in.sensor_pose;
 		ctx.u = m_in.u;
 		ctx.U = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
+		ctx.static_innovation =
+		    [this](int32_t id, const Eigen::Vector2d& z, estimator::TStaticInnovation& o)
+		{ return staticInnovation(id, z, o); };
 		m_router->setContext(ctx);
 		m_routed = m_router->route(m_step, m_in.readings,
 		                           [this](int32_t id) { return m_staticBlock.count(id) != 0; });

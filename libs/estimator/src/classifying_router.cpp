@@ -58,6 +58,7 @@ void CClassifyingRouter::reset()
 	m_lastStep = -1;
 	m_ctx.reset();
 	m_unknown.reset();
+	m_rawNow.clear();
 }
 
 void CClassifyingRouter::validate(const std::vector<TReading>& readings,
@@ -146,26 +147,40 @@ std::optional<TrackClass> CClassifyingRouter::addEvidence(TTrack& t, const TPoin
 	return std::nullopt;
 }
 
-bool CClassifyingRouter::checkStatic(TTrack& t, const TPoint2& z, int step)
+bool CClassifyingRouter::mapInnovation(int32_t id, TStaticInnovation& inn) const
 {
-	if (!t.q_valid)
+	if (m_p.static_test != TClassifyParams::StaticTest::Map || !m_ctx->static_innovation)
+		return false;
+	const auto it = m_rawNow.find(id);
+	return it != m_rawNow.end() && m_ctx->static_innovation(id, it->second, inn);
+}
+
+bool CClassifyingRouter::checkStatic(int32_t id, TTrack& t, const TPoint2& z, int step)
+{
+	TStaticInnovation inn;
+	std::optional<double> nis;
+	if (mapInnovation(id, inn))
+		nis = inn.nu.dot(inn.S.inverse() * inn.nu);
+	else if (t.q_valid)
 	{
-		t.q = z;
-		t.q_valid = true;
-		t.bad_streak = 0;
-		t.last_good = step;
-		return true;
+		const Eigen::Vector2d nu = z.p - t.q.p;
+		nis = nu.dot((t.q.C + z.C).inverse() * nu);
 	}
-	const Eigen::Vector2d nu = z.p - t.q.p;
-	const Eigen::Matrix2d S = t.q.C + z.C;
-	const double nis = nu.dot(S.inverse() * nu);
-	if (m_p.reclassify_count > 0 && nis > chiSquareQuantile(m_p.reclassify_gate, 2))
+	if (nis && m_p.reclassify_count > 0 && *nis > chiSquareQuantile(m_p.reclassify_gate, 2))
 	{
 		++t.bad_streak;
 		return false;
 	}
 	t.bad_streak = 0;
 	t.last_good = step;
+	if (!t.q_valid)
+	{
+		t.q = z;
+		t.q_valid = true;
+		return true;
+	}
+	const Eigen::Vector2d nu = z.p - t.q.p;
+	const Eigen::Matrix2d S = t.q.C + z.C;
 	const Eigen::Matrix2d K = t.q.C * S.inverse();
 	t.q.p += K * nu;
 	t.q.C = (Eigen::Matrix2d::Identity() - K) * t.q.C;
@@ -269,7 +284,7 @@ CClassifyingRouter::Act CClassifyingRouter::classifyOne(
 	}
 	else if (t.cls == TrackClass::Static)
 	{
-		if (checkStatic(t, z, step))
+		if (checkStatic(id, t, z, step))
 			act = Act::Static;
 		else if (t.bad_streak >= m_p.reclassify_count)
 		{
@@ -381,6 +396,7 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 	std::vector<TReading> rd = readings;  // -1 IDs resolved below (if active)
 	std::vector<TPoint2> pts;
 	std::vector<int32_t> external;  // the input IDs
+	m_rawNow.clear();
 	for (TReading& r : rd)
 	{
 		pts.push_back(readingInRobotFrame(*m_ctx, r.z));
@@ -391,6 +407,8 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 	if (m_unknown.active()) resolveUnknownIds(step, rd, pts, out);
 	std::set<int32_t> held;  // moving readings inconsistent with their object, held back
 	checkAssignments(step, rd, pts, external, out, held);
+	for (const TReading& r : rd)
+		if (r.id >= 0) m_rawNow[r.id] = r.z;
 	std::vector<Act> act(rd.size(), Act::Skip);
 	std::vector<bool> candidate(rd.size(), false);
 	std::vector<int32_t> turnedMoving;  // decided (or reclassified) moving now, in order

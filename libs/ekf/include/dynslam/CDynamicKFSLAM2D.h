@@ -257,6 +257,11 @@ private:
 	void propagateEgo();
 	/** Alg. 5 by the update engine, with the tracked static readings of the step. */
 	void staticUpdate();
+	/** For the classifying router (TRouterContext::static_innovation): the innovation of
+	 * reading z against static landmark id with the ego predicted by this step's odometry
+	 * (before propagateEgo); false if id is not a landmark of the state. */
+	bool staticInnovation(int32_t id, const Eigen::Vector2d& z,
+	                      estimator::TStaticInnovation& out) const;
 	/** MRPT's update (CMrptUpdateEngine): runOneKalmanIteration with the prediction skipped. */
 	estimator::TUpdateResult runMrptUpdate(const std::vector<estimator::TStaticObservation>& obs,
 	                                       const estimator::TUpdateContext& ctx);

@@ -95,6 +95,18 @@ struct TClassifyParams
 	/** classify_link_gap: the longest break [steps] between the lost object's last sighting and
 	 * the new one's first that a link may span, >= 1. */
 	int link_gap = 80;
+	/** classify_static_test: how a static track's reading is tested before it updates the
+	 * filter (reclassification). Robot (default): the robot-frame static filter carried by the
+	 * odometry alone (TTrack::q). Map: if the track has a landmark in the filter's state, the
+	 * filter's own innovation of the reading (TRouterContext::static_innovation: the ego
+	 * predicted by this step's odometry and the landmark, with their joint covariance, so the
+	 * heading the map corrects is corrected), else the robot-frame filter. */
+	enum class StaticTest : uint8_t
+	{
+		Robot,
+		Map
+	};
+	StaticTest static_test = StaticTest::Robot;
 	TUnknownIdParams assoc;  ///< classify_assoc_*: ID -1 (unknown_id_association.h)
 	/** Throws std::invalid_argument naming the key. */
 	void validate() const;
@@ -163,7 +175,10 @@ private:
 	/** Adds the evidence of one reading to a candidate; returns its decision (if any). */
 	std::optional<TrackClass> addEvidence(TTrack& t, const TPoint2& z, int step);
 	/** A static track's reading: true if consistent (and used by its filter). */
-	bool checkStatic(TTrack& t, const TPoint2& z, int step);
+	bool checkStatic(int32_t id, TTrack& t, const TPoint2& z, int step);
+	/** classify_static_test = map: the filter's innovation of this step's reading of track id;
+	 * false if not available (robot test, no landmark, no reading). */
+	bool mapInnovation(int32_t id, TStaticInnovation& inn) const;
 	/** Makes track id moving at step: joins an object created in this step, or one of an
 	 * earlier step not in `exclude` (late joining, counted in out.joined), or starts one. */
 	void makeMoving(int32_t id, TTrack& t, int step, std::vector<int32_t>& newObjects,
@@ -241,5 +256,6 @@ private:
 	std::set<int32_t> m_continued;          ///< objects already continued by a newer one
 	int m_lastStep = -1;
 	CUnknownIdResolver m_unknown;
+	std::map<int32_t, Eigen::Vector2d> m_rawNow;  ///< this step's readings (model space) by track
 };
 }  // namespace dynslam::estimator

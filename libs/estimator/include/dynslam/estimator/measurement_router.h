@@ -109,6 +109,16 @@ void routeObjectReading(CObjectRegistry& registry, int step, TRoutedReading& m, 
 /** What a router that looks at the readings' geometry needs besides the readings (the
  * classifying router): the measurement model, its noise, the sensor pose and the step's
  * odometry increment u (robot frame) with its covariance U. */
+/** The filter's own innovation of a reading of a static landmark (classify_static_test = map):
+ * nu = z - h(ego predicted by this step's odometry, landmark), S = H P H^T + R over the joint
+ * covariance of the predicted ego and the landmark, J_z_f = dh/d(landmark). */
+struct TStaticInnovation
+{
+	Eigen::Vector2d nu = Eigen::Vector2d::Zero();
+	Eigen::Matrix2d S = Eigen::Matrix2d::Identity();
+	Eigen::Matrix2d J_z_f = Eigen::Matrix2d::Identity();
+};
+
 struct TRouterContext
 {
 	models::MeasurementModel model = models::MeasurementModel::Cartesian;
@@ -116,6 +126,10 @@ struct TRouterContext
 	Eigen::Vector3d sensor_pose = Eigen::Vector3d::Zero();
 	Eigen::Vector3d u = Eigen::Vector3d::Zero();
 	Eigen::Matrix3d U = Eigen::Matrix3d::Zero();
+	/** Optional (set by the EKF): the innovation of reading z against landmark id of the state;
+	 * false if id has no landmark there. */
+	std::function<bool(int32_t id, const Eigen::Vector2d& z, TStaticInnovation& out)>
+	    static_innovation;
 };
 
 class IMeasurementRouter
