@@ -1,11 +1,14 @@
 #pragma once
 /** Synthetic tracks for the classifying router's tests (test_classifying_router.cpp,
- * test_classify_groups.cpp). */
+ * test_classify_groups.cpp, test_classify_hints.cpp, test_classify_static_test.cpp). */
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/models/se2.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
+#include <set>
+#include <vector>
 
 namespace router_test
 {
@@ -46,4 +49,37 @@ struct TSynth
 };
 
 const auto kNone = [](int32_t) { return false; };
+
+/** Runs the router step by step: readings(k) gives the readings of step k (seen through s after
+ * its move). Keeps the set of landmarks the filter would hold (StaticNew in, dropped
+ * candidates out). */
+struct TRouterRun
+{
+	CClassifyingRouter r;
+	TSynth s;
+	std::set<int32_t> inState;
+	std::vector<TRoutedStep> out;
+	TRouterRun(const TClassifyParams& p, unsigned seed) : r(p), s(seed) {}
+	void runReadings(int steps, const std::function<std::vector<TReading>(int)>& readings)
+	{
+		for (int k = int(out.size()); k < steps; ++k)
+		{
+			r.setContext(s.ctx(k == 0 ? Eigen::Vector3d::Zero() : s.move()));
+			out.push_back(
+			    r.route(k, readings(k), [&](int32_t id) { return inState.count(id) != 0; }));
+			for (const auto& m : out.back().readings)
+				if (m.route == Route::StaticNew) inState.insert(m.reading.id);
+			for (const int32_t id : out.back().dropped_candidates) inState.erase(id);
+		}
+	}
+	/** The routed reading at step k whose position in the input was i. */
+	const TRoutedReading& at(int k, size_t i) const { return out[size_t(k)].readings[i]; }
+	/** A counter of TRoutedStep summed over the steps run. */
+	size_t total(size_t TRoutedStep::*field) const
+	{
+		size_t n = 0;
+		for (const auto& o : out) n += o.*field;
+		return n;
+	}
+};
 }  // namespace router_test

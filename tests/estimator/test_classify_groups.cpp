@@ -15,36 +15,20 @@ using router_test::TSynth;
 
 namespace
 {
-/** Runs `steps` steps; world(k) gives the (track ID, world point) pairs seen at step k. Keeps
- * the set of landmarks the filter would hold (StaticNew in, dropped candidates out). */
-struct TRun
+/** Runs `steps` steps; world(k) gives the (track ID, world point) pairs seen at step k. */
+struct TRun : router_test::TRouterRun
 {
-	CClassifyingRouter r;
-	TSynth s{17};
-	std::set<int32_t> inState;
-	std::vector<TRoutedStep> out;
-	explicit TRun(const TClassifyParams& p) : r(p) {}
+	explicit TRun(const TClassifyParams& p) : TRouterRun(p, 17) {}
 	void run(int steps,
 	         const std::function<std::vector<std::pair<int32_t, Eigen::Vector2d>>(int)>& world)
 	{
-		for (int k = int(out.size()); k < steps; ++k)
-		{
-			r.setContext(s.ctx(k == 0 ? Eigen::Vector3d::Zero() : s.move()));
-			std::vector<TReading> rd;
-			for (const auto& [id, p] : world(k)) rd.push_back({id, s.see(p)});
-			out.push_back(r.route(k, rd, [&](int32_t id) { return inState.count(id) != 0; }));
-			for (const auto& m : out.back().readings)
-				if (m.route == Route::StaticNew) inState.insert(m.reading.id);
-			for (const int32_t id : out.back().dropped_candidates) inState.erase(id);
-		}
-	}
-	/** The routed reading at step k whose position in the input was i. */
-	const TRoutedReading& at(int k, size_t i) const { return out[size_t(k)].readings[i]; }
-	size_t total(size_t TRoutedStep::*field) const
-	{
-		size_t n = 0;
-		for (const auto& o : out) n += o.*field;
-		return n;
+		runReadings(steps,
+		            [&](int k)
+		            {
+			            std::vector<TReading> rd;
+			            for (const auto& [id, p] : world(k)) rd.push_back({id, s.see(p)});
+			            return rd;
+		            });
 	}
 };
 

@@ -31,37 +31,23 @@ namespace
 /** (track ID, world point, hint) seen at a step. */
 using TSeen = std::vector<std::tuple<int32_t, Eigen::Vector2d, int32_t>>;
 
-struct THintRun
+struct THintRun : router_test::TRouterRun
 {
-	CClassifyingRouter r;
-	TSynth s{23};
-	std::set<int32_t> inState;
-	std::vector<TRoutedStep> out;
-	explicit THintRun(const TClassifyParams& p) : r(p) {}
+	explicit THintRun(const TClassifyParams& p) : TRouterRun(p, 23) {}
 	void run(int steps, const std::function<TSeen(int)>& world)
 	{
-		for (int k = int(out.size()); k < steps; ++k)
-		{
-			r.setContext(s.ctx(k == 0 ? Eigen::Vector3d::Zero() : s.move()));
-			std::vector<TReading> rd;
-			for (const auto& [id, p, hint] : world(k))
-			{
-				TReading m{id, s.see(p)};
-				m.hint = hint;
-				rd.push_back(m);
-			}
-			out.push_back(r.route(k, rd, [&](int32_t id) { return inState.count(id) != 0; }));
-			for (const auto& m : out.back().readings)
-				if (m.route == Route::StaticNew) inState.insert(m.reading.id);
-			for (const int32_t id : out.back().dropped_candidates) inState.erase(id);
-		}
-	}
-	const TRoutedReading& at(int k, size_t i) const { return out[size_t(k)].readings[i]; }
-	size_t total(size_t TRoutedStep::*field) const
-	{
-		size_t n = 0;
-		for (const auto& o : out) n += o.*field;
-		return n;
+		runReadings(steps,
+		            [&](int k)
+		            {
+			            std::vector<TReading> rd;
+			            for (const auto& [id, p, hint] : world(k))
+			            {
+				            TReading m{id, s.see(p)};
+				            m.hint = hint;
+				            rd.push_back(m);
+			            }
+			            return rd;
+		            });
 	}
 };
 
