@@ -8,3 +8,17 @@ cmake --install "$BUILD" --prefix "$WORK/prefix" >/dev/null
 cmake -S "$SRC" -B "$WORK/build" -DCMAKE_PREFIX_PATH="$WORK/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$WORK/build" -j2 >/dev/null
 "$WORK/build/consumer"
+# The installed dynslam-montecarlo finds its module libdynslam_slam_services.so (MRPT's static
+# filter; doc/performance.md section 14) through its RUNPATH $ORIGIN/../lib: one static run.
+MC="$WORK/prefix/bin/dynslam-montecarlo"
+if [ -x "$MC" ]; then
+  CFG="$WORK/prefix/share/dynslam/config"
+  sed -e "s#^scenario *= *#scenario = $CFG/#" -e 's/^backend *=.*/backend = static_all/' \
+    "$CFG/montecarlo.ini" > "$WORK/mc_static.ini"
+  printf '\n[RangeBearingKFSLAM]\nstd_sensor_range = 0.01\nstd_sensor_yaw_deg = 0.0573\n' \
+    >> "$WORK/mc_static.ini"
+  "$MC" -c "$WORK/mc_static.ini" --runs 1 --levels w1v1 --threads 1 --no-figures -q \
+    -o "$WORK/mc_out" >/dev/null
+  test -s "$WORK/mc_out/table1.csv"
+  echo "consumer: installed dynslam-montecarlo with static_all ok"
+fi

@@ -1,6 +1,6 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/apps/CStaticBaselineBackend.h>
 #include <dynslam/apps/filter_run.h>
+#include <dynslam/apps/slam_services.h>
 #include <dynslam/framework/TBackendOptions.h>
 #include <dynslam/framework/backend_factory.h>
 #include <mrpt/core/exceptions.h>
@@ -76,20 +76,7 @@ std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
 		return f;
 	}
 	if (kind == "static_all" || kind == "static_landmarks_only")
-	{
-		auto f = std::make_unique<CStaticBaselineBackend>(
-		    kind == "static_all" ? CStaticBaselineBackend::Mode::AllFeatures
-		                         : CStaticBaselineBackend::Mode::StaticOnly);
-		f->loadOptions(ini, "RangeBearingKFSLAM");
-		if (optionsDump)
-		{
-			*optionsDump << "# [RangeBearingKFSLAM] and [RangeBearingKFSLAM_KalmanFilter] "
-			                "(mrpt::slam::CRangeBearingKFSLAM2D, "
-			             << f->name() << ")";
-			f->dumpOptions(*optionsDump);
-		}
-		return f;
-	}
+		return slamStaticBaseline(kind, ini, optionsDump);
 	const auto& fk = framework::backendKinds();
 	if (std::find(fk.begin(), fk.end(), kind) != fk.end())
 	{
@@ -155,9 +142,8 @@ void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est
 				for (size_t j = 0; j < idx.size(); ++j) est.landmarks_cov(i, j) = P(idx[i], idx[j]);
 		}
 	}
-	else if (const auto* st = dynamic_cast<const CStaticBaselineBackend*>(&backend))
+	else if (Eigen::MatrixXd C; slamStaticBaselineJointCov(backend, C))
 	{
-		Eigen::MatrixXd C = st->landmarksJointCov();
 		if (C.rows() == Eigen::Index(2 * lms.size())) est.landmarks_cov = std::move(C);
 	}
 

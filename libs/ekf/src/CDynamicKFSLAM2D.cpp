@@ -4,7 +4,6 @@
  * MRPT's update engine: CDynamicKFSLAM2D_mrpt.cpp. Augmentations, drops and the object motion
  * model: CDynamicKFSLAM2D_objects.cpp. */
 #include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/CJcbbUpdateEngine.h>
 #include <dynslam/CMrptUpdateEngine.h>
 #include <dynslam/ekf_odometry_bias.h>
 #include <dynslam/ekf_steps.h>
@@ -13,7 +12,7 @@
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/robust_update_engines.h>
 #include <dynslam/models/se2.h>
-#include <dynslam/mrpt_static_association.h>
+#include <dynslam/slam_services.h>
 #include <mrpt/system/string_utils.h>
 
 #include <limits>
@@ -91,7 +90,7 @@ void CDynamicKFSLAM2D::reset()
 		m_router = estimator::makeRouter(options.feature_labels, &classify);
 		// feature_labels = classify: ID -1 readings associated with MRPT's data association.
 		if (auto* c = dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
-			c->setStaticAssociation(makeMrptStaticAssociation(options.classify.assoc));
+			c->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
 	m_router->reset();
 	if (!m_userEngine)
@@ -106,7 +105,7 @@ void CDynamicKFSLAM2D::reset()
 			    estimator::TGateRecoveryParams{options.recovery_count, options.recovery_inflation,
 			                                   options.recovery_min_updates});
 		else if (m == "jcbb")
-			m_engine = std::make_unique<CJcbbUpdateEngine>(options.innovation_gate);
+			m_engine = slamJcbbEngine(options.innovation_gate);
 		else if (options.compressed_static_update)
 			m_engine = std::make_unique<estimator::CCompressedUpdateEngine>(
 			    options.compressed_passive_after, options.compressed_batch);
