@@ -1,9 +1,12 @@
 #pragma once
 /** The filter setup of the object-model tests (test_object_model_ctrv.cpp,
  * test_object_model_bad_input.cpp): Cartesian readings with the tiny scenario's noise, the
- * ego start known exactly, near-rigid objects, and the cv / ctrv keys used by both. */
+ * ego start known exactly, near-rigid objects, and the cv / ctrv keys used by both; and the
+ * minimal INI of the object-model option tests (loadCartesianFilter). */
 #include <dynslam/CDynamicKFSLAM2D.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
+#include <memory>
 #include <string>
 
 #include "tiny_scenario.h"
@@ -23,4 +26,20 @@ inline void configureObjectModel(dynslam::CDynamicKFSLAM2D& f, const TinyScenari
 	f.options.cv.velocity_prior_std = Eigen::Vector3d(0.1, 0.1, 0.05);
 	f.reset();
 }
+
+/** A filter loaded from `[DynamicKFSLAM]` with the Cartesian model, Sigma_v = [1e-4 1e-4] and
+ * the keys in `extra` (one "key = value\n" per key). */
+inline std::unique_ptr<dynslam::CDynamicKFSLAM2D> loadCartesianFilter(const std::string& extra)
+{
+	mrpt::config::CConfigFileMemory ini;
+	ini.setContent(
+	    std::string("[DynamicKFSLAM]\nmeasurement_model = cartesian\nSigma_v = [1e-4 1e-4]\n") +
+	    extra);
+	auto f = std::make_unique<dynslam::CDynamicKFSLAM2D>();
+	f->loadOptions(ini);
+	return f;
+}
+
+/** The cv keys every cv option test starts from. */
+inline const std::string kCvKeys = "object_model = cv\ncv_dt = 0.5\n";
 }  // namespace dynslam_test

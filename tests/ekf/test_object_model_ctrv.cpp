@@ -128,15 +128,7 @@ TEST(ObjectModelCtrv, OneFeatureObjectIsTheCvFilter)
 TEST(ObjectModelCtrv, OptionsAndBadInput)
 {
 	const auto load = [](const std::string& extra)
-	{
-		mrpt::config::CConfigFileMemory ini;
-		ini.setContent(std::string("[DynamicKFSLAM]\nmeasurement_model = cartesian\n"
-		                           "Sigma_v = [1e-4 1e-4]\n") +
-		               extra);
-		CDynamicKFSLAM2D f;
-		f.loadOptions(ini);
-		return f.objectMotionModel().name();
-	};
+	{ return dynslam_test::loadCartesianFilter(extra)->objectMotionModel().name(); };
 	EXPECT_EQ(load("object_model = ctrv\ncv_dt = 0.5\n"), "ctrv");
 	EXPECT_THROW(load("object_model = ctrv\n"), std::exception);  // cv_dt is required
 	EXPECT_THROW(load("object_model = ctrv\ncv_dt = 0.5\nsmoothing = true\nkeep_last_poses = 3\n"),

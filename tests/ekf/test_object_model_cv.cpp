@@ -9,6 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "object_model_setup.h"
 #include "tiny_scenario.h"
 
 using namespace dynslam;
@@ -246,15 +247,7 @@ TEST(ObjectModelCv, GateRejectsAJumpingObject)
 TEST(ObjectModelCv, OptionsAndBadInput)
 {
 	const auto load = [](const std::string& extra)
-	{
-		mrpt::config::CConfigFileMemory ini;
-		ini.setContent(std::string("[DynamicKFSLAM]\nmeasurement_model = cartesian\n"
-		                           "Sigma_v = [1e-4 1e-4]\n") +
-		               extra);
-		CDynamicKFSLAM2D f;
-		f.loadOptions(ini);
-		return f.objectMotionModel().name();
-	};
+	{ return dynslam_test::loadCartesianFilter(extra)->objectMotionModel().name(); };
 	EXPECT_EQ(load(""), "none");
 	EXPECT_EQ(load("object_model = paper\n"), "none");
 	EXPECT_EQ(load("object_model = paper_smoothing\nkeep_last_poses = 3\nSigma_s = [1 1 1]\n"),

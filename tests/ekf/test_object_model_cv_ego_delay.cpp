@@ -11,29 +11,17 @@
 
 #include <sstream>
 
+#include "highway_cv_setup.h"
+#include "object_model_setup.h"
+
 using namespace dynslam;
 
 namespace
 {
-/** The paper's highway at level w3v1 (where the objects' readings move the ego most). */
-sim::TScenarioOptions w3v1()
-{
-	sim::TScenarioOptions o = sim::loadScenario(DYNSLAM_DATASETS_DIR "/highway_scenario.ini");
-	o.setNoiseLevel("w3v1");
-	return o;
-}
-
 void configure(CDynamicKFSLAM2D& f, const sim::TScenarioOptions& o, const std::string& model,
                double egoStd)
 {
-	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	f.options.measurement_model = models::MeasurementModel::Cartesian;
-	f.options.Sigma_v = o.Sigma_v;
-	f.options.Sigma_0 = o.Sigma_0;
-	f.options.object_model = model;
-	f.options.cv.dt = o.dt;
-	f.options.cv.accel_psd = Eigen::Vector3d(1e-6, 1e-6, 1e-8);
-	f.options.cv.velocity_prior_std = Eigen::Vector3d(0.5, 0.5, 0.05);
+	dynslam_test::configureHighwayCv(f, o, model, Eigen::Vector3d(1e-6, 1e-6, 1e-8));
 	f.options.cv.ego_velocity_std = egoStd;
 	f.reset();
 }
@@ -65,7 +53,7 @@ TEST(ObjectModelCvEgoDelay, UnconvergedObjectsLeaveTheEgoAsInThePaperFilter)
 	// One seeded w3v1 highway run through: the paper's filter; cv with the key so small that no
 	// object ever converges (every object update a Schmidt update); cv off (0) and cv with a key
 	// no velocity std reaches (1e9: never a Schmidt update); cv with 0.05 m/s (some of each).
-	sim::TScenarioOptions o = w3v1();
+	sim::TScenarioOptions o = dynslam_test::highwayW3v1();
 	const TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, 9001);
 	CDynamicKFSLAM2D paper, never, off, always, mid;
@@ -101,13 +89,8 @@ TEST(ObjectModelCvEgoDelay, OptionsDumpAndBadInput)
 {
 	const auto load = [](const std::string& extra)
 	{
-		mrpt::config::CConfigFileMemory ini;
-		ini.setContent(std::string("[DynamicKFSLAM]\nmeasurement_model = cartesian\n"
-		                           "Sigma_v = [1e-4 1e-4]\nobject_model = cv\ncv_dt = 0.5\n") +
-		               extra);
-		CDynamicKFSLAM2D f;
-		f.loadOptions(ini);
-		return f.options.cv.ego_velocity_std;
+		return dynslam_test::loadCartesianFilter(dynslam_test::kCvKeys + extra)
+		    ->options.cv.ego_velocity_std;
 	};
 	EXPECT_EQ(load(""), 0.0);  // off by default
 	EXPECT_EQ(load("cv_ego_velocity_std = 0.02\n"), 0.02);

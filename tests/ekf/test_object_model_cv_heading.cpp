@@ -11,31 +11,18 @@
 
 #include <sstream>
 
+#include "highway_cv_setup.h"
+#include "object_model_setup.h"
+
 using namespace dynslam;
 
 namespace
 {
-/** The paper's highway (datasets/highway_scenario.ini) at level w3v1: odometry noise
- * diag(1e-4, 1e-4, 1e-6) per step, readings 1e-6 m^2, the prior Sigma_0 = Sigma_w of Table I. */
-sim::TScenarioOptions w3v1()
-{
-	sim::TScenarioOptions o = sim::loadScenario(DYNSLAM_DATASETS_DIR "/highway_scenario.ini");
-	o.setNoiseLevel("w3v1");
-	return o;
-}
-
 /** cv (heading inflation c) or the paper's model, with the level's noise and prior. */
 void configure(CDynamicKFSLAM2D& f, const sim::TScenarioOptions& o, const std::string& model,
                double c)
 {
-	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	f.options.measurement_model = models::MeasurementModel::Cartesian;
-	f.options.Sigma_v = o.Sigma_v;
-	f.options.Sigma_0 = o.Sigma_0;
-	f.options.object_model = model;
-	f.options.cv.dt = o.dt;
-	f.options.cv.accel_psd = Eigen::Vector3d(1e-5, 1e-5, 1e-7);
-	f.options.cv.velocity_prior_std = Eigen::Vector3d(0.5, 0.5, 0.05);
+	dynslam_test::configureHighwayCv(f, o, model, Eigen::Vector3d(1e-5, 1e-5, 1e-7));
 	f.options.cv_gate = 0.5;
 	f.options.cv.heading_inflation = c;
 	f.reset();
@@ -59,7 +46,7 @@ TEST(ObjectModelCvHeading, ReadingsTellTheEgoHeadingLessAsTheInflationGrows)
 	// they are equal bit for bit (c = 0 also to the filter whose key was never set); over the
 	// first 12 steps of object updates, the ego heading variance after the step grows with c
 	// (the readings carry less information on it).
-	sim::TScenarioOptions o = w3v1();
+	sim::TScenarioOptions o = dynslam_test::highwayW3v1();
 	const TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, 9000);
 	o.Sigma_0.setZero();
@@ -106,13 +93,8 @@ TEST(ObjectModelCvHeading, OptionsDumpAndBadInput)
 {
 	const auto load = [](const std::string& extra)
 	{
-		mrpt::config::CConfigFileMemory ini;
-		ini.setContent(std::string("[DynamicKFSLAM]\nmeasurement_model = cartesian\n"
-		                           "Sigma_v = [1e-4 1e-4]\nobject_model = cv\ncv_dt = 0.5\n") +
-		               extra);
-		CDynamicKFSLAM2D f;
-		f.loadOptions(ini);
-		return f.options.cv.heading_inflation;
+		return dynslam_test::loadCartesianFilter(dynslam_test::kCvKeys + extra)
+		    ->options.cv.heading_inflation;
 	};
 	EXPECT_EQ(load(""), 0.0);  // off by default
 	EXPECT_EQ(load("cv_heading_inflation = 3\n"), 3.0);

@@ -10,6 +10,7 @@
 
 #include <sstream>
 
+#include "object_model_setup.h"
 #include "tiny_scenario.h"
 
 using namespace dynslam;
@@ -227,13 +228,9 @@ TEST(ObjectModelCvInflation, IniKeys)
 {
 	const auto load = [](const std::string& extra)
 	{
-		mrpt::config::CConfigFileMemory ini;
-		ini.setContent(std::string("[DynamicKFSLAM]\nmeasurement_model = cartesian\n"
-		                           "Sigma_v = [1e-4 1e-4]\nobject_model = cv\ncv_dt = 0.5\n") +
-		               extra);
-		CDynamicKFSLAM2D f;
-		f.loadOptions(ini);
-		return f.objectMotionModel().tracksInnovations();
+		return dynslam_test::loadCartesianFilter(dynslam_test::kCvKeys + extra)
+		    ->objectMotionModel()
+		    .tracksInnovations();
 	};
 	EXPECT_FALSE(load(""));  // off by default
 	EXPECT_TRUE(load("cv_inflation_threshold = 8\ncv_inflation_factor = 100\n"));
