@@ -115,6 +115,7 @@ void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
 {
 	const int steps = m_lastStep < 0 ? 0 : step - m_lastStep;
 	m_lastStep = step;
+	const TStaticMotion motion(m_ctx->u, m_ctx->U);  // rotations once per step, not per track
 	for (auto it = m_tracks.begin(); it != m_tracks.end();)
 	{
 		TTrack& t = it->second;
@@ -130,7 +131,7 @@ void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
 			t.q_valid = false;  // a static track seen again restarts its filter
 		}
 		const bool filter = t.cls != TrackClass::Moving || m_p.stop_count > 0;
-		if (filter && t.q_valid && steps > 0) t.q = predictStatic(t.q, m_ctx->u, m_ctx->U);
+		if (filter && t.q_valid && steps > 0) t.q = predictStatic(t.q, motion);
 		++it;
 	}
 }
@@ -404,6 +405,7 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 {
 	if (!m_ctx) throw std::logic_error("CClassifyingRouter::route: setContext() was not called");
 	TRoutedStep out;
+	out.readings.reserve(readings.size());
 	predictTracks(step, out, isKnownStatic);
 	std::vector<TReading> rd = readings;  // -1 IDs resolved below (if active)
 	std::vector<TPoint2> pts;

@@ -50,18 +50,18 @@ void CUnknownIdResolver::carry(TMover& m) const
 {
 	for (; m.carried < m_predicts; ++m.carried)
 	{
-		const TIncrement& inc = m_increments[m.carried - m_firstIncrement];
+		const TStaticMotion& inc = m_increments[m.carried - m_firstIncrement];
 		// The point moves by vel (previous frame), then the robot by u.
 		TPoint2 moved = m.last;
 		if (m.has_vel) moved.p += m.vel;
-		m.last = predictStatic(moved, inc.u, inc.U);
+		m.last = predictStatic(moved, inc);
 		m.vel = inc.Rt * m.vel;
 	}
 }
 
 void CUnknownIdResolver::predict(const Eigen::Vector3d& u, const Eigen::Matrix3d& U)
 {
-	m_increments.push_back({u, U, models::rot2(u[2]).transpose()});
+	m_increments.emplace_back(u, U);
 	++m_predicts;
 	if (m_increments.size() < 256) return;
 	// Bounded memory: carry every track and forget the increments.

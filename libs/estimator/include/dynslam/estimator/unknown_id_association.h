@@ -122,19 +122,12 @@ private:
 		bool has_vel = false;
 		size_t carried = 0;  ///< odometry increments applied (the count of predict calls)
 	};
-	/** One odometry increment (predict) and its rotation R(u_theta)^T. */
-	struct TIncrement
-	{
-		Eigen::Vector3d u;
-		Eigen::Matrix3d U;
-		Eigen::Matrix2d Rt;
-	};
 	/** Carries m through the increments it has not had yet. */
 	void carry(TMover& m) const;
 	TUnknownIdParams m_p;
 	StaticAssociationFn m_static;
 	mutable std::map<int32_t, TMover> m_movers;  ///< carried lazily (predict)
-	std::vector<TIncrement> m_increments;        ///< the increments from number m_firstIncrement on
+	std::vector<TStaticMotion> m_increments;     ///< the increments from number m_firstIncrement on
 	size_t m_firstIncrement = 0, m_predicts = 0;
 	int32_t m_next = kFirstResolvedId;
 };
