@@ -405,12 +405,10 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 {
 	if (!m_ctx) throw std::logic_error("CClassifyingRouter::route: setContext() was not called");
 	TRoutedStep out;
-	out.readings.reserve(readings.size());
 	predictTracks(step, out, isKnownStatic);
 	std::vector<TReading> rd = readings;  // -1 IDs resolved below (if active)
 	std::vector<TPoint2> pts;
 	std::vector<int32_t> external;  // the input IDs
-	m_rawNow.clear();
 	for (TReading& r : rd)
 	{
 		pts.push_back(readingInRobotFrame(*m_ctx, r.z));
@@ -421,9 +419,9 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 	if (m_unknown.active()) resolveUnknownIds(step, rd, pts, out);
 	std::set<int32_t> held;  // moving readings inconsistent with their object, held back
 	checkAssignments(step, rd, pts, external, out, held);
-	if (m_p.static_test == TClassifyParams::StaticTest::Map)  // its only reader: mapInnovation
-		for (const TReading& r : rd)
-			if (r.id >= 0) m_rawNow[r.id] = r.z;
+	m_rawNow.clear();  // its only reader: mapInnovation (classify_static_test = map)
+	for (const TReading& r : rd)
+		if (m_p.static_test == TClassifyParams::StaticTest::Map && r.id >= 0) m_rawNow[r.id] = r.z;
 	std::vector<Act> act(rd.size(), Act::Skip);
 	std::vector<bool> candidate(rd.size(), false);
 	std::vector<int32_t> turnedMoving;  // decided (or reclassified) moving now, in order
