@@ -10,6 +10,18 @@
 
 namespace dynslam::estimator
 {
+namespace
+{
+/** A step's output with room for all its readings. */
+TRoutedStep emptyStep(size_t readings)
+{
+	TRoutedStep s;
+	s.readings.reserve(readings);
+	return s;
+}
+
+}  // namespace
+
 void TClassifyParams::validate() const
 {
 	const auto prob = [](double p, const char* key)
@@ -59,29 +71,6 @@ void CClassifyingRouter::reset()
 	m_ctx.reset();
 	m_unknown.reset();
 	m_rawNow.clear();
-}
-
-void CClassifyingRouter::validate(const std::vector<TReading>& readings,
-                                  const std::string& who) const
-{
-	std::set<int32_t> seen;
-	for (size_t i = 0; i < readings.size(); ++i)
-	{
-		const int32_t id = readings[i].id;
-		// Built only for an error message (not per reading: it was 3 % of a classify run).
-		const auto where = [&]
-		{ return "measurement " + std::to_string(i) + " (track ID " + std::to_string(id) + ")"; };
-		if (id < -1)
-			throw std::runtime_error(who + ": " + where() +
-			                         ": feature_labels = classify takes track IDs >= 0 or -1 "
-			                         "(association unknown)");
-		if (id >= 0 && !seen.insert(id).second)
-			throw std::runtime_error(who + ": duplicate " + where());
-		if (id >= kFirstResolvedId)
-			throw std::runtime_error(who + ": " + where() +
-			                         ": IDs >= 1000000000 are reserved for the tracks of ID -1 "
-			                         "readings (feature_labels = classify)");
-	}
 }
 
 int32_t CClassifyingRouter::featureId(int32_t object, int32_t feature) const
@@ -359,6 +348,8 @@ void CClassifyingRouter::routeMoving(TRoutedReading& m, const TTrack& t, int ste
 void CClassifyingRouter::resolveUnknownIds(int step, std::vector<TReading>& rd,
                                            const std::vector<TPoint2>& pts, TRoutedStep& out)
 {
+	// Without a -1 reading nothing below has an effect (resolve returns the IDs as they are).
+	if (std::none_of(rd.begin(), rd.end(), [](const TReading& r) { return r.id == -1; })) return;
 	std::vector<int32_t> ids;
 	std::set<int32_t> explicitIds;
 	for (const TReading& r : rd)
@@ -404,7 +395,7 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
                                       const std::function<bool(int32_t)>& isKnownStatic)
 {
 	if (!m_ctx) throw std::logic_error("CClassifyingRouter::route: setContext() was not called");
-	TRoutedStep out;
+	TRoutedStep out = emptyStep(readings.size());
 	predictTracks(step, out, isKnownStatic);
 	std::vector<TReading> rd = readings;  // -1 IDs resolved below (if active)
 	std::vector<TPoint2> pts;
