@@ -20,17 +20,30 @@ TPoint2 readingInRobotFrame(const TRouterContext& ctx, const Eigen::Vector2d& z)
 	return out;
 }
 
-TPoint2 predictStatic(const TPoint2& q, const Eigen::Vector3d& u, const Eigen::Matrix3d& U)
+TStaticMotion::TStaticMotion(const Eigen::Vector3d& u_, const Eigen::Matrix3d& U_)
+    : u(u_),
+      U(U_),
+      Rt(models::rot2(u_[2]).transpose()),
+      dRt(models::rot2Derivative(u_[2]).transpose())
 {
-	const Eigen::Matrix2d Rt = models::rot2(u[2]).transpose();
-	const Eigen::Vector2d d = q.p - u.head<2>();
+}
+
+TPoint2 predictStatic(const TPoint2& q, const TStaticMotion& m)
+{
+	const Eigen::Matrix2d& Rt = m.Rt;
+	const Eigen::Vector2d d = q.p - m.u.head<2>();
 	Eigen::Matrix<double, 2, 3> J_u;
 	J_u.leftCols<2>() = -Rt;
-	J_u.col(2) = models::rot2Derivative(u[2]).transpose() * d;
+	J_u.col(2) = m.dRt * d;
 	TPoint2 out;
 	out.p = Rt * d;
-	out.C = Rt * q.C * Rt.transpose() + J_u * U * J_u.transpose();
+	out.C = Rt * q.C * Rt.transpose() + J_u * m.U * J_u.transpose();
 	return out;
+}
+
+TPoint2 predictStatic(const TPoint2& q, const Eigen::Vector3d& u, const Eigen::Matrix3d& U)
+{
+	return predictStatic(q, TStaticMotion(u, U));
 }
 
 namespace

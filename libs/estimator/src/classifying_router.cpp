@@ -10,6 +10,18 @@
 
 namespace dynslam::estimator
 {
+namespace
+{
+/** A step's output with room for all its readings. */
+TRoutedStep emptyStep(size_t readings)
+{
+	TRoutedStep s;
+	s.readings.reserve(readings);
+	return s;
+}
+
+}  // namespace
+
 void TClassifyParams::validate() const
 {
 	const auto prob = [](double p, const char* key)
@@ -61,28 +73,6 @@ void CClassifyingRouter::reset()
 	m_rawNow.clear();
 }
 
-void CClassifyingRouter::validate(const std::vector<TReading>& readings,
-                                  const std::string& who) const
-{
-	std::set<int32_t> seen;
-	for (size_t i = 0; i < readings.size(); ++i)
-	{
-		const int32_t id = readings[i].id;
-		const std::string where =
-		    "measurement " + std::to_string(i) + " (track ID " + std::to_string(id) + ")";
-		if (id < -1)
-			throw std::runtime_error(who + ": " + where +
-			                         ": feature_labels = classify takes track IDs >= 0 or -1 "
-			                         "(association unknown)");
-		if (id >= 0 && !seen.insert(id).second)
-			throw std::runtime_error(who + ": duplicate " + where);
-		if (id >= kFirstResolvedId)
-			throw std::runtime_error(who + ": " + where +
-			                         ": IDs >= 1000000000 are reserved for the tracks of ID -1 "
-			                         "readings (feature_labels = classify)");
-	}
-}
-
 int32_t CClassifyingRouter::featureId(int32_t object, int32_t feature) const
 {
 	const TObjectEntry& e = m_registry.at(object);
@@ -94,7 +84,18 @@ int32_t CClassifyingRouter::featureId(int32_t object, int32_t feature) const
 
 void CClassifyingRouter::remember(TTrack& t, const TPoint2& z, int step, int keep)
 {
-	t.history[step] = z;
+	// A full history reuses its oldest node for the new step (no allocation per reading); the
+	// kept entries are the same as by insert-then-erase.
+	if (int(t.history.size()) >= keep && !t.history.empty() && t.history.begin()->first < step &&
+	    !t.history.count(step))
+	{
+		auto node = t.history.extract(t.history.begin());
+		node.key() = step;
+		node.mapped() = z;
+		t.history.insert(std::move(node));
+	}
+	else
+		t.history[step] = z;
 	while (int(t.history.size()) > keep) t.history.erase(t.history.begin());
 }
 
@@ -103,6 +104,7 @@ void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
 {
 	const int steps = m_lastStep < 0 ? 0 : step - m_lastStep;
 	m_lastStep = step;
+	const TStaticMotion motion(m_ctx->u, m_ctx->U);  // rotations once per step, not per track
 	for (auto it = m_tracks.begin(); it != m_tracks.end();)
 	{
 		TTrack& t = it->second;
@@ -118,7 +120,7 @@ void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
 			t.q_valid = false;  // a static track seen again restarts its filter
 		}
 		const bool filter = t.cls != TrackClass::Moving || m_p.stop_count > 0;
-		if (filter && t.q_valid && steps > 0) t.q = predictStatic(t.q, m_ctx->u, m_ctx->U);
+		if (filter && t.q_valid && steps > 0) t.q = predictStatic(t.q, motion);
 		++it;
 	}
 }
@@ -346,6 +348,8 @@ void CClassifyingRouter::routeMoving(TRoutedReading& m, const TTrack& t, int ste
 void CClassifyingRouter::resolveUnknownIds(int step, std::vector<TReading>& rd,
                                            const std::vector<TPoint2>& pts, TRoutedStep& out)
 {
+	// Without a -1 reading nothing below has an effect (resolve returns the IDs as they are).
+	if (std::none_of(rd.begin(), rd.end(), [](const TReading& r) { return r.id == -1; })) return;
 	std::vector<int32_t> ids;
 	std::set<int32_t> explicitIds;
 	for (const TReading& r : rd)
@@ -391,12 +395,11 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
                                       const std::function<bool(int32_t)>& isKnownStatic)
 {
 	if (!m_ctx) throw std::logic_error("CClassifyingRouter::route: setContext() was not called");
-	TRoutedStep out;
+	TRoutedStep out = emptyStep(readings.size());
 	predictTracks(step, out, isKnownStatic);
 	std::vector<TReading> rd = readings;  // -1 IDs resolved below (if active)
 	std::vector<TPoint2> pts;
 	std::vector<int32_t> external;  // the input IDs
-	m_rawNow.clear();
 	for (TReading& r : rd)
 	{
 		pts.push_back(readingInRobotFrame(*m_ctx, r.z));
@@ -407,8 +410,9 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 	if (m_unknown.active()) resolveUnknownIds(step, rd, pts, out);
 	std::set<int32_t> held;  // moving readings inconsistent with their object, held back
 	checkAssignments(step, rd, pts, external, out, held);
+	m_rawNow.clear();  // its only reader: mapInnovation (classify_static_test = map)
 	for (const TReading& r : rd)
-		if (r.id >= 0) m_rawNow[r.id] = r.z;
+		if (m_p.static_test == TClassifyParams::StaticTest::Map && r.id >= 0) m_rawNow[r.id] = r.z;
 	std::vector<Act> act(rd.size(), Act::Skip);
 	std::vector<bool> candidate(rd.size(), false);
 	std::vector<int32_t> turnedMoving;  // decided (or reclassified) moving now, in order

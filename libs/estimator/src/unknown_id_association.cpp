@@ -41,27 +41,41 @@ CUnknownIdResolver::CUnknownIdResolver(const TUnknownIdParams& p) : m_p(p) { m_p
 void CUnknownIdResolver::reset()
 {
 	m_movers.clear();
+	m_increments.clear();
+	m_firstIncrement = m_predicts = 0;
 	m_next = kFirstResolvedId;
+}
+
+void CUnknownIdResolver::carry(TMover& m) const
+{
+	for (; m.carried < m_predicts; ++m.carried)
+	{
+		const TStaticMotion& inc = m_increments[m.carried - m_firstIncrement];
+		// The point moves by vel (previous frame), then the robot by u.
+		TPoint2 moved = m.last;
+		if (m.has_vel) moved.p += m.vel;
+		m.last = predictStatic(moved, inc);
+		m.vel = inc.Rt * m.vel;
+	}
 }
 
 void CUnknownIdResolver::predict(const Eigen::Vector3d& u, const Eigen::Matrix3d& U)
 {
-	const Eigen::Matrix2d Rt = models::rot2(u[2]).transpose();
-	for (auto& [id, m] : m_movers)
-	{
-		// The point moves by vel (previous frame), then the robot by u.
-		TPoint2 moved = m.last;
-		if (m.has_vel) moved.p += m.vel;
-		m.last = predictStatic(moved, u, U);
-		m.vel = Rt * m.vel;
-	}
+	m_increments.emplace_back(u, U);
+	++m_predicts;
+	if (m_increments.size() < 256) return;
+	// Bounded memory: carry every track and forget the increments.
+	for (auto& [id, m] : m_movers) carry(m);
+	m_increments.clear();
+	m_firstIncrement = m_predicts;
 }
 
 std::vector<TTrackPrediction> CUnknownIdResolver::predictions(int step, double motion_std) const
 {
 	std::vector<TTrackPrediction> out;
-	for (const auto& [id, m] : m_movers)
+	for (auto& [id, m] : m_movers)
 	{
+		carry(m);
 		TTrackPrediction t;
 		t.target.id = id;
 		t.target.pred = m.last;
@@ -79,7 +93,8 @@ bool CUnknownIdResolver::velocityWith(int32_t id, const TPoint2& z, int step,
 {
 	const auto it = m_movers.find(id);
 	if (it == m_movers.end()) return false;
-	const TMover& m = it->second;
+	TMover& m = it->second;
+	carry(m);
 	const int g = std::max(1, step - m.last_step);
 	const Eigen::Vector2d prev =
 	    m.has_vel ? Eigen::Vector2d(m.last.p - double(g) * m.vel) : m.last.p;
@@ -92,10 +107,11 @@ void CUnknownIdResolver::observe(int32_t id, const TPoint2& z, int step)
 	auto it = m_movers.find(id);
 	if (it == m_movers.end())
 	{
-		m_movers[id] = TMover{z, Eigen::Vector2d::Zero(), step, false};
+		m_movers[id] = TMover{z, Eigen::Vector2d::Zero(), step, false, m_predicts};
 		return;
 	}
 	TMover& m = it->second;
+	carry(m);
 	const int g = std::max(1, step - m.last_step);
 	// m.last is the previous reading carried through g steps, each adding the (rotated) velocity:
 	// exactly g * vel in the current frame. Undo it to get the displacement per step.

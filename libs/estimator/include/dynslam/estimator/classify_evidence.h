@@ -25,6 +25,18 @@ TPoint2 readingInRobotFrame(const TRouterContext& ctx, const Eigen::Vector2d& z)
  * q' = R(u_th)^T (q - u_xy), covariance J_q C J_q^T + J_u U J_u^T. */
 TPoint2 predictStatic(const TPoint2& q, const Eigen::Vector3d& u, const Eigen::Matrix3d& U);
 
+/** One odometry increment with its rotations computed once, for carrying many points through it
+ * (the same arithmetic as predictStatic(q, u, U): bit-identical results). */
+struct TStaticMotion
+{
+	TStaticMotion(const Eigen::Vector3d& u_, const Eigen::Matrix3d& U_);
+	Eigen::Vector3d u;
+	Eigen::Matrix3d U;
+	Eigen::Matrix2d Rt;   ///< R(u_th)^T
+	Eigen::Matrix2d dRt;  ///< (dR/dth (u_th))^T
+};
+TPoint2 predictStatic(const TPoint2& q, const TStaticMotion& m);
+
 /** The log-likelihood ratio of innovation nu: log N(nu; 0, S + Q) - log N(nu; 0, S), S the
  * innovation covariance of the static hypothesis, Q the extra spread of the moving one. */
 double movingLogLikelihoodRatio(const Eigen::Vector2d& nu, const Eigen::Matrix2d& S,

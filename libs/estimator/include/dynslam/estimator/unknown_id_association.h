@@ -86,7 +86,10 @@ public:
 	 * router skips and counts them). */
 	bool active() const { return bool(m_static); }
 	/** Carries every track's last reading and velocity through one odometry increment (once
-	 * per step, before resolve). */
+	 * per step, before resolve). Lazily: the increment is recorded, and a track is carried
+	 * through the increments it missed when it is read (observe, velocityWith, predictions);
+	 * each track gets the same operations in the same order as an eager carry, so the results
+	 * are bit-identical, while the tracks not seen for a while cost nothing per step. */
 	void predict(const Eigen::Vector3d& u, const Eigen::Matrix3d& U);
 	/** The predicted points of all tracks at `step` (covariance + motion_std^2 per step). */
 	std::vector<TTrackPrediction> predictions(int step, double motion_std) const;
@@ -117,10 +120,15 @@ private:
 		Eigen::Vector2d vel = Eigen::Vector2d::Zero();  ///< displacement per step (robot frame)
 		int last_step = -1;
 		bool has_vel = false;
+		size_t carried = 0;  ///< odometry increments applied (the count of predict calls)
 	};
+	/** Carries m through the increments it has not had yet. */
+	void carry(TMover& m) const;
 	TUnknownIdParams m_p;
 	StaticAssociationFn m_static;
-	std::map<int32_t, TMover> m_movers;
+	mutable std::map<int32_t, TMover> m_movers;  ///< carried lazily (predict)
+	std::vector<TStaticMotion> m_increments;     ///< the increments from number m_firstIncrement on
+	size_t m_firstIncrement = 0, m_predicts = 0;
 	int32_t m_next = kFirstResolvedId;
 };
 }  // namespace dynslam::estimator
