@@ -87,22 +87,6 @@ TEST(ObjectModelCvEgoDelay, UnconvergedObjectsLeaveTheEgoAsInThePaperFilter)
 
 TEST(ObjectModelCvEgoDelay, OptionsDumpAndBadInput)
 {
-	const auto load = [](const std::string& extra)
-	{
-		return dynslam_test::loadCartesianFilter(dynslam_test::kCvKeys + extra)
-		    ->options.cv.ego_velocity_std;
-	};
-	EXPECT_EQ(load(""), 0.0);  // off by default
-	EXPECT_EQ(load("cv_ego_velocity_std = 0.02\n"), 0.02);
-	EXPECT_THROW(load("cv_ego_velocity_std = -1\n"), std::invalid_argument);
-	estimator::TCvParams p;
-	p.ego_velocity_std = std::numeric_limits<double>::infinity();
-	EXPECT_THROW(p.validate(), std::invalid_argument);
-	p.ego_velocity_std = std::nan("");
-	EXPECT_THROW(p.validate(), std::invalid_argument);
-	CDynamicKFSLAM2D f;
-	f.options.cv.ego_velocity_std = 0.02;
-	std::ostringstream dump;
-	f.options.dumpToTextStream(dump);
-	EXPECT_NE(dump.str().find("cv_ego_velocity_std            = 0.02"), std::string::npos);
+	dynslam_test::expectScalarCvKey(&estimator::TCvParams::ego_velocity_std, "cv_ego_velocity_std",
+	                                0.02, "0.02");
 }

@@ -91,22 +91,6 @@ TEST(ObjectModelCvHeading, ReadingsTellTheEgoHeadingLessAsTheInflationGrows)
 
 TEST(ObjectModelCvHeading, OptionsDumpAndBadInput)
 {
-	const auto load = [](const std::string& extra)
-	{
-		return dynslam_test::loadCartesianFilter(dynslam_test::kCvKeys + extra)
-		    ->options.cv.heading_inflation;
-	};
-	EXPECT_EQ(load(""), 0.0);  // off by default
-	EXPECT_EQ(load("cv_heading_inflation = 3\n"), 3.0);
-	EXPECT_THROW(load("cv_heading_inflation = -1\n"), std::invalid_argument);
-	estimator::TCvParams p;
-	p.heading_inflation = std::numeric_limits<double>::infinity();
-	EXPECT_THROW(p.validate(), std::invalid_argument);
-	p.heading_inflation = std::nan("");
-	EXPECT_THROW(p.validate(), std::invalid_argument);
-	CDynamicKFSLAM2D f;
-	f.options.cv.heading_inflation = 3;
-	std::ostringstream dump;
-	f.options.dumpToTextStream(dump);
-	EXPECT_NE(dump.str().find("cv_heading_inflation           = 3"), std::string::npos);
+	dynslam_test::expectScalarCvKey(&estimator::TCvParams::heading_inflation,
+	                                "cv_heading_inflation", 3, "3");
 }

@@ -14,6 +14,8 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace dynslam::framework
 {
@@ -22,22 +24,18 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeObjectCen
 {
 	estimator::TCvParams p = o.cv;
 	p.gate = estimator::gateThreshold2Dof(o.cv_gate);
-	if (p.inflationOn())
-		throw std::invalid_argument(
-		    "[DynamicKFSLAM] cv_inflation_threshold / cv_inflation_factor: the process-noise "
-		    "inflation rule is not implemented in the framework (the dynamic EKF only)");
-	if (p.fallback_steps > 0)
-		throw std::invalid_argument(
-		    "[DynamicKFSLAM] cv_fallback_steps: the fallback of a lost object is not "
-		    "implemented in the framework (the dynamic EKF only)");
-	if (p.heading_inflation > 0)
-		throw std::invalid_argument(
-		    "[DynamicKFSLAM] cv_heading_inflation: the heading inflation of object readings is "
-		    "not implemented in the framework (the dynamic EKF only)");
-	if (p.ego_velocity_std > 0)
-		throw std::invalid_argument(
-		    "[DynamicKFSLAM] cv_ego_velocity_std: the Schmidt update of unconverged objects is "
-		    "not implemented in the framework (the dynamic EKF only)");
+	// The EKF-only cv keys: each names what the framework does not implement.
+	const std::pair<bool, const char*> ekfOnly[] = {
+	    {p.inflationOn(),
+	     "cv_inflation_threshold / cv_inflation_factor: the process-noise inflation rule"},
+	    {p.fallback_steps > 0, "cv_fallback_steps: the fallback of a lost object"},
+	    {p.heading_inflation > 0, "cv_heading_inflation: the heading inflation of object readings"},
+	    {p.ego_velocity_std > 0, "cv_ego_velocity_std: the Schmidt update of unconverged objects"}};
+	for (const auto& [set, what] : ekfOnly)
+		if (set)
+			throw std::invalid_argument(
+			    std::string("[DynamicKFSLAM] ") + what +
+			    " is not implemented in the framework (the dynamic EKF only)");
 	if ((p.accel_psd.array() <= 0).any())
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] cv_accel_psd: every entry must be > 0 in the framework (its motion "
