@@ -328,6 +328,16 @@ void readEffects(const CConfigFileBase& c, TReadingEffects& e)
 	if (e.unknown_id_probability > 1)
 		cfg::fail(E, "unknown_id_probability", fmt(e.unknown_id_probability), "must be in [0, 1]");
 }
+
+/** [Noise] start_from_prior, object_accel_psd (the model-matched truth, truth_noise.h). */
+void readModelMatchedTruth(const CConfigFileBase& c, const std::string& N, TScenarioOptions& o)
+{
+	o.start_from_prior = cfg::readBool(c, N, "start_from_prior", false);
+	o.object_accel_psd = cfg::readVector(c, N, "object_accel_psd", Eigen::Vector3d::Zero(), 3);
+	if (!o.object_accel_psd.allFinite() || (o.object_accel_psd.array() < 0).any())
+		cfg::fail(N, "object_accel_psd", fmtMatrix(o.object_accel_psd.transpose()),
+		          "must be finite and >= 0");
+}
 }  // namespace
 
 bool TScenarioOptions::objectMovingAt(size_t obj, double t) const
@@ -375,9 +385,11 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 
 	cfg::rejectUnknownKeys(c, N,
 	                       {"level", "sigma_w", "sigma_v", "sigma_0", "std_range", "std_yaw",
-	                        "std_yaw_deg", "odometry_rate_bias_deg_s", "odometry_scale_error"});
+	                        "std_yaw_deg", "odometry_rate_bias_deg_s", "odometry_scale_error",
+	                        "start_from_prior", "object_accel_psd"});
 	odometry_rate_bias = cfg::readDouble(c, N, "odometry_rate_bias_deg_s", 0) * M_PI / 180;
 	odometry_scale_error = cfg::readDouble(c, N, "odometry_scale_error", 0);
+	readModelMatchedTruth(c, N, *this);
 	const std::string lvl = cfg::requireString(c, N, "level");
 	if (lower(lvl) == "custom")
 	{
@@ -433,6 +445,8 @@ void TScenarioOptions::validate() const
 	if (!std::isfinite(odometry_rate_bias) || !(std::abs(odometry_scale_error) < 1))
 		throw std::invalid_argument(
 		    "[Noise] odometry_rate_bias_deg_s must be finite and odometry_scale_error in (-1, 1)");
+	if (!object_accel_psd.allFinite() || (object_accel_psd.array() < 0).any())
+		throw std::invalid_argument("[Noise] object_accel_psd must be finite and >= 0");
 }
 
 TScenarioOptions loadScenario(const std::string& iniPath)

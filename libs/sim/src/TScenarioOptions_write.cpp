@@ -182,6 +182,10 @@ void TScenarioOptions::dumpToTextStream(std::ostream& o) const
 		o << "odometry_rate_bias_deg_s = " << fmt(odometry_rate_bias * 180 / M_PI) << "\n";
 	if (odometry_scale_error != 0)
 		o << "odometry_scale_error = " << fmt(odometry_scale_error) << "\n";
+	if (start_from_prior) o << "start_from_prior = true\n";
+	if (!object_accel_psd.isZero())
+		o << "object_accel_psd = [" << fmt(object_accel_psd[0]) << " " << fmt(object_accel_psd[1])
+		  << " " << fmt(object_accel_psd[2]) << "]\n";
 	if (type == ScenarioType::Highway)
 	{
 		const THighwayOptions& h = highway;

@@ -3,12 +3,15 @@
  * ground truth (see doc/simulator.md). */
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/object_pose.h>
+#include <dynslam/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <mrpt/random/RandomGenerators.h>
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "truth_noise.h"
 
 namespace dynslam::sim
 {
@@ -229,13 +232,21 @@ TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
 	TGroundTruth gt;
 	gt.t.resize(n);
 	gt.ego.resize(n);
+	// The model-matched truth (truth_noise.h; off by default: x0 = 0, no offsets): the whole
+	// world is moved by the drawn start pose x0, the objects' poses get CV offsets first.
+	const Eigen::Vector3d x0 = detail::trueStartPose(o);
+	const bool moved = !x0.isZero();
+	const auto offsets = detail::objectPoseOffsets(o, w.objects.size());
 	gt.landmarks = w.landmarks;
+	if (moved)
+		for (auto& [id, p] : gt.landmarks) p = bodyToWorld(x0, p);
 	for (size_t k = 0; k < n; ++k)
 	{
 		// The rawlog's time stamps (start_time + k dt, as stepTimestamp() writes them), so that
 		// the ground-truth files and the apps' trajectories share one time base.
 		gt.t[k] = o.start_time + o.stepTime(k);
 		gt.ego[k] = w.ego.pose(w.track, o.stepTime(k));
+		if (moved) gt.ego[k] = models::composePose(x0, gt.ego[k]);
 	}
 	gt.objects.resize(w.objects.size());
 	for (size_t i = 0; i < w.objects.size(); ++i)
@@ -249,8 +260,9 @@ TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
 		og.visible.assign(n, 0);
 		for (size_t k = 0; k < n; ++k)
 		{
-			const Eigen::Matrix2Xd F =
-			    bodyToWorld(obj.motion.pose(w.track, o.stepTime(k)), obj.body);
+			Eigen::Matrix2Xd F = bodyToWorld(obj.motion.pose(w.track, o.stepTime(k)), obj.body);
+			if (!offsets.empty()) F = detail::offsetFeatures(F, offsets[i][k]);
+			if (moved) F = bodyToWorld(x0, F);
 			og.features[k] = F;
 			// The sensor reports an object as a whole when its centroid is within range.
 			const Eigen::Vector2d c = F.rowwise().mean();

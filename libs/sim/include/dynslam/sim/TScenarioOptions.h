@@ -176,6 +176,16 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 	 * (-1, 1), default 0); written by dumpToTextStream only when non-zero. */
 	double odometry_rate_bias = 0;  ///< b_w [rad/s]
 	double odometry_scale_error = 0;
+	/** Model-matched truth (issue 13; doc/simulator.md "Model-matched truth"; written by
+	 * dumpToTextStream only when set, so the shipped datasets stay byte-identical).
+	 * start_from_prior (key start_from_prior, default false): the ego's true start pose is drawn
+	 * from N(0, Sigma_0), the prior a filter is given, and the whole world moves with it (the
+	 * readings do not change). object_accel_psd (key object_accel_psd [q_x q_y q_theta] >= 0,
+	 * default 0): every object's pose xi follows the CV model of models/object_motion.h with
+	 * this white acceleration on top of its deterministic motion. Both drawn from private
+	 * generators seeded from noise_seed (truth_noise.h): the noise draws never change. */
+	bool start_from_prior = false;
+	Eigen::Vector3d object_accel_psd = Eigen::Vector3d::Zero();
 
 	THighwayOptions highway;
 	TGeneratedOptions generated;
