@@ -101,6 +101,13 @@ TEST(ObjectModelCvConsistency, ModelMatchedTunnelNeesInsideChiSquareBounds)
 	    u.axes[0], u.axes[1], u.axes[2]);
 	EXPECT_GT(m.gapMean, lo / runs);
 	EXPECT_LT(m.gapMean, hi / runs);
+	// Per axis (e_i^2 / P_ii, 1 dof each): chi2(200) / 200, 99 %: [0.761, 1.277].
+	const auto [lo1, hi1] = chi2Bounds(double(runs), 2.576);
+	for (int i = 0; i < 3; ++i)
+	{
+		EXPECT_GT(m.axes[i], lo1 / runs) << "axis " << i;
+		EXPECT_LT(m.axes[i], hi1 / runs) << "axis " << i;
+	}
 	// The same draws of the shipped truth (start exactly at the prior mean, cars at constant
 	// velocity): conservative, below the lower bound (doc/results.md 4.8, 4.9).
 	EXPECT_LT(u.gapMean, lo / runs);
