@@ -110,6 +110,9 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_link",
                                           "classify_link_gap",
                                           "classify_static_test",
+                                          "classify_drift_window",
+                                          "classify_drift_prob",
+                                          "classify_drift_scale",
 
                                           "classify_assoc_method",
                                           "classify_assoc_metric",
@@ -149,6 +152,10 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	using Test = estimator::TClassifyParams::StaticTest;
 	p.static_test = readChoice(c, s, "classify_static_test", {"robot", "map"}, 0) == 0 ? Test::Robot
 	                                                                                   : Test::Map;
+	p.drift_window = int(readInt(c, s, "classify_drift_window", p.drift_window));
+	p.drift_prob = readDouble(c, s, "classify_drift_prob", p.drift_prob);
+	p.drift_population =
+	    readChoice(c, s, "classify_drift_scale", {"nominal", "population"}, 0) == 1;
 	// ID -1 readings (estimator/unknown_id_association.h): MRPT's data_assoc_* names and values.
 	estimator::TUnknownIdParams& a = p.assoc;
 	const std::vector<std::string> methods{"assocNN", "assocJCBB"};
@@ -335,6 +342,10 @@ void dumpClassify(std::ostream& out, const std::string& feature_labels,
 	out << "classify_static_test           = "
 	    << (classify.static_test == estimator::TClassifyParams::StaticTest::Map ? "map" : "robot")
 	    << "\n";
+	out << "classify_drift_window          = " << classify.drift_window << "\n";
+	out << "classify_drift_prob            = " << classify.drift_prob << "\n";
+	out << "classify_drift_scale           = "
+	    << (classify.drift_population ? "population" : "nominal") << "\n";
 	const estimator::TUnknownIdParams& a = classify.assoc;
 	out << "classify_assoc_method          = " << a.method << "\n";
 	out << "classify_assoc_metric          = " << a.metric << "\n";

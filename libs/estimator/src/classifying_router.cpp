@@ -47,6 +47,9 @@ void TClassifyParams::validate() const
 	if (reuse_gap < 0) throw std::invalid_argument("classify_reuse_gap must be >= 0 (0: off)");
 	if (split_count < 0) throw std::invalid_argument("classify_split_count must be >= 0 (0: off)");
 	if (link_gap < 1) throw std::invalid_argument("classify_link_gap must be >= 1");
+	if (drift_window < 0 || drift_window == 1)
+		throw std::invalid_argument("classify_drift_window must be 0 (off) or >= 2");
+	prob(drift_prob, "classify_drift_prob");
 	assoc.validate();
 }
 
@@ -71,6 +74,9 @@ void CClassifyingRouter::reset()
 	m_ctx.reset();
 	m_unknown.reset();
 	m_rawNow.clear();
+	m_heading = 0;
+	m_driftSum = 0;
+	m_driftTests = 0;
 }
 
 int32_t CClassifyingRouter::featureId(int32_t object, int32_t feature) const
@@ -105,6 +111,7 @@ void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
 	const int steps = m_lastStep < 0 ? 0 : step - m_lastStep;
 	m_lastStep = step;
 	const TStaticMotion motion(m_ctx->u, m_ctx->U);  // rotations once per step, not per track
+	if (steps > 0) m_heading += m_ctx->u[2];
 	for (auto it = m_tracks.begin(); it != m_tracks.end();)
 	{
 		TTrack& t = it->second;
@@ -147,69 +154,6 @@ std::optional<TrackClass> CClassifyingRouter::addEvidence(TTrack& t, const TPoin
 	if (t.sightings + 1 >= m_p.max_window)
 		return t.llr > 0 ? TrackClass::Moving : TrackClass::Static;
 	return std::nullopt;
-}
-
-bool CClassifyingRouter::mapInnovation(int32_t id, TStaticInnovation& inn) const
-{
-	if (m_p.static_test != TClassifyParams::StaticTest::Map || !m_ctx->static_innovation)
-		return false;
-	const auto it = m_rawNow.find(id);
-	return it != m_rawNow.end() && m_ctx->static_innovation(id, it->second, inn);
-}
-
-bool CClassifyingRouter::checkStatic(int32_t id, TTrack& t, const TPoint2& z, int step)
-{
-	TStaticInnovation inn;
-	std::optional<double> nis;
-	if (mapInnovation(id, inn))
-		nis = inn.nu.dot(inn.S.inverse() * inn.nu);
-	else if (t.q_valid)
-	{
-		const Eigen::Vector2d nu = z.p - t.q.p;
-		nis = nu.dot((t.q.C + z.C).inverse() * nu);
-	}
-	if (nis && m_p.reclassify_count > 0 && *nis > chiSquareQuantile(m_p.reclassify_gate, 2))
-	{
-		++t.bad_streak;
-		return false;
-	}
-	t.bad_streak = 0;
-	t.last_good = step;
-	if (!t.q_valid)
-	{
-		t.q = z;
-		t.q_valid = true;
-		return true;
-	}
-	const Eigen::Vector2d nu = z.p - t.q.p;
-	const Eigen::Matrix2d S = t.q.C + z.C;
-	const Eigen::Matrix2d K = t.q.C * S.inverse();
-	t.q.p += K * nu;
-	t.q.C = (Eigen::Matrix2d::Identity() - K) * t.q.C;
-	t.q.C = 0.5 * (t.q.C + t.q.C.transpose());
-	return true;
-}
-
-bool CClassifyingRouter::stoppedEvidence(TTrack& t, const TPoint2& z)
-{
-	if (m_p.stop_count <= 0) return false;
-	if (t.q_valid)
-	{
-		const Eigen::Vector2d nu = z.p - t.q.p;
-		const Eigen::Matrix2d S = t.q.C + z.C;
-		if (nu.dot(S.inverse() * nu) <= chiSquareQuantile(m_p.reclassify_gate, 2))
-		{
-			const Eigen::Matrix2d K = t.q.C * S.inverse();
-			t.q.p += K * nu;
-			t.q.C = (Eigen::Matrix2d::Identity() - K) * t.q.C;
-			t.q.C = 0.5 * (t.q.C + t.q.C.transpose());
-			return ++t.still_streak >= m_p.stop_count;
-		}
-	}
-	t.q = z;  // (re)starts the static filter at this reading
-	t.q_valid = true;
-	t.still_streak = 0;
-	return false;
 }
 
 void CClassifyingRouter::makeMoving(int32_t id, TTrack& t, int step,
@@ -286,15 +230,14 @@ CClassifyingRouter::Act CClassifyingRouter::classifyOne(
 	}
 	else if (t.cls == TrackClass::Static)
 	{
-		if (checkStatic(id, t, z, step))
+		bool drifted = false;
+		const bool consistent = checkStatic(id, t, z, step, drifted);
+		if (consistent && !drifted)
 			act = Act::Static;
-		else if (t.bad_streak >= m_p.reclassify_count)
+		else if (drifted || t.bad_streak >= m_p.reclassify_count)
 		{
-			turnedMoving.push_back(id);
-			if (isKnownStatic(id) && m_p.surgery)
-				t.converting = true;  // its landmark becomes an f_0 (registerConverted)
-			else if (isKnownStatic(id))
-				out.reclassified.push_back(id);
+			out.drift += drifted ? 1 : 0;
+			reclassifyStatic(id, t, out, turnedMoving, isKnownStatic);
 		}
 		else
 			++out.held;
@@ -306,6 +249,7 @@ CClassifyingRouter::Act CClassifyingRouter::classifyOne(
 		t.object = t.feature = -1;
 		t.decided_step = t.last_good = step;
 		t.bad_streak = t.still_streak = 0;
+		t.drift.clear();
 		++out.stopped;
 		act = Act::Static;
 	}
