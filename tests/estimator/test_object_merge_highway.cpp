@@ -76,6 +76,41 @@ std::optional<Eigen::Vector2d> featureWorld(const CDynamicKFSLAM2D& ekf, int32_t
 	                               e.founders < f0.cols() ? e.founders : 0);
 }
 
+/** Squared speed error of every object with a velocity at step k (0 < k < last): its reference
+ * point (the founders' centroid moved by xi) against the central difference of the true
+ * positions of its founders' features (truthOf: track -> true object and feature). */
+std::map<int32_t, double> speedErrors(const CDynamicKFSLAM2D& ekf, const TGroundTruth& gt,
+                                      const std::map<int32_t, const TObjectGroundTruth*>& trueObj,
+                                      const std::map<int32_t, std::pair<int32_t, int32_t>>& truthOf,
+                                      size_t k)
+{
+	std::map<int32_t, double> out;
+	const auto& L = ekf.getLayout();
+	for (size_t b = 0; b < L.size(); ++b)
+	{
+		if (L[b].kind != BlockKind::ObjectVelocity) continue;
+		const estimator::TObjectEntry& e = ekf.router().registry().at(L[b].object);
+		Eigen::Vector2d c0 = Eigen::Vector2d::Zero(), c1 = Eigen::Vector2d::Zero();
+		int n = 0;
+		for (int j = 0; j < e.founders; ++j)
+		{
+			const auto it = truthOf.find(e.feature_ids[size_t(j)]);
+			if (it == truthOf.end() || it->second.first < 0) continue;
+			const TObjectGroundTruth& obj = *trueObj.at(it->second.first);
+			c0 += obj.features.at(k - 1).col(it->second.second);
+			c1 += obj.features.at(k + 1).col(it->second.second);
+			++n;
+		}
+		if (n == 0) continue;
+		const Eigen::Vector2d vt = (c1 - c0) / n / (gt.t[k + 1] - gt.t[k - 1]);
+		const std::vector<int> iv = L.indices(b);
+		out[L[b].object] =
+		    (Eigen::Vector2d(ekf.fullMean()[size_t(iv[0])], ekf.fullMean()[size_t(iv[1])]) - vt)
+		        .squaredNorm();
+	}
+	return out;
+}
+
 TMergeRun runMerge(const std::string& keys)
 {
 	const sim::TScenarioOptions o = anonymousWithHints();
@@ -123,35 +158,15 @@ TMergeRun runMerge(const std::string& keys)
 				sf += (*w - t).squaredNorm();
 				++r.feat_n;
 			}
-		const auto& L = ekf.getLayout();
-		for (size_t b = 0; b < L.size(); ++b)
-		{
-			if (L[b].kind != BlockKind::ObjectVelocity) continue;
-			if (k == 0 || k + 1 >= sim.actions.size()) continue;
-			const estimator::TObjectEntry& e = ekf.router().registry().at(L[b].object);
-			Eigen::Vector2d c0 = Eigen::Vector2d::Zero(), c1 = Eigen::Vector2d::Zero();
-			int n = 0;
-			for (int j = 0; j < e.founders; ++j)
+		if (k > 0 && k + 1 < sim.actions.size())
+			for (const auto& [obj, e2] : speedErrors(ekf, gt, trueObj, truthOf, k))
 			{
-				const auto it = truthOf.find(e.feature_ids[size_t(j)]);
-				if (it == truthOf.end() || it->second.first < 0) continue;
-				const TObjectGroundTruth& obj = *trueObj.at(it->second.first);
-				c0 += obj.features.at(k - 1).col(it->second.second);
-				c1 += obj.features.at(k + 1).col(it->second.second);
-				++n;
+				sa += e2;
+				++r.all_vel_n;
+				if (!r.into.count(obj)) continue;
+				sv += e2;
+				++r.vel_n;
 			}
-			if (n == 0) continue;
-			const Eigen::Vector2d vt = (c1 - c0) / n / (gt.t[k + 1] - gt.t[k - 1]);
-			const std::vector<int> iv = L.indices(b);
-			const double e2 =
-			    (Eigen::Vector2d(ekf.fullMean()[size_t(iv[0])], ekf.fullMean()[size_t(iv[1])]) - vt)
-			        .squaredNorm();
-			sa += e2;
-			++r.all_vel_n;
-			if (!r.into.count(L[b].object)) continue;
-			sv += e2;
-			++r.vel_n;
-		}
 		const auto e = ekf.getEgoPose().mean;
 		se += std::pow(e.x() - gt.ego[k][0], 2) + std::pow(e.y() - gt.ego[k][1], 2);
 		r.x.push_back(ekf.fullMean().asEigen());

@@ -56,46 +56,45 @@ std::vector<Eigen::Index> withPrefix(const std::vector<std::string>& labels, con
 	return out;
 }
 
-/** Merges `from` into `into` and checks every entry against the dense computation. */
-void checkMerge(CMergeEkf& ekf, int32_t from, int32_t into)
+/** x' = G(x) of a merge, written from the pose-map formulas over the labelled state: N's
+ * features moved to the world by N's pose (about N's founders' centroid), then into L's body
+ * frame (about L's founders' centroid). */
+struct TDenseMerge
 {
-	Eigen::VectorXd x;
-	Eigen::MatrixXd P;
-	std::vector<std::string> labels;
-	ekf.getStateWithoutPads(x, P, &labels);
-	const auto at = byLabel(labels);
-	const auto& reg = ekf.router().registry();
-	const estimator::TObjectEntry eL = reg.at(into), eN = reg.at(from);
-	const std::string L = "obj" + std::to_string(into), N = "obj" + std::to_string(from);
-	const std::vector<Eigen::Index> xiL = withPrefix(labels, L + ".xi"),
-	                                xiN = withPrefix(labels, N + ".xi");
-	ASSERT_TRUE(xiL.size() == 2 || xiL.size() == 3);
-	const auto feat = [&](const std::string& o, int32_t k)
+	std::map<std::string, Eigen::Index> at;
+	estimator::TObjectEntry eL, eN;
+	std::string L, N;
+	std::vector<Eigen::Index> xiL, xiN;
+	TDenseMerge(const std::vector<std::string>& labels, const estimator::TObjectEntry& l,
+	            const estimator::TObjectEntry& n, const std::string& Ls, const std::string& Ns,
+	            const std::vector<Eigen::Index>& xl, const std::vector<Eigen::Index>& xn)
+	    : at(byLabel(labels)), eL(l), eN(n), L(Ls), N(Ns), xiL(xl), xiN(xn)
 	{
-		return std::pair{at.at(o + ".f" + std::to_string(k) + ".t0.x"),
-		                 at.at(o + ".f" + std::to_string(k) + ".t0.y")};
-	};
-	// G(x): N's features moved to the world by N's pose (about N's founders' centroid), then into
-	// L's body frame (about L's founders' centroid).
-	const auto G = [&](const Eigen::VectorXd& v)
+	}
+	std::pair<Eigen::Index, Eigen::Index> feat(const std::string& o, int32_t k) const
+	{
+		const std::string f = o + ".f" + std::to_string(k) + ".t0";
+		return {at.at(f + ".x"), at.at(f + ".y")};
+	}
+	Eigen::Vector2d pt(const Eigen::VectorXd& v, const std::string& o, int32_t k) const
+	{
+		const auto [i, j] = feat(o, k);
+		return {v[i], v[j]};
+	}
+	Eigen::VectorXd operator()(const Eigen::VectorXd& v) const
 	{
 		Eigen::VectorXd y = v;
-		const auto pt = [&](const std::string& o, int32_t k)
-		{
-			const auto [i, j] = feat(o, k);
-			return Eigen::Vector2d(v[i], v[j]);
-		};
 		Eigen::Vector2d cN = Eigen::Vector2d::Zero(), cL = Eigen::Vector2d::Zero();
 		for (int k = 0; k < eN.founders; ++k)
-			cN += pt(N, eN.feature_index[size_t(k)]) / eN.founders;
+			cN += pt(v, N, eN.feature_index[size_t(k)]) / eN.founders;
 		for (int k = 0; k < eL.founders; ++k)
-			cL += pt(L, eL.feature_index[size_t(k)]) / eL.founders;
+			cL += pt(v, L, eL.feature_index[size_t(k)]) / eL.founders;
 		for (const int32_t k : eN.feature_index)
 		{
-			Eigen::Vector2d w = pt(N, k);
+			Eigen::Vector2d w = pt(v, N, k);
 			if (xiN.size() >= 2) w += Eigen::Vector2d(v[xiN[0]], v[xiN[1]]);
 			if (xiN.size() == 3)
-				w = models::rot2(v[xiN[2]]) * (pt(N, k) - cN) + cN +
+				w = models::rot2(v[xiN[2]]) * (pt(v, N, k) - cN) + cN +
 				    Eigen::Vector2d(v[xiN[0]], v[xiN[1]]);
 			const Eigen::Vector2d tL(v[xiL[0]], v[xiL[1]]);
 			Eigen::Vector2d f = w - tL;
@@ -105,7 +104,23 @@ void checkMerge(CMergeEkf& ekf, int32_t from, int32_t into)
 			y[j] = f[1];
 		}
 		return y;
-	};
+	}
+};
+
+/** Merges `from` into `into` and checks every entry against the dense computation. */
+void checkMerge(CMergeEkf& ekf, int32_t from, int32_t into)
+{
+	Eigen::VectorXd x;
+	Eigen::MatrixXd P;
+	std::vector<std::string> labels;
+	ekf.getStateWithoutPads(x, P, &labels);
+	const auto& reg = ekf.router().registry();
+	const estimator::TObjectEntry eL = reg.at(into), eN = reg.at(from);
+	const std::string L = "obj" + std::to_string(into), N = "obj" + std::to_string(from);
+	const std::vector<Eigen::Index> xiL = withPrefix(labels, L + ".xi"),
+	                                xiN = withPrefix(labels, N + ".xi");
+	ASSERT_TRUE(xiL.size() == 2 || xiL.size() == 3);
+	const TDenseMerge G{labels, eL, eN, L, N, xiL, xiN};
 	const Eigen::VectorXd xe = G(x);
 	const Eigen::MatrixXd J = core_test::numericJacobianHO(G, x);
 	const Eigen::MatrixXd Pe = J * P * J.transpose();
