@@ -26,7 +26,7 @@ using namespace dynslam::estimator;
 namespace
 {
 const char* kCv =
-    "feature_labels = classify\nclassify_use_hints = true\nobject_model = cv\ncv_dt = 0.5\n"
+    "feature_labels = classify\nclassify_use_hints = true\ncv_dt = 0.5\n"
     "cv_velocity_prior_std = [0.5 0.5 0.05]\n";
 
 struct TMergeRun
@@ -204,9 +204,13 @@ TEST(ObjectMergeHighway, LinkedCarsMergeIntoTheirLostObjects)
 	// of config/compare_tunnel.ini with its gate and Schmidt update (cv_ego_velocity_std), which
 	// cannot follow them (documented), and the same with the fallback of a lost object.
 	const TSetting settings[] = {
-	    {"cv_accel_psd = [0.1 0.1 1e-3]\n", true},
-	    {"cv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\ncv_ego_velocity_std = 0.01\n", false},
-	    {"cv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\ncv_ego_velocity_std = 0.01\n"
+	    {"object_model = cv\ncv_accel_psd = [0.1 0.1 1e-3]\n", true},
+	    {"object_model = ctrv\ncv_accel_psd = [0.1 0.1 1e-3]\n", true},
+	    {"object_model = cv\ncv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\n"
+	     "cv_ego_velocity_std = 0.01\n",
+	     false},
+	    {"object_model = cv\ncv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\n"
+	     "cv_ego_velocity_std = 0.01\n"
 	     "cv_fallback_steps = 3\n",
 	     false}};
 	for (const TSetting& st : settings)
