@@ -27,14 +27,15 @@ public:
 	using CDynamicKFSLAM2D::mergeObjects;
 };
 
-/** The shipped highway with feature_labels = classify and object_model = cv, `steps` steps. */
-void runHighwayCv(CDynamicKFSLAM2D& ekf, size_t steps)
+/** The shipped highway with feature_labels = classify (or ids) and object_model = cv. */
+void runHighwayCv(CDynamicKFSLAM2D& ekf, size_t steps, const std::string& labels = "classify")
 {
 	const sim::TScenarioOptions o = dynslam_test::shippedScenario("highway.ini");
 	const TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, o.noise_seed);
 	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(
-	    "feature_labels = classify\nobject_model = cv\ncv_dt = 0.5\n"
+	    "feature_labels = " + labels +
+	    "\nobject_model = cv\ncv_dt = 0.5\n"
 	    "cv_accel_psd = [1e-3 1e-3 1e-5]\ncv_velocity_prior_std = [0.5 0.5 0.05]\n"));
 	ekf.loadOptions(cfg, "DynamicKFSLAM");
 	for (size_t k = 0; k < steps; ++k) ekf.processActionObservation(run.actions[k], run.frames[k]);
@@ -198,5 +199,33 @@ TEST(ObjectMergeSurgery, EveryEntryEqualsTheDenseComputation)
 		ASSERT_GE(rigid.size(), 2u);
 		SCOPED_TRACE(reverse ? "reverse" : "forward");
 		checkMerge(ekf, rigid[reverse ? 1 : 0], rigid[reverse ? 0 : 1]);
+	}
+}
+
+TEST(ObjectMergeSurgery, BadMergesChangeNothing)
+{
+	// The ID-range router cannot merge; an unknown object, or an object into itself, is an error:
+	// each throws std::logic_error with the state unchanged.
+	for (const char* labels : {"ids", "classify"})
+	{
+		SCOPED_TRACE(labels);
+		CMergeEkf ekf;
+		runHighwayCv(ekf, 30, labels);
+		const std::map<int32_t, int> objs = objectsWithVelocity(ekf);
+		ASSERT_GE(objs.size(), 2u);
+		const int32_t a = objs.begin()->first, b = std::next(objs.begin())->first;
+		Eigen::VectorXd x, x2;
+		Eigen::MatrixXd P, P2;
+		ekf.getStateWithoutPads(x, P);
+		if (std::string(labels) == "ids")
+		{
+			EXPECT_THROW(ekf.mergeObjects(a, b), std::logic_error);
+		}
+		EXPECT_THROW(ekf.mergeObjects(a, a), std::logic_error);
+		EXPECT_THROW(ekf.mergeObjects(a, 9999), std::logic_error);
+		ekf.getStateWithoutPads(x2, P2);
+		EXPECT_EQ(x2, x);
+		EXPECT_EQ(P2, P);
+		EXPECT_TRUE(ekf.router().registry().has(a));
 	}
 }

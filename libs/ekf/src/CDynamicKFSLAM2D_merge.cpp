@@ -93,6 +93,9 @@ bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 	Eigen::MatrixXd J;
 	const Eigen::Matrix2Xd f = models::mergeObjectFeatures(
 	    xin.head(dL), f0L, xin.segment(dL + 2 * nL, Eigen::Index(ipN.size())), fN, eN.founders, &J);
+	// The router moves N's tracks to L (N leaves the registry) before the state changes: a
+	// router that cannot merge throws with the filter unchanged. The f_0 blocks follow below.
+	m_router->mergeObjects(from, into);
 	// x' = g(x): identity outside N's features, whose rows are J (P' = J P J^T).
 	Eigen::MatrixXd F = Eigen::MatrixXd::Identity(xin.size(), xin.size());
 	F.bottomRows(2 * m) = J;
@@ -101,8 +104,6 @@ bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 	const Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(xin.size(), xin.size());
 	auto P = cov();
 	ekf::predictSubset(x, P, in, xnew, F, Q);
-	// The router moves N's tracks to L (N leaves the registry); the f_0 blocks follow.
-	m_router->mergeObjects(from, into);
 	const estimator::TObjectEntry& eM = m_router->registry().at(into);
 	for (const int32_t id : eN.feature_ids)
 		m_layout.reassignObjectFeature0(N.f0.at(id), into,
