@@ -109,6 +109,7 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_use_hints",
                                           "classify_link",
                                           "classify_link_gap",
+                                          "classify_merge_linked",
                                           "classify_static_test",
                                           "classify_drift_window",
                                           "classify_drift_prob",
@@ -149,6 +150,7 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	const int link = int(readChoice(c, s, "classify_link", {"off", "hints", "all"}, 1));
 	p.link = link == 0 ? Link::Off : link == 1 ? Link::Hints : Link::All;
 	p.link_gap = int(readInt(c, s, "classify_link_gap", p.link_gap));
+	p.merge_linked = readBool(c, s, "classify_merge_linked", p.merge_linked);
 	using Test = estimator::TClassifyParams::StaticTest;
 	p.static_test = readChoice(c, s, "classify_static_test", {"robot", "map"}, 0) == 0 ? Test::Robot
 	                                                                                   : Test::Map;
@@ -339,6 +341,8 @@ void dumpClassify(std::ostream& out, const std::string& feature_labels,
 	const char* links[] = {"off", "hints", "all"};
 	out << "classify_link                  = " << links[int(classify.link)] << "\n";
 	out << "classify_link_gap              = " << classify.link_gap << "\n";
+	out << "classify_merge_linked          = " << (classify.merge_linked ? "true" : "false")
+	    << "\n";
 	out << "classify_static_test           = "
 	    << (classify.static_test == estimator::TClassifyParams::StaticTest::Map ? "map" : "robot")
 	    << "\n";

@@ -102,7 +102,7 @@ Eigen::VectorXd cvInitialVelocity(const Eigen::VectorXd& xi, double elapsed,
 }
 
 Eigen::Vector2d objectFeatureAt(const Eigen::VectorXd& xi, const Eigen::Matrix2Xd& f0, int k,
-                                Eigen::MatrixXd* J_f_xi, Eigen::MatrixXd* J_f_f0)
+                                Eigen::MatrixXd* J_f_xi, Eigen::MatrixXd* J_f_f0, int centroidCols)
 {
 	const Eigen::Index n = f0.cols();
 	if (k < 0 || k >= n) throw std::out_of_range("objectFeatureAt: feature index");
@@ -118,8 +118,8 @@ Eigen::Vector2d objectFeatureAt(const Eigen::VectorXd& xi, const Eigen::Matrix2X
 	}
 	if (xi.size() != 3) throw std::invalid_argument("objectFeatureAt: pose of 2 or 3 entries");
 	Eigen::MatrixXd Jxi, Jf0;
-	const Eigen::Matrix2Xd ft =
-	    objectPoseMap(Eigen::Vector3d(xi), f0, J_f_xi ? &Jxi : nullptr, J_f_f0 ? &Jf0 : nullptr);
+	const Eigen::Matrix2Xd ft = objectPoseMap(Eigen::Vector3d(xi), f0, J_f_xi ? &Jxi : nullptr,
+	                                          J_f_f0 ? &Jf0 : nullptr, centroidCols);
 	if (J_f_xi) *J_f_xi = Jxi.middleRows(2 * k, 2);
 	if (J_f_f0) *J_f_f0 = Jf0.middleRows(2 * k, 2);
 	return ft.col(k);
@@ -128,11 +128,11 @@ Eigen::Vector2d objectFeatureAt(const Eigen::VectorXd& xi, const Eigen::Matrix2X
 Eigen::Vector2d observeObjectFeature(MeasurementModel m, const Eigen::Vector3d& x,
                                      const Eigen::VectorXd& xi, const Eigen::Matrix2Xd& f0, int k,
                                      Matrix23d* J_z_x, Eigen::MatrixXd* J_z_xi,
-                                     Eigen::MatrixXd* J_z_f0)
+                                     Eigen::MatrixXd* J_z_f0, int centroidCols)
 {
 	Eigen::MatrixXd J_f_xi, J_f_f0;
-	const Eigen::Vector2d f =
-	    objectFeatureAt(xi, f0, k, J_z_xi ? &J_f_xi : nullptr, J_z_f0 ? &J_f_f0 : nullptr);
+	const Eigen::Vector2d f = objectFeatureAt(xi, f0, k, J_z_xi ? &J_f_xi : nullptr,
+	                                          J_z_f0 ? &J_f_f0 : nullptr, centroidCols);
 	Eigen::Matrix2d J_z_f;
 	const Eigen::Vector2d z = observe(m, x, f, J_z_x, &J_z_f);
 	if (J_z_xi) *J_z_xi = J_z_f * J_f_xi;
@@ -143,11 +143,12 @@ Eigen::Vector2d observeObjectFeature(MeasurementModel m, const Eigen::Vector3d& 
 Eigen::Vector2d observeObjectFeatureFromSensor(MeasurementModel m, const Eigen::Vector3d& x,
                                                const Eigen::Vector3d& s, const Eigen::VectorXd& xi,
                                                const Eigen::Matrix2Xd& f0, int k, Matrix23d* J_z_x,
-                                               Eigen::MatrixXd* J_z_xi, Eigen::MatrixXd* J_z_f0)
+                                               Eigen::MatrixXd* J_z_xi, Eigen::MatrixXd* J_z_f0,
+                                               int centroidCols)
 {
 	Eigen::MatrixXd J_f_xi, J_f_f0;
-	const Eigen::Vector2d f =
-	    objectFeatureAt(xi, f0, k, J_z_xi ? &J_f_xi : nullptr, J_z_f0 ? &J_f_f0 : nullptr);
+	const Eigen::Vector2d f = objectFeatureAt(xi, f0, k, J_z_xi ? &J_f_xi : nullptr,
+	                                          J_z_f0 ? &J_f_f0 : nullptr, centroidCols);
 	Eigen::Matrix2d J_z_f;
 	const Eigen::Vector2d z = observeFromSensor(m, x, s, f, J_z_x, &J_z_f);
 	if (J_z_xi) *J_z_xi = J_z_f * J_f_xi;

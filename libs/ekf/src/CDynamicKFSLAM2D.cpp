@@ -87,6 +87,9 @@ void CDynamicKFSLAM2D::reset()
 		// (cv, ctrv) keep body-frame features of a fixed set: no joining there.
 		estimator::TClassifyParams classify = options.classify;
 		classify.join = classify.join && !options.objectCentric();
+		// A merge needs the lost object predicted across the gap (doc/classification.md
+		// "Merging a linked object"): object-centric models only.
+		classify.merge_linked = classify.merge_linked && options.objectCentric();
 		m_router = estimator::makeRouter(options.feature_labels, &classify);
 		// feature_labels = classify: ID -1 readings associated with MRPT's data association.
 		if (auto* c = dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
@@ -243,6 +246,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		planDrops(plan);
 		planFallbacks(plan);  // object-centric motion models only (cv_fallback_steps)
 		commit(plan);
+		mergeLinkedObjects();    // classify_merge_linked (object-centric models) only
 		recordFirstEstimates();  // first-estimate Jacobians (optional)
 		compressIfDue();         // compressed EKF only
 	}

@@ -42,11 +42,13 @@ std::map<int32_t, TObjectState> objectStates(const estimator::CPaddedLayout& L)
 Eigen::Vector2d sighting(models::MeasurementModel m, const Eigen::Vector3d& x,
                          const Eigen::Vector3d& s, const Eigen::VectorXd& xi,
                          const Eigen::Matrix2Xd& f0, int k, models::Matrix23d* J_z_x,
-                         Eigen::MatrixXd* J_z_xi, Eigen::MatrixXd* J_z_f0)
+                         Eigen::MatrixXd* J_z_xi, Eigen::MatrixXd* J_z_f0, int founders)
 {
-	return s.isZero(0)
-	           ? models::observeObjectFeature(m, x, xi, f0, k, J_z_x, J_z_xi, J_z_f0)
-	           : models::observeObjectFeatureFromSensor(m, x, s, xi, f0, k, J_z_x, J_z_xi, J_z_f0);
+	// The pose's centroid: the founders' (features merged in later follow them, object_merge.h).
+	const int cc = founders < f0.cols() ? founders : 0;
+	return s.isZero(0) ? models::observeObjectFeature(m, x, xi, f0, k, J_z_x, J_z_xi, J_z_f0, cc)
+	                   : models::observeObjectFeatureFromSensor(m, x, s, xi, f0, k, J_z_x, J_z_xi,
+	                                                            J_z_f0, cc);
 }
 
 /** The used readings of an object stacked into one update: H, nu and R = blockdiag(Sigma_v +
@@ -171,7 +173,7 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 			Eigen::MatrixXd J_z_xi, J_z_f0;
 			const Eigen::Vector2d zhat =
 			    sighting(options.measurement_model, ego, m_in.sensor_pose, xi, f0,
-			             info.indexOf(m.reading.id), &J_z_x, &J_z_xi, &J_z_f0);
+			             info.indexOf(m.reading.id), &J_z_x, &J_z_xi, &J_z_f0, info.founders);
 			Eigen::MatrixXd H(2, idx.size());
 			H << J_z_x, J_z_xi, J_z_f0;
 			const Eigen::Vector2d nu =

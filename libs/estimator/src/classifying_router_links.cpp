@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <stdexcept>
+#include <string>
 
 namespace dynslam::estimator
 {
@@ -144,6 +146,7 @@ void CClassifyingRouter::linkNewObjects(int step, const std::vector<int32_t>& ne
 		m_continued.insert(from);
 		lost.erase(lost.begin() + long(best));
 		++out.linked;
+		if (m_p.merge_linked) out.merges.push_back({obj, from});
 	}
 }
 
@@ -157,5 +160,31 @@ void CClassifyingRouter::countGroupHintConflicts(TRoutedStep& out) const
 			hints[m.object].insert(m.reading.hint);
 	for (const auto& [obj, h] : hints)
 		if (h.size() > 1) ++out.hint_group_conflicts;
+}
+void CClassifyingRouter::mergeObjects(int32_t from, int32_t into)
+{
+	if (from == into || !m_objectTracks.count(from) || !m_objectTracks.count(into) ||
+	    !m_registry.has(from) || !m_registry.has(into))
+		throw std::logic_error("CClassifyingRouter::mergeObjects: cannot merge object " +
+		                       std::to_string(from) + " into " + std::to_string(into));
+	// from's features (its f_0 in the filter, now in into's frame) follow into's, in their order.
+	const TObjectEntry e = m_registry.at(from);
+	for (const int32_t id : m_objectTracks.at(from))
+	{
+		TTrack& t = m_tracks.at(id);
+		if (!isMember(id, from)) continue;
+		t.object = into;
+		t.feature = -1;  // a member without an f_0 (never the case at a link): skipped, counted
+		if (e.indexOf(id) >= 0)
+		{
+			t.feature = int32_t(m_registry.at(into).feature_ids.size());
+			m_registry.addFeature(into, id, t.feature);
+		}
+		m_objectTracks[into].push_back(id);
+	}
+	m_objectTracks.erase(from);
+	m_registry.erase(from);
+	m_identity.erase(from);
+	m_continued.erase(into);  // into lives on: it may be lost and continued again
 }
 }  // namespace dynslam::estimator

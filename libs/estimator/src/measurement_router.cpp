@@ -136,4 +136,9 @@ std::unique_ptr<IMeasurementRouter> makeRouter(const std::string& feature_labels
 		return std::make_unique<CClassifyingRouter>(classify ? *classify : TClassifyParams());
 	throw std::invalid_argument("feature_labels = " + feature_labels + ": known: ids, classify");
 }
+void IMeasurementRouter::mergeObjects(int32_t from, int32_t into)
+{
+	throw std::logic_error("router " + name() + " cannot merge object " + std::to_string(from) +
+	                       " into " + std::to_string(into));
+}
 }  // namespace dynslam::estimator

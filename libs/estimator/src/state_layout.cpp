@@ -107,4 +107,14 @@ void CPaddedLayout::convertToObjectFeature0(size_t b, int32_t object, int32_t fe
 	t.object = object;
 	t.feature = feature;
 }
+
+void CPaddedLayout::reassignObjectFeature0(size_t b, int32_t object, int32_t feature)
+{
+	TBlock& t = m_blocks.at(b);
+	if (t.kind != BlockKind::ObjectFeature0)
+		throw std::logic_error("CPaddedLayout::reassignObjectFeature0: block " + std::to_string(b) +
+		                       " is a " + toString(t.kind) + ", not an object's f_0");
+	t.object = object;
+	t.feature = feature;
+}
 }  // namespace dynslam::estimator

@@ -89,6 +89,9 @@ struct TStepReport
 	 * late joiners given their f_0 (EKF, the object's pose computable). */
 	size_t classify_restarted = 0, classify_split = 0, classify_joined = 0;
 	size_t object_features_joined = 0;
+	/** classify_merge_linked: linked objects merged into the lost object (its motion model
+	 * predicted it across the gap), and links not merged (the lost object has no velocity). */
+	size_t objects_merged = 0, merges_skipped = 0;
 };
 
 /** Common interface of the back-ends. */

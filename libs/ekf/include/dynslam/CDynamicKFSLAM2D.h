@@ -201,6 +201,13 @@ protected:
 	 * has registered the objects). Throws std::logic_error if an ID is not a static landmark in
 	 * the state. Counted in TStepReport::converted_static. */
 	void convertStaticLandmarks(const std::vector<estimator::TRoutedStep::TConversion>& c);
+	/** Merge (classify_merge_linked, doc/classification.md "Merging a linked object"): the
+	 * features of object `from` are re-expressed in the body frame of object `into`
+	 * (models/object_merge.h; x' = g(x), P' = J P J^T), from's poses, velocity and time-t
+	 * features leave the state, and the router routes from's tracks as into's. False (nothing
+	 * changed) if `into` has no velocity and pose (not predicted across the gap). Throws
+	 * std::logic_error if an object is unknown or they are the same. */
+	bool mergeObjects(int32_t from, int32_t into);
 
 	// --- CKalmanFilterCapable hooks ------------------------------------------------
 	void OnGetAction(KFArray_ACT& out_u) const override;
@@ -306,6 +313,8 @@ private:
 	};
 	/** The velocity of obj from its pose block `pose` of this step; false: none yet. */
 	bool velocityInit(int32_t obj, size_t pose, TVelocityInit& out);
+	/** The step's merges (TRoutedStep::merges), after its commit; counted in the report. */
+	void mergeLinkedObjects();
 	std::set<int32_t> m_lostNow;      ///< objects lost in this step (objectFeatureUpdates)
 	std::set<int32_t> m_awaitingVel;  ///< lost objects that have no velocity yet
 	std::set<int32_t> m_reinitNow;    ///< lost objects given a velocity in this step

@@ -55,24 +55,23 @@ Eigen::VectorXd cvInitialVelocity(const Eigen::VectorXd& xi, double elapsed,
 
 /** Position of feature k of an object with pose xi (2 or 3 entries) and body-frame (time-0)
  * features f0 (2 x n): g(xi, f0)_k, with J_f_xi (2 x d) and J_f_f0 (2 x 2n). For d = 2:
- * f0_k + xi. */
+ * f0_k + xi. centroidCols: c0 is the centroid of the first centroidCols columns (0: all; an
+ * object's founders, after a merge, models/object_merge.h). */
 Eigen::Vector2d objectFeatureAt(const Eigen::VectorXd& xi, const Eigen::Matrix2Xd& f0, int k,
                                 Eigen::MatrixXd* J_f_xi = nullptr,
-                                Eigen::MatrixXd* J_f_f0 = nullptr);
+                                Eigen::MatrixXd* J_f_f0 = nullptr, int centroidCols = 0);
 
 /** Sighting of feature k of an object: z = h(x, g(xi, f0)_k) in model m's space, with J_z_x
  * (2x3), J_z_xi (2 x d), J_z_f0 (2 x 2n). */
 Eigen::Vector2d observeObjectFeature(MeasurementModel m, const Eigen::Vector3d& x,
                                      const Eigen::VectorXd& xi, const Eigen::Matrix2Xd& f0, int k,
                                      Matrix23d* J_z_x = nullptr, Eigen::MatrixXd* J_z_xi = nullptr,
-                                     Eigen::MatrixXd* J_z_f0 = nullptr);
+                                     Eigen::MatrixXd* J_z_f0 = nullptr, int centroidCols = 0);
 
 /** The same from a sensor at pose s on the robot: z = h(x (+) s, g(xi, f0)_k)
  * (models::observeFromSensor). */
-Eigen::Vector2d observeObjectFeatureFromSensor(MeasurementModel m, const Eigen::Vector3d& x,
-                                               const Eigen::Vector3d& s, const Eigen::VectorXd& xi,
-                                               const Eigen::Matrix2Xd& f0, int k,
-                                               Matrix23d* J_z_x = nullptr,
-                                               Eigen::MatrixXd* J_z_xi = nullptr,
-                                               Eigen::MatrixXd* J_z_f0 = nullptr);
+Eigen::Vector2d observeObjectFeatureFromSensor(
+    MeasurementModel m, const Eigen::Vector3d& x, const Eigen::Vector3d& s,
+    const Eigen::VectorXd& xi, const Eigen::Matrix2Xd& f0, int k, Matrix23d* J_z_x = nullptr,
+    Eigen::MatrixXd* J_z_xi = nullptr, Eigen::MatrixXd* J_z_f0 = nullptr, int centroidCols = 0);
 }  // namespace dynslam::models

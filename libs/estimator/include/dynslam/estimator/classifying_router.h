@@ -95,6 +95,11 @@ struct TClassifyParams
 	/** classify_link_gap: the longest break [steps] between the lost object's last sighting and
 	 * the new one's first that a link may span, >= 1. */
 	int link_gap = 80;
+	/** classify_merge_linked: a link also merges the new object into the lost one in the
+	 * estimator (TRoutedStep::merges; the filter calls mergeObjects). The EKF sets it only with
+	 * an object-centric model (cv, ctrv), which predicts the lost object across the gap
+	 * (doc/classification.md "Merging a linked object"); false (default): identities only. */
+	bool merge_linked = false;
 	/** classify_static_test: how a static track's reading is tested before it updates the
 	 * filter (reclassification). Robot (default): the robot-frame static filter carried by the
 	 * odometry alone (TTrack::q). Map: if the track has a landmark in the filter's state, the
@@ -175,6 +180,10 @@ public:
 	/** The track ID of feature `feature` of object `object`. */
 	int32_t featureId(int32_t object, int32_t feature) const override;
 	void reset() override;
+	/** Object `from` continues as object `into` (a merge listed in TRoutedStep::merges): its
+	 * tracks become features of `into` (indices after its own), `from` leaves the registry.
+	 * Throws std::logic_error if either is unknown or they are the same. */
+	void mergeObjects(int32_t from, int32_t into) override;
 
 	const TClassifyParams& params() const { return m_p; }
 	/** With a static association function, ID -1 readings are associated

@@ -77,6 +77,14 @@ struct TRoutedStep
 	/** New objects linked to an object lost before (classify_link: the same identity), and of
 	 * those, the ones with two or more lost objects in the gate (the nearest was taken). */
 	size_t linked = 0, link_ambiguous = 0;
+	/** classify_merge_linked: links whose new object `from` (first seen in this step) the filter
+	 * should merge into the lost object `into` (IMeasurementRouter::mergeObjects, after the
+	 * step's commit; doc/classification.md "Merging a linked object"). */
+	struct TMerge
+	{
+		int32_t from = -1, into = -1;
+	};
+	std::vector<TMerge> merges;
 	/** Static landmarks decided moving in this step (a parked car drove off) with
 	 * classify_reclassify = restart: the filter drops them from the state; their reading of this
 	 * step is the first sighting of a new object. */
@@ -154,6 +162,10 @@ public:
 	/** The ID of feature `feature` of object `object` in this router's convention. */
 	virtual int32_t featureId(int32_t object, int32_t feature) const = 0;
 	virtual void reset() = 0;
+	/** Object `from` continues as object `into` from the next step on (the filter has moved
+	 * from's features into into's frame): the router routes from's features as into's. Routers
+	 * that never list merges (TRoutedStep::merges) throw std::logic_error. */
+	virtual void mergeObjects(int32_t from, int32_t into);
 };
 
 /** The ID-range rule (dynslam/landmark_ids.h): 0..99,999 static, 100,000 + 1000 object + k

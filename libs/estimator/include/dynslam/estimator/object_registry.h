@@ -72,6 +72,8 @@ public:
 	 * after its time 0; its readings are time t from now on (the filter gives it an f_0 from its
 	 * first one). Throws std::logic_error if obj does not exist or already has id. */
 	void addFeature(int32_t obj, int32_t id, int32_t feature);
+	/** Removes object obj (merged into another, classify_merge_linked). */
+	void erase(int32_t obj) { m_objects.erase(obj); }
 	bool has(int32_t obj) const { return m_objects.count(obj) != 0; }
 	const TObjectEntry& at(int32_t obj) const { return m_objects.at(obj); }
 	TObjectEntry& at(int32_t obj) { return m_objects.at(obj); }

@@ -79,6 +79,10 @@ public:
 	 * `feature` of object `object`, in place (same storage, ID, creation step and number).
 	 * Throws std::logic_error if block b is not a static landmark. */
 	void convertToObjectFeature0(size_t b, int32_t object, int32_t feature);
+	/** Merge (classify_merge_linked): time-0 feature block b becomes feature `feature` of object
+	 * `object` (its entries rewritten by the caller). Throws std::logic_error if block b is not
+	 * an ObjectFeature0. */
+	void reassignObjectFeature0(size_t b, int32_t object, int32_t feature);
 	/** Removes the flagged blocks (one flag per block); the others keep their order. */
 	void removeBlocks(const std::vector<bool>& remove);
 
