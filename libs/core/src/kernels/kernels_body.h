@@ -8,6 +8,9 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#if defined(__SSE2__) || defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 #include "variants.h"
 
@@ -20,24 +23,63 @@ using RowMap = ::Eigen::Map<RowMatrixXd, 0, ::Eigen::OuterStride<>>;
 using ColMap = ::Eigen::Map<const ::Eigen::MatrixXd>;
 using IndexMap = ::Eigen::Map<const ::Eigen::VectorXi>;
 
+/** The 4 x 4 block at src (row stride ld) written transposed at dst (row stride ld): copies
+ * only. AVX: four loads, eight shuffles, four stores; SSE2: the same as four 2 x 2 blocks. */
+inline void transposeBlock4(const double* src, double* dst, ::Eigen::Index ld)
+{
+#if defined(__AVX__)
+	const __m256d r0 = _mm256_loadu_pd(src), r1 = _mm256_loadu_pd(src + ld),
+	              r2 = _mm256_loadu_pd(src + 2 * ld), r3 = _mm256_loadu_pd(src + 3 * ld);
+	const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1),
+	              t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
+	_mm256_storeu_pd(dst, _mm256_permute2f128_pd(t0, t2, 0x20));
+	_mm256_storeu_pd(dst + ld, _mm256_permute2f128_pd(t1, t3, 0x20));
+	_mm256_storeu_pd(dst + 2 * ld, _mm256_permute2f128_pd(t0, t2, 0x31));
+	_mm256_storeu_pd(dst + 3 * ld, _mm256_permute2f128_pd(t1, t3, 0x31));
+#elif defined(__SSE2__)
+	for (int bi = 0; bi < 4; bi += 2)
+		for (int bj = 0; bj < 4; bj += 2)
+		{
+			const double* s = src + bi * ld + bj;
+			const __m128d r0 = _mm_loadu_pd(s), r1 = _mm_loadu_pd(s + ld);
+			double* d = dst + bj * ld + bi;
+			_mm_storeu_pd(d, _mm_unpacklo_pd(r0, r1));
+			_mm_storeu_pd(d + ld, _mm_unpackhi_pd(r0, r1));
+		}
+#else
+	for (int i = 0; i < 4; ++i)
+		for (int j = 0; j < 4; ++j) dst[j * ld + i] = src[i * ld + j];
+#endif
+}
+
 /** P(j, i) = P(i, j) for j < i (row-major, row stride ld): the lower triangle copied onto the
- * upper one in 16 x 16 tiles, so that the strided side of a tile stays in the L1 cache (a
- * column-at-a-time copy touches every row below the diagonal once per column). Copies only: the
- * result is the same as the plain loop's, bit for bit. No std:: templates here (weak symbols,
- * see kernels_avx2.cpp). */
+ * upper one, in 16 x 16 tiles (the strided side of a tile stays in the L1 cache) of 4 x 4
+ * blocks transposed in registers (transposeBlock4); the 4 x 4 blocks on the diagonal and the
+ * last n % 4 rows element by element. Copies only: the result is the same as the plain loop's,
+ * bit for bit. No std:: templates here (weak symbols, see kernels_avx2.cpp). */
 void mirrorLowerToUpper(double* P, ::Eigen::Index n, ::Eigen::Index ld)
 {
 	constexpr ::Eigen::Index T = 16;
-	for (::Eigen::Index i0 = 0; i0 < n; i0 += T)
+	const ::Eigen::Index n4 = n - n % 4;
+	for (::Eigen::Index i0 = 0; i0 < n4; i0 += T)
 	{
-		const ::Eigen::Index i1 = i0 + T < n ? i0 + T : n;
+		const ::Eigen::Index i1 = i0 + T < n4 ? i0 + T : n4;
 		for (::Eigen::Index j0 = 0; j0 <= i0; j0 += T)
-			for (::Eigen::Index i = i0; i < i1; ++i)
+			for (::Eigen::Index i = i0; i < i1; i += 4)
 			{
-				const double* src = P + i * ld;
-				const ::Eigen::Index j1 = j0 + T < i ? j0 + T : i;
-				for (::Eigen::Index j = j0; j < j1; ++j) P[j * ld + i] = src[j];
+				const ::Eigen::Index j1 = j0 + T < i ? j0 + T : i;  // blocks strictly below
+				for (::Eigen::Index j = j0; j < j1; j += 4)
+					transposeBlock4(P + i * ld + j, P + j * ld + i, ld);
 			}
+	}
+	for (::Eigen::Index i = 0; i < n4; i += 4)  // inside the diagonal blocks
+		for (::Eigen::Index r = 1; r < 4; ++r)
+			for (::Eigen::Index c = 0; c < r; ++c)
+				P[(i + c) * ld + i + r] = P[(i + r) * ld + i + c];
+	for (::Eigen::Index i = n4; i < n; ++i)  // the last rows: every column before the diagonal
+	{
+		const double* src = P + i * ld;
+		for (::Eigen::Index j = 0; j < i; ++j) P[j * ld + i] = src[j];
 	}
 }
 /** The update's temporaries, kept per thread between calls (no allocation while the sizes do
@@ -46,7 +88,8 @@ void mirrorLowerToUpper(double* P, ::Eigen::Index n, ::Eigen::Index ld)
  * solve(PHt^T) (row-major m x n). */
 struct TUpdateWorkspace
 {
-	::Eigen::MatrixXd PHt, S, W;
+	RowMatrixXd Pidx;  // P[:, idx], the plain type the product evaluated the gather into
+	::Eigen::MatrixXd PHt, S, S2, W;
 	decltype(::Eigen::LLT<::Eigen::MatrixXd>().matrixL().solve(
 	    ::Eigen::MatrixXd().transpose()))::PlainObject Wt;
 	::Eigen::VectorXd v;
@@ -69,9 +112,11 @@ bool sparseUpdate(const TSparseUpdateArgs& a, double& nis)
 	const ::Eigen::Map<const ::Eigen::VectorXd> nu(a.nu, a.m);
 
 	TUpdateWorkspace& w = updateWorkspace();
-	w.PHt.noalias() = P(::Eigen::all, idx) * H.transpose();  // n x m
+	w.Pidx = P(::Eigen::all, idx);
+	w.PHt.noalias() = w.Pidx * H.transpose();  // n x m
 	w.S = H * w.PHt(idx, ::Eigen::all) + R;
-	w.S = 0.5 * (w.S + w.S.transpose()).eval();
+	w.S2 = w.S + w.S.transpose();
+	w.S = 0.5 * w.S2;
 	w.llt.compute(w.S);
 	if (w.llt.info() != ::Eigen::Success) return false;
 	// W = PHt L^-T: K = W L^-1, K nu = W (L^-1 nu), K S K^T = W W^T. The solve is what
