@@ -170,15 +170,19 @@ ObjectPoseLinearization appendJoinedFeatures(const Eigen::Ref<const Eigen::Vecto
 	return out;
 }
 
-Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
-                             const std::vector<int>& idx)
+namespace
+{
+/** extendedRows (same checks, same values) into a row-major buffer whose storage is reused:
+ * row r is contiguous, so the rows of P are plain copies. */
+void extendedRowsInto(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                      const std::vector<int>& idx, RowMatrixXd& rows)
 {
 	const Eigen::Index n = P.rows(), m = a.mean.size();
 	if (P.cols() != n || a.cross.rows() != m || a.cross.cols() != n || a.cov.rows() != m ||
 	    a.cov.cols() != m)
 		throw std::invalid_argument("extendedRows: inconsistent sizes");
 	checkIndices("extendedRows", idx, n + m);
-	Eigen::MatrixXd rows(idx.size(), n + m);
+	rows.resize(Eigen::Index(idx.size()), n + m);
 	for (size_t r = 0; r < idx.size(); ++r)
 	{
 		const Eigen::Index i = idx[r];
@@ -193,6 +197,28 @@ Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augme
 			rows.row(r).tail(m) = a.cov.row(i - n);
 		}
 	}
+}
+
+/** objectPoseAugmentations' temporaries, kept per thread (no allocation while the sizes do not
+ * grow). The product operands have the plain types the expressions of before evaluated into
+ * (doc/performance.md section 16; test PoseAugmentationExact). */
+struct TPoseWorkspace
+{
+	RowMatrixXd rows;
+	Eigen::MatrixXd GammaRows, sub, c, cq;
+};
+TPoseWorkspace& poseWorkspace()
+{
+	static thread_local TPoseWorkspace w;
+	return w;
+}
+}  // namespace
+
+Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                             const std::vector<int>& idx)
+{
+	RowMatrixXd rows;
+	extendedRowsInto(P, a, idx, rows);
 	return rows;
 }
 
@@ -212,22 +238,23 @@ Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, con
 	out.mean = Eigen::VectorXd::Zero(size);
 	out.cross = Eigen::MatrixXd::Zero(size, N);
 	out.cov = Eigen::MatrixXd::Identity(size, size);  // pads: unit variance
+	TPoseWorkspace& w = poseWorkspace();
 	for (size_t o = 0; o < poses.size(); ++o)
 	{
 		const auto& lin = poses[o];
 		const Eigen::Index d = lin.xi.size(), r = at[o];
 		if (lin.Gamma.rows() != d || lin.Gamma.cols() != Eigen::Index(lin.idx.size()))
 			throw std::invalid_argument("objectPoseAugmentations: inconsistent linearization");
-		const Eigen::MatrixXd rows = extendedRows(P, a, lin.idx);
+		extendedRowsInto(P, a, lin.idx, w.rows);
 		out.mean.segment(r, d) = lin.xi;
 		// Into a contiguous temporary, then copied: the product zero-fills its destination
 		// first, which for these d rows of a column-major matrix was one memset per column.
-		Eigen::MatrixXd GammaRows;
-		GammaRows.noalias() = lin.Gamma * rows;
-		out.cross.middleRows(r, d) = GammaRows;
-		Eigen::MatrixXd c = lin.Gamma * rows(Eigen::all, lin.idx) * lin.Gamma.transpose();
-		c += lin.noise;
-		out.cov.block(r, r, d, d) = 0.5 * (c + c.transpose());
+		w.GammaRows.noalias() = lin.Gamma * w.rows;
+		out.cross.middleRows(r, d) = w.GammaRows;
+		w.sub = w.rows(Eigen::all, lin.idx);
+		w.c = lin.Gamma * w.sub * lin.Gamma.transpose();
+		w.c += lin.noise;
+		out.cov.block(r, r, d, d) = 0.5 * (w.c + w.c.transpose());
 		// with the poses before it: cov(xi_o, xi_q) = cov(xi_o, x_ext)[:, idx_q] Gamma_q^T
 		for (size_t q = 0; q < o; ++q)
 		{
