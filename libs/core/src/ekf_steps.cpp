@@ -249,7 +249,9 @@ Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, con
 		out.mean.segment(r, d) = lin.xi;
 		// Into a contiguous temporary, then copied: the product zero-fills its destination
 		// first, which for these d rows of a column-major matrix was one memset per column.
-		w.GammaRows.noalias() = lin.Gamma * w.rows;
+		w.GammaRows.resize(d, N);
+		kernels::productColRow(lin.Gamma.data(), d, lin.Gamma.cols(), w.rows.data(), N,
+		                       w.rows.outerStride(), w.GammaRows.data());
 		out.cross.middleRows(r, d) = w.GammaRows;
 		w.sub = w.rows(Eigen::all, lin.idx);
 		w.c = lin.Gamma * w.sub * lin.Gamma.transpose();

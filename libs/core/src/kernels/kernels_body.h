@@ -82,25 +82,22 @@ void mirrorLowerToUpper(double* P, ::Eigen::Index n, ::Eigen::Index ld)
 		for (::Eigen::Index j = 0; j < i; ++j) P[j * ld + i] = src[j];
 	}
 }
-/** The update's temporaries, kept per thread between calls (no allocation while the sizes do
- * not grow). The types are those the expressions of before evaluated into, so the arithmetic
- * is unchanged: PHt, S and W column-major, the solve's result in the plain type of
- * solve(PHt^T) (row-major m x n). */
-struct TUpdateWorkspace
+/** The update's temporaries, kept per thread between calls in one buffer that only grows, so a
+ * step allocates nothing once the largest sizes have been seen (Eigen's own matrices reallocate
+ * at every change of size, i.e. at nearly every step). The views have the storage orders of the
+ * plain types the expressions of before evaluated into (PHt, S, W column-major; P[:, idx] and
+ * the solve's result row-major), each starts a multiple of 8 doubles
+ * after the buffer's aligned start, and the Cholesky factor is
+ * computed in place (LLT<Ref>): the same arithmetic (test
+ * KernelIsa.Sse2VariantIsBitIdenticalToTheCodeBefore). */
+::Eigen::VectorXd& updateBuffer()
 {
-	RowMatrixXd Pidx;  // P[:, idx], the plain type the product evaluated the gather into
-	::Eigen::MatrixXd PHt, S, S2, W;
-	decltype(::Eigen::LLT<::Eigen::MatrixXd>().matrixL().solve(
-	    ::Eigen::MatrixXd().transpose()))::PlainObject Wt;
-	::Eigen::VectorXd v;
-	::Eigen::LLT<::Eigen::MatrixXd> llt;
-};
-
-TUpdateWorkspace& updateWorkspace()
-{
-	static thread_local TUpdateWorkspace w;
-	return w;
+	static thread_local ::Eigen::VectorXd buffer;
+	return buffer;
 }
+using ColView = ::Eigen::Map<::Eigen::MatrixXd>;
+using RowView = ::Eigen::Map<RowMatrixXd>;
+using VecView = ::Eigen::Map<::Eigen::VectorXd>;
 }  // namespace
 
 bool sparseUpdate(const TSparseUpdateArgs& a, double& nis)
@@ -111,25 +108,37 @@ bool sparseUpdate(const TSparseUpdateArgs& a, double& nis)
 	const ColMap H(a.H, a.m, a.k), R(a.R, a.m, a.m);
 	const ::Eigen::Map<const ::Eigen::VectorXd> nu(a.nu, a.m);
 
-	TUpdateWorkspace& w = updateWorkspace();
-	w.Pidx = P(::Eigen::all, idx);
-	w.PHt.noalias() = w.Pidx * H.transpose();  // n x m
-	w.S = H * w.PHt(idx, ::Eigen::all) + R;
-	w.S2 = w.S + w.S.transpose();
-	w.S = 0.5 * w.S2;
-	w.llt.compute(w.S);
-	if (w.llt.info() != ::Eigen::Success) return false;
+	const ::Eigen::Index n = a.n, m = a.m, k = a.k;
+	const auto up8 = [](::Eigen::Index s) { return (s + 7) / 8 * 8; };
+	const ::Eigen::Index oPHt = up8(n * k), oS = oPHt + up8(n * m), oS2 = oS + up8(m * m),
+	                     oW = oS2 + up8(m * m), oWt = oW + up8(n * m), ov = oWt + up8(m * n),
+	                     total = ov + up8(m);
+	::Eigen::VectorXd& buf = updateBuffer();
+	if (buf.size() < total) buf.resize(total + total / 2);
+	double* b = buf.data();
+	RowView Pidx(b, n, k);
+	ColView PHt(b + oPHt, n, m), S(b + oS, m, m), S2(b + oS2, m, m), W(b + oW, n, m);
+	RowView Wt(b + oWt, m, n);
+	VecView v(b + ov, m);
+
+	Pidx = P(::Eigen::all, idx);
+	PHt.noalias() = Pidx * H.transpose();  // n x m
+	S = H * PHt(idx, ::Eigen::all) + R;
+	S2 = S + S.transpose();
+	S = 0.5 * S2;
+	::Eigen::LLT<::Eigen::Ref<::Eigen::MatrixXd>> llt(S);  // in place: S holds L
+	if (llt.info() != ::Eigen::Success) return false;
 	// W = PHt L^-T: K = W L^-1, K nu = W (L^-1 nu), K S K^T = W W^T. The solve is what
 	// solve(PHt^T) evaluates (copy, then in place, in the solve's own plain type).
-	w.Wt = w.PHt.transpose();
-	w.llt.matrixL().solveInPlace(w.Wt);
-	w.W = w.Wt.transpose();  // n x m
-	w.v = nu;
-	w.llt.matrixL().solveInPlace(w.v);
-	x.noalias() += w.W * w.v;
-	P.selfadjointView<::Eigen::Lower>().rankUpdate(w.W, -1.0);
+	Wt = PHt.transpose();
+	llt.matrixL().solveInPlace(Wt);
+	W = Wt.transpose();  // n x m
+	v = nu;
+	llt.matrixL().solveInPlace(v);
+	x.noalias() += W * v;
+	P.selfadjointView<::Eigen::Lower>().rankUpdate(W, -1.0);
 	mirrorLowerToUpper(a.P, a.n, a.ldP);
-	nis = w.v.squaredNorm();
+	nis = v.squaredNorm();
 	return true;
 }
 
@@ -144,5 +153,15 @@ void expandLevel(const TExpandLevelArgs& a)
 	CB = G * cross;
 	BB = P + cross.transpose() * (Q * cross);
 	BB = 0.5 * (BB + BB.transpose()).eval();
+}
+
+void productColRow(const double* A, std::ptrdiff_t r, std::ptrdiff_t k, const double* B,
+                   std::ptrdiff_t c, std::ptrdiff_t ldB, double* C)
+{
+	const ColMap Am(A, r, k);
+	const ::Eigen::Map<const RowMatrixXd, 0, ::Eigen::OuterStride<>> Bm(
+	    B, k, c, ::Eigen::OuterStride<>(ldB));
+	::Eigen::Map<::Eigen::MatrixXd> Cm(C, r, c);
+	Cm.noalias() = Am * Bm;
 }
 }  // namespace dynslam::kernels::DYNSLAM_KERNEL_NS
