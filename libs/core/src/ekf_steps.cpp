@@ -271,30 +271,16 @@ Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, con
 
 namespace
 {
-/** Maximal runs of consecutive values in idx: (position in idx, length). */
-std::vector<std::pair<Eigen::Index, Eigen::Index>> runsOf(const std::vector<int>& idx)
-{
-	std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;
-	for (size_t i = 0; i < idx.size();)
-	{
-		size_t j = i + 1;
-		while (j < idx.size() && idx[j] == idx[j - 1] + 1) ++j;
-		runs.emplace_back(Eigen::Index(i), Eigen::Index(j - i));
-		i = j;
-	}
-	return runs;
-}
-}  // namespace
-
-namespace
-{
-/** keep = [old (< n) ; a's (n .. n + ma) ; b's], each relative to its group. */
+/** keep = [old (< n) ; a's (n .. n + ma) ; b's], each relative to its group, and the maximal
+ * runs of consecutive values in old: (position in old, length). One per thread, its vectors'
+ * capacity reused from step to step (no allocation). */
 struct TKeepSplit
 {
 	std::vector<int> old, a, b;
+	std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;
 };
-TKeepSplit splitKeep(const char* who, const Eigen::Index n, const Augmentation& a,
-                     const Augmentation& b, const std::vector<int>& keep)
+const TKeepSplit& splitKeep(const char* who, const Eigen::Index n, const Augmentation& a,
+                            const Augmentation& b, const std::vector<int>& keep)
 {
 	const Eigen::Index ma = a.mean.size(), mb = b.mean.size(), k = Eigen::Index(keep.size());
 	if (a.cross.rows() != ma || a.cross.cols() != n || a.cov.rows() != ma || a.cov.cols() != ma ||
@@ -305,7 +291,11 @@ TKeepSplit splitKeep(const char* who, const Eigen::Index n, const Augmentation& 
 	for (Eigen::Index i = 1; i < k; ++i)
 		if (keep[i] <= keep[i - 1])
 			throw std::invalid_argument(std::string(who) + ": keep must be ascending");
-	TKeepSplit s;
+	static thread_local TKeepSplit s;
+	s.old.clear();
+	s.a.clear();
+	s.b.clear();
+	s.runs.clear();
 	for (const int i : keep)
 		(i < n        ? s.old
 		 : i < n + ma ? s.a
@@ -313,6 +303,13 @@ TKeepSplit splitKeep(const char* who, const Eigen::Index n, const Augmentation& 
 		    .push_back(i < n        ? i
 		               : i < n + ma ? i - int(n)
 		                            : i - int(n + ma));
+	for (size_t i = 0; i < s.old.size();)
+	{
+		size_t j = i + 1;
+		while (j < s.old.size() && s.old[j] == s.old[j - 1] + 1) ++j;
+		s.runs.emplace_back(Eigen::Index(i), Eigen::Index(j - i));
+		i = j;
+	}
 	return s;
 }
 
@@ -349,11 +346,10 @@ void assembleExtended(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation
 	const Eigen::Index n = P.rows(), k = Eigen::Index(keep.size());
 	if (P.cols() != n || out.rows() != k || out.cols() != k)
 		throw std::invalid_argument("assembleExtended: inconsistent sizes");
-	const TKeepSplit s = splitKeep("assembleExtended", n, a, b, keep);
+	const TKeepSplit& s = splitKeep("assembleExtended", n, a, b, keep);
 	// Old block by runs of consecutive indices (row-major: contiguous copies).
-	const auto runs = runsOf(s.old);
 	for (Eigen::Index i = 0; i < Eigen::Index(s.old.size()); ++i)
-		for (const auto& [c, len] : runs)
+		for (const auto& [c, len] : s.runs)
 			out.row(i).segment(c, len) = P.row(s.old[i]).segment(s.old[c], len);
 	writeNewEntries(out, n, a, b, s);
 }
@@ -364,17 +360,16 @@ void assembleInPlace(double* data, Eigen::Index stride, Eigen::Index n, const Au
 	const Eigen::Index k = Eigen::Index(keep.size());
 	if (!data || n < 0 || n > stride || k > stride)
 		throw std::invalid_argument("assembleInPlace: inconsistent sizes");
-	const TKeepSplit s = splitKeep("assembleInPlace", n, a, b, keep);
+	const TKeepSplit& s = splitKeep("assembleInPlace", n, a, b, keep);
 	// The old block compacted towards the top-left corner, rows ascending and segments
 	// ascending: each source lies at or after its destination and after every earlier
 	// destination (s.old ascending, s.old[i] >= i), so nothing is read after being overwritten.
 	// Rows and segments that do not move (before the first dropped index) are not touched.
-	const auto runs = runsOf(s.old);
 	for (Eigen::Index i = 0; i < Eigen::Index(s.old.size()); ++i)
 	{
 		double* dst = data + i * stride;
 		const double* src = data + Eigen::Index(s.old[i]) * stride;
-		for (const auto& [c, len] : runs)
+		for (const auto& [c, len] : s.runs)
 			if (dst + c != src + s.old[c])
 				std::memmove(dst + c, src + s.old[c], size_t(len) * sizeof(double));
 	}
