@@ -170,15 +170,19 @@ ObjectPoseLinearization appendJoinedFeatures(const Eigen::Ref<const Eigen::Vecto
 	return out;
 }
 
-Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
-                             const std::vector<int>& idx)
+namespace
+{
+/** extendedRows (same checks, same values) into a row-major buffer whose storage is reused:
+ * row r is contiguous, so the rows of P are plain copies. */
+void extendedRowsInto(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                      const std::vector<int>& idx, RowMatrixXd& rows)
 {
 	const Eigen::Index n = P.rows(), m = a.mean.size();
 	if (P.cols() != n || a.cross.rows() != m || a.cross.cols() != n || a.cov.rows() != m ||
 	    a.cov.cols() != m)
 		throw std::invalid_argument("extendedRows: inconsistent sizes");
 	checkIndices("extendedRows", idx, n + m);
-	Eigen::MatrixXd rows(idx.size(), n + m);
+	rows.resize(Eigen::Index(idx.size()), n + m);
 	for (size_t r = 0; r < idx.size(); ++r)
 	{
 		const Eigen::Index i = idx[r];
@@ -193,6 +197,28 @@ Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augme
 			rows.row(r).tail(m) = a.cov.row(i - n);
 		}
 	}
+}
+
+/** objectPoseAugmentations' temporaries, kept per thread (no allocation while the sizes do not
+ * grow). The product operands have the plain types the expressions of before evaluated into
+ * (doc/performance.md section 16; test PoseAugmentationExact). */
+struct TPoseWorkspace
+{
+	RowMatrixXd rows;
+	Eigen::MatrixXd GammaRows, sub, c, cq;
+};
+TPoseWorkspace& poseWorkspace()
+{
+	static thread_local TPoseWorkspace w;
+	return w;
+}
+}  // namespace
+
+Eigen::MatrixXd extendedRows(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation& a,
+                             const std::vector<int>& idx)
+{
+	RowMatrixXd rows;
+	extendedRowsInto(P, a, idx, rows);
 	return rows;
 }
 
@@ -212,22 +238,25 @@ Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, con
 	out.mean = Eigen::VectorXd::Zero(size);
 	out.cross = Eigen::MatrixXd::Zero(size, N);
 	out.cov = Eigen::MatrixXd::Identity(size, size);  // pads: unit variance
+	TPoseWorkspace& w = poseWorkspace();
 	for (size_t o = 0; o < poses.size(); ++o)
 	{
 		const auto& lin = poses[o];
 		const Eigen::Index d = lin.xi.size(), r = at[o];
 		if (lin.Gamma.rows() != d || lin.Gamma.cols() != Eigen::Index(lin.idx.size()))
 			throw std::invalid_argument("objectPoseAugmentations: inconsistent linearization");
-		const Eigen::MatrixXd rows = extendedRows(P, a, lin.idx);
+		extendedRowsInto(P, a, lin.idx, w.rows);
 		out.mean.segment(r, d) = lin.xi;
 		// Into a contiguous temporary, then copied: the product zero-fills its destination
 		// first, which for these d rows of a column-major matrix was one memset per column.
-		Eigen::MatrixXd GammaRows;
-		GammaRows.noalias() = lin.Gamma * rows;
-		out.cross.middleRows(r, d) = GammaRows;
-		Eigen::MatrixXd c = lin.Gamma * rows(Eigen::all, lin.idx) * lin.Gamma.transpose();
-		c += lin.noise;
-		out.cov.block(r, r, d, d) = 0.5 * (c + c.transpose());
+		w.GammaRows.resize(d, N);
+		kernels::productColRow(lin.Gamma.data(), d, lin.Gamma.cols(), w.rows.data(), N,
+		                       w.rows.outerStride(), w.GammaRows.data());
+		out.cross.middleRows(r, d) = w.GammaRows;
+		w.sub = w.rows(Eigen::all, lin.idx);
+		w.c = lin.Gamma * w.sub * lin.Gamma.transpose();
+		w.c += lin.noise;
+		out.cov.block(r, r, d, d) = 0.5 * (w.c + w.c.transpose());
 		// with the poses before it: cov(xi_o, xi_q) = cov(xi_o, x_ext)[:, idx_q] Gamma_q^T
 		for (size_t q = 0; q < o; ++q)
 		{
@@ -242,30 +271,16 @@ Augmentation objectPoseAugmentations(const Eigen::Ref<const RowMatrixXd>& P, con
 
 namespace
 {
-/** Maximal runs of consecutive values in idx: (position in idx, length). */
-std::vector<std::pair<Eigen::Index, Eigen::Index>> runsOf(const std::vector<int>& idx)
-{
-	std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;
-	for (size_t i = 0; i < idx.size();)
-	{
-		size_t j = i + 1;
-		while (j < idx.size() && idx[j] == idx[j - 1] + 1) ++j;
-		runs.emplace_back(Eigen::Index(i), Eigen::Index(j - i));
-		i = j;
-	}
-	return runs;
-}
-}  // namespace
-
-namespace
-{
-/** keep = [old (< n) ; a's (n .. n + ma) ; b's], each relative to its group. */
+/** keep = [old (< n) ; a's (n .. n + ma) ; b's], each relative to its group, and the maximal
+ * runs of consecutive values in old: (position in old, length). One per thread, its vectors'
+ * capacity reused from step to step (no allocation). */
 struct TKeepSplit
 {
 	std::vector<int> old, a, b;
+	std::vector<std::pair<Eigen::Index, Eigen::Index>> runs;
 };
-TKeepSplit splitKeep(const char* who, const Eigen::Index n, const Augmentation& a,
-                     const Augmentation& b, const std::vector<int>& keep)
+const TKeepSplit& splitKeep(const char* who, const Eigen::Index n, const Augmentation& a,
+                            const Augmentation& b, const std::vector<int>& keep)
 {
 	const Eigen::Index ma = a.mean.size(), mb = b.mean.size(), k = Eigen::Index(keep.size());
 	if (a.cross.rows() != ma || a.cross.cols() != n || a.cov.rows() != ma || a.cov.cols() != ma ||
@@ -276,7 +291,11 @@ TKeepSplit splitKeep(const char* who, const Eigen::Index n, const Augmentation& 
 	for (Eigen::Index i = 1; i < k; ++i)
 		if (keep[i] <= keep[i - 1])
 			throw std::invalid_argument(std::string(who) + ": keep must be ascending");
-	TKeepSplit s;
+	static thread_local TKeepSplit s;
+	s.old.clear();
+	s.a.clear();
+	s.b.clear();
+	s.runs.clear();
 	for (const int i : keep)
 		(i < n        ? s.old
 		 : i < n + ma ? s.a
@@ -284,6 +303,13 @@ TKeepSplit splitKeep(const char* who, const Eigen::Index n, const Augmentation& 
 		    .push_back(i < n        ? i
 		               : i < n + ma ? i - int(n)
 		                            : i - int(n + ma));
+	for (size_t i = 0; i < s.old.size();)
+	{
+		size_t j = i + 1;
+		while (j < s.old.size() && s.old[j] == s.old[j - 1] + 1) ++j;
+		s.runs.emplace_back(Eigen::Index(i), Eigen::Index(j - i));
+		i = j;
+	}
 	return s;
 }
 
@@ -320,11 +346,10 @@ void assembleExtended(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation
 	const Eigen::Index n = P.rows(), k = Eigen::Index(keep.size());
 	if (P.cols() != n || out.rows() != k || out.cols() != k)
 		throw std::invalid_argument("assembleExtended: inconsistent sizes");
-	const TKeepSplit s = splitKeep("assembleExtended", n, a, b, keep);
+	const TKeepSplit& s = splitKeep("assembleExtended", n, a, b, keep);
 	// Old block by runs of consecutive indices (row-major: contiguous copies).
-	const auto runs = runsOf(s.old);
 	for (Eigen::Index i = 0; i < Eigen::Index(s.old.size()); ++i)
-		for (const auto& [c, len] : runs)
+		for (const auto& [c, len] : s.runs)
 			out.row(i).segment(c, len) = P.row(s.old[i]).segment(s.old[c], len);
 	writeNewEntries(out, n, a, b, s);
 }
@@ -335,17 +360,16 @@ void assembleInPlace(double* data, Eigen::Index stride, Eigen::Index n, const Au
 	const Eigen::Index k = Eigen::Index(keep.size());
 	if (!data || n < 0 || n > stride || k > stride)
 		throw std::invalid_argument("assembleInPlace: inconsistent sizes");
-	const TKeepSplit s = splitKeep("assembleInPlace", n, a, b, keep);
+	const TKeepSplit& s = splitKeep("assembleInPlace", n, a, b, keep);
 	// The old block compacted towards the top-left corner, rows ascending and segments
 	// ascending: each source lies at or after its destination and after every earlier
 	// destination (s.old ascending, s.old[i] >= i), so nothing is read after being overwritten.
 	// Rows and segments that do not move (before the first dropped index) are not touched.
-	const auto runs = runsOf(s.old);
 	for (Eigen::Index i = 0; i < Eigen::Index(s.old.size()); ++i)
 	{
 		double* dst = data + i * stride;
 		const double* src = data + Eigen::Index(s.old[i]) * stride;
-		for (const auto& [c, len] : runs)
+		for (const auto& [c, len] : s.runs)
 			if (dst + c != src + s.old[c])
 				std::memmove(dst + c, src + s.old[c], size_t(len) * sizeof(double));
 	}

@@ -111,4 +111,13 @@ void expandLevel(const TExpandLevelArgs& a)
 #endif
 	sse2::expandLevel(a);
 }
+
+void productColRow(const double* A, std::ptrdiff_t r, std::ptrdiff_t k, const double* B,
+                   std::ptrdiff_t c, std::ptrdiff_t ldB, double* C)
+{
+#if defined(DYNSLAM_HAVE_AVX2_KERNELS)
+	if (currentIsa() == Isa::Avx2) return avx2::productColRow(A, r, k, B, c, ldB, C);
+#endif
+	sse2::productColRow(A, r, k, B, c, ldB, C);
+}
 }  // namespace dynslam::kernels

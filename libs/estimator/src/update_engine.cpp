@@ -26,10 +26,14 @@ TUpdateResult CSparseUpdateEngine::update(Eigen::Ref<Eigen::VectorXd> x,
 {
 	TUpdateResult res;
 	const Eigen::Vector3d ego = x.head<3>();
-	std::vector<int> idx{0, 1, 2};
-	std::vector<models::Matrix23d> Jx;
-	std::vector<Eigen::Matrix2d> Jf;
-	std::vector<Eigen::Vector2d> nus;
+	std::vector<int>& idx = m_idx;
+	auto& Jx = m_Jx;
+	auto& Jf = m_Jf;
+	auto& nus = m_nus;
+	idx.assign({0, 1, 2});
+	Jx.clear();
+	Jf.clear();
+	nus.clear();
 	for (const auto& o : obs)
 	{
 		const int si = o.index;

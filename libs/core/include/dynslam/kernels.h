@@ -103,4 +103,9 @@ struct TExpandLevelArgs
 	double* BB = nullptr;
 };
 void expandLevel(const TExpandLevelArgs& a);
+
+/** C = A B with A r x k column-major, B k x c row-major (row stride ldB >= c), C r x c
+ * column-major (written, not read): the object-pose augmentation's Gamma * rows. */
+void productColRow(const double* A, std::ptrdiff_t r, std::ptrdiff_t k, const double* B,
+                   std::ptrdiff_t c, std::ptrdiff_t ldB, double* C);
 }  // namespace dynslam::kernels

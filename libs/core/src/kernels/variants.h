@@ -3,9 +3,11 @@
  * (kernels_body.h) compiled once per instruction set, each in its own namespace. */
 #include <dynslam/kernels.h>
 
-#define DYNSLAM_KERNEL_DECLARATIONS                                                 \
-	bool sparseUpdate(const ::dynslam::kernels::TSparseUpdateArgs& a, double& nis); \
-	void expandLevel(const ::dynslam::kernels::TExpandLevelArgs& a);
+#define DYNSLAM_KERNEL_DECLARATIONS                                                          \
+	bool sparseUpdate(const ::dynslam::kernels::TSparseUpdateArgs& a, double& nis);          \
+	void expandLevel(const ::dynslam::kernels::TExpandLevelArgs& a);                         \
+	void productColRow(const double* A, std::ptrdiff_t r, std::ptrdiff_t k, const double* B, \
+	                   std::ptrdiff_t c, std::ptrdiff_t ldB, double* C);
 
 namespace dynslam::kernels::sse2
 {

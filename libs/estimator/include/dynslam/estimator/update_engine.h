@@ -67,6 +67,14 @@ public:
 	TUpdateResult update(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
 	                     const std::vector<TStaticObservation>& obs,
 	                     const TUpdateContext& ctx) override;
+
+private:
+	// The step's temporaries, kept between steps (cleared, capacity kept): no allocation per step
+	// once the largest sizes have been seen.
+	std::vector<int> m_idx;
+	std::vector<models::Matrix23d> m_Jx;
+	std::vector<Eigen::Matrix2d> m_Jf;
+	std::vector<Eigen::Vector2d> m_nus;
 };
 
 /** static_update = compressed: the sparse update on the active state of the compressed EKF
