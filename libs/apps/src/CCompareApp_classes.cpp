@@ -41,7 +41,11 @@ void CCompareApp::scoreClassifyingRow(eval::TMetricsRow& row, const TClassDecisi
 	const auto match = eval::matchObjectsByReadings(d.objects, truth);
 	size_t unmatched = 0;
 	std::set<int32_t> trueHit;
-	for (const auto& [e, t] : match) t < 0 ? void(++unmatched) : void(trueHit.insert(t));
+	for (const auto& [e, t] : match)
+	{
+		if (t < 0) ++unmatched;
+		if (t >= 0) trueHit.insert(t);
+	}
 	row.velocity = eval::classifyingVelocityErrors(gt, est, d.objects, &truth);
 	objectNotes.push_back(row.filter + ": " + std::to_string(match.size()) +
 	                      " estimated objects matched to " + std::to_string(trueHit.size()) +
