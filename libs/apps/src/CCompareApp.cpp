@@ -262,10 +262,7 @@ void CCompareApp::run()
 			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt});
 			if (!landmarkGaps.empty())
 				rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
-			if (classifies)  // object numbers of the router, not the truth's
-				scoreClassifyingRow(rows.back(), decisions, r.est);
-			else
-				rows.back().velocity = eval::objectVelocityErrors(gt, r.est);
+			scoreObjects(rows.back(), classifies ? &decisions : nullptr, r.est);
 		}
 		if (classifies) classDecisions[f] = decisions;
 		runs.push_back(std::move(r));

@@ -9,9 +9,15 @@
 
 namespace dynslam::apps
 {
-void CCompareApp::scoreClassifyingRow(eval::TMetricsRow& row, const TClassDecisions& d,
-                                      const eval::TRunEstimates& est)
+void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* classifying,
+                               const eval::TRunEstimates& est)
 {
+	if (!classifying)
+	{
+		row.velocity = eval::objectVelocityErrors(gt, est);  // numbered as the truth
+		return;
+	}
+	const TClassDecisions& d = *classifying;
 	// The agent_* feature/pose cells: router feature indices and first-sighting frames, never
 	// comparable with the truth's; emptied in every case.
 	eval::blankObjectColumns(row.metrics);

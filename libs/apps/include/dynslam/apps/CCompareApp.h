@@ -141,11 +141,13 @@ private:
 	void differenceRows();
 	void buildTable();          ///< tableText: the rows, the footnote, the diverged filters
 	void writeVisualOutputs();  ///< --scene, --video
-	/** Scores of a classifying row against <groundTruthUsed>_gt_classes.csv: the class_*
-	 * columns and the object columns with the estimated objects matched to the true ones by
-	 * their readings (eval/object_matching.h; agent_* RMSE cells empty). Without the file, or
-	 * with another reading count: those columns empty, a warning and a line in objectNotes. */
-	void scoreClassifyingRow(eval::TMetricsRow& row, const TClassDecisions& d,
-	                         const eval::TRunEstimates& est);
+	/** The object velocity columns of a row (by object number). A classifying row
+	 * (classifying != nullptr) is scored against <groundTruthUsed>_gt_classes.csv instead: the
+	 * class_* columns, and the object columns with the estimated objects matched to the true
+	 * ones by their readings (eval/object_matching.h; agent_* RMSE cells empty). Without the
+	 * file, or with another reading count: those columns empty, a warning and a line in
+	 * objectNotes. */
+	void scoreObjects(eval::TMetricsRow& row, const TClassDecisions* classifying,
+	                  const eval::TRunEstimates& est);
 };
 }  // namespace dynslam::apps
