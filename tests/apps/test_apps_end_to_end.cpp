@@ -13,6 +13,7 @@
 #include <mrpt/img/CImage.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 using namespace dynslam;
@@ -276,6 +277,42 @@ TEST(CompareApp, ClassifiedRowHasClassColumns)
 	EXPECT_EQ(header[col + 1], "group_ari");
 	EXPECT_EQ(apps_test::splitCsv(lines[1])[col], "") << "dynamic does not classify";
 	EXPECT_NE(apps_test::splitCsv(lines[2])[col], "");
+	// Object columns of the classifying row (doc/metrics.md "Objects of classifying rows"): the
+	// router numbers its objects itself, so agent_* RMSE cells are empty (by index they compared
+	// unrelated objects: agent1_pose_rmse_x 8.50 m against dynamic's 0.0047 m); the dynamic
+	// row keeps them, and the printed notes say how the objects were matched.
+	const auto pc = std::find(header.begin(), header.end(), "agent1_pose_rmse_x");
+	ASSERT_NE(pc, header.end());
+	EXPECT_NE(apps_test::splitCsv(lines[1])[size_t(pc - header.begin())], "");
+	EXPECT_EQ(apps_test::splitCsv(lines[2])[size_t(pc - header.begin())], "");
+	ASSERT_EQ(app.objectNotes.size(), 1u);
+	EXPECT_NE(app.objectNotes[0].find("3 estimated objects matched to 3 true objects"),
+	          std::string::npos)
+	    << app.objectNotes[0];
+}
+
+TEST(CompareApp, ClassifiedRowWithoutClassTruthHasEmptyObjectColumns)
+{
+	// The highway's ground truth copied without highway_gt_classes.csv: the class_* and object
+	// cells of the classifying row are empty (never matched by index), and the notes say so.
+	const std::string dir = apps_test::freshDir("cmp_no_class_truth");
+	for (const auto& e : std::filesystem::directory_iterator(apps_test::dataset("")))
+	{
+		const std::string n = e.path().filename().string();
+		if (n.rfind("highway_gt_", 0) == 0 && n != "highway_gt_classes.csv")
+			std::filesystem::copy_file(e.path(), dir + "/" + n);
+	}
+	CCompareApp app;
+	TArgs a({"-c", apps_test::configFile("compare_classified.ini"), "--filters",
+	         "dynamic_classified", "--gt", dir + "/highway", "--no-figures", "-q"});
+	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
+	app.run();
+	ASSERT_EQ(app.rows.size(), 1u);
+	EXPECT_FALSE(app.rows[0].classes);
+	EXPECT_FALSE(app.rows[0].velocity);
+	ASSERT_FALSE(app.rows[0].metrics.objects.empty());
+	for (const auto& o : app.rows[0].metrics.objects) EXPECT_TRUE(std::isnan(o.poses.x));
+	EXPECT_NE(app.tableText.find("no class ground truth"), std::string::npos) << app.tableText;
 }
 
 // Issue 12 figures (doc/classification.md "Figures"): with --out and figures on, a classifying

@@ -203,6 +203,7 @@ void CCompareApp::run()
 {
 	runs.clear();
 	rows.clear();
+	objectNotes.clear();
 	failedFilters.clear();
 	writtenFiles.clear();
 	TLoadedData d = loadData(data, params, "DynamicKFSLAM", "RangeBearingKFSLAM");
@@ -259,10 +260,9 @@ void CCompareApp::run()
 		{
 			const TEvaluation ev = evaluateRun(gt, r.est);
 			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt});
-			if (classifies) rows.back().classes = classScores(decisions);
 			if (!landmarkGaps.empty())
 				rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
-			rows.back().velocity = eval::objectVelocityErrors(gt, r.est);
+			scoreObjects(rows.back(), classifies ? &decisions : nullptr, r.est);
 		}
 		if (classifies) classDecisions[f] = decisions;
 		runs.push_back(std::move(r));
@@ -294,6 +294,7 @@ void CCompareApp::buildTable()
 		         "ATE column: RMS ego position distance); ms/step: wall time of one filter step "
 		         "on this machine.\n";
 	for (const auto& [f, d] : classDecisions) table << d.countsLine(f);
+	for (const auto& n : objectNotes) table << n << "\n";
 	for (const auto& fail : failedFilters) table << "NOT IN THE TABLE: " << fail << "\n";
 	tableText = table.str();
 }

@@ -2,30 +2,63 @@
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/class_ground_truth.h>
 #include <dynslam/eval/class_metrics.h>
+#include <dynslam/eval/object_matching.h>
 
 #include <filesystem>
+#include <set>
 
 namespace dynslam::apps
 {
-std::optional<eval::TMetricsRow::TClassScores> CCompareApp::classScores(
-    const TClassDecisions& d) const
+void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* classifying,
+                               const eval::TRunEstimates& est)
 {
-	const std::string file = groundTruthUsed + "_gt_classes.csv";
-	if (!std::filesystem::exists(file))
+	if (!classifying)
 	{
-		MRPT_LOG_WARN_FMT("no class ground truth %s: the class_* columns stay empty", file.c_str());
-		return std::nullopt;
+		row.velocity = eval::objectVelocityErrors(gt, est);  // numbered as the truth
+		return;
 	}
-	const std::vector<TReadingClass> truth = readClassGroundTruth(file);
-	if (truth.size() != d.decisions.size())
+	const TClassDecisions& d = *classifying;
+	// The agent_* feature/pose cells: router feature indices and first-sighting frames, never
+	// comparable with the truth's; emptied in every case.
+	eval::blankObjectColumns(row.metrics);
+	const std::string file = groundTruthUsed + "_gt_classes.csv";
+	std::string why;
+	std::vector<TReadingClass> truth;
+	if (!std::filesystem::exists(file))
+		why = "no class ground truth " + file;
+	else
 	{
-		MRPT_LOG_WARN_FMT("%s has %zu readings, the run %zu: the class_* columns stay empty",
-		                  file.c_str(), truth.size(), d.decisions.size());
-		return std::nullopt;
+		truth = readClassGroundTruth(file);
+		if (truth.size() != d.decisions.size())
+			why = file + " has " + std::to_string(truth.size()) + " readings, the run " +
+			      std::to_string(d.decisions.size());
+	}
+	if (!why.empty())
+	{
+		MRPT_LOG_WARN_FMT("%s: the class_* and object columns stay empty", why.c_str());
+		objectNotes.push_back(row.filter + ": " + why +
+		                      ": class_* and object columns (agent_* RMSE, obj_*) left empty, "
+		                      "its object numbers are the router's, not the truth's");
+		return;
 	}
 	const eval::TBinaryScores s = eval::perReadingScores(truth, d.decisions);
-	return eval::TMetricsRow::TClassScores{s.precision, s.recall, s.f1,
-	                                       eval::groupingAri(truth, d.groups)};
+	row.classes = eval::TMetricsRow::TClassScores{s.precision, s.recall, s.f1,
+	                                              eval::groupingAri(truth, d.groups)};
+	const auto match = eval::matchObjectsByReadings(d.objects, truth);
+	size_t unmatched = 0;
+	std::set<int32_t> trueHit;
+	for (const auto& [e, t] : match)
+	{
+		if (t < 0) ++unmatched;
+		if (t >= 0) trueHit.insert(t);
+	}
+	row.velocity = eval::classifyingVelocityErrors(gt, est, d.objects, &truth);
+	objectNotes.push_back(row.filter + ": " + std::to_string(match.size()) +
+	                      " estimated objects matched to " + std::to_string(trueHit.size()) +
+	                      " true objects by the majority of their readings (" +
+	                      std::to_string(unmatched) +
+	                      " without a true object); agent_* RMSE cells left empty (router "
+	                      "feature numbers and frames)");
 }
 
 void TClassDecisions::add(const estimator::TRoutedStep& step)
@@ -36,6 +69,7 @@ void TClassDecisions::add(const estimator::TRoutedStep& step)
 		const bool st = m.route == Route::StaticKnown || m.route == Route::StaticNew;
 		steps.push_back(stepsAdded);
 		ids.push_back(m.reading.id);
+		objects.push_back(m.candidate || st ? -1 : m.object);
 		decisions.push_back(m.candidate     ? eval::Decision::Undecided
 		                    : st            ? eval::Decision::Static
 		                    : m.object >= 0 ? eval::Decision::Moving

@@ -48,7 +48,10 @@ struct TClassDecisions
 	std::vector<int64_t> groups;
 	std::vector<int> steps;    ///< the step of each reading
 	std::vector<int32_t> ids;  ///< the track ID the filter used (-1 readings: as resolved)
-	int stepsAdded = 0;        ///< add() calls so far (= the next step)
+	/** The estimator's object of each reading (TRoutedReading::object; -1: static, candidate
+	 * or skipped): the numbers of the run's object estimates (eval/object_matching.h). */
+	std::vector<int32_t> objects;
+	int stepsAdded = 0;  ///< add() calls so far (= the next step)
 	/** The router's counts over the run (estimator::TRoutedStep): tracks restarted after a
 	 * break (ID reused), split off their object, joined an earlier object; readings held back,
 	 * ID -1 readings skipped. */
@@ -116,6 +119,9 @@ public:
 	TGroundTruth gt;
 	std::string groundTruthUsed, noiseUsed;
 	std::string tableText;  ///< the printed table
+	/** One line per classifying row on how its object columns were scored (objects matched to
+	 * the truth by their readings, or empty without a class ground truth); under the table. */
+	std::vector<std::string> objectNotes;
 	std::vector<std::string> writtenFiles;
 
 private:
@@ -135,8 +141,13 @@ private:
 	void differenceRows();
 	void buildTable();          ///< tableText: the rows, the footnote, the diverged filters
 	void writeVisualOutputs();  ///< --scene, --video
-	/** Scores of a classifying run against <groundTruthUsed>_gt_classes.csv (empty, with a
-	 * warning, if the file is missing or its reading count differs). */
-	std::optional<eval::TMetricsRow::TClassScores> classScores(const TClassDecisions& d) const;
+	/** The object velocity columns of a row (by object number). A classifying row
+	 * (classifying != nullptr) is scored against <groundTruthUsed>_gt_classes.csv instead: the
+	 * class_* columns, and the object columns with the estimated objects matched to the true
+	 * ones by their readings (eval/object_matching.h; agent_* RMSE cells empty). Without the
+	 * file, or with another reading count: those columns empty, a warning and a line in
+	 * objectNotes. */
+	void scoreObjects(eval::TMetricsRow& row, const TClassDecisions* classifying,
+	                  const eval::TRunEstimates& est);
 };
 }  // namespace dynslam::apps
