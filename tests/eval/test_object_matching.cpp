@@ -4,6 +4,7 @@
 #include <dynslam/eval/object_matching.h>
 #include <dynslam/eval/writers.h>
 #include <gtest/gtest.h>
+#include <velocity_estimate.h>
 
 #include <cmath>
 #include <sstream>
@@ -41,16 +42,10 @@ TReadingClass reading(int32_t object)
 	return r;
 }
 
+/** Velocity v (unit variances) of object `obj` at `step`. */
 TObjectPoseEstimate velocityOf(int32_t obj, int step, const Eigen::Vector2d& v)
 {
-	TObjectPoseEstimate p;
-	p.object = obj;
-	p.step = step;
-	p.mean = Eigen::Vector3d::Zero();
-	p.cov = Eigen::Matrix3d::Identity();
-	p.velocity = v;
-	p.velocity_cov = Eigen::Matrix2d::Identity();
-	return p;
+	return eval_test::withVelocity(obj, step, v, Eigen::Vector2d::Ones());
 }
 
 /** The router's numbering: estimated object 0 is true object 1 (3 of its 4 readings), 1 is

@@ -5,12 +5,14 @@
 #include <dynslam/eval/velocity_metrics.h>
 #include <dynslam/eval/writers.h>
 #include <gtest/gtest.h>
+#include <velocity_estimate.h>
 
 #include <cmath>
 #include <sstream>
 
 using namespace dynslam;
 using namespace dynslam::eval;
+using eval_test::withVelocity;
 
 namespace
 {
@@ -36,18 +38,6 @@ TGroundTruth movingObject()
 	return gt;
 }
 
-TObjectPoseEstimate withVelocity(int32_t obj, int step, const Eigen::Vector3d& v,
-                                 const Eigen::Vector3d& var)
-{
-	TObjectPoseEstimate p;
-	p.object = obj;
-	p.step = step;
-	p.mean = Eigen::Vector3d::Zero();
-	p.cov = Eigen::Matrix3d::Identity();
-	p.velocity = v;
-	p.velocity_cov = var.asDiagonal();
-	return p;
-}
 }  // namespace
 
 TEST(VelocityMetrics, TruthByCentralAndOneSidedDifferences)
