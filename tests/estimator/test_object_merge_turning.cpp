@@ -123,7 +123,8 @@ TTurnRun runTurning(const std::string& keys)
 TEST(ObjectMergeTurning, MergedFeaturesFollowTheFoundersCentroid)
 {
 	// classify_motion_std = 2 m per step: the link's velocity gate must pass the car's velocity
-	// turned by 0.67 rad in the gap (5.4 m/s, 2.7 m per step; 1 m per step links no gap > 6).
+	// turned by 0.67 rad in the gap (5.4 m/s, 2.7 m per step; with 1 m per step a gap of 8 or 10
+	// steps is not linked).
 	const std::string common =
 	    "feature_labels = classify\nclassify_use_hints = true\nclassify_merge_linked = true\n"
 	    "classify_motion_std = 2.0\ncv_dt = 0.5\ncv_velocity_prior_std = [0.5 0.5 "
