@@ -74,6 +74,18 @@ TObjectFit objectFit(const estimator::CPaddedLayout& ext, const estimator::TObje
 	return fit;
 }
 
+/** ids sorted into out (a set's lookups by binary search, without its nodes). */
+std::vector<int32_t>& sortedIds(const std::vector<int32_t>& ids, std::vector<int32_t>& out)
+{
+	out.assign(ids.begin(), ids.end());
+	std::sort(out.begin(), out.end());
+	return out;
+}
+bool contains(const std::vector<int32_t>& sorted, int32_t id)
+{
+	return std::binary_search(sorted.begin(), sorted.end(), id);
+}
+
 TBlock featureBlock(BlockKind kind, const estimator::TRoutedReading& m, int step)
 {
 	TBlock b;
@@ -87,11 +99,11 @@ TBlock featureBlock(BlockKind kind, const estimator::TRoutedReading& m, int step
 }
 }  // namespace
 
-estimator::CPaddedLayout CDynamicKFSLAM2D::extendedLayout(const TPending& plan) const
+const estimator::CPaddedLayout& CDynamicKFSLAM2D::extendedLayout(const TPending& plan)
 {
-	estimator::CPaddedLayout ext = m_layout;
-	for (const auto& b : plan.blocks) ext.append(b);
-	return ext;
+	m_ext = m_layout;  // copy assignment: reuses m_ext's capacity
+	for (const auto& b : plan.blocks) m_ext.append(b);
+	return m_ext;
 }
 
 void CDynamicKFSLAM2D::convertStaticLandmarks(
@@ -116,14 +128,18 @@ void CDynamicKFSLAM2D::convertStaticLandmarks(
 void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 {
 	using estimator::Route;
-	std::vector<Eigen::Vector2d> z;
+	std::vector<Eigen::Vector2d>& z = m_zScratch;
+	z.clear();
 	// Time-t features left from an earlier step (drop_time_t_features = false) are replaced
 	// by this step's for the objects seen now.
-	std::set<int32_t> seenObjects;  // objects read now (unknown features included)
+	std::vector<int32_t>& seenObjects = m_idScratch;  // objects read now (unknown features too)
+	seenObjects.clear();
 	for (const auto& m : m_routed.readings)
-		if (m.object >= 0) seenObjects.insert(m.object);
+		if (m.object >= 0) seenObjects.push_back(m.object);
+	std::sort(seenObjects.begin(), seenObjects.end());
 	for (size_t b = 0; b < m_layout.size(); ++b)
-		if (m_layout[b].kind == BlockKind::ObjectFeatureT && seenObjects.count(m_layout[b].object))
+		if (m_layout[b].kind == BlockKind::ObjectFeatureT &&
+		    contains(seenObjects, m_layout[b].object))
 		{
 			plan.remove.push_back(b);
 			++m_report.dropped_time_t;
@@ -156,7 +172,7 @@ void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 {
 	// Layout and mean of the state extended by the pending features.
-	const estimator::CPaddedLayout ext = extendedLayout(plan);
+	const estimator::CPaddedLayout& ext = extendedLayout(plan);
 	const Eigen::Index n = m_xkk.size();
 	Eigen::VectorXd x(n + plan.a.mean.size());
 	x << m_xkk.asEigen(), plan.a.mean;
@@ -249,14 +265,15 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 {
 	// Over the blocks extended by the pending ones; only existing entries can be old enough to
 	// be recorded (a pending pose is the newest of its object, K >= 1), so marginals come from P.
-	const estimator::CPaddedLayout ext = extendedLayout(plan);
+	const estimator::CPaddedLayout& ext = extendedLayout(plan);
 	std::vector<size_t>& remove = plan.remove;
 	const auto P = cov();
 	// Time-t features, once they have served the pose augmentation (stale ones from earlier
 	// steps may already be listed by planFeatures).
 	if (m_drop.dropTimeT())
 	{
-		std::vector<bool> listed(ext.size(), false);
+		std::vector<bool>& listed = m_dropFlags;
+		listed.assign(ext.size(), false);
 		for (const size_t b : remove) listed[b] = true;
 		for (size_t b = 0; b < ext.size(); ++b)
 			if (ext[b].kind == BlockKind::ObjectFeatureT && !listed[b])
@@ -290,18 +307,18 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 	}
 	// Static landmarks unseen for too long (optional; never one added in this step), and those
 	// the router reclassified as moving (feature_labels = classify: not recorded as static).
-	const std::set<int32_t> moving(m_routed.reclassified.begin(), m_routed.reclassified.end());
-	const std::set<int32_t> candidates(m_routed.dropped_candidates.begin(),
-	                                   m_routed.dropped_candidates.end());
+	std::vector<int32_t>& moving = sortedIds(m_routed.reclassified, m_idScratch);
+	std::vector<int32_t>& candidates = sortedIds(m_routed.dropped_candidates, m_idScratch2);
 	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
 		const TBlock& t = m_layout[b];
 		if (t.kind != BlockKind::StaticLandmark) continue;
-		if (moving.count(t.id) || candidates.count(t.id))
+		const bool isMoving = contains(moving, t.id);
+		if (isMoving || contains(candidates, t.id))
 		{
 			m_drop.forget(t.id);
 			remove.push_back(b);
-			++(moving.count(t.id) ? m_report.reclassified_static : m_report.dropped_candidates);
+			++(isMoving ? m_report.reclassified_static : m_report.dropped_candidates);
 			continue;
 		}
 		if (!m_drop.staticDue(t.id, m_step, t.step)) continue;
@@ -323,11 +340,13 @@ void CDynamicKFSLAM2D::commit(TPending& plan)
 	const Eigen::Index n = m_xkk.size(), ma = plan.a.mean.size(), mb = plan.b.mean.size(),
 	                   m = ma + mb;
 	if (m == 0 && plan.remove.empty()) return;
-	estimator::CPaddedLayout ext = extendedLayout(plan);
+	extendedLayout(plan);
+	estimator::CPaddedLayout& ext = m_ext;
 	if (ext.storageDim() != n + m)
 		throw std::logic_error("CDynamicKFSLAM2D::commit: inconsistent block sizes");
 	if (ma == 0) plan.a.cross.resize(0, n);
-	std::vector<bool> drop(ext.size(), false);
+	std::vector<bool>& drop = m_dropFlags;
+	drop.assign(ext.size(), false);
 	for (const size_t b : plan.remove)
 	{
 		if (b >= ext.size()) throw std::out_of_range("CDynamicKFSLAM2D::commit: block index");
@@ -353,16 +372,18 @@ void CDynamicKFSLAM2D::commit(TPending& plan)
 		m_cov.swap(next);
 	}
 	m_pkkStale = true;
-	Eigen::VectorXd x(n + m);
+	m_xScratch.resize(size_t(n + m));
+	Eigen::Map<Eigen::VectorXd> x(m_xScratch.data(), n + m);
 	x << m_xkk.asEigen(), plan.a.mean, plan.b.mean;
-	const Eigen::VectorXd xn = x(keep);
 	m_xkk.resize(size_t(N));
-	m_xkk.asEigen() = xn;
+	for (Eigen::Index i = 0; i < N; ++i) m_xkk[i] = x[keep[size_t(i)]];
 
 	ext.removeBlocks(drop);
-	m_layout = std::move(ext);
+	std::swap(m_layout, m_ext);  // both keep their capacity
 	onLayoutChanged();
-	plan = TPending();
+	plan.a = plan.b = ekf::Augmentation();
+	plan.blocks.clear();
+	plan.remove.clear();
 }
 
 }  // namespace dynslam
