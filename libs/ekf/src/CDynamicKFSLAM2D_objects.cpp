@@ -17,27 +17,69 @@ using estimator::TBlock;
 
 namespace
 {
-/** Where each object's blocks are, from one scan of the layout. */
+/** Where one object's blocks are, from one scan of the layout. */
 struct TObjectBlocks
 {
-	std::map<int32_t, size_t> f0;  ///< feature ID -> its time-0 block
-	std::vector<size_t> ft;        ///< time-t feature blocks of the current step
-	std::vector<size_t> poses;     ///< pose blocks, ascending step
+	int32_t object = -1;
+	std::vector<std::pair<int32_t, size_t>> f0;  ///< (feature ID, its time-0 block), by ID
+	std::vector<size_t> ft;                      ///< time-t feature blocks of the current step
+	std::vector<size_t> poses;                   ///< pose blocks, ascending step
+	/** The time-0 block of feature id (the last one if listed twice, as a map's assignment
+	 * kept), or nullptr. */
+	const size_t* findF0(int32_t id) const
+	{
+		auto it = std::upper_bound(f0.begin(), f0.end(), id,
+		                           [](int32_t v, const auto& e) { return v < e.first; });
+		return it != f0.begin() && (--it)->first == id ? &it->second : nullptr;
+	}
 };
-std::map<int32_t, TObjectBlocks> indexObjects(const estimator::CPaddedLayout& L, int step)
+/** The objects with a block, ascending ID (a range into a per-thread pool whose vectors keep
+ * their capacity: the map of before allocated a node per object and per feature each step). */
+struct TObjectIndex
 {
-	std::map<int32_t, TObjectBlocks> out;
+	const TObjectBlocks *first, *last;
+	const TObjectBlocks* begin() const { return first; }
+	const TObjectBlocks* end() const { return last; }
+};
+bool indexed(BlockKind k, int blockStep, int step)
+{
+	return k == BlockKind::ObjectFeature0 || k == BlockKind::ObjectPose ||
+	       (k == BlockKind::ObjectFeatureT && blockStep == step);
+}
+TObjectIndex indexObjects(const estimator::CPaddedLayout& L, int step)
+{
+	static thread_local std::vector<int32_t> objs;
+	static thread_local std::vector<TObjectBlocks> pool;
+	objs.clear();
+	for (size_t b = 0; b < L.size(); ++b)
+		if (indexed(L[b].kind, L[b].step, step)) objs.push_back(L[b].object);
+	std::sort(objs.begin(), objs.end());
+	objs.erase(std::unique(objs.begin(), objs.end()), objs.end());
+	if (pool.size() < objs.size()) pool.resize(objs.size());
+	for (size_t k = 0; k < objs.size(); ++k)
+	{
+		pool[k].object = objs[k];
+		pool[k].f0.clear();
+		pool[k].ft.clear();
+		pool[k].poses.clear();
+	}
 	for (size_t b = 0; b < L.size(); ++b)
 	{
 		const TBlock& t = L[b];
+		if (!indexed(t.kind, t.step, step)) continue;
+		TObjectBlocks& o =
+		    pool[size_t(std::lower_bound(objs.begin(), objs.end(), t.object) - objs.begin())];
 		if (t.kind == BlockKind::ObjectFeature0)
-			out[t.object].f0[t.id] = b;
-		else if (t.kind == BlockKind::ObjectFeatureT && t.step == step)
-			out[t.object].ft.push_back(b);
-		else if (t.kind == BlockKind::ObjectPose)
-			out[t.object].poses.push_back(b);
+			o.f0.emplace_back(t.id, b);
+		else if (t.kind == BlockKind::ObjectFeatureT)
+			o.ft.push_back(b);
+		else
+			o.poses.push_back(b);
 	}
-	return out;
+	for (size_t k = 0; k < objs.size(); ++k)
+		std::stable_sort(pool[k].f0.begin(), pool[k].f0.end(),
+		                 [](const auto& a, const auto& b) { return a.first < b.first; });
+	return {pool.data(), pool.data() + objs.size()};
 }
 
 /** An object's pose fit at this step: its features with an f_0 block (founders first, in
@@ -48,30 +90,40 @@ struct TObjectFit
 	std::vector<int> f0_idx, ft_idx, seen;
 	std::vector<size_t> joiners;  ///< their time-t blocks
 };
-TObjectFit objectFit(const estimator::CPaddedLayout& ext, const estimator::TObjectEntry& info,
-                     const TObjectBlocks& os)
+/** Writes the fit into `fit` (its vectors cleared first, their capacity kept). */
+void objectFit(const estimator::CPaddedLayout& ext, const estimator::TObjectEntry& info,
+               const TObjectBlocks& os, TObjectFit& fit)
 {
-	TObjectFit fit;
-	std::map<int32_t, int> pos;  // feature ID -> column of f0_idx
+	fit.f0_idx.clear();
+	fit.ft_idx.clear();
+	fit.seen.clear();
+	fit.joiners.clear();
+	static thread_local std::vector<std::pair<int32_t, int>> pos;  // feature ID -> column
+	pos.clear();
+	const auto findPos = [](int32_t id)
+	{ return std::find_if(pos.begin(), pos.end(), [id](const auto& e) { return e.first == id; }); };
 	for (const int32_t id : info.feature_ids)
 	{
-		const auto it = os.f0.find(id);
-		if (it == os.f0.end() || (info.founders == 1 && !fit.f0_idx.empty())) continue;
-		pos[id] = int(fit.f0_idx.size());
-		fit.f0_idx.push_back(ext.first(it->second));
+		const size_t* b0 = os.findF0(id);
+		if (!b0 || (info.founders == 1 && !fit.f0_idx.empty())) continue;
+		const auto it = findPos(id);
+		if (it != pos.end())
+			it->second = int(fit.f0_idx.size());
+		else
+			pos.emplace_back(id, int(fit.f0_idx.size()));
+		fit.f0_idx.push_back(ext.first(*b0));
 	}
 	for (const size_t b : os.ft)
 	{
-		const auto it = pos.find(ext[b].id);
+		const auto it = findPos(ext[b].id);
 		if (it != pos.end())
 		{
 			fit.ft_idx.push_back(ext.first(b));
 			fit.seen.push_back(it->second);
 		}
-		else if (!os.f0.count(ext[b].id))
+		else if (!os.findF0(ext[b].id))
 			fit.joiners.push_back(b);
 	}
-	return fit;
 }
 
 /** ids sorted into out (a set's lookups by binary search, without its nodes). */
@@ -174,18 +226,24 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 	// Layout and mean of the state extended by the pending features.
 	const estimator::CPaddedLayout& ext = extendedLayout(plan);
 	const Eigen::Index n = m_xkk.size();
-	Eigen::VectorXd x(n + plan.a.mean.size());
+	m_xScratch.resize(size_t(n + plan.a.mean.size()));
+	Eigen::Map<Eigen::VectorXd> x(m_xScratch.data(), n + plan.a.mean.size());
 	x << m_xkk.asEigen(), plan.a.mean;
 
-	std::vector<ekf::ObjectPoseLinearization> lins;
-	std::vector<TBlock> poses;
-	std::vector<Eigen::Index> at;  // first entry of each pose among the new entries
+	static thread_local std::vector<ekf::ObjectPoseLinearization> lins;
+	static thread_local std::vector<TBlock> poses;
+	static thread_local std::vector<Eigen::Index> at;  // first entry of each pose among the new
+	static thread_local TObjectFit fit;
+	lins.clear();
+	poses.clear();
+	at.clear();
 	Eigen::Index size = 0;
-	for (const auto& [obj, os] : indexObjects(ext, m_step))
+	for (const TObjectBlocks& os : indexObjects(ext, m_step))
 	{
+		const int32_t obj = os.object;
 		if (os.ft.empty()) continue;
 		const estimator::TObjectEntry& info = m_router->registry().at(obj);
-		const TObjectFit fit = objectFit(ext, info, os);
+		objectFit(ext, info, os, fit);
 		if (fit.f0_idx.empty() || (info.founders >= 2 && fit.ft_idx.size() < 2) ||
 		    (info.founders == 1 && fit.ft_idx.size() != 1))
 		{
@@ -236,8 +294,9 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 
 void CDynamicKFSLAM2D::applyObjectMotion()
 {
-	for (const auto& [obj, os] : indexObjects(m_layout, m_step))
+	for (const TObjectBlocks& os : indexObjects(m_layout, m_step))
 	{
+		const int32_t obj = os.object;
 		const int d = m_router->registry().at(obj).poseDim();
 		std::vector<int> steps;
 		for (const size_t b : os.poses) steps.push_back(m_layout[b].step);
@@ -283,8 +342,9 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 			}
 	}
 	// Object poses beyond the last K: recorded with their marginal covariance.
-	for (const auto& [obj, os] : indexObjects(ext, m_step))
+	for (const TObjectBlocks& os : indexObjects(ext, m_step))
 	{
+		const int32_t obj = os.object;
 		const size_t nd = m_drop.posesToDrop(os.poses.size());
 		for (size_t i = 0; i < nd; ++i)
 		{
