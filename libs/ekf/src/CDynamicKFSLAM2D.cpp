@@ -234,7 +234,10 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 
 		// New entries, the object motion model and drops, committed together (one covariance
 		// rewrite; two with a motion model, which needs the new poses in the state first).
-		TPending plan;
+		TPending& plan = m_plan;  // its vectors keep their capacity (commit() clears them)
+		plan.a = plan.b = ekf::Augmentation();
+		plan.blocks.clear();
+		plan.remove.clear();
 		planFeatures(plan);     // Alg. 3
 		planObjectPoses(plan);  // Alg. 4
 		if (m_motion->name() != "none")

@@ -17,27 +17,69 @@ using estimator::TBlock;
 
 namespace
 {
-/** Where each object's blocks are, from one scan of the layout. */
+/** Where one object's blocks are, from one scan of the layout. */
 struct TObjectBlocks
 {
-	std::map<int32_t, size_t> f0;  ///< feature ID -> its time-0 block
-	std::vector<size_t> ft;        ///< time-t feature blocks of the current step
-	std::vector<size_t> poses;     ///< pose blocks, ascending step
+	int32_t object = -1;
+	std::vector<std::pair<int32_t, size_t>> f0;  ///< (feature ID, its time-0 block), by ID
+	std::vector<size_t> ft;                      ///< time-t feature blocks of the current step
+	std::vector<size_t> poses;                   ///< pose blocks, ascending step
+	/** The time-0 block of feature id (the last one if listed twice, as a map's assignment
+	 * kept), or nullptr. */
+	const size_t* findF0(int32_t id) const
+	{
+		auto it = std::upper_bound(f0.begin(), f0.end(), id,
+		                           [](int32_t v, const auto& e) { return v < e.first; });
+		return it != f0.begin() && (--it)->first == id ? &it->second : nullptr;
+	}
 };
-std::map<int32_t, TObjectBlocks> indexObjects(const estimator::CPaddedLayout& L, int step)
+/** The objects with a block, ascending ID (a range into a per-thread pool whose vectors keep
+ * their capacity: the map of before allocated a node per object and per feature each step). */
+struct TObjectIndex
 {
-	std::map<int32_t, TObjectBlocks> out;
+	const TObjectBlocks *first, *last;
+	const TObjectBlocks* begin() const { return first; }
+	const TObjectBlocks* end() const { return last; }
+};
+bool indexed(BlockKind k, int blockStep, int step)
+{
+	return k == BlockKind::ObjectFeature0 || k == BlockKind::ObjectPose ||
+	       (k == BlockKind::ObjectFeatureT && blockStep == step);
+}
+TObjectIndex indexObjects(const estimator::CPaddedLayout& L, int step)
+{
+	static thread_local std::vector<int32_t> objs;
+	static thread_local std::vector<TObjectBlocks> pool;
+	objs.clear();
+	for (size_t b = 0; b < L.size(); ++b)
+		if (indexed(L[b].kind, L[b].step, step)) objs.push_back(L[b].object);
+	std::sort(objs.begin(), objs.end());
+	objs.erase(std::unique(objs.begin(), objs.end()), objs.end());
+	if (pool.size() < objs.size()) pool.resize(objs.size());
+	for (size_t k = 0; k < objs.size(); ++k)
+	{
+		pool[k].object = objs[k];
+		pool[k].f0.clear();
+		pool[k].ft.clear();
+		pool[k].poses.clear();
+	}
 	for (size_t b = 0; b < L.size(); ++b)
 	{
 		const TBlock& t = L[b];
+		if (!indexed(t.kind, t.step, step)) continue;
+		TObjectBlocks& o =
+		    pool[size_t(std::lower_bound(objs.begin(), objs.end(), t.object) - objs.begin())];
 		if (t.kind == BlockKind::ObjectFeature0)
-			out[t.object].f0[t.id] = b;
-		else if (t.kind == BlockKind::ObjectFeatureT && t.step == step)
-			out[t.object].ft.push_back(b);
-		else if (t.kind == BlockKind::ObjectPose)
-			out[t.object].poses.push_back(b);
+			o.f0.emplace_back(t.id, b);
+		else if (t.kind == BlockKind::ObjectFeatureT)
+			o.ft.push_back(b);
+		else
+			o.poses.push_back(b);
 	}
-	return out;
+	for (size_t k = 0; k < objs.size(); ++k)
+		std::stable_sort(pool[k].f0.begin(), pool[k].f0.end(),
+		                 [](const auto& a, const auto& b) { return a.first < b.first; });
+	return {pool.data(), pool.data() + objs.size()};
 }
 
 /** An object's pose fit at this step: its features with an f_0 block (founders first, in
@@ -48,30 +90,52 @@ struct TObjectFit
 	std::vector<int> f0_idx, ft_idx, seen;
 	std::vector<size_t> joiners;  ///< their time-t blocks
 };
-TObjectFit objectFit(const estimator::CPaddedLayout& ext, const estimator::TObjectEntry& info,
-                     const TObjectBlocks& os)
+/** Writes the fit into `fit` (its vectors cleared first, their capacity kept). */
+void objectFit(const estimator::CPaddedLayout& ext, const estimator::TObjectEntry& info,
+               const TObjectBlocks& os, TObjectFit& fit)
 {
-	TObjectFit fit;
-	std::map<int32_t, int> pos;  // feature ID -> column of f0_idx
+	fit.f0_idx.clear();
+	fit.ft_idx.clear();
+	fit.seen.clear();
+	fit.joiners.clear();
+	static thread_local std::vector<std::pair<int32_t, int>> pos;  // feature ID -> column
+	pos.clear();
+	const auto findPos = [](int32_t id)
+	{ return std::find_if(pos.begin(), pos.end(), [id](const auto& e) { return e.first == id; }); };
 	for (const int32_t id : info.feature_ids)
 	{
-		const auto it = os.f0.find(id);
-		if (it == os.f0.end() || (info.founders == 1 && !fit.f0_idx.empty())) continue;
-		pos[id] = int(fit.f0_idx.size());
-		fit.f0_idx.push_back(ext.first(it->second));
+		const size_t* b0 = os.findF0(id);
+		if (!b0 || (info.founders == 1 && !fit.f0_idx.empty())) continue;
+		const auto it = findPos(id);
+		if (it != pos.end())
+			it->second = int(fit.f0_idx.size());
+		else
+			pos.emplace_back(id, int(fit.f0_idx.size()));
+		fit.f0_idx.push_back(ext.first(*b0));
 	}
 	for (const size_t b : os.ft)
 	{
-		const auto it = pos.find(ext[b].id);
+		const auto it = findPos(ext[b].id);
 		if (it != pos.end())
 		{
 			fit.ft_idx.push_back(ext.first(b));
 			fit.seen.push_back(it->second);
 		}
-		else if (!os.f0.count(ext[b].id))
+		else if (!os.findF0(ext[b].id))
 			fit.joiners.push_back(b);
 	}
-	return fit;
+}
+
+/** ids sorted into out (a set's lookups by binary search, without its nodes). */
+std::vector<int32_t>& sortedIds(const std::vector<int32_t>& ids, std::vector<int32_t>& out)
+{
+	out.assign(ids.begin(), ids.end());
+	std::sort(out.begin(), out.end());
+	return out;
+}
+bool contains(const std::vector<int32_t>& sorted, int32_t id)
+{
+	return std::binary_search(sorted.begin(), sorted.end(), id);
 }
 
 TBlock featureBlock(BlockKind kind, const estimator::TRoutedReading& m, int step)
@@ -87,11 +151,11 @@ TBlock featureBlock(BlockKind kind, const estimator::TRoutedReading& m, int step
 }
 }  // namespace
 
-estimator::CPaddedLayout CDynamicKFSLAM2D::extendedLayout(const TPending& plan) const
+const estimator::CPaddedLayout& CDynamicKFSLAM2D::extendedLayout(const TPending& plan)
 {
-	estimator::CPaddedLayout ext = m_layout;
-	for (const auto& b : plan.blocks) ext.append(b);
-	return ext;
+	m_ext = m_layout;  // copy assignment: reuses m_ext's capacity
+	for (const auto& b : plan.blocks) m_ext.append(b);
+	return m_ext;
 }
 
 void CDynamicKFSLAM2D::convertStaticLandmarks(
@@ -116,14 +180,18 @@ void CDynamicKFSLAM2D::convertStaticLandmarks(
 void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 {
 	using estimator::Route;
-	std::vector<Eigen::Vector2d> z;
+	std::vector<Eigen::Vector2d>& z = m_zScratch;
+	z.clear();
 	// Time-t features left from an earlier step (drop_time_t_features = false) are replaced
 	// by this step's for the objects seen now.
-	std::set<int32_t> seenObjects;  // objects read now (unknown features included)
+	std::vector<int32_t>& seenObjects = m_idScratch;  // objects read now (unknown features too)
+	seenObjects.clear();
 	for (const auto& m : m_routed.readings)
-		if (m.object >= 0) seenObjects.insert(m.object);
+		if (m.object >= 0) seenObjects.push_back(m.object);
+	std::sort(seenObjects.begin(), seenObjects.end());
 	for (size_t b = 0; b < m_layout.size(); ++b)
-		if (m_layout[b].kind == BlockKind::ObjectFeatureT && seenObjects.count(m_layout[b].object))
+		if (m_layout[b].kind == BlockKind::ObjectFeatureT &&
+		    contains(seenObjects, m_layout[b].object))
 		{
 			plan.remove.push_back(b);
 			++m_report.dropped_time_t;
@@ -156,20 +224,26 @@ void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 {
 	// Layout and mean of the state extended by the pending features.
-	const estimator::CPaddedLayout ext = extendedLayout(plan);
+	const estimator::CPaddedLayout& ext = extendedLayout(plan);
 	const Eigen::Index n = m_xkk.size();
-	Eigen::VectorXd x(n + plan.a.mean.size());
+	m_xScratch.resize(size_t(n + plan.a.mean.size()));
+	Eigen::Map<Eigen::VectorXd> x(m_xScratch.data(), n + plan.a.mean.size());
 	x << m_xkk.asEigen(), plan.a.mean;
 
-	std::vector<ekf::ObjectPoseLinearization> lins;
-	std::vector<TBlock> poses;
-	std::vector<Eigen::Index> at;  // first entry of each pose among the new entries
+	static thread_local std::vector<ekf::ObjectPoseLinearization> lins;
+	static thread_local std::vector<TBlock> poses;
+	static thread_local std::vector<Eigen::Index> at;  // first entry of each pose among the new
+	static thread_local TObjectFit fit;
+	lins.clear();
+	poses.clear();
+	at.clear();
 	Eigen::Index size = 0;
-	for (const auto& [obj, os] : indexObjects(ext, m_step))
+	for (const TObjectBlocks& os : indexObjects(ext, m_step))
 	{
+		const int32_t obj = os.object;
 		if (os.ft.empty()) continue;
 		const estimator::TObjectEntry& info = m_router->registry().at(obj);
-		const TObjectFit fit = objectFit(ext, info, os);
+		objectFit(ext, info, os, fit);
 		if (fit.f0_idx.empty() || (info.founders >= 2 && fit.ft_idx.size() < 2) ||
 		    (info.founders == 1 && fit.ft_idx.size() != 1))
 		{
@@ -220,8 +294,9 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 
 void CDynamicKFSLAM2D::applyObjectMotion()
 {
-	for (const auto& [obj, os] : indexObjects(m_layout, m_step))
+	for (const TObjectBlocks& os : indexObjects(m_layout, m_step))
 	{
+		const int32_t obj = os.object;
 		const int d = m_router->registry().at(obj).poseDim();
 		std::vector<int> steps;
 		for (const size_t b : os.poses) steps.push_back(m_layout[b].step);
@@ -249,14 +324,15 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 {
 	// Over the blocks extended by the pending ones; only existing entries can be old enough to
 	// be recorded (a pending pose is the newest of its object, K >= 1), so marginals come from P.
-	const estimator::CPaddedLayout ext = extendedLayout(plan);
+	const estimator::CPaddedLayout& ext = extendedLayout(plan);
 	std::vector<size_t>& remove = plan.remove;
 	const auto P = cov();
 	// Time-t features, once they have served the pose augmentation (stale ones from earlier
 	// steps may already be listed by planFeatures).
 	if (m_drop.dropTimeT())
 	{
-		std::vector<bool> listed(ext.size(), false);
+		std::vector<bool>& listed = m_dropFlags;
+		listed.assign(ext.size(), false);
 		for (const size_t b : remove) listed[b] = true;
 		for (size_t b = 0; b < ext.size(); ++b)
 			if (ext[b].kind == BlockKind::ObjectFeatureT && !listed[b])
@@ -266,8 +342,9 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 			}
 	}
 	// Object poses beyond the last K: recorded with their marginal covariance.
-	for (const auto& [obj, os] : indexObjects(ext, m_step))
+	for (const TObjectBlocks& os : indexObjects(ext, m_step))
 	{
+		const int32_t obj = os.object;
 		const size_t nd = m_drop.posesToDrop(os.poses.size());
 		for (size_t i = 0; i < nd; ++i)
 		{
@@ -290,18 +367,18 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 	}
 	// Static landmarks unseen for too long (optional; never one added in this step), and those
 	// the router reclassified as moving (feature_labels = classify: not recorded as static).
-	const std::set<int32_t> moving(m_routed.reclassified.begin(), m_routed.reclassified.end());
-	const std::set<int32_t> candidates(m_routed.dropped_candidates.begin(),
-	                                   m_routed.dropped_candidates.end());
+	std::vector<int32_t>& moving = sortedIds(m_routed.reclassified, m_idScratch);
+	std::vector<int32_t>& candidates = sortedIds(m_routed.dropped_candidates, m_idScratch2);
 	for (size_t b = 0; b < m_layout.size(); ++b)
 	{
 		const TBlock& t = m_layout[b];
 		if (t.kind != BlockKind::StaticLandmark) continue;
-		if (moving.count(t.id) || candidates.count(t.id))
+		const bool isMoving = contains(moving, t.id);
+		if (isMoving || contains(candidates, t.id))
 		{
 			m_drop.forget(t.id);
 			remove.push_back(b);
-			++(moving.count(t.id) ? m_report.reclassified_static : m_report.dropped_candidates);
+			++(isMoving ? m_report.reclassified_static : m_report.dropped_candidates);
 			continue;
 		}
 		if (!m_drop.staticDue(t.id, m_step, t.step)) continue;
@@ -323,11 +400,13 @@ void CDynamicKFSLAM2D::commit(TPending& plan)
 	const Eigen::Index n = m_xkk.size(), ma = plan.a.mean.size(), mb = plan.b.mean.size(),
 	                   m = ma + mb;
 	if (m == 0 && plan.remove.empty()) return;
-	estimator::CPaddedLayout ext = extendedLayout(plan);
+	extendedLayout(plan);
+	estimator::CPaddedLayout& ext = m_ext;
 	if (ext.storageDim() != n + m)
 		throw std::logic_error("CDynamicKFSLAM2D::commit: inconsistent block sizes");
 	if (ma == 0) plan.a.cross.resize(0, n);
-	std::vector<bool> drop(ext.size(), false);
+	std::vector<bool>& drop = m_dropFlags;
+	drop.assign(ext.size(), false);
 	for (const size_t b : plan.remove)
 	{
 		if (b >= ext.size()) throw std::out_of_range("CDynamicKFSLAM2D::commit: block index");
@@ -353,16 +432,18 @@ void CDynamicKFSLAM2D::commit(TPending& plan)
 		m_cov.swap(next);
 	}
 	m_pkkStale = true;
-	Eigen::VectorXd x(n + m);
+	m_xScratch.resize(size_t(n + m));
+	Eigen::Map<Eigen::VectorXd> x(m_xScratch.data(), n + m);
 	x << m_xkk.asEigen(), plan.a.mean, plan.b.mean;
-	const Eigen::VectorXd xn = x(keep);
 	m_xkk.resize(size_t(N));
-	m_xkk.asEigen() = xn;
+	for (Eigen::Index i = 0; i < N; ++i) m_xkk[i] = x[keep[size_t(i)]];
 
 	ext.removeBlocks(drop);
-	m_layout = std::move(ext);
+	std::swap(m_layout, m_ext);  // both keep their capacity
 	onLayoutChanged();
-	plan = TPending();
+	plan.a = plan.b = ekf::Augmentation();
+	plan.blocks.clear();
+	plan.remove.clear();
 }
 
 }  // namespace dynslam

@@ -283,8 +283,9 @@ private:
 		std::vector<estimator::TBlock> blocks;
 		std::vector<size_t> remove;
 	};
-	/** The layout of the state extended by the plan. */
-	estimator::CPaddedLayout extendedLayout(const TPending& plan) const;
+	/** The layout of the state extended by the plan (written into m_ext, valid until the next
+	 * call or commit). */
+	const estimator::CPaddedLayout& extendedLayout(const TPending& plan);
 	void planFeatures(TPending& plan);     // Alg. 3: new static landmarks, objects
 	void planObjectPoses(TPending& plan);  // Alg. 4, on the state extended by plan
 	void planDrops(TPending& plan);        // drop policies, recording what they drop
@@ -330,6 +331,15 @@ private:
 	std::vector<estimator::TPassiveLevel> m_passive;  ///< compression levels, oldest first
 	std::map<int32_t, int> m_passiveStatic;           ///< passive landmark ID -> its block's step
 	int m_nextLevel = 0;
+
+	/** Per-step scratch that keeps its capacity between steps (doc/performance.md, section 16,
+	 * sixth round): the extended layout, the plan, commit's drop flags and mean. */
+	estimator::CPaddedLayout m_ext;
+	TPending m_plan;
+	std::vector<bool> m_dropFlags;
+	std::vector<double> m_xScratch;
+	std::vector<Eigen::Vector2d> m_zScratch;
+	std::vector<int32_t> m_idScratch, m_idScratch2;
 
 	/** Rebuilds what is derived from the layout: the slot view and the static-landmark index. */
 	void onLayoutChanged();
