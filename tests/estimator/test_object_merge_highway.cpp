@@ -19,12 +19,15 @@
 #include <sstream>
 
 #include "highway_filter_setup.h"
+#include "object_merge_setup.h"
 
 using namespace dynslam;
 using namespace dynslam::estimator;
 
 namespace
 {
+using dynslam_test::featureWorld;
+
 const char* kCv =
     "feature_labels = classify\nclassify_use_hints = true\ncv_dt = 0.5\n"
     "cv_velocity_prior_std = [0.5 0.5 0.05]\n";
@@ -51,29 +54,6 @@ sim::TScenarioOptions anonymousWithHints()
 	std::string s = ss.str();
 	s.replace(s.find("[Effects]"), 9, "[Effects]\ndetection_groups = true");
 	return sim::loadScenarioFromText(s);
-}
-
-/** The world position of feature `id` of object obj (pose map with its founders' centroid, its
- * newest pose); none while the object has no pose (after a fallback, cv_fallback_steps). */
-std::optional<Eigen::Vector2d> featureWorld(const CDynamicKFSLAM2D& ekf, int32_t obj, int32_t id)
-{
-	const estimator::TObjectEntry& e = ekf.router().registry().at(obj);
-	const auto& L = ekf.getLayout();
-	const auto& x = ekf.fullMean();
-	Eigen::VectorXd xi;
-	int step = -1;
-	Eigen::Matrix2Xd f0(2, e.feature_ids.size());
-	for (size_t b = 0; b < L.size(); ++b)
-	{
-		if (L[b].object != obj) continue;
-		const std::vector<int> idx = L.indices(b);
-		if (L[b].kind == BlockKind::ObjectPose && L[b].step > step)
-			xi = x.asEigen()(idx), step = L[b].step;
-		if (L[b].kind == BlockKind::ObjectFeature0) f0.col(e.indexOf(L[b].id)) = x.asEigen()(idx);
-	}
-	if (xi.size() == 0) return std::nullopt;
-	return models::objectFeatureAt(xi, f0, e.indexOf(id), nullptr, nullptr,
-	                               e.founders < f0.cols() ? e.founders : 0);
 }
 
 /** Squared speed error of every object with a velocity at step k (0 < k < last): its reference

@@ -17,12 +17,15 @@
 #include <set>
 
 #include "highway_filter_setup.h"
+#include "object_merge_setup.h"
 
 using namespace dynslam;
 using namespace dynslam::estimator;
 
 namespace
 {
+using dynslam_test::featureWorld;
+
 /** One car on a circle of radius 60 m around with the ego (both at 8 m/s: 0.13 rad/s). */
 const char* kCircle =
     "[Scenario]\ntype = generated\nname = merge_turning\ndt = 0.5\nsteps = 80\n"
@@ -47,29 +50,6 @@ struct TTurnRun
 	double feat_rmse = 0;
 	size_t feat_n = 0;
 };
-
-/** The world position of feature `id` of object obj: its pose map with its founders' centroid
- * (the documented meaning of xi), its newest pose; none while the object has no pose. */
-std::optional<Eigen::Vector2d> featureWorld(const CDynamicKFSLAM2D& ekf, int32_t obj, int32_t id)
-{
-	const estimator::TObjectEntry& e = ekf.router().registry().at(obj);
-	const auto& L = ekf.getLayout();
-	const auto& x = ekf.fullMean();
-	Eigen::VectorXd xi;
-	int step = -1;
-	Eigen::Matrix2Xd f0(2, e.feature_ids.size());
-	for (size_t b = 0; b < L.size(); ++b)
-	{
-		if (L[b].object != obj) continue;
-		const std::vector<int> idx = L.indices(b);
-		if (L[b].kind == BlockKind::ObjectPose && L[b].step > step)
-			xi = x.asEigen()(idx), step = L[b].step;
-		if (L[b].kind == BlockKind::ObjectFeature0) f0.col(e.indexOf(L[b].id)) = x.asEigen()(idx);
-	}
-	if (xi.size() == 0) return std::nullopt;
-	return models::objectFeatureAt(xi, f0, e.indexOf(id), nullptr, nullptr,
-	                               e.founders < f0.cols() ? e.founders : 0);
-}
 
 TTurnRun runTurning(const std::string& keys)
 {
