@@ -34,4 +34,16 @@ inline void configureHighwayCv(dynslam::CDynamicKFSLAM2D& f,
 	f.options.cv.accel_psd = psd;
 	f.options.cv.velocity_prior_std = Eigen::Vector3d(0.5, 0.5, 0.05);
 }
+
+/** The filter's whole estimate as one vector: the mean without pads, then its covariance
+ * (column-major), for bit-for-bit comparisons of two runs. */
+inline Eigen::VectorXd meanAndCovariance(const dynslam::CDynamicKFSLAM2D& f)
+{
+	Eigen::VectorXd x;
+	Eigen::MatrixXd P;
+	f.getStateWithoutPads(x, P);
+	Eigen::VectorXd out(x.size() + P.size());
+	out << x, P.reshaped();
+	return out;
+}
 }  // namespace dynslam_test
