@@ -329,6 +329,8 @@ TEST(CompareApp, ClassifiedRowWritesClassFigures)
 	mrpt::img::CImage map, tl;
 	ASSERT_TRUE(map.loadFromFile(out + "/dynamic_classified_class_map.png"));
 	ASSERT_TRUE(tl.loadFromFile(out + "/dynamic_classified_class_timeline.png"));
+	// The scores and both figures share one reading of highway_gt_classes.csv.
+	EXPECT_EQ(app.classTruthFilesRead, 1u);
 	EXPECT_EQ(map.getWidth(), 1600u);
 	EXPECT_EQ(map.getHeight(), 700u);
 	EXPECT_EQ(tl.getWidth(), 1310u);

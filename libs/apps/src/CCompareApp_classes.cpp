@@ -23,16 +23,12 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 	eval::blankObjectColumns(row.metrics);
 	const std::string file = groundTruthUsed + "_gt_classes.csv";
 	std::string why;
-	std::vector<TReadingClass> truth;
-	if (!std::filesystem::exists(file))
+	const std::vector<TReadingClass>* classes = classTruth();
+	if (!classes)
 		why = "no class ground truth " + file;
-	else
-	{
-		truth = readClassGroundTruth(file);
-		if (truth.size() != d.decisions.size())
-			why = file + " has " + std::to_string(truth.size()) + " readings, the run " +
-			      std::to_string(d.decisions.size());
-	}
+	else if (classes->size() != d.decisions.size())
+		why = file + " has " + std::to_string(classes->size()) + " readings, the run " +
+		      std::to_string(d.decisions.size());
 	if (!why.empty())
 	{
 		MRPT_LOG_WARN_FMT("%s: the class_* and object columns stay empty", why.c_str());
@@ -41,6 +37,7 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 		                      "its object numbers are the router's, not the truth's");
 		return;
 	}
+	const std::vector<TReadingClass>& truth = *classes;
 	const eval::TBinaryScores s = eval::perReadingScores(truth, d.decisions);
 	row.classes = eval::TMetricsRow::TClassScores{s.precision, s.recall, s.f1,
 	                                              eval::groupingAri(truth, d.groups)};
@@ -59,6 +56,21 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 	                      std::to_string(unmatched) +
 	                      " without a true object); agent_* RMSE cells left empty (router "
 	                      "feature numbers and frames)");
+}
+
+const std::vector<TReadingClass>* CCompareApp::classTruth()
+{
+	if (!m_classTruthRead)
+	{
+		m_classTruthRead = true;
+		const std::string file = groundTruthUsed + "_gt_classes.csv";
+		if (std::filesystem::exists(file))
+		{
+			m_classTruth = readClassGroundTruth(file);
+			++classTruthFilesRead;
+		}
+	}
+	return m_classTruth ? &*m_classTruth : nullptr;
 }
 
 void TClassDecisions::add(const estimator::TRoutedStep& step)
