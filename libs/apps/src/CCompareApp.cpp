@@ -201,14 +201,7 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 
 void CCompareApp::run()
 {
-	runs.clear();
-	rows.clear();
-	objectNotes.clear();
-	failedFilters.clear();
-	writtenFiles.clear();
-	m_classTruth.reset();
-	m_classTruthRead = false;
-	classTruthFilesRead = 0;
+	clearResults();
 	TLoadedData d = loadData(data, params, "DynamicKFSLAM", "RangeBearingKFSLAM");
 	for (const auto& w : d.rawlog.warnings) MRPT_LOG_WARN(w);
 	hasGroundTruth = d.gt.has_value();

@@ -51,6 +51,9 @@ struct TClassDecisions
 	/** The estimator's object of each reading (TRoutedReading::object; -1: static, candidate
 	 * or skipped): the numbers of the run's object estimates (eval/object_matching.h). */
 	std::vector<int32_t> objects;
+	/** The estimator's feature index of each reading within its object (TRoutedReading::feature;
+	 * -1 where objects is -1). */
+	std::vector<int32_t> features;
 	int stepsAdded = 0;  ///< add() calls so far (= the next step)
 	/** The router's counts over the run (estimator::TRoutedStep): tracks restarted after a
 	 * break (ID reused), split off their object, joined an earlier object; readings held back,
@@ -143,6 +146,7 @@ private:
 	bool m_classTruthRead = false;
 	/** The class ground truth of this run's data, read once (nullptr: no file). */
 	const std::vector<TReadingClass>* classTruth();
+	void clearResults();  ///< the results of a previous run(), the class truth read
 	void writeOutputs(const std::string& optionsDump);
 	void drawFigures();
 	/** compare_map_start.png: every filter re-run on the first 4 s (ground truth needed). */
@@ -153,7 +157,8 @@ private:
 	/** The object velocity columns of a row (by object number). A classifying row
 	 * (classifying != nullptr) is scored against <groundTruthUsed>_gt_classes.csv instead: the
 	 * class_* columns, and the object columns with the estimated objects matched to the true
-	 * ones by their readings (eval/object_matching.h; agent_* RMSE cells empty). Without the
+	 * ones by their readings (eval/object_matching.h: obj_* over every matched object, agent_*
+	 * RMSE cells against the one with most readings, scoreClassifyingAgents). Without the
 	 * file, or with another reading count: those columns empty, a warning and a line in
 	 * objectNotes. */
 	void scoreObjects(eval::TMetricsRow& row, const TClassDecisions* classifying,
