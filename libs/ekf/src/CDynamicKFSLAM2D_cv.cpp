@@ -180,6 +180,8 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 			    models::innovation(options.measurement_model, m.reading.z, zhat);
 			if (std::isfinite(gate) || track)
 			{
+				// Sigma_v, never the heading-inflated noise of the update: the gate tests the
+				// reading against the honest innovation covariance (doc/state-layout.md).
 				const Eigen::Matrix2d S = H * Pii * H.transpose() + options.Sigma_v;
 				const double nis = nu.dot(S.ldlt().solve(nu));
 				nisSum += nis;
