@@ -5,9 +5,11 @@
  * 4.3.2); the inflation limits that. Off, the filter is today's to the last digit. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/ground_truth.h>
+#include <dynslam/landmark_ids.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 
 #include <sstream>
 
@@ -87,4 +89,49 @@ TEST(ObjectModelCvHeading, OptionsDumpAndBadInput)
 {
 	dynslam_test::expectScalarCvKey(&estimator::TCvParams::heading_inflation,
 	                                "cv_heading_inflation", 3, "3");
+}
+
+TEST(ObjectModelCvHeading, TheGateIgnoresTheInflation)
+{
+	// The gate tests each object reading with S = H P H^T + Sigma_v whatever c is
+	// (doc/state-layout.md "Heading inflation of object readings": the inflation throttles what
+	// a reading tells the ego, it is not the reading's noise). A poorly known ego heading (prior
+	// variance 1e-2 rad^2) and, at the first step with object updates, every object reading
+	// 0.15 rad off in bearing: NIS about 0.15^2 / 1e-2 = 2.3 > the gate 1.39 (cv_gate = 0.5).
+	// Two filters that differ only in c (0 and 100) are equal bit for bit before that update,
+	// so they gate out the same readings; with S + c P_thth h h^T in the gate, c = 100 would
+	// keep some (measured with that change: 8 gated out at c = 0, 4 at c = 100).
+	sim::TScenarioOptions o = dynslam_test::highwayW3v1();
+	o.Sigma_0.diagonal() << 1e-4, 1e-4, 1e-2;
+	const TGroundTruth gt = sim::buildGroundTruth(o);
+	sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, 9000);
+	CDynamicKFSLAM2D probe, off, on;
+	configure(probe, o, "cv", 0);
+	size_t first = 0;  // the first step with object updates
+	for (; first < run.actions.size(); ++first)
+	{
+		probe.processActionObservation(run.actions[first], run.frames[first]);
+		if (probe.getLastStepReport().object_feature_updates > 0) break;
+	}
+	ASSERT_LT(first, run.actions.size());
+	auto obs = std::make_shared<mrpt::obs::CObservationBearingRange>(
+	    *run.frames[first]->getObservationByClass<mrpt::obs::CObservationBearingRange>());
+	for (auto& m : obs->sensedData)
+		if (!ids::isStatic(m.landmarkID)) m.yaw += 0.15f;
+	run.frames[first] = mrpt::obs::CSensoryFrame::Create();
+	run.frames[first]->insert(obs);
+	configure(off, o, "cv", 0);
+	configure(on, o, "cv", 100);
+	for (size_t k = 0; k <= first; ++k)
+	{
+		off.processActionObservation(run.actions[k], run.frames[k]);
+		on.processActionObservation(run.actions[k], run.frames[k]);
+	}
+	const TStepReport &a = off.getLastStepReport(), &b = on.getLastStepReport();
+	std::printf("[ measured ] step %zu: gated out %zu (c = 0), %zu (c = 100); updates %zu, %zu\n",
+	            first, a.object_gated_out, b.object_gated_out, a.object_feature_updates,
+	            b.object_feature_updates);
+	EXPECT_GT(a.object_gated_out, 0u);
+	EXPECT_EQ(b.object_gated_out, a.object_gated_out);
+	EXPECT_EQ(b.object_feature_updates, a.object_feature_updates);
 }

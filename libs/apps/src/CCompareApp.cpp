@@ -201,11 +201,7 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 
 void CCompareApp::run()
 {
-	runs.clear();
-	rows.clear();
-	objectNotes.clear();
-	failedFilters.clear();
-	writtenFiles.clear();
+	clearResults();
 	TLoadedData d = loadData(data, params, "DynamicKFSLAM", "RangeBearingKFSLAM");
 	for (const auto& w : d.rawlog.warnings) MRPT_LOG_WARN(w);
 	hasGroundTruth = d.gt.has_value();
@@ -422,8 +418,8 @@ void CCompareApp::drawFigures()
 	png("compare_map.png", eval::drawMapFigure(g, series, mo));
 	for (const auto& r : runs)
 		if (const auto it = classDecisions.find(r.name); it != classDecisions.end())
-			for (const auto& p : writeClassFigures(outDir, r.name, g, r.est, it->second,
-			                                       groundTruthUsed + "_gt_classes.csv"))
+			for (const auto& p :
+			     writeClassFigures(outDir, r.name, g, r.est, it->second, classTruth()))
 				writtenFiles.push_back(p);
 	if (!hasGroundTruth) return;
 	png("compare_ego_errors.png", eval::drawEgoErrorFigure(gt, series));

@@ -9,6 +9,33 @@
 
 namespace dynslam::apps
 {
+namespace
+{
+/** "agent cells: agent 1 <- object 0 (time 0 step 1, 4 features; 2 candidates), agent 3: no
+ * estimated object (empty)" (doc/metrics.md "Objects of classifying rows"). */
+std::string agentNote(const std::vector<eval::TAgentMatch>& agents)
+{
+	std::string s =
+	    "agent_* RMSE cells, each true object against its estimated object with the "
+	    "most of its readings, from that object's time 0:";
+	for (size_t k = 0; k < agents.size(); ++k)
+	{
+		const auto& a = agents[k];
+		s += (k ? ", agent " : " agent ") + std::to_string(k + 1);
+		if (a.estimated < 0)
+		{
+			s += ": no estimated object (cells empty)";
+			continue;
+		}
+		s += " <- object " + std::to_string(a.estimated) + " (time 0 step " +
+		     std::to_string(a.first_step) + ", " + std::to_string(a.features_matched) +
+		     " features matched" +
+		     (a.candidates > 1 ? "; " + std::to_string(a.candidates) + " candidates" : "") + ")";
+	}
+	return s;
+}
+}  // namespace
+
 void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* classifying,
                                const eval::TRunEstimates& est)
 {
@@ -18,29 +45,25 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 		return;
 	}
 	const TClassDecisions& d = *classifying;
-	// The agent_* feature/pose cells: router feature indices and first-sighting frames, never
-	// comparable with the truth's; emptied in every case.
-	eval::blankObjectColumns(row.metrics);
 	const std::string file = groundTruthUsed + "_gt_classes.csv";
 	std::string why;
-	std::vector<TReadingClass> truth;
-	if (!std::filesystem::exists(file))
+	const std::vector<TReadingClass>* classes = classTruth();
+	if (!classes)
 		why = "no class ground truth " + file;
-	else
-	{
-		truth = readClassGroundTruth(file);
-		if (truth.size() != d.decisions.size())
-			why = file + " has " + std::to_string(truth.size()) + " readings, the run " +
-			      std::to_string(d.decisions.size());
-	}
+	else if (classes->size() != d.decisions.size())
+		why = file + " has " + std::to_string(classes->size()) + " readings, the run " +
+		      std::to_string(d.decisions.size());
 	if (!why.empty())
 	{
+		// The agent_* cells by number would compare unrelated objects: emptied.
+		eval::blankObjectColumns(row.metrics);
 		MRPT_LOG_WARN_FMT("%s: the class_* and object columns stay empty", why.c_str());
 		objectNotes.push_back(row.filter + ": " + why +
 		                      ": class_* and object columns (agent_* RMSE, obj_*) left empty, "
 		                      "its object numbers are the router's, not the truth's");
 		return;
 	}
+	const std::vector<TReadingClass>& truth = *classes;
 	const eval::TBinaryScores s = eval::perReadingScores(truth, d.decisions);
 	row.classes = eval::TMetricsRow::TClassScores{s.precision, s.recall, s.f1,
 	                                              eval::groupingAri(truth, d.groups)};
@@ -53,12 +76,39 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 		if (t >= 0) trueHit.insert(t);
 	}
 	row.velocity = eval::classifyingVelocityErrors(gt, est, d.objects, &truth);
-	objectNotes.push_back(row.filter + ": " + std::to_string(match.size()) +
-	                      " estimated objects matched to " + std::to_string(trueHit.size()) +
-	                      " true objects by the majority of their readings (" +
-	                      std::to_string(unmatched) +
-	                      " without a true object); agent_* RMSE cells left empty (router "
-	                      "feature numbers and frames)");
+	const auto agents =
+	    eval::scoreClassifyingAgents(row.metrics, gt, est, {d.objects, d.features}, truth);
+	objectNotes.push_back(
+	    row.filter + ": " + std::to_string(match.size()) + " estimated objects matched to " +
+	    std::to_string(trueHit.size()) + " true objects by the majority of their readings (" +
+	    std::to_string(unmatched) + " without a true object); " + agentNote(agents));
+}
+
+void CCompareApp::clearResults()
+{
+	runs.clear();
+	rows.clear();
+	objectNotes.clear();
+	failedFilters.clear();
+	writtenFiles.clear();
+	m_classTruth.reset();
+	m_classTruthRead = false;
+	classTruthFilesRead = 0;
+}
+
+const std::vector<TReadingClass>* CCompareApp::classTruth()
+{
+	if (!m_classTruthRead)
+	{
+		m_classTruthRead = true;
+		const std::string file = groundTruthUsed + "_gt_classes.csv";
+		if (std::filesystem::exists(file))
+		{
+			m_classTruth = readClassGroundTruth(file);
+			++classTruthFilesRead;
+		}
+	}
+	return m_classTruth ? &*m_classTruth : nullptr;
 }
 
 void TClassDecisions::add(const estimator::TRoutedStep& step)
@@ -70,6 +120,7 @@ void TClassDecisions::add(const estimator::TRoutedStep& step)
 		steps.push_back(stepsAdded);
 		ids.push_back(m.reading.id);
 		objects.push_back(m.candidate || st ? -1 : m.object);
+		features.push_back(m.candidate || st || m.object < 0 ? -1 : m.feature);
 		decisions.push_back(m.candidate     ? eval::Decision::Undecided
 		                    : st            ? eval::Decision::Static
 		                    : m.object >= 0 ? eval::Decision::Moving

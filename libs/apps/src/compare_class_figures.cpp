@@ -11,14 +11,12 @@ namespace dynslam::apps
 std::vector<std::string> writeClassFigures(const std::string& outDir, const std::string& filter,
                                            const TGroundTruth* gt, const eval::TRunEstimates& est,
                                            const TClassDecisions& d,
-                                           const std::string& classTruthFile)
+                                           const std::vector<TReadingClass>* classTruth)
 {
-	std::vector<TReadingClass> truth;
-	if (std::filesystem::exists(classTruthFile))
-	{
-		truth = readClassGroundTruth(classTruthFile);
-		if (truth.size() != d.decisions.size()) truth.clear();  // another run: decisions only
-	}
+	static const std::vector<TReadingClass> kNone;
+	// another run's truth (other reading count): decisions only
+	const std::vector<TReadingClass>& truth =
+	    classTruth && classTruth->size() == d.decisions.size() ? *classTruth : kNone;
 	std::vector<std::string> written;
 	const auto save = [&](const std::string& name, const mrpt::img::CImage& img)
 	{

@@ -53,7 +53,9 @@ Eigen::Vector2d sighting(models::MeasurementModel m, const Eigen::Vector3d& x,
 
 /** The used readings of an object stacked into one update: H, nu and R = blockdiag(Sigma_v +
  * cth h h^T), h = the reading's column on the ego heading (H's column 2), cth = c P_thth
- * (cv_heading_inflation; 0: R = blockdiag(Sigma_v), today's update). */
+ * (cv_heading_inflation; 0: R = blockdiag(Sigma_v), today's update). The reading gate of
+ * objectFeatureUpdates keeps Sigma_v: it tests the honest innovation covariance, the inflation
+ * is not the reading's noise (doc/state-layout.md "Heading inflation of object readings"). */
 void stackReadings(const std::vector<Eigen::MatrixXd>& Hs, const std::vector<Eigen::Vector2d>& nus,
                    const Eigen::Matrix2d& Sigma_v, double cth, Eigen::MatrixXd& H,
                    Eigen::VectorXd& nu, Eigen::MatrixXd& R)

@@ -51,6 +51,9 @@ struct TClassDecisions
 	/** The estimator's object of each reading (TRoutedReading::object; -1: static, candidate
 	 * or skipped): the numbers of the run's object estimates (eval/object_matching.h). */
 	std::vector<int32_t> objects;
+	/** The estimator's feature index of each reading within its object (TRoutedReading::feature;
+	 * -1 where objects is -1). */
+	std::vector<int32_t> features;
 	int stepsAdded = 0;  ///< add() calls so far (= the next step)
 	/** The router's counts over the run (estimator::TRoutedStep): tracks restarted after a
 	 * break (ID reused), split off their object, joined an earlier object; readings held back,
@@ -66,12 +69,13 @@ struct TClassDecisions
 };
 
 /** With --out and figures: `<filter>_class_map.png` and `<filter>_class_timeline.png`
- * (eval/class_figures.h) of a classifying run, the truth read from `classTruthFile` if it exists.
- * Returns the paths written. */
+ * (eval/class_figures.h) of a classifying run, with the class truth `classTruth` if it is given
+ * (nullptr: none) and has the run's reading count (else decisions only). Returns the paths
+ * written. */
 std::vector<std::string> writeClassFigures(const std::string& outDir, const std::string& filter,
                                            const TGroundTruth* gt, const eval::TRunEstimates& est,
                                            const TClassDecisions& d,
-                                           const std::string& classTruthFile);
+                                           const std::vector<TReadingClass>* classTruth);
 
 class CCompareApp : public mrpt::system::COutputLogger
 {
@@ -123,6 +127,8 @@ public:
 	 * the truth by their readings, or empty without a class ground truth); under the table. */
 	std::vector<std::string> objectNotes;
 	std::vector<std::string> writtenFiles;
+	/** How many times run() read <ground truth>_gt_classes.csv (at most once per run). */
+	size_t classTruthFilesRead = 0;
 
 private:
 	/** What the command line overrides in the INI's [Compare] section. */
@@ -134,6 +140,13 @@ private:
 	/** Reads [Compare] and checks every filter's options, with the command line's overrides. */
 	void readSettings(const TCompareOverrides& o);
 	TRawlog m_rawlog;  ///< kept for the snapshot figure
+	/** <groundTruthUsed>_gt_classes.csv, read at the first call of classTruth() in a run (the
+	 * scores and the figures of every classifying row share it); nullopt: no such file. */
+	std::optional<std::vector<TReadingClass>> m_classTruth;
+	bool m_classTruthRead = false;
+	/** The class ground truth of this run's data, read once (nullptr: no file). */
+	const std::vector<TReadingClass>* classTruth();
+	void clearResults();  ///< the results of a previous run(), the class truth read
 	void writeOutputs(const std::string& optionsDump);
 	void drawFigures();
 	/** compare_map_start.png: every filter re-run on the first 4 s (ground truth needed). */
@@ -144,7 +157,8 @@ private:
 	/** The object velocity columns of a row (by object number). A classifying row
 	 * (classifying != nullptr) is scored against <groundTruthUsed>_gt_classes.csv instead: the
 	 * class_* columns, and the object columns with the estimated objects matched to the true
-	 * ones by their readings (eval/object_matching.h; agent_* RMSE cells empty). Without the
+	 * ones by their readings (eval/object_matching.h: obj_* over every matched object, agent_*
+	 * RMSE cells against the one with most readings, scoreClassifyingAgents). Without the
 	 * file, or with another reading count: those columns empty, a warning and a line in
 	 * objectNotes. */
 	void scoreObjects(eval::TMetricsRow& row, const TClassDecisions* classifying,
