@@ -74,8 +74,9 @@ TEST(Gauge, ObjectReadingsAreInvariantUnderTheTransform)
 			{
 				const Eigen::Vector3d x = core_test::randomPose();
 				VectorXd xi = core_test::randomVector(d, -10, 10);
-				if (d == 3) xi[2] = trial < 4 ? core_test::wrapHeadings()[size_t(trial) % 2]
-				                              : uniform(-M_PI, M_PI);
+				if (d == 3)
+					xi[2] = trial < 4 ? core_test::wrapHeadings()[size_t(trial) % 2]
+					                  : uniform(-M_PI, M_PI);
 				const int n = d == 3 ? 3 : 1;
 				Eigen::Matrix2Xd f0(2, n);
 				for (int k = 0; k < n; ++k) f0.col(k) = core_test::randomVector(2, -40, 40);

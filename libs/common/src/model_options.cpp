@@ -375,8 +375,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "Sigma_w                        = " << formatMatrix(Sigma_w) << "\n";
 	out << "initial_pose                   = " << formatMatrix(initial_pose.transpose()) << "\n";
 	out << "Sigma_0                        = " << formatMatrix(Sigma_0) << "\n";
-	out << "prior_gauge                    = " << (prior_gauge_anchor ? "anchor" : "prior")
-	    << "\n";
+	out << "prior_gauge                    = " << (prior_gauge_anchor ? "anchor" : "prior") << "\n";
 	out << "Sigma_xi                       = " << formatMatrix(Sigma_xi) << "\n";
 	out << "smoothing                      = " << (smoothing ? "true" : "false") << "\n";
 	out << "Sigma_s                        = " << formatMatrix(Sigma_s) << "\n";

@@ -9,10 +9,10 @@ namespace
 {
 void checkSize(GaugeKind kind, const Eigen::VectorXd& v)
 {
-	const Eigen::Index want = kind == GaugeKind::EgoPose || kind == GaugeKind::RelPose ||
-	                                  kind == GaugeKind::Velocity3
-	                              ? 3
-	                              : 2;
+	const Eigen::Index want =
+	    kind == GaugeKind::EgoPose || kind == GaugeKind::RelPose || kind == GaugeKind::Velocity3
+	        ? 3
+	        : 2;
 	if (kind != GaugeKind::Invariant && v.size() != want)
 		throw std::invalid_argument("gauge: block of " + std::to_string(v.size()) +
 		                            " entries, expected " + std::to_string(want));
@@ -51,7 +51,8 @@ Eigen::MatrixXd J_block_delta(GaugeKind kind, const Eigen::VectorXd& value,
 	checkSize(kind, value);
 	Eigen::MatrixXd J = Eigen::MatrixXd::Zero(value.size(), 3);
 	// d(R(a) w)/da at a = 0 is (-w_y, w_x).
-	auto rotColumn = [&J](const Eigen::Vector2d& w) {
+	auto rotColumn = [&J](const Eigen::Vector2d& w)
+	{
 		J(0, 2) = -w.y();
 		J(1, 2) = w.x();
 	};

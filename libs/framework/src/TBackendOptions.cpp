@@ -110,6 +110,12 @@ void TBackendOptions::validate() const
 		throw std::invalid_argument(
 		    "the framework needs a positive-definite Sigma_0 ([" + model_section +
 		    "] Sigma_0): its running cost starts with ||x_0 - mu_0||^2_{Sigma_0^-1}");
+	if (model.prior_gauge_anchor)
+		throw std::invalid_argument(
+		    "[" + model_section +
+		    "] prior_gauge = anchor: the anchored prior (x_0 fixed, Sigma_0 only in the reported "
+		    "covariances) is implemented in the dynamic EKF only (CDynamicKFSLAM2D); the framework "
+		    "back-ends need prior_gauge = prior");
 	if (model.odometry_bias.enabled())
 		throw std::invalid_argument(
 		    "[" + model_section + "] odometry_bias = " + model.odometry_bias.mode +

@@ -340,8 +340,8 @@ private:
 	 * ego, ego = true) with mean `mean`; a zero matrix with prior_gauge = prior. */
 	Eigen::MatrixXd gaugeTerm(const estimator::TBlock* block, const Eigen::VectorXd& mean) const;
 	Eigen::Vector2d m_gaugeOrigin = Eigen::Vector2d::Zero();  ///< p0 of the gauge (reset())
-	std::vector<estimator::TPassiveLevel> m_passive;  ///< compression levels, oldest first
-	std::map<int32_t, int> m_passiveStatic;           ///< passive landmark ID -> its block's step
+	std::vector<estimator::TPassiveLevel> m_passive;          ///< compression levels, oldest first
+	std::map<int32_t, int> m_passiveStatic;  ///< passive landmark ID -> its block's step
 	int m_nextLevel = 0;
 
 	/** Per-step scratch that keeps its capacity between steps (doc/performance.md, section 16,

@@ -23,12 +23,12 @@ namespace dynslam::models
 /** How a block of the state transforms under T_delta. */
 enum class GaugeKind
 {
-	EgoPose,     ///< (x, y, theta)
-	Point,       ///< (x, y): a world point
-	Vector,      ///< (x, y): a world vector (rotates)
-	RelPose,     ///< (dx, dy, dtheta) of xi: translation rotates, rotation unchanged
-	Velocity3,   ///< (vx, vy, omega): velocity rotates, turn rate unchanged
-	Invariant    ///< any size: unchanged (odometry bias)
+	EgoPose,    ///< (x, y, theta)
+	Point,      ///< (x, y): a world point
+	Vector,     ///< (x, y): a world vector (rotates)
+	RelPose,    ///< (dx, dy, dtheta) of xi: translation rotates, rotation unchanged
+	Velocity3,  ///< (vx, vy, omega): velocity rotates, turn rate unchanged
+	Invariant   ///< any size: unchanged (odometry bias)
 };
 
 /** The block after the transform delta (about the initial position p0). */
