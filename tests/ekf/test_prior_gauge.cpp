@@ -183,7 +183,8 @@ TEST(PriorGauge, BadValueThrowsAndTheKeyIsDumped)
 	std::string ini;
 	{
 		std::ifstream in(DYNSLAM_CONFIG_DIR "/compare_tunnel.ini");
-		ini.assign(std::istreambuf_iterator<char>(in), {});
+		for (std::string line; std::getline(in, line);)  // without the shipped prior_gauge
+			if (line.rfind("prior_gauge", 0) != 0) ini += line + "\n";
 	}
 	const auto pos = ini.find("[DynamicKFSLAM]\n");
 	ASSERT_NE(pos, std::string::npos);
