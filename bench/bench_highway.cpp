@@ -19,7 +19,9 @@ namespace
  * object_model = cv and the shipped cv_* keys of config/compare_tunnel.ini, setting B of
  * doc/results.md 4.3.1 (issue 13: what the object-centric model costs; cv_accel_psd = [1e-6 1e-6
  * 1e-8], cv_gate = 0.5, no fallback, no inflation), 5 = the same with setting D of doc/results.md
- * 4.8 (cv_accel_psd = [1e-7 1e-7 1e-9], cv_gate = 0.999, cv_ego_velocity_std = 0.01). */
+ * 4.8 (cv_accel_psd = [1e-7 1e-7 1e-9], cv_gate = 0.999, cv_ego_velocity_std = 0.01), 6 = setting
+ * E of doc/results.md 4.10 (D without cv_ego_velocity_std, prior_gauge = anchor), 7 = the
+ * paper's objects with prior_gauge = anchor (the output term's cost: only getEgoPose per step). */
 void BM_HighwayRun(benchmark::State& state)
 {
 	const TRun& run = highwayRun();
@@ -39,29 +41,37 @@ void BM_HighwayRun(benchmark::State& state)
 			f.options.validate();
 			f.reset();
 		}
-		if (state.range(0) >= 4)  // sparse, object_model = cv (issue 13): B (4) or D (5)
+		if (state.range(0) >= 4 && state.range(0) <= 6)  // object_model = cv: B (4), D (5), E (6)
 		{
-			const bool d = state.range(0) == 5;
+			const bool d = state.range(0) >= 5;
 			f.options.object_model = "cv";
 			f.options.cv.dt = 0.5;
 			f.options.cv.accel_psd =
 			    d ? Eigen::Vector3d(1e-7, 1e-7, 1e-9) : Eigen::Vector3d(1e-6, 1e-6, 1e-8);
 			f.options.cv.velocity_prior_std = Eigen::Vector3d(0.5, 0.5, 0.05);
 			f.options.cv_gate = d ? 0.999 : 0.5;
-			f.options.cv.ego_velocity_std = d ? 0.01 : 0.0;
+			f.options.cv.ego_velocity_std = state.range(0) == 5 ? 0.01 : 0.0;
 			f.options.validate();
 			f.reset();
 		}
+		if (state.range(0) >= 6)  // the anchored prior (E: 6, paper objects: 7)
+		{
+			f.options.prior_gauge_anchor = true;
+			f.reset();
+		}
 		for (size_t k = 0; k < run.actions.size(); ++k)
+		{
 			f.processActionObservation(run.actions[k], run.frames[k]);
+			benchmark::DoNotOptimize(f.getEgoPose().cov(0, 0));  // the reported ego pose
+		}
 		benchmark::DoNotOptimize(f.fullMean()[0]);
 	}
 	state.counters["steps"] = double(run.actions.size());
-	const char* labels[] = {"mrpt",      "sparse",     "compressed", "sparse+classify",
-	                        "sparse+cv", "sparse+cv D"};
+	const char* labels[] = {"mrpt",      "sparse",      "compressed",  "sparse+classify",
+	                        "sparse+cv", "sparse+cv D", "sparse+cv E", "sparse+anchor"};
 	state.SetLabel(labels[state.range(0)]);
 }
-BENCHMARK(BM_HighwayRun)->DenseRange(0, 5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HighwayRun)->DenseRange(0, 7)->Unit(benchmark::kMillisecond);
 
 /** The same static-only run through MRPT's CRangeBearingKFSLAM2D (filter 0) and the dynamic EKF
  * with MRPT's update (1), the sparse one (2) or the compressed EKF (3, static_update =

@@ -1,8 +1,10 @@
 /** The object-centric models end to end (issue 13): dynslam-compare on a generated scenario
  * whose cars turn (circle of radius 70 m) and brake hard (config/generated_turning_braking.ini,
- * the shipped datasets/turning_braking.rawlog): the object models must not drag the ego. */
+ * the shipped datasets/turning_braking.rawlog): the object models must not drag the ego; and
+ * dynslam-montecarlo honours prior_gauge (doc/results.md 4.10). */
 #include <apps_test_utils.h>
 #include <dynslam/apps/CCompareApp.h>
+#include <dynslam/apps/CMonteCarloApp.h>
 
 #include <cstdio>
 
@@ -27,16 +29,79 @@ TEST(CompareApp, TurningBrakingObjectsDoNotDragTheEgo)
 	    "dynamic_cv %.4f m, dynamic_ctrv %.4f m\n",
 	    so, dy, cv, ctrv);
 	// The issue's target: no worse than 1.05 x static_landmarks_only.
-	// Measured with the shipped cv_* keys (setting D, doc/results.md 4.8, chosen on highway and
-	// tunnel development seeds; this scenario is a held-out check): 0.0144, 0.0085, 0.0089,
-	// 0.0096 m. The static baseline is MRPT's filter with range-bearing noise equivalent to the
-	// Cartesian noise only at 27.5 m, hence worse than the dynamic EKF, which equals the oracle
-	// that drops the moving features: against that one cv costs 5 % and ctrv 14 % (with setting
-	// B, gate 0.5: cv 0.99 x, ctrv 0.85 x; with 4.3's keys, gate 0.999 and the inflation rule,
-	// cv 1.32 x and ctrv 1.27 x).
-	EXPECT_LE(cv, 1.05 * so);  // the issue's target; measured 0.62 x
+	// Measured 2026-11-25 with the shipped cv_* keys (setting E, doc/results.md 4.10: D of 4.8
+	// without cv_ego_velocity_std and with prior_gauge = anchor, chosen on highway and tunnel
+	// development seeds; this scenario is a held-out check): 0.0144, 0.0084, 0.0087, 0.0098 m
+	// (with D: 0.0144, 0.0085, 0.0089, 0.0096). The static baseline is MRPT's filter with
+	// range-bearing noise equivalent to the Cartesian noise only at 27.5 m, hence worse than the
+	// dynamic EKF, which equals the oracle that drops the moving features: against that one cv
+	// costs 4 % and ctrv 17 % (D: 5 %, 14 %) (with setting B, gate 0.5: cv 0.99 x, ctrv 0.85 x;
+	// with 4.3's keys, gate 0.999 and the inflation rule, cv 1.32 x and ctrv 1.27 x).
+	EXPECT_LE(cv, 1.05 * so);  // the issue's target; measured 0.61 x
 	EXPECT_LE(ctrv, 1.05 * so);
 	EXPECT_LE(cv, 1.25 * dy);  // the turning and braking objects do not drag the ego far
 	EXPECT_LE(ctrv, 1.5 * dy);
 	EXPECT_LT(ctrv, 0.05);
+}
+
+namespace
+{
+/** dynslam-montecarlo on config/montecarlo.ini at w3v1 (2 runs), with `dyn` added to
+ * [DynamicKFSLAM] and `mc` to [MonteCarlo]. */
+void monteCarloWith(CMonteCarloApp& app, const std::string& tag, const std::string& dyn,
+                    const std::string& mc)
+{
+	std::string ini = apps_test::readFile(apps_test::configFile("montecarlo.ini"));
+	const auto s = ini.find("scenario = highway.ini");
+	ini.replace(s, 22, "scenario = " + apps_test::configFile("highway.ini"));
+	// The keys set here replace the INI's (the last of two equal keys would win).
+	for (const std::string& kv : {dyn, mc})
+		if (!kv.empty())
+		{
+			const std::string key = kv.substr(0, kv.find(' '));
+			for (auto p = ini.find("\n" + key + " "); p != std::string::npos;
+			     p = ini.find("\n" + key + " "))
+				ini.replace(p + 1, ini.find('\n', p + 1) - p, "");
+		}
+	ini.replace(ini.find("[DynamicKFSLAM]\n"), 16, "[DynamicKFSLAM]\n" + dyn);
+	ini.replace(ini.find("[MonteCarlo]\n"), 13, "[MonteCarlo]\n" + mc);
+	const std::string dir = apps_test::freshDir("mc_gauge_" + tag);
+	apps_test::writeFile(dir + "/mc.ini", ini);
+	TArgs a({"-c", dir + "/mc.ini", "--runs", "2", "--levels", "w3v1", "--threads", "1", "-q",
+	         "--no-figures"});
+	EXPECT_TRUE(app.initialize(a.argc(), a.argv()));
+	app.run();
+}
+double egoNees(const CMonteCarloApp& app)
+{
+	double s = 0;
+	for (const auto& r : app.results)
+		for (const auto& n : r.consistency.ego.samples) s += n.value;
+	return s;
+}
+}  // namespace
+
+TEST(MonteCarloApp, PriorGaugeAnchorIsHonoured)
+{
+	// prior_gauge = anchor through the app (issue 13, doc/results.md 4.10): with the protocol's
+	// Sigma_0 = Sigma_w the anchored mean equals the prior filter's with Sigma_0 = 0 (the same
+	// ATE to the last digit), while its reported covariance carries N Sigma_0 N^T (another ego
+	// NEES); the prior gauge with Sigma_w differs (the leak of 4.3.2).
+	CMonteCarloApp anchor, zero, prior;
+	monteCarloWith(anchor, "anchor", "prior_gauge = anchor\n", "");
+	monteCarloWith(zero, "zero", "Sigma_0 = [0 0 0]\n", "initial_covariance = ini\n");
+	ASSERT_EQ(zero.sigma0FromLevel, false);
+	monteCarloWith(prior, "prior", "", "");
+	ASSERT_EQ(anchor.results.size(), 2u);
+	ASSERT_EQ(zero.results.size(), 2u);
+	ASSERT_EQ(prior.results.size(), 2u);
+	for (size_t i = 0; i < 2; ++i)
+	{
+		EXPECT_EQ(anchor.results[i].metrics.ate, zero.results[i].metrics.ate) << i;
+		EXPECT_NE(anchor.results[i].metrics.ate, prior.results[i].metrics.ate) << i;
+	}
+	std::printf(
+	    "[ measured ] w3v1, 2 runs: ego NEES sum anchor %.4g, Sigma_0 = 0 %.4g, prior %.4g\n",
+	    egoNees(anchor), egoNees(zero), egoNees(prior));
+	EXPECT_LT(egoNees(anchor), egoNees(zero));  // the output term widens the reported covariance
 }

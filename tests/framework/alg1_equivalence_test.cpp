@@ -317,3 +317,24 @@ TEST(Alg1, BadInputWindowSizeZeroAndSingularPrior)
 	z.window_size = 0;
 	EXPECT_THROW(CAlg1Backend{z}, std::invalid_argument);
 }
+
+/** prior_gauge = anchor (issue 13, doc/framework.md): Alg. 1 with x_0 as an exact constraint
+ * (no prior term; the first odometry gives the ego its marginal) and the output term N Sigma_0
+ * N^T equals the anchored EKF at every step, reported mean and covariance, on the highway
+ * (paper objects) and the generated scenario (cv); the mean is that of Sigma_0 = 0. */
+TEST(Alg1, WholeRunEquivalenceAnchoredPrior)
+{
+	const std::string a = "prior_gauge = anchor\n";
+	report("highway, anchor", runBoth(scenario("highway.ini", -1), 1, a));
+	report("generated, anchor, keep time-t features",
+	       runBoth(scenario("generated_small_scenario.ini", 18), 3,
+	               a + "drop_time_t_features = false\n"));
+	const TWorst cv =
+	    report("generated, cv, anchor", runBoth(scenario("generated_small_scenario.ini", 18), 6,
+	                                            a + "object_model = cv\ncv_dt = 0.5\n"));
+	EXPECT_GT(cv.velocities, 10u);
+	// A framework back-end other than Alg. 1 rejects it (doc/framework.md).
+	TBackendOptions vdo = defaultBackendOptions("vdo");
+	vdo.model.prior_gauge_anchor = true;
+	EXPECT_THROW(vdo.validate(), std::invalid_argument);
+}

@@ -141,5 +141,18 @@ TEST(Backends, BadOptions)
 			EXPECT_NE(std::string(e.what()).find("feature_labels = classify"), std::string::npos)
 			    << e.what();
 		}
+		// The anchored prior (prior_gauge = anchor, issue 13) is the dynamic EKF's only.
+		b.model.feature_labels = "ids";
+		b.model.prior_gauge_anchor = true;
+		try
+		{
+			makeBackend(b);
+			ADD_FAILURE() << kind << ": prior_gauge = anchor accepted";
+		}
+		catch (const std::invalid_argument& e)
+		{
+			EXPECT_NE(std::string(e.what()).find("prior_gauge = anchor"), std::string::npos)
+			    << e.what();
+		}
 	}
 }

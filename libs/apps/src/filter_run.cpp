@@ -136,7 +136,7 @@ void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est
 			}
 		if (idx.size() == 2 * lms.size())
 		{
-			const auto& P = dyn->fullCov();
+			const Eigen::MatrixXd P = dyn->reportedCov();  // prior_gauge = anchor: + N Sigma_0 N^T
 			est.landmarks_cov.resize(Eigen::Index(idx.size()), Eigen::Index(idx.size()));
 			for (size_t i = 0; i < idx.size(); ++i)
 				for (size_t j = 0; j < idx.size(); ++j) est.landmarks_cov(i, j) = P(idx[i], idx[j]);

@@ -59,6 +59,7 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "Sigma_w",
                                           "initial_pose",
                                           "Sigma_0",
+                                          "prior_gauge",
                                           "Sigma_xi",
                                           "smoothing",
                                           "Sigma_s",
@@ -185,6 +186,8 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	Sigma_w = readCovariance(c, s, "Sigma_w", Sigma_w, 3, !motion_noise_from_action);
 	initial_pose = readVector(c, s, "initial_pose", initial_pose, 3);
 	Sigma_0 = readCovariance(c, s, "Sigma_0", Sigma_0, 3, false, true);
+	prior_gauge_anchor =
+	    readChoice(c, s, "prior_gauge", {"prior", "anchor"}, prior_gauge_anchor ? 1 : 0) == 1;
 	Sigma_xi = readCovariance(c, s, "Sigma_xi", Sigma_xi, 2);
 	smoothing = readBool(c, s, "smoothing", smoothing);
 	loadObjectModel(*this, c, s);
@@ -372,6 +375,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "Sigma_w                        = " << formatMatrix(Sigma_w) << "\n";
 	out << "initial_pose                   = " << formatMatrix(initial_pose.transpose()) << "\n";
 	out << "Sigma_0                        = " << formatMatrix(Sigma_0) << "\n";
+	out << "prior_gauge                    = " << (prior_gauge_anchor ? "anchor" : "prior") << "\n";
 	out << "Sigma_xi                       = " << formatMatrix(Sigma_xi) << "\n";
 	out << "smoothing                      = " << (smoothing ? "true" : "false") << "\n";
 	out << "Sigma_s                        = " << formatMatrix(Sigma_s) << "\n";

@@ -79,7 +79,9 @@ void CDynamicKFSLAM2D::reset()
 	m_xkk.resize(3);
 	for (int i = 0; i < 3; ++i) m_xkk[i] = options.initial_pose[i];
 	m_cov.resize(3);
-	cov() = options.Sigma_0;
+	// prior_gauge = anchor: x_0 is the gauge; Sigma_0 enters only the reported covariances.
+	cov() = options.prior_gauge_anchor ? Eigen::Matrix3d::Zero().eval() : options.Sigma_0;
+	m_gaugeOrigin = options.initial_pose.head<2>();
 	// The seams: the options' implementations unless another one was set.
 	if (!m_userRouter)
 	{

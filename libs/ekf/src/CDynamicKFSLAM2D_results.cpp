@@ -22,6 +22,9 @@ mrpt::poses::CPosePDFGaussian CDynamicKFSLAM2D::getEgoPose() const
 	p.mean = mrpt::poses::CPose2D(m_xkk[0], m_xkk[1], m_xkk[2]);
 	for (int i = 0; i < 3; ++i)
 		for (int j = 0; j < 3; ++j) p.cov(i, j) = cov()(i, j);
+	const Eigen::MatrixXd g = gaugeTerm(nullptr, m_xkk.asEigen().head<3>());
+	for (int i = 0; i < 3; ++i)
+		for (int j = 0; j < 3; ++j) p.cov(i, j) += g(i, j);
 	return p;
 }
 
@@ -37,10 +40,17 @@ std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks(bool i
 		e.id = m_layout[b].id;
 		e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
 		e.cov << cov()(k, k), cov()(k, k + 1), cov()(k + 1, k), cov()(k + 1, k + 1);
+		e.cov += gaugeTerm(&m_layout[b], e.mean);
 		e.in_state = true;
 		out.push_back(e);
 	}
-	if (includeDropped) out.insert(out.end(), m_droppedStatic.begin(), m_droppedStatic.end());
+	if (!includeDropped) return out;
+	const TBlock point;  // a static landmark: a world point
+	for (TStaticLandmarkEstimate e : m_droppedStatic)
+	{
+		e.cov += gaugeTerm(&point, e.mean);
+		out.push_back(e);
+	}
 	return out;
 }
 
@@ -60,6 +70,7 @@ std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 		e.step = t.step;
 		e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
 		e.cov << cov()(k, k), cov()(k, k + 1), cov()(k + 1, k), cov()(k + 1, k + 1);
+		e.cov += gaugeTerm(&t, e.mean);
 		out.push_back(e);
 	}
 	return out;
@@ -68,6 +79,19 @@ std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 {
 	std::map<int32_t, TObjectTrack> out = tracksFromRegistry(m_router->registry());
+	for (auto& [obj, track] : out)  // dropped poses: recorded with the relative covariance
+		for (TObjectPoseEstimate& e : track.poses)
+		{
+			TBlock pose;
+			pose.kind = BlockKind::ObjectPose;
+			pose.dim = int(e.mean.size());
+			e.cov += gaugeTerm(&pose, e.mean);
+			if (e.velocity.size() == 0) continue;
+			TBlock vel;
+			vel.kind = BlockKind::ObjectVelocity;
+			vel.dim = int(e.velocity.size());
+			e.velocity_cov += gaugeTerm(&vel, e.velocity);
+		}
 	std::map<int32_t, std::vector<int>> velocityIdx;  // object_model = cv | ctrv
 	for (size_t b = 0; b < m_layout.size(); ++b)
 		if (m_layout[b].kind == BlockKind::ObjectVelocity)
@@ -80,12 +104,15 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 		TObjectPoseEstimate e;
 		e.step = t.step;
 		e.mean = m_xkk.asEigen()(idx);
-		e.cov = ekf::marginal(cov(), idx);
+		e.cov = ekf::marginal(cov(), idx) + gaugeTerm(&t, e.mean);
 		// The velocity belongs to the newest pose: the only one of a velocity model in state.
 		if (const auto v = velocityIdx.find(t.object); v != velocityIdx.end() && t.step == m_step)
 		{
 			e.velocity = m_xkk.asEigen()(v->second);
-			e.velocity_cov = ekf::marginal(cov(), v->second);
+			TBlock vel = t;
+			vel.kind = BlockKind::ObjectVelocity;
+			vel.dim = int(e.velocity.size());
+			e.velocity_cov = ekf::marginal(cov(), v->second) + gaugeTerm(&vel, e.velocity);
 		}
 		e.in_state = true;
 		out[t.object].poses.push_back(e);
@@ -233,7 +260,8 @@ void CDynamicKFSLAM2D::getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& 
 	ensureExpanded();
 	const std::vector<int> keep = ekf::keptIndices(int(m_xkk.size()), m_layout.padIndices());
 	x = m_xkk.asEigen()(keep);
-	P = cov()(keep, keep);
+	P = options.prior_gauge_anchor ? Eigen::MatrixXd(reportedCov()(keep, keep))
+	                               : Eigen::MatrixXd(cov()(keep, keep));
 	if (!labels) return;
 	labels->assign({"ego.x", "ego.y", "ego.theta"});
 	for (const TBlock& t : m_layout.blocks()) appendLabels(t, *labels);

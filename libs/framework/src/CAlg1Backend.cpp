@@ -1,6 +1,7 @@
 #include <dynslam/backend_results.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/framework/object_pose_step.h>
+#include <dynslam/models/gauge.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
 #include <dynslam/step_input.h>
@@ -22,9 +23,14 @@ void CAlg1Backend::reset()
 {
 	m_cost = CRunningCost();
 	m_ego = TVarKey::ego(-1);
-	m_cost.addVariable(m_ego, m_opts.model.initial_pose);
-	m_cost.addTerm(
-	    CPriorTerm::fromCovariance({m_ego}, {3}, m_opts.model.initial_pose, m_opts.model.Sigma_0));
+	m_anchorPending = m_opts.model.prior_gauge_anchor;  // x_0 fixed: no variable, no prior term
+	m_fixedEgo = m_opts.model.initial_pose;
+	if (!m_anchorPending)
+	{
+		m_cost.addVariable(m_ego, m_opts.model.initial_pose);
+		m_cost.addTerm(CPriorTerm::fromCovariance({m_ego}, {3}, m_opts.model.initial_pose,
+		                                          m_opts.model.Sigma_0));
+	}
 	m_step = -1;
 	if (!m_userRouter) m_router = estimator::makeRouter("ids");
 	m_router->reset();
@@ -101,8 +107,11 @@ void CAlg1Backend::processActionObservation(const mrpt::obs::CActionCollection::
 // Alg. 7 as a marginalization (Theorem A.5).
 void CAlg1Backend::propagate(const estimator::TStepInput& in)
 {
-	if (m_opts.model.skip_prediction_on_empty_map && m_cost.numVariables() == 1) return;
+	if (m_opts.model.skip_prediction_on_empty_map &&
+	    m_cost.numVariables() == (m_anchorPending ? 0u : 1u))
+		return;
 	const Eigen::Matrix3d Su = m_opts.model.motion_noise_from_action ? in.U : m_opts.model.Sigma_w;
+	if (m_anchorPending) return propagateAnchored(in.u, Su);
 	const TVarKey next = TVarKey::ego(m_step);
 	Eigen::Matrix3d F;
 	const Eigen::Vector3d pred = models::composePose(m_cost.value(m_ego), in.u, &F);
@@ -136,6 +145,75 @@ void CAlg1Backend::propagate(const estimator::TStepInput& in)
 	m_ego = next;
 }
 
+namespace
+{
+/** A term with one of its variables fixed at a value (prior_gauge = anchor: the ego while it is
+ * still exact): the inner term's residual, without that variable's Jacobian. */
+class CConditionedTerm : public CTerm
+{
+public:
+	CConditionedTerm(CTermPtr inner, const TVarKey& fixed, Eigen::VectorXd value)
+	    : CTerm(others(*inner, fixed)),
+	      m_inner(std::move(inner)),
+	      m_fixed(fixed),
+	      m_value(std::move(value))
+	{
+	}
+	std::string name() const override { return m_inner->name() + " | fixed ego"; }
+	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override
+	{
+		std::vector<Eigen::VectorXd> all;
+		size_t j = 0;
+		for (const auto& k : m_inner->keys()) all.push_back(k == m_fixed ? m_value : x[j++]);
+		TLinearization L = m_inner->linearize(all);
+		std::vector<Eigen::MatrixXd> J;
+		for (size_t i = 0; i < m_inner->keys().size(); ++i)
+			if (!(m_inner->keys()[i] == m_fixed)) J.push_back(L.J[i]);
+		L.J = std::move(J);
+		return L;
+	}
+
+private:
+	static std::vector<TVarKey> others(const CTerm& t, const TVarKey& fixed)
+	{
+		std::vector<TVarKey> k;
+		for (const auto& key : t.keys())
+			if (!(key == fixed)) k.push_back(key);
+		return k;
+	}
+	CTermPtr m_inner;
+	TVarKey m_fixed;
+	Eigen::VectorXd m_value;
+};
+}  // namespace
+
+void CAlg1Backend::addTerm(const CTermPtr& t)
+{
+	if (m_anchorPending && t->touches(m_ego))
+		m_cost.addTerm(std::make_shared<CConditionedTerm>(t, m_ego, m_fixedEgo));
+	else
+		m_cost.addTerm(t);
+}
+
+// prior_gauge = anchor: x_{t-1} is exact, so the marginal of x_t is N(x_{t-1} (+) u, G Sigma_u
+// G^T), the limit of the prior filter's step as Sigma_0 -> 0 (the EKF's P = F 0 F^T + Q).
+void CAlg1Backend::propagateAnchored(const Eigen::Vector3d& u, const Eigen::Matrix3d& Su)
+{
+	Eigen::Matrix3d F, G;
+	const Eigen::Vector3d pred = models::composePose(m_fixedEgo, u, &F, &G);
+	m_ego = TVarKey::ego(m_step);
+	m_fixedEgo = pred;
+	if (Su.isZero(0)) return;  // still exact
+	if (Eigen::LLT<Eigen::Matrix3d>(Su).info() != Eigen::Success)
+		throw std::runtime_error(
+		    "CAlg1Backend: the odometry covariance is singular but not zero; the framework "
+		    "needs it positive definite (or exactly zero)");
+	// The ego is independent of everything estimated so far (its past value was exact).
+	m_cost.addVariable(m_ego, pred);
+	m_cost.addTerm(CPriorTerm::fromCovariance({m_ego}, {3}, pred, G * Su * G.transpose()));
+	m_anchorPending = false;
+}
+
 // Alg. 5 (tracked landmarks), then Alg. 3 (new ones): GN steps (Theorems A.3, A.1).
 void CAlg1Backend::staticSteps(const estimator::TRoutedStep& in)
 {
@@ -145,9 +223,8 @@ void CAlg1Backend::staticSteps(const estimator::TRoutedStep& in)
 	if (!tracked.empty())
 	{
 		for (const auto& m : tracked)
-			m_cost.addTerm(std::make_shared<CMeasurementTerm>(m_ego.step, TVarKey::landmark(m.id),
-			                                                  m.z, mo.measurement_model, mo.Sigma_v,
-			                                                  m_sensor));
+			addTerm(std::make_shared<CMeasurementTerm>(m_ego.step, TVarKey::landmark(m.id), m.z,
+			                                           mo.measurement_model, mo.Sigma_v, m_sensor));
 		const auto r = gnAndCollapse();
 		m_report.static_updates = tracked.size();
 		m_report.nis_static = r.cost_linear_min;
@@ -155,14 +232,14 @@ void CAlg1Backend::staticSteps(const estimator::TRoutedStep& in)
 	}
 	if (!fresh.empty())
 	{
-		const Eigen::Vector3d x = m_cost.value(m_ego);
+		const Eigen::Vector3d x = egoValue();
 		for (const auto& m : fresh)
 		{
 			const TVarKey k = TVarKey::landmark(m.id);
 			m_cost.addVariable(
 			    k, models::inverseObserveFromSensor(mo.measurement_model, x, m_sensor, m.z));
-			m_cost.addTerm(std::make_shared<CMeasurementTerm>(
-			    m_ego.step, k, m.z, mo.measurement_model, mo.Sigma_v, m_sensor));
+			addTerm(std::make_shared<CMeasurementTerm>(m_ego.step, k, m.z, mo.measurement_model,
+			                                           mo.Sigma_v, m_sensor));
 		}
 		gnAndCollapse();
 		m_report.static_new = fresh.size();
@@ -188,7 +265,7 @@ void CAlg1Backend::objectFeatureAugmentation(const estimator::TRoutedStep& in)
 		m_report.dropped_time_t += stale.size();
 		m_cost.marginalize(stale);
 	}
-	const Eigen::Vector3d x = m_cost.value(m_ego);
+	const Eigen::Vector3d x = egoValue();
 	size_t added = 0;
 	for (const auto& m : objects)
 	{
@@ -204,8 +281,8 @@ void CAlg1Backend::objectFeatureAugmentation(const estimator::TRoutedStep& in)
 		}
 		m_cost.addVariable(
 		    k, models::inverseObserveFromSensor(mo.measurement_model, x, m_sensor, m.reading.z));
-		m_cost.addTerm(std::make_shared<CMeasurementTerm>(
-		    m_ego.step, k, m.reading.z, mo.measurement_model, mo.Sigma_v, m_sensor));
+		addTerm(std::make_shared<CMeasurementTerm>(m_ego.step, k, m.reading.z, mo.measurement_model,
+		                                           mo.Sigma_v, m_sensor));
 	}
 	if (added > 0) gnAndCollapse();
 }
@@ -293,118 +370,4 @@ void CAlg1Backend::drops()
 	if (!M.empty()) m_cost.marginalize(M);
 }
 
-// ------------------------------------------------------------------------------------------
-// Results
-// ------------------------------------------------------------------------------------------
-mrpt::poses::CPosePDFGaussian CAlg1Backend::getEgoPose() const
-{
-	mrpt::poses::CPosePDFGaussian p;
-	const Eigen::Vector3d x = m_cost.value(m_ego);
-	p.mean = mrpt::poses::CPose2D(x[0], x[1], x[2]);
-	p.cov = mrpt::math::CMatrixDouble33(Eigen::Matrix3d(marginalCov(m_ego)));
-	return p;
-}
-
-std::vector<TStaticLandmarkEstimate> CAlg1Backend::getStaticLandmarks(bool includeDropped) const
-{
-	std::vector<TStaticLandmarkEstimate> out;
-	for (const auto& k : m_cost.keys())
-		if (k.kind == VarKind::StaticLandmark)
-		{
-			TStaticLandmarkEstimate e;
-			e.id = k.id;
-			e.mean = m_cost.value(k);
-			e.cov = marginalCov(k);
-			out.push_back(e);
-		}
-	if (includeDropped) out.insert(out.end(), m_droppedStatic.begin(), m_droppedStatic.end());
-	return out;
-}
-
-std::vector<TObjectFeatureEstimate> CAlg1Backend::getObjectFeatures() const
-{
-	std::vector<TObjectFeatureEstimate> out;
-	for (const auto& k : m_cost.keys())
-		if (k.kind == VarKind::ObjectFeature)
-		{
-			TObjectFeatureEstimate e;
-			e.object = k.id;
-			e.feature = k.feature;
-			e.id = m_router->featureId(k.id, k.feature);
-			e.at_time0 = !isTimeT(k);
-			e.step = k.step;
-			e.mean = m_cost.value(k);
-			e.cov = marginalCov(k);
-			out.push_back(e);
-		}
-	return out;
-}
-
-std::map<int32_t, TObjectTrack> CAlg1Backend::getObjectTracks() const
-{
-	std::map<int32_t, TObjectTrack> out = tracksFromRegistry(m_router->registry());
-	for (const auto& k : m_cost.keys())
-		if (k.kind == VarKind::ObjectPose)
-		{
-			TObjectPoseEstimate e;
-			e.step = k.step;
-			e.mean = m_cost.value(k);
-			e.cov = marginalCov(k);
-			if (const TVarKey v = TVarKey::objectVelocity(k.id, k.step); m_cost.has(v))
-			{
-				e.velocity = m_cost.value(v);
-				e.velocity_cov = marginalCov(v);
-			}
-			e.in_state = true;
-			out[k.id].poses.push_back(e);
-		}
-	sortTrackPoses(out);
-	return out;
-}
-
-void CAlg1Backend::getLabelledState(Eigen::VectorXd& x, Eigen::MatrixXd& P,
-                                    std::vector<std::string>& labels) const
-{
-	TGaussNewtonOptions o;
-	o.solver = SolverKind::Dense;
-	x = m_cost.stackedValues();
-	P = m_cost.covariance(m_cost.keys(), o);
-	labels.clear();
-	for (const auto& k : m_cost.keys())
-	{
-		const std::string ob = "obj" + std::to_string(k.id);
-		switch (k.kind)
-		{
-			case VarKind::EgoPose:
-				labels.insert(labels.end(), {"ego.x", "ego.y", "ego.theta"});
-				break;
-			case VarKind::StaticLandmark:
-				labels.push_back("lm" + std::to_string(k.id) + ".x");
-				labels.push_back("lm" + std::to_string(k.id) + ".y");
-				break;
-			case VarKind::ObjectFeature:
-			{
-				const std::string f = ob + ".f" + std::to_string(k.feature) +
-				                      (isTimeT(k) ? ".t" + std::to_string(k.step) : ".t0");
-				labels.push_back(f + ".x");
-				labels.push_back(f + ".y");
-				break;
-			}
-			case VarKind::ObjectPose:
-			case VarKind::ObjectBodyPose:
-			{
-				const std::string p = ob + ".xi" + std::to_string(k.step);
-				labels.push_back(p + ".dx");
-				labels.push_back(p + ".dy");
-				if (m_cost.dim(k) == 3) labels.push_back(p + ".dtheta");
-				break;
-			}
-			case VarKind::ObjectVelocity:  // the EKF's label: the step the velocity was added
-				for (int i = 0; i < m_cost.dim(k); ++i)
-					labels.push_back(ob + ".v" + std::to_string(m_velocitySince.at(k.id)) + "." +
-					                 std::to_string(i));
-				break;
-		}
-	}
-}
 }  // namespace dynslam::framework

@@ -129,6 +129,8 @@ void CAlg1Backend::objectFeatureUpdates(const estimator::TRoutedStep& in)
 			terms = kept;
 		}
 		if (terms.empty()) continue;  // every reading gated out: the object coasts
+		if (m_anchorPending)  // a velocity needs two sightings: after the first odometry noise
+			throw std::logic_error("CAlg1Backend: object update while the anchored ego is exact");
 		for (const auto& t : terms) m_cost.addTerm(t);
 		gnAndCollapse();
 		m_report.object_feature_updates += terms.size();

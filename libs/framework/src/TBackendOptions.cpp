@@ -106,10 +106,17 @@ void TBackendOptions::validate() const
 		    "only residual on the object pose xi_t, which would be left unobservable; use "
 		    "marginalize (keeps its information) or keep");
 	if (!(tolerance > 0)) throw std::invalid_argument("tolerance must be > 0");
-	if (model.Sigma_0.determinant() <= 0)
+	if (!model.prior_gauge_anchor && model.Sigma_0.determinant() <= 0)
 		throw std::invalid_argument(
 		    "the framework needs a positive-definite Sigma_0 ([" + model_section +
 		    "] Sigma_0): its running cost starts with ||x_0 - mu_0||^2_{Sigma_0^-1}");
+	if (model.prior_gauge_anchor && backend != "alg1")
+		throw std::invalid_argument(
+		    "[" + model_section +
+		    "] prior_gauge = anchor: the anchored prior (x_0 fixed, Sigma_0 "
+		    "only in the reported covariances) is implemented in the dynamic EKF and Alg. 1 "
+		    "(backend = alg1) only; backend = " +
+		    backend + " needs prior_gauge = prior");
 	if (model.odometry_bias.enabled())
 		throw std::invalid_argument(
 		    "[" + model_section + "] odometry_bias = " + model.odometry_bias.mode +

@@ -43,6 +43,12 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	Eigen::Matrix3d Sigma_w = Eigen::Matrix3d::Identity() * 1e-4;  ///< [m^2, m^2, rad^2]
 	Eigen::Vector3d initial_pose = Eigen::Vector3d::Zero();        ///< x_0 mean
 	Eigen::Matrix3d Sigma_0 = Eigen::Matrix3d::Zero();             ///< x_0 covariance (PSD)
+	/** prior_gauge (issue 13, doc/state-layout.md "The prior gauge"): prior (default: the EKF
+	 * starts with the ego covariance Sigma_0) or anchor (the EKF runs with the initial pose as
+	 * the gauge, zero ego covariance, and Sigma_0 enters only its reported covariances as the
+	 * uncertain rigid transform of the whole estimate, P + N Sigma_0 N^T, models/gauge.h).
+	 * EKF only: the framework back-ends reject anchor. */
+	bool prior_gauge_anchor = false;
 	/** Sigma_xi: per-feature residual covariance of the object pose map (paper 0.1 I). */
 	Eigen::Matrix2d Sigma_xi = Eigen::Matrix2d::Identity() * 0.1;
 	bool smoothing = false;  ///< Alg. 6 on/off (paper: off on the highway)

@@ -189,6 +189,14 @@ public:
 	/** The transition Jacobian F of the last step's prediction (Alg. 7; with first-estimate
 	 * Jacobians, the modified one); empty if the prediction was skipped. */
 	const std::optional<Eigen::Matrix3d>& lastTransitionJacobian() const { return m_lastF; }
+	/** prior_gauge = anchor (doc/state-layout.md "The prior gauge"): the filter runs with the
+	 * initial pose as the gauge (its covariance P is relative to x_0) and reports P + N Sigma_0
+	 * N^T. gaugeJacobian() is N = d(state)/d(delta) (fullMean().size() x 3; pad rows 0;
+	 * models/gauge.h), for either gauge. reportedCov() is the covariance reported outward:
+	 * fullCov() with prior_gauge = prior, fullCov() + N Sigma_0 N^T with anchor. getEgoPose,
+	 * getStateWithoutPads and the marginals of the other getters include the same term. */
+	Eigen::MatrixXd gaugeJacobian() const;
+	Eigen::MatrixXd reportedCov() const;
 	/** odometry_bias != none: the bias estimate, (b_w) or (b_w, s), and its covariance
 	 * (dynslam/models/odometry_bias.h); empty otherwise. */
 	std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> getOdometryBias() const;
@@ -328,8 +336,12 @@ private:
 	void compressIfDue();
 	/** Getters: the global update if the state is compressed (the estimate is unchanged). */
 	void ensureExpanded() const;
-	std::vector<estimator::TPassiveLevel> m_passive;  ///< compression levels, oldest first
-	std::map<int32_t, int> m_passiveStatic;           ///< passive landmark ID -> its block's step
+	/** prior_gauge = anchor: the output term J Sigma_0 J^T of a block of `kind` (or of the
+	 * ego, ego = true) with mean `mean`; a zero matrix with prior_gauge = prior. */
+	Eigen::MatrixXd gaugeTerm(const estimator::TBlock* block, const Eigen::VectorXd& mean) const;
+	Eigen::Vector2d m_gaugeOrigin = Eigen::Vector2d::Zero();  ///< p0 of the gauge (reset())
+	std::vector<estimator::TPassiveLevel> m_passive;          ///< compression levels, oldest first
+	std::map<int32_t, int> m_passiveStatic;  ///< passive landmark ID -> its block's step
 	int m_nextLevel = 0;
 
 	/** Per-step scratch that keeps its capacity between steps (doc/performance.md, section 16,

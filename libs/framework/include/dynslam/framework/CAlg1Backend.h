@@ -87,6 +87,21 @@ private:
 	void initObjectVelocities();
 	bool hasVelocity(int32_t obj) const { return m_velocitySince.count(obj) > 0; }
 	Eigen::MatrixXd marginalCov(const TVarKey& k) const;
+	/** prior_gauge = anchor (doc/framework.md): x_0 is an exact constraint (no prior term) until
+	 * the first odometry with a non-zero covariance gives the ego its marginal G Sigma_u G^T
+	 * (the running cost has no term before). gaugeTerm: the output term J Sigma_0 J^T of a
+	 * variable of `kind` with value v (zero with prior_gauge = prior), models/gauge.h. */
+	void propagateAnchored(const Eigen::Vector3d& u, const Eigen::Matrix3d& Su);
+	Eigen::MatrixXd gaugeTerm(VarKind kind, const Eigen::VectorXd& v) const;
+	bool m_anchorPending = false;  ///< anchor: the ego is still exactly x_0 (+) the odometry
+	/** anchor, while pending: the ego's exact value; it is then no variable of the running cost,
+	 * and the terms that read it are conditioned on it (addTerm). */
+	Eigen::Vector3d m_fixedEgo = Eigen::Vector3d::Zero();
+	Eigen::Vector3d egoValue() const
+	{
+		return m_anchorPending ? m_fixedEgo : Eigen::Vector3d(m_cost.value(m_ego));
+	}
+	void addTerm(const CTermPtr& t);
 	bool isTimeT(const TVarKey& k) const;
 
 	TBackendOptions m_opts;
