@@ -19,16 +19,7 @@ namespace
 struct TSq
 {
 	std::vector<double> x, y, theta;
-	TRmse finish() const
-	{
-		TRmse r;
-		r.x = rmse(x);
-		r.y = rmse(y);
-		r.theta = rmse(theta);
-		r.n_xy = x.size();
-		r.n_theta = theta.size();
-		return r;
-	}
+	TRmse finish() const { return rmseOf(x, y, theta); }
 };
 
 }  // namespace
@@ -46,6 +37,18 @@ double rmse(const std::vector<double>& errors)
 	double s = 0;
 	for (double e : errors) s += e * e;
 	return std::sqrt(s / static_cast<double>(errors.size()));
+}
+
+TRmse rmseOf(const std::vector<double>& x, const std::vector<double>& y,
+             const std::vector<double>& theta)
+{
+	TRmse r;
+	r.x = rmse(x);
+	r.y = rmse(y);
+	r.theta = rmse(theta);
+	r.n_xy = x.size();
+	r.n_theta = theta.size();
+	return r;
 }
 
 void checkGroundTruth(const TGroundTruth& gt)

@@ -126,18 +126,6 @@ Eigen::Vector2d centroid(const Eigen::Matrix2Xd& f, const std::vector<int32_t>& 
 	return c / double(cols.size());
 }
 
-TRmse finishRmse(const std::vector<double>& x, const std::vector<double>& y,
-                 const std::vector<double>& th)
-{
-	TRmse r;
-	r.x = rmse(x);
-	r.y = rmse(y);
-	r.theta = rmse(th);
-	r.n_xy = x.size();
-	r.n_theta = th.size();
-	return r;
-}
-
 /** The f_0 of estimated object `o` against the truth at its time 0 s. */
 void scoreAgentFeatures(TObjectMetrics& om, const TObjectGroundTruth& t, int32_t o,
                         const TEstObject& e, const TRunEstimates& est)
@@ -155,7 +143,7 @@ void scoreAgentFeatures(TObjectMetrics& om, const TObjectGroundTruth& t, int32_t
 		y.push_back(f.mean[1] - truth[1]);
 		scored.insert(it->second);
 	}
-	om.features = finishRmse(x, y, {});
+	om.features = rmseOf(x, y, {});
 	om.features_missing = size_t(t.num_features) - scored.size();
 }
 
@@ -191,7 +179,7 @@ void scoreAgentPoses(TObjectMetrics& om, const TObjectGroundTruth& t, int32_t o,
 		y.push_back(p.mean[1] - (g.y() - c.y()));
 		if (p.mean.size() == 3) th.push_back(models::wrapToPi(p.mean[2] - models::wrapToPi(dth)));
 	}
-	om.poses = finishRmse(x, y, th);
+	om.poses = rmseOf(x, y, th);
 }
 }  // namespace
 

@@ -56,6 +56,10 @@ Eigen::Vector3d poseError(const Eigen::Vector3d& est, const Eigen::Vector3d& tru
 /** RMSE of a list of scalar errors (NaN if empty). */
 double rmse(const std::vector<double>& errors);
 
+/** Per-component RMSE of x, y and heading errors, with their counts. */
+TRmse rmseOf(const std::vector<double>& x, const std::vector<double>& y,
+             const std::vector<double>& theta);
+
 /** Computes all metrics of one run. Throws std::invalid_argument on malformed estimates
  * (checkEstimates) or ground truth whose per-step vectors disagree in length. */
 TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est);
