@@ -95,6 +95,13 @@ void CDynamicKFSLAM2D::reset()
 		if (auto* c = dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
 			c->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
+	m_liveMerge.reset();
+	if (options.classify.merge_live && dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
+	{
+		const estimator::TClassifyParams& c = options.classify;
+		m_liveMerge = std::make_unique<estimator::CLiveMergeDetector>(estimator::TLiveMergeParams{
+		    c.merge_live_window, c.merge_live_alpha, c.beta, c.motion_std, c.group_prob});
+	}
 	m_router->reset();
 	if (!m_userEngine)
 	{
@@ -250,6 +257,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		planFallbacks(plan);  // object-centric motion models only (cv_fallback_steps)
 		commit(plan);
 		mergeLinkedObjects();    // classify_merge_linked (object-centric models) only
+		mergeLiveObjects();      // classify_merge_live only
 		recordFirstEstimates();  // first-estimate Jacobians (optional)
 		compressIfDue();         // compressed EKF only
 	}

@@ -100,6 +100,13 @@ struct TClassifyParams
 	 * an object-centric model (cv, ctrv), which predicts the lost object across the gap
 	 * (doc/classification.md "Merging a linked object"); false (default): identities only. */
 	bool merge_linked = false;
+	/** classify_merge_live: two live objects that move as one rigid body (CLiveMergeDetector,
+	 * live_merge.h) are merged in the estimator (the filter calls mergeObjects; off by default:
+	 * doc/classification.md "Merging two live objects"). merge_live_window: increments per
+	 * decision, >= 1; merge_live_alpha: the test's false-merge probability, in (0, 1). */
+	bool merge_live = false;
+	int merge_live_window = 5;
+	double merge_live_alpha = 1e-3;
 	/** classify_static_test: how a static track's reading is tested before it updates the
 	 * filter (reclassification). Robot (default): the robot-frame static filter carried by the
 	 * odometry alone (TTrack::q). Map: if the track has a landmark in the filter's state, the
