@@ -99,8 +99,13 @@ void CDynamicKFSLAM2D::reset()
 	if (options.classify.merge_live && dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
 	{
 		const estimator::TClassifyParams& c = options.classify;
-		m_liveMerge = std::make_unique<estimator::CLiveMergeDetector>(estimator::TLiveMergeParams{
-		    c.merge_live_window, c.merge_live_alpha, c.beta, c.motion_std, c.group_prob});
+		// Window 0: 5 with an object-centric model, 20 with the paper's, whose pose noise
+		// Sigma_xi dominates the statistic's covariance (doc/classification.md).
+		const int w = c.merge_live_window > 0   ? c.merge_live_window
+		              : options.objectCentric() ? 5
+		                                        : 20;
+		m_liveMerge = std::make_unique<estimator::CLiveMergeDetector>(
+		    estimator::TLiveMergeParams{w, c.merge_live_alpha, c.beta, c.motion_std, c.group_prob});
 	}
 	m_router->reset();
 	if (!m_userEngine)

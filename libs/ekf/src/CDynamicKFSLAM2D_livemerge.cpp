@@ -11,6 +11,7 @@
 #include <dynslam/models/object_merge.h>
 
 #include <Eigen/Cholesky>
+#include <utility>
 
 namespace dynslam
 {
@@ -149,7 +150,7 @@ void CDynamicKFSLAM2D::mergeLiveObjects()
 	const Eigen::VectorXd x = m_xkk.asEigen();
 	const std::vector<TLive> live =
 	    liveObjects(m_layout, m_router->registry(), x, m_step, options.objectCentric(), seen);
-	const ekf::CSquareBuffer::ConstView P = m_cov.view();
+	const ekf::CSquareBuffer::ConstView P = std::as_const(m_cov).view();
 	std::vector<std::pair<int32_t, int32_t>> merges;  // (from, into)
 	std::set<int32_t> busy;
 	for (size_t i = 0; i < live.size(); ++i)
@@ -162,14 +163,14 @@ void CDynamicKFSLAM2D::mergeLiveObjects()
 			const TLive& A = iInto ? live[i] : live[j];
 			const TLive& B = iInto ? live[j] : live[i];
 			if ((A.p - B.p).norm() > options.classify.group_max_dist) continue;
-			const estimator::TLiveMergeStats st =
-			    m_liveMerge->observe(A.obj, B.obj, liveSample(m_layout, x, P, A, B, m_step));
+			const estimator::TLiveMergeSample smp = liveSample(m_layout, x, P, A, B, m_step);
+			const estimator::TLiveMergeStats st = m_liveMerge->observe(A.obj, B.obj, smp);
 			if (!st.rigid || busy.count(A.obj) || busy.count(B.obj)) continue;
 			merges.emplace_back(B.obj, A.obj);
 			busy.insert(A.obj);
 			busy.insert(B.obj);
 		}
-	m_liveMerge->prune(m_step, 2 * options.classify.merge_live_window + 2);
+	m_liveMerge->prune(m_step, 2 * m_liveMerge->window() + 2);
 	for (const auto& [from, into] : merges)
 		if (mergeObjects(from, into)) ++m_report.objects_merged_live;
 }

@@ -21,6 +21,33 @@ std::pair<double, double> quadLogDet(const Eigen::VectorXd& x, const Eigen::Matr
 }
 }  // namespace
 
+double CLiveMergeDetector::trendChi2(const std::deque<TLiveMergeSample>& samples)
+{
+	// y_i = a + b t_i + e_i, e_i ~ N(0, S_i) independent: the weighted least-squares slope b and
+	// its chi-square b^T Cov(b)^-1 b (the generalised likelihood ratio of b != 0).
+	if (samples.size() < 3) return 0;
+	const Eigen::Index n = samples.front().y.size();
+	double t0 = 0;
+	for (const TLiveMergeSample& s : samples) t0 += s.step;
+	t0 /= double(samples.size());
+	Eigen::MatrixXd N = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+	Eigen::VectorXd r = Eigen::VectorXd::Zero(2 * n);
+	for (const TLiveMergeSample& s : samples)
+	{
+		const double t = s.step - t0;
+		const Eigen::MatrixXd W = s.S.ldlt().solve(Eigen::MatrixXd::Identity(n, n));
+		N.topLeftCorner(n, n) += W;
+		N.topRightCorner(n, n) += t * W;
+		N.bottomRightCorner(n, n) += t * t * W;
+		r.head(n) += W * s.y;
+		r.tail(n) += t * W * s.y;
+	}
+	N.bottomLeftCorner(n, n) = N.topRightCorner(n, n).transpose();
+	const Eigen::MatrixXd Ninv = N.ldlt().solve(Eigen::MatrixXd::Identity(2 * n, 2 * n));
+	const Eigen::VectorXd b = (Ninv * r).tail(n);
+	return b.dot(Ninv.bottomRightCorner(n, n).ldlt().solve(b));
+}
+
 CLiveMergeDetector::CLiveMergeDetector(const TLiveMergeParams& p) : m_p(p)
 {
 	if (p.window < 1) throw std::invalid_argument("classify_merge_live_window must be >= 1");
@@ -64,8 +91,7 @@ TLiveMergeStats CLiveMergeDetector::observe(int32_t a, int32_t b, const TLiveMer
 	TLiveMergeStats st;
 	st.increments = int(p.llr.size());
 	st.llr = std::accumulate(p.llr.begin(), p.llr.end(), 0.0);
-	const TLiveMergeSample& first = p.samples.front();
-	st.drift_chi2 = quadLogDet(s.y - first.y, s.S + first.S).first;
+	st.drift_chi2 = trendChi2(p.samples);
 	if (st.increments < m_p.window) return st;
 	const double upper = std::log((1 - m_p.beta) / m_p.alpha);
 	const int dof = int(s.y.size());

@@ -103,9 +103,10 @@ struct TClassifyParams
 	/** classify_merge_live: two live objects that move as one rigid body (CLiveMergeDetector,
 	 * live_merge.h) are merged in the estimator (the filter calls mergeObjects; off by default:
 	 * doc/classification.md "Merging two live objects"). merge_live_window: increments per
-	 * decision, >= 1; merge_live_alpha: the test's false-merge probability, in (0, 1). */
+	 * decision, >= 1, or 0 (default): 5 with cv / ctrv, 20 with the paper's model;
+	 * merge_live_alpha: the SPRT's false-merge probability, in (0, 1). */
 	bool merge_live = false;
-	int merge_live_window = 5;
+	int merge_live_window = 0;
 	double merge_live_alpha = 1e-3;
 	/** classify_static_test: how a static track's reading is tested before it updates the
 	 * filter (reclassification). Robot (default): the robot-frame static filter carried by the

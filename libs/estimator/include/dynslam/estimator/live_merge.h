@@ -13,8 +13,9 @@
  *   is not tracked), is log N(delta; 0, C) - log N(delta; 0, C + sigma_m^2 g I); "one body" when
  *   the sum over the window reaches log((1 - beta) / alpha), alpha = classify_merge_live_alpha
  *   (the false-merge probability), beta = classify_beta;
- * - no steady drift: (y_last - y_first)^T (S_first + S_last)^-1 (y_last - y_first) within the
- *   chi-square quantile at classify_group_prob (the grouping's rigid test level);
+ * - no steady drift: the weighted least-squares slope b of y over the window's steps
+ *   (y_i = a + b t_i + e_i, e_i ~ N(0, S_i) independent), b^T Cov(b)^-1 b within the chi-square
+ *   quantile (2 m dof) at classify_group_prob (the grouping's rigid test level);
  * - the velocities agree now: the velocity residual's chi-square within that quantile.
  *
  * Pure Eigen; no MRPT. */
@@ -65,9 +66,13 @@ public:
 	void prune(int step, int keep);
 	void reset() { m_pairs.clear(); }
 	size_t pairs() const { return m_pairs.size(); }
+	int window() const { return m_p.window; }
 	/** The log-likelihood ratio of one increment (one body against two), exposed for tests. */
 	static double incrementLlr(const Eigen::VectorXd& delta, const Eigen::MatrixXd& C,
 	                           double spread2);
+	/** The chi-square of the weighted least-squares slope of y over the samples' steps (0 with
+	 * fewer than 3 samples), exposed for tests. */
+	static double trendChi2(const std::deque<TLiveMergeSample>& samples);
 
 private:
 	struct TPair
