@@ -353,3 +353,23 @@ TEST(LiveMerge, BadKeysAreClearErrorsAndTheKeysAreDumped)
 	EXPECT_NE(d.str().find("classify_merge_live_window     = 7"), std::string::npos);
 	EXPECT_NE(d.str().find("classify_merge_live_alpha      = 0.002"), std::string::npos);
 }
+
+TEST(LiveMerge, HintsKeepCarsMovingTogetherApart)
+{
+	// Agents 2 and 3 at the same speed, side by side: one rigid body by motion alone (merged
+	// without hints, as grouping would), two boxes with hints (never merged).
+	std::string text = kTwoLanes;
+	text.replace(text.find("speed = 17.8"), 12, "speed = 17.5");
+	text += "[Effects]\ndetection_groups = true\n";
+	const sim::TScenarioOptions o = sim::loadScenarioFromText(text);
+	const std::string cv =
+	    "object_model = cv\ncv_dt = 0.5\ncv_accel_psd = [0.1 0.1 1e-3]\n"
+	    "cv_velocity_prior_std = [0.5 0.5 0.05]\nclassify_merge_live = true\n";
+	const TRun plain = runScenario(o, cv);
+	const TRun hints = runScenario(o, cv + "classify_use_hints = true\n");
+	print("same speed, no hints", plain);
+	print("same speed, hints", hints);
+	EXPECT_GE(plain.merged, 1u);
+	EXPECT_EQ(hints.merged, 0u);
+	EXPECT_EQ(hints.objects, 3u);
+}
