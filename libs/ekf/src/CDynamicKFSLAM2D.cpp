@@ -95,18 +95,9 @@ void CDynamicKFSLAM2D::reset()
 		if (auto* c = dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
 			c->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
-	m_liveMerge.reset();
-	if (options.classify.merge_live && dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
-	{
-		const estimator::TClassifyParams& c = options.classify;
-		// Window 0: 5 with an object-centric model, 20 with the paper's, whose pose noise
-		// Sigma_xi dominates the statistic's covariance (doc/classification.md).
-		const int w = c.merge_live_window > 0   ? c.merge_live_window
-		              : options.objectCentric() ? 5
-		                                        : 20;
-		m_liveMerge = std::make_unique<estimator::CLiveMergeDetector>(
-		    estimator::TLiveMergeParams{w, c.merge_live_alpha, c.beta, c.motion_std, c.group_prob});
-	}
+	m_liveMerge.reset();  // classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp)
+	if (dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
+		m_liveMerge = estimator::makeLiveMergeDetector(options.classify, options.objectCentric());
 	m_router->reset();
 	if (!m_userEngine)
 	{

@@ -108,4 +108,13 @@ void CLiveMergeDetector::prune(int step, int keep)
 		else
 			++it;
 }
+
+std::unique_ptr<CLiveMergeDetector> makeLiveMergeDetector(const TClassifyParams& c,
+                                                          bool objectCentric)
+{
+	if (!c.merge_live) return nullptr;
+	const int w = c.merge_live_window > 0 ? c.merge_live_window : objectCentric ? 5 : 20;
+	return std::make_unique<CLiveMergeDetector>(
+	    TLiveMergeParams{w, c.merge_live_alpha, c.beta, c.motion_std, c.group_prob});
+}
 }  // namespace dynslam::estimator

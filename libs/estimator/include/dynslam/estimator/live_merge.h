@@ -19,10 +19,13 @@
  * - the velocities agree now: the velocity residual's chi-square within that quantile.
  *
  * Pure Eigen; no MRPT. */
+#include <dynslam/estimator/classifying_router.h>
+
 #include <Eigen/Core>
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <memory>
 #include <utility>
 
 namespace dynslam::estimator
@@ -83,4 +86,10 @@ private:
 	TLiveMergeParams m_p;
 	std::map<std::pair<int32_t, int32_t>, TPair> m_pairs;
 };
+
+/** The detector of classify_merge_live (null when it is off). Window 0 (automatic): 5 with an
+ * object-centric model, 20 with the paper's, whose pose noise Sigma_xi dominates the statistic's
+ * covariance (doc/classification.md "Merging two live objects"). */
+std::unique_ptr<CLiveMergeDetector> makeLiveMergeDetector(const TClassifyParams& c,
+                                                          bool objectCentric);
 }  // namespace dynslam::estimator
