@@ -223,6 +223,23 @@ TEST(LiveMergeDetector, RigidPairMergesMovingPairsDoNot)
 		EXPECT_EQ(first, -1) << "seed " << seed;
 		EXPECT_GT(last.llr, std::log(0.99 / 1e-3)) << "seed " << seed;
 	}
+	// cv / ctrv: a constant configuration whose velocities disagree now is not merged.
+	for (const double velChi2 : {1.0, 100.0})
+	{
+		CLiveMergeDetector v(TLiveMergeParams{5, 1e-3, 0.01, 0.5, 0.99});
+		bool rigid = false;
+		for (int k = 0; k <= 5; ++k)
+		{
+			TLiveMergeSample s;
+			s.step = k;
+			s.y = y0 + 0.05 * Eigen::Vector4d(n01(rng), n01(rng), n01(rng), n01(rng));
+			s.S = S;
+			s.vel_chi2 = velChi2;
+			s.vel_dof = 3;
+			rigid = v.observe(1, 2, s).rigid;
+		}
+		EXPECT_EQ(rigid, velChi2 < 10) << "velocity chi-square " << velChi2;
+	}
 	// A sample of another size restarts the pair's window.
 	CLiveMergeDetector d;
 	TLiveMergeSample s;
