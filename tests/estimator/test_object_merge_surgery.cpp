@@ -27,15 +27,17 @@ public:
 	using CDynamicKFSLAM2D::mergeObjects;
 };
 
-/** The shipped highway with feature_labels = classify (or ids) and object_model = cv. */
-void runHighwayCv(CDynamicKFSLAM2D& ekf, size_t steps, const std::string& labels = "classify")
+/** The shipped highway with feature_labels = classify (or ids) and object_model = cv (model:
+ * "paper" for the paper's object model). */
+void runHighwayCv(CDynamicKFSLAM2D& ekf, size_t steps, const std::string& labels = "classify",
+                  const std::string& model = "cv")
 {
 	const sim::TScenarioOptions o = dynslam_test::shippedScenario("highway.ini");
 	const TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, o.noise_seed);
 	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(
-	    "feature_labels = " + labels +
-	    "\nobject_model = cv\ncv_dt = 0.5\n"
+	    "feature_labels = " + labels + "\nobject_model = " + model +
+	    "\ncv_dt = 0.5\n"
 	    "cv_accel_psd = [1e-3 1e-3 1e-5]\ncv_velocity_prior_std = [0.5 0.5 0.05]\n"));
 	ekf.loadOptions(cfg, "DynamicKFSLAM");
 	for (size_t k = 0; k < steps; ++k) ekf.processActionObservation(run.actions[k], run.frames[k]);
@@ -108,8 +110,9 @@ struct TDenseMerge
 	}
 };
 
-/** Merges `from` into `into` and checks every entry against the dense computation. */
-void checkMerge(CMergeEkf& ekf, int32_t from, int32_t into)
+/** Merges `from` into `into` and checks every entry against the dense computation. poseTag
+ * selects the poses the merge uses (paper model: "<step>.", the poses of this step). */
+void checkMerge(CMergeEkf& ekf, int32_t from, int32_t into, const std::string& poseTag = "")
 {
 	Eigen::VectorXd x;
 	Eigen::MatrixXd P;
@@ -118,8 +121,8 @@ void checkMerge(CMergeEkf& ekf, int32_t from, int32_t into)
 	const auto& reg = ekf.router().registry();
 	const estimator::TObjectEntry eL = reg.at(into), eN = reg.at(from);
 	const std::string L = "obj" + std::to_string(into), N = "obj" + std::to_string(from);
-	const std::vector<Eigen::Index> xiL = withPrefix(labels, L + ".xi"),
-	                                xiN = withPrefix(labels, N + ".xi");
+	const std::vector<Eigen::Index> xiL = withPrefix(labels, L + ".xi" + poseTag),
+	                                xiN = withPrefix(labels, N + ".xi" + poseTag);
 	ASSERT_TRUE(xiL.size() == 2 || xiL.size() == 3);
 	const TDenseMerge G{labels, eL, eN, L, N, xiL, xiN};
 	const Eigen::VectorXd xe = G(x);
@@ -200,6 +203,28 @@ TEST(ObjectMergeSurgery, EveryEntryEqualsTheDenseComputation)
 		SCOPED_TRACE(reverse ? "reverse" : "forward");
 		checkMerge(ekf, rigid[reverse ? 1 : 0], rigid[reverse ? 0 : 1]);
 	}
+}
+
+TEST(ObjectMergeSurgery, PaperModelLiveMergeEqualsTheDenseComputation)
+{
+	// classify_merge_live with the paper's model: B's f_0 (in B's first-sighting frame) are
+	// brought to now by xi_B,t and into A's first-sighting frame by xi_A,t^-1; B's poses leave.
+	CMergeEkf ekf;
+	runHighwayCv(ekf, 30, "classify", "paper");
+	const int step = ekf.getLastStepReport().step;
+	std::map<int32_t, int> now;  // objects with a pose of this step -> its dimension
+	for (const auto& b : ekf.getLayout().blocks())
+		if (b.kind == estimator::BlockKind::ObjectPose && b.step == step) now[b.object] = b.dim;
+	std::vector<int32_t> rigid;
+	int32_t old = -1;
+	for (const auto& [o, d] : now)
+		if (d == 3) rigid.push_back(o);
+	for (const auto& b : ekf.getLayout().blocks())
+		if (b.kind == estimator::BlockKind::ObjectPose && !now.count(b.object)) old = b.object;
+	ASSERT_GE(rigid.size(), 2u);
+	// An object without a pose of this step cannot be merged with the paper's model.
+	if (old >= 0) EXPECT_FALSE(ekf.mergeObjects(old, rigid[0]));
+	checkMerge(ekf, rigid[1], rigid[0], std::to_string(step) + ".");
 }
 
 TEST(ObjectMergeSurgery, BadMergesChangeNothing)

@@ -111,6 +111,9 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_link",
                                           "classify_link_gap",
                                           "classify_merge_linked",
+                                          "classify_merge_live",
+                                          "classify_merge_live_window",
+                                          "classify_merge_live_alpha",
                                           "classify_static_test",
                                           "classify_drift_window",
                                           "classify_drift_prob",
@@ -152,6 +155,9 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	p.link = link == 0 ? Link::Off : link == 1 ? Link::Hints : Link::All;
 	p.link_gap = int(readInt(c, s, "classify_link_gap", p.link_gap));
 	p.merge_linked = readBool(c, s, "classify_merge_linked", p.merge_linked);
+	p.merge_live = readBool(c, s, "classify_merge_live", p.merge_live);
+	p.merge_live_window = int(readInt(c, s, "classify_merge_live_window", p.merge_live_window));
+	p.merge_live_alpha = readDouble(c, s, "classify_merge_live_alpha", p.merge_live_alpha);
 	using Test = estimator::TClassifyParams::StaticTest;
 	p.static_test = readChoice(c, s, "classify_static_test", {"robot", "map"}, 0) == 0 ? Test::Robot
 	                                                                                   : Test::Map;
@@ -346,6 +352,9 @@ void dumpClassify(std::ostream& out, const std::string& feature_labels,
 	out << "classify_link_gap              = " << classify.link_gap << "\n";
 	out << "classify_merge_linked          = " << (classify.merge_linked ? "true" : "false")
 	    << "\n";
+	out << "classify_merge_live            = " << (classify.merge_live ? "true" : "false") << "\n";
+	out << "classify_merge_live_window     = " << classify.merge_live_window << "\n";
+	out << "classify_merge_live_alpha      = " << classify.merge_live_alpha << "\n";
 	out << "classify_static_test           = "
 	    << (classify.static_test == estimator::TClassifyParams::StaticTest::Map ? "map" : "robot")
 	    << "\n";

@@ -97,6 +97,9 @@ void CDynamicKFSLAM2D::reset()
 		if (auto* c = dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
 			c->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
+	m_liveMerge.reset();  // classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp)
+	if (dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
+		m_liveMerge = estimator::makeLiveMergeDetector(options.classify, options.objectCentric());
 	m_router->reset();
 	if (!m_userEngine)
 	{
@@ -252,6 +255,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		planFallbacks(plan);  // object-centric motion models only (cv_fallback_steps)
 		commit(plan);
 		mergeLinkedObjects();    // classify_merge_linked (object-centric models) only
+		mergeLiveObjects();      // classify_merge_live only
 		recordFirstEstimates();  // first-estimate Jacobians (optional)
 		compressIfDue();         // compressed EKF only
 	}

@@ -63,8 +63,18 @@ bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 		throw std::logic_error("CDynamicKFSLAM2D::mergeObjects: cannot merge object " +
 		                       std::to_string(from) + " into " + std::to_string(into));
 	const TObjectBlocks L = blocksOf(m_layout, into), N = blocksOf(m_layout, from);
-	// Without a velocity the lost object was not predicted across the gap: nothing to merge into.
-	if (L.velocity == SIZE_MAX || L.pose == SIZE_MAX) return false;
+	if (L.pose == SIZE_MAX) return false;
+	if (options.objectCentric())
+	{
+		// Without a velocity the lost object was not predicted across the gap: nothing to merge
+		// into.
+		if (L.velocity == SIZE_MAX) return false;
+	}
+	// The paper's model (classify_merge_live): both poses of this step (N's f_0 are in N's
+	// first-sighting frame, brought to now by xi_N,t).
+	else if (N.pose == SIZE_MAX || m_layout[L.pose].step != m_step ||
+	         m_layout[N.pose].step != m_step)
+		return false;
 	const estimator::TObjectEntry eL = reg.at(into), eN = reg.at(from);
 	// The input entries of g: [xi_L; L's founders' f_0 (3-dof pose); xi_N; N's f_0].
 	std::vector<int> in = m_layout.indices(L.pose);

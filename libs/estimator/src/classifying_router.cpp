@@ -50,6 +50,9 @@ void TClassifyParams::validate() const
 	if (drift_window < 0 || drift_window == 1)
 		throw std::invalid_argument("classify_drift_window must be 0 (off) or >= 2");
 	prob(drift_prob, "classify_drift_prob");
+	prob(merge_live_alpha, "classify_merge_live_alpha");
+	if (merge_live_window < 0)
+		throw std::invalid_argument("classify_merge_live_window must be >= 0 (0: automatic)");
 	assoc.validate();
 }
 

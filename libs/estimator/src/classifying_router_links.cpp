@@ -161,6 +161,13 @@ void CClassifyingRouter::countGroupHintConflicts(TRoutedStep& out) const
 	for (const auto& [obj, h] : hints)
 		if (h.size() > 1) ++out.hint_group_conflicts;
 }
+bool CClassifyingRouter::hintsAllowMerge(int32_t a, int32_t b) const
+{
+	if (!m_p.use_hints) return true;
+	const int32_t ha = objectHint(a), hb = objectHint(b);
+	return ha < 0 || hb < 0 || ha == hb;
+}
+
 void CClassifyingRouter::mergeObjects(int32_t from, int32_t into)
 {
 	if (from == into || !m_objectTracks.count(from) || !m_objectTracks.count(into) ||

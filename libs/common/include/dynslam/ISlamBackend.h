@@ -92,6 +92,8 @@ struct TStepReport
 	/** classify_merge_linked: linked objects merged into the lost object (its motion model
 	 * predicted it across the gap), and links not merged (the lost object has no velocity). */
 	size_t objects_merged = 0, merges_skipped = 0;
+	/** classify_merge_live: live objects merged into another one they move rigidly with. */
+	size_t objects_merged_live = 0;
 };
 
 /** Common interface of the back-ends. */

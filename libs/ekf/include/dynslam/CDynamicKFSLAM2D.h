@@ -39,6 +39,7 @@
 #include <dynslam/ekf_steps.h>
 #include <dynslam/estimator/compressed_state.h>
 #include <dynslam/estimator/drop_policy.h>
+#include <dynslam/estimator/live_merge.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/estimator/state_layout.h>
@@ -213,7 +214,8 @@ protected:
 	 * features of object `from` are re-expressed in the body frame of object `into`
 	 * (models/object_merge.h; x' = g(x), P' = J P J^T), from's poses, velocity and time-t
 	 * features leave the state, and the router routes from's tracks as into's. False (nothing
-	 * changed) if `into` has no velocity and pose (not predicted across the gap). Throws
+	 * changed) if `into` has no velocity and pose (not predicted across the gap), or, with the
+	 * paper's model (classify_merge_live), if either has no pose of this step. Throws
 	 * std::logic_error if an object is unknown or they are the same. */
 	bool mergeObjects(int32_t from, int32_t into);
 
@@ -324,6 +326,10 @@ private:
 	bool velocityInit(int32_t obj, size_t pose, TVelocityInit& out);
 	/** The step's merges (TRoutedStep::merges), after its commit; counted in the report. */
 	void mergeLinkedObjects();
+	/** classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp): tests every pair of objects seen
+	 * in this step (estimator::CLiveMergeDetector) and merges those that move as one body. */
+	void mergeLiveObjects();
+	std::unique_ptr<estimator::CLiveMergeDetector> m_liveMerge;  ///< null: classify_merge_live off
 	std::set<int32_t> m_lostNow;      ///< objects lost in this step (objectFeatureUpdates)
 	std::set<int32_t> m_awaitingVel;  ///< lost objects that have no velocity yet
 	std::set<int32_t> m_reinitNow;    ///< lost objects given a velocity in this step

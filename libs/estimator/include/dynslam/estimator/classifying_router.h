@@ -100,6 +100,14 @@ struct TClassifyParams
 	 * an object-centric model (cv, ctrv), which predicts the lost object across the gap
 	 * (doc/classification.md "Merging a linked object"); false (default): identities only. */
 	bool merge_linked = false;
+	/** classify_merge_live: two live objects that move as one rigid body (CLiveMergeDetector,
+	 * live_merge.h) are merged in the estimator (the filter calls mergeObjects; off by default:
+	 * doc/classification.md "Merging two live objects"). merge_live_window: increments per
+	 * decision, >= 1, or 0 (default): 5 with cv / ctrv, 20 with the paper's model;
+	 * merge_live_alpha: the SPRT's false-merge probability, in (0, 1). */
+	bool merge_live = false;
+	int merge_live_window = 0;
+	double merge_live_alpha = 1e-3;
 	/** classify_static_test: how a static track's reading is tested before it updates the
 	 * filter (reclassification). Robot (default): the robot-frame static filter carried by the
 	 * odometry alone (TTrack::q). Map: if the track has a landmark in the filter's state, the
@@ -184,6 +192,9 @@ public:
 	 * tracks become features of `into` (indices after its own), `from` leaves the registry.
 	 * Throws std::logic_error if either is unknown or they are the same. */
 	void mergeObjects(int32_t from, int32_t into) override;
+	/** classify_merge_live with use_hints: false if objects a and b carry different hints
+	 * (different boxes are different objects, as in grouping); true without hints. */
+	bool hintsAllowMerge(int32_t a, int32_t b) const;
 
 	const TClassifyParams& params() const { return m_p; }
 	/** With a static association function, ID -1 readings are associated
