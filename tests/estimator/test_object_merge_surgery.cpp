@@ -223,7 +223,10 @@ TEST(ObjectMergeSurgery, PaperModelLiveMergeEqualsTheDenseComputation)
 		if (b.kind == estimator::BlockKind::ObjectPose && !now.count(b.object)) old = b.object;
 	ASSERT_GE(rigid.size(), 2u);
 	// An object without a pose of this step cannot be merged with the paper's model.
-	if (old >= 0) EXPECT_FALSE(ekf.mergeObjects(old, rigid[0]));
+	if (old >= 0)
+	{
+		EXPECT_FALSE(ekf.mergeObjects(old, rigid[0]));
+	}
 	checkMerge(ekf, rigid[1], rigid[0], std::to_string(step) + ".");
 }
 
