@@ -1,5 +1,5 @@
-/** dynslam-bench: the highway run, the side-by-side comparison with MRPT's static EKF, and the
- * 225-run Monte Carlo. */
+/** dynslam-bench: the highway run, the side-by-side comparison with MRPT's static EKF, the live
+ * merge (BM_ClutterMerge), and the 225-run Monte Carlo. */
 #include <benchmark/benchmark.h>
 #include <dynslam/sim/scenario.h>
 #include <mrpt/config/CConfigFileMemory.h>
