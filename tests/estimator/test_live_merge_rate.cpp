@@ -220,10 +220,10 @@ struct TExpect
 	int missed;        ///< split-car halves never merged, over the 7 cases
 	int medianSteps;   ///< steps from the late half's first sighting to its merge
 };
+// The default alpha only (the test stays < 10 s under ctest -j2): alpha 0.1 gave the same counts
+// (doc; LiveMergeRate.AlphaSweepByHand for 0.1 / 1e-3 / 1e-6).
 const TExpect kExpect[] = {{&kCv, 1e-3, {38, 0, 0, 0, 0, 1, 6}, 0, 7},
-                           {&kCv, 0.1, {38, 0, 0, 0, 0, 1, 6}, 0, 7},
-                           {&kPaper, 1e-3, {38, 2, 0, 0, 0, 5, 22}, 0, 22},
-                           {&kPaper, 0.1, {38, 2, 0, 0, 0, 5, 22}, 0, 22}};
+                           {&kPaper, 1e-3, {38, 2, 0, 0, 0, 5, 22}, 0, 22}};
 }  // namespace
 
 TEST(LiveMergeRate, AlphaSweepByHand)
