@@ -1,7 +1,8 @@
-/** dynslam-bench: the highway run, the side-by-side comparison with MRPT's static EKF, and the
- * 225-run Monte Carlo. */
+/** dynslam-bench: the highway run, the side-by-side comparison with MRPT's static EKF, the live
+ * merge (BM_ClutterMerge), and the 225-run Monte Carlo. */
 #include <benchmark/benchmark.h>
 #include <dynslam/sim/scenario.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <atomic>
 #include <string>
@@ -72,6 +73,41 @@ void BM_HighwayRun(benchmark::State& state)
 	state.SetLabel(labels[state.range(0)]);
 }
 BENCHMARK(BM_HighwayRun)->DenseRange(0, 7)->Unit(benchmark::kMillisecond);
+
+/** classify_merge_live off (0) and on (1): config/highway_clutter.ini (121 steps, 3 cars, the
+ * clutter that splits them into 7 objects) simulated in memory, feature_labels = classify with
+ * object_model = cv and the keys of LiveMerge.ClutterHighway (3 live merges with the key on;
+ * doc/classification.md "Merging two live objects"). */
+void BM_ClutterMerge(benchmark::State& state)
+{
+	const TRun& run = simulatedRun("highway_clutter.ini", -1, 1);
+	mrpt::config::CConfigFileMemory cfg(
+	    "[DynamicKFSLAM]\nmeasurement_model = cartesian\nSigma_v = [1e-5 1e-5]\n"
+	    "motion_noise = action\nSigma_0 = [1e-5 1e-5 1e-7]\nSigma_xi = [0.1 0.1]\n"
+	    "feature_labels = classify\nobject_model = cv\ncv_dt = 0.5\n"
+	    "cv_accel_psd = [0.1 0.1 1e-3]\ncv_velocity_prior_std = [0.5 0.5 0.05]\n"
+	    "classify_merge_live = " +
+	    std::string(state.range(0) ? "true" : "false") +
+	    "\n[DynamicKFSLAM_KalmanFilter]\nmethod = kfEKFNaive\n");
+	size_t objects = 0;
+	for (auto _ : state)
+	{
+		dynslam::CDynamicKFSLAM2D f;
+		f.setMinLoggingLevel(mrpt::system::LVL_ERROR);
+		f.loadOptions(cfg, "DynamicKFSLAM");
+		f.KF_options.enable_profiler = false;
+		for (size_t k = 0; k < run.actions.size(); ++k)
+		{
+			f.processActionObservation(run.actions[k], run.frames[k]);
+			benchmark::DoNotOptimize(f.getEgoPose().cov(0, 0));
+		}
+		objects = f.router().registry().objects().size();
+	}
+	state.counters["steps"] = double(run.actions.size());
+	state.counters["objects"] = double(objects);
+	state.SetLabel(state.range(0) ? "classify+cv, merge_live on" : "classify+cv, merge_live off");
+}
+BENCHMARK(BM_ClutterMerge)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
 
 /** The same static-only run through MRPT's CRangeBearingKFSLAM2D (filter 0) and the dynamic EKF
  * with MRPT's update (1), the sparse one (2) or the compressed EKF (3, static_update =
