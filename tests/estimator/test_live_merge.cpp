@@ -390,3 +390,34 @@ TEST(LiveMerge, HintsKeepCarsMovingTogetherApart)
 	EXPECT_EQ(hints.merged, 0u);
 	EXPECT_EQ(hints.objects, 3u);
 }
+
+TEST(LiveMergeDetector, TheSprtBoundFollowsAlpha)
+{
+	// A configuration exactly constant (no slope) but seen through a covariance comparable to
+	// the two-bodies spread: each increment (C = 2 S = 0.2 I, spread 0.5^2 = 0.25 per coordinate,
+	// 2 coordinates) gives LLR = ln(0.45 / 0.2) = 0.811, so a window of 5 sums to 4.05: above the
+	// bound ln(0.99 / 0.1) = 2.29, below ln(0.99 / 1e-3) = 6.90; a window of 10 (8.11) passes
+	// both. So here the SPRT and its alpha alone decide.
+	const auto decide = [](double alpha, int window)
+	{
+		CLiveMergeDetector d(TLiveMergeParams{window, alpha, 0.01, 0.5, 0.99});
+		TLiveMergeStats st;
+		for (int k = 0; k <= window; ++k)
+		{
+			TLiveMergeSample s;
+			s.step = k;
+			s.y = Eigen::Vector2d(3.0, -1.0);
+			s.S = 0.1 * Eigen::Matrix2d::Identity();
+			st = d.observe(1, 2, s);
+		}
+		return st;
+	};
+	const double perIncrement = std::log(0.45 / 0.2);
+	const TLiveMergeStats loose = decide(0.1, 5), strict = decide(1e-3, 5);
+	EXPECT_NEAR(loose.llr, 5 * perIncrement, 1e-12);
+	EXPECT_NEAR(strict.llr, 5 * perIncrement, 1e-12);
+	EXPECT_EQ(strict.drift_chi2, 0.0);
+	EXPECT_TRUE(loose.rigid);
+	EXPECT_FALSE(strict.rigid);
+	EXPECT_TRUE(decide(1e-3, 10).rigid);
+}
