@@ -21,9 +21,11 @@
 #include <sstream>
 
 #include "highway_filter_setup.h"
+#include "live_merge_setup.h"
 
 using namespace dynslam;
 using namespace dynslam::estimator;
+using dynslam_test::delayHalfOfObject;
 
 namespace
 {
@@ -90,29 +92,6 @@ struct TRun
 	int firstMerge = -1;                        ///< step of the first live merge
 	std::map<int32_t, int32_t> truthOfObject;   ///< estimated object -> its majority true object
 };
-
-/** Removes the readings of true object `obj`, features >= 2, before step `until` (they are
- * first seen then: a car split into two objects). */
-void delayHalfOfObject(sim::TSimulatedRun& sim, int32_t obj, int until)
-{
-	std::vector<TReadingClass> kept;
-	std::map<int, int> shift;  // step -> readings removed so far in it
-	for (const TReadingClass& c : sim.classes)
-	{
-		TReadingClass d = c;
-		d.index -= shift[c.step];
-		if (c.object == obj && c.feature >= 2 && c.step < until)
-		{
-			auto o = sim.frames.at(size_t(c.step))
-			             ->getObservationByClass<mrpt::obs::CObservationBearingRange>();
-			o->sensedData.erase(o->sensedData.begin() + d.index);
-			++shift[c.step];
-			continue;
-		}
-		kept.push_back(d);
-	}
-	sim.classes = kept;
-}
 
 TRun runScenario(const sim::TScenarioOptions& o, const std::string& keys, int delayObject = -1)
 {

@@ -29,9 +29,11 @@
 #include <vector>
 
 #include "highway_filter_setup.h"
+#include "live_merge_setup.h"
 
 using namespace dynslam;
 using namespace dynslam::estimator;
+using dynslam_test::delayHalfOfObject;
 
 namespace
 {
@@ -51,28 +53,6 @@ std::string twoLanes(double x3, double v3, double psd, int seed)
 		s << "[Agent" << a + 1 << "]\ntype = car\nx0 = " << x0[a] << "\nlane0 = " << a + 1
 		  << "\nspeed = " << v[a] << "\nlength = 4.5\nwidth = 1.8\nnum_features = 4\n";
 	return s.str();
-}
-
-/** Removes the readings of true object `obj`, features >= 2, before step `until`. */
-void delayHalfOfObject(sim::TSimulatedRun& sim, int32_t obj, int until)
-{
-	std::vector<TReadingClass> kept;
-	std::map<int, int> shift;  // step -> readings removed so far in it
-	for (const TReadingClass& c : sim.classes)
-	{
-		TReadingClass d = c;
-		d.index -= shift[c.step];
-		if (c.object == obj && c.feature >= 2 && c.step < until)
-		{
-			auto o = sim.frames.at(size_t(c.step))
-			             ->getObservationByClass<mrpt::obs::CObservationBearingRange>();
-			o->sensedData.erase(o->sensedData.begin() + d.index);
-			++shift[c.step];
-			continue;
-		}
-		kept.push_back(d);
-	}
-	sim.classes = kept;
 }
 
 struct TOutcome
