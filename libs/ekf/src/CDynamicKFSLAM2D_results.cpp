@@ -22,6 +22,7 @@ mrpt::poses::CPosePDFGaussian CDynamicKFSLAM2D::getEgoPose() const
 	p.mean = mrpt::poses::CPose2D(m_xkk[0], m_xkk[1], m_xkk[2]);
 	for (int i = 0; i < 3; ++i)
 		for (int j = 0; j < 3; ++j) p.cov(i, j) = cov()(i, j);
+	if (!options.prior_gauge_anchor) return p;  // no output term: no allocation per call
 	const Eigen::MatrixXd g = gaugeTerm(nullptr, m_xkk.asEigen().head<3>());
 	for (int i = 0; i < 3; ++i)
 		for (int j = 0; j < 3; ++j) p.cov(i, j) += g(i, j);
