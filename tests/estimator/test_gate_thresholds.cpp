@@ -55,7 +55,10 @@ TEST(GateThresholds, InnovationGateOfTheSparseUpdate)
 		const bool used = nu == 0.60;
 		EXPECT_EQ(r.updates, used ? 1u : 0u) << "nu " << nu << ", NIS " << nu * nu / 0.04;
 		EXPECT_EQ(r.gated_out, used ? 0u : 1u) << nu;
-		if (used) EXPECT_NEAR(r.nis, 9.0, 1e-9);
+		if (used)
+		{
+			EXPECT_NEAR(r.nis, 9.0, 1e-9);
+		}
 		// Used: gain 0.03 / 0.04 along x; gated out: the landmark is unchanged.
 		EXPECT_NEAR(s.x[3], used ? 5 + 0.75 * nu : 5.0, 1e-12) << nu;
 	}

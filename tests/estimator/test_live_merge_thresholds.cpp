@@ -33,7 +33,10 @@ TLiveMergeStats observeLine(CLiveMergeDetector& d, const Eigen::VectorXd& y0, do
 		s.vel_chi2 = velChi2;
 		s.vel_dof = velDof;
 		st = d.observe(0, 1, s);
-		if (i < 5) EXPECT_FALSE(st.rigid) << "decided before the window was full, i = " << i;
+		if (i < 5)
+		{
+			EXPECT_FALSE(st.rigid) << "decided before the window was full, i = " << i;
+		}
 	}
 	EXPECT_EQ(st.increments, 5);
 	return st;
