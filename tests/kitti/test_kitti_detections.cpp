@@ -210,6 +210,10 @@ TEST(KittiDetections, BadCalibrationNamesFileAndLine)
 	               "calib/0007.txt:3: column 3: non-finite");
 	expectContains(appError(cars, with(4, "R0_rect: 1 0 0 0 2 0 0 0 1")),
 	               "calib/0007.txt:5: R0_rect: the 3x3 block is not a rotation");
+	// the tolerance |R^T R - I| <= 1e-3 on both sides: 1.0004^2 - 1 = 8.0e-4, 1.0006^2 - 1 = 1.2e-3
+	EXPECT_EQ(appError(cars, with(4, "R0_rect: 1.0004 0 0 0 1 0 0 0 1")), "");
+	expectContains(appError(cars, with(4, "R0_rect: 1.0006 0 0 0 1 0 0 0 1")),
+	               "calib/0007.txt:5: R0_rect: the 3x3 block is not a rotation");
 	expectContains(appError(cars, with(6, "Tr_imu_velo_x: 1 0 0 0 0 1 0 0 0 0 1 0")),
 	               "calib/0007.txt:7: unknown calibration key 'Tr_imu_velo_x'");
 	expectContains(appError(cars, with(6, "P0: 700 0 600 0 0 700 180 0 0 0 1 0")),
