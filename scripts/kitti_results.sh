@@ -17,7 +17,8 @@
 # then OUT_DIR/summary.csv and OUT_DIR/table.md. Development only: no test needs this script.
 # KITTI_NO_COMPARE=1 skips dynslam-compare (the report runs the same three filters; this halves
 # the run time on a loaded machine). KITTI_INI=FILE replaces config/compare_kitti.ini (both
-# tools); KITTI_FILTERS=a,b,... is the report's --filters (default static_all,
+# tools); KITTI_IMPORT_INI=FILE replaces config/kitti.ini (the import, e.g. with
+# pose_scale = auto); KITTI_FILTERS=a,b,... is the report's --filters (default static_all,
 # static_landmarks_only,dynamic,dynamic_nogate), e.g. for the object models of doc/kitti.md 5.6:
 #   KITTI_NO_COMPARE=1 KITTI_FILTERS=static_landmarks_only,dynamic,dynamic_cv,dynamic_ctrv \
 #     scripts/kitti_results.sh DIR out/kitti_motion build "0005 0006 0007 0008 0009 0010"
@@ -46,6 +47,7 @@ COMPARE=$(find_exe dynslam-compare)
 REPORT=$(find_exe dynslam-kitti-report)
 
 INI=${KITTI_INI:-$SRC/config/compare_kitti.ini}
+IMPORT_INI=${KITTI_IMPORT_INI:-$SRC/config/kitti.ini}
 FILTERS=()
 if [[ -n "${KITTI_FILTERS:-}" ]]; then FILTERS=(--filters "$KITTI_FILTERS"); fi
 
@@ -55,7 +57,7 @@ for S in $SEQS; do
 	D="$OUT/$S"
 	echo "== sequence $S"
 	"$IMPORT" --labels "$DATA/label_02" --poses "$DATA/poses" --sequence "$S" --out "$D" \
-		-c "$SRC/config/kitti.ini" > "$OUT/$S.import.log"
+		-c "$IMPORT_INI" > "$OUT/$S.import.log"
 	if [[ -z "${KITTI_NO_COMPARE:-}" ]]; then
 		"$COMPARE" -q -c "$INI" -r "$D/kitti_$S.rawlog" --out "$D/compare" \
 			> "$OUT/$S.compare.log"

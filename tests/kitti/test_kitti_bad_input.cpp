@@ -139,8 +139,8 @@ TEST(KittiBadInput, MalformedLabelLinesNameFileAndLine)
 	EXPECT_FALSE(fs::exists(out));
 	expectContains(errorWithLabel(5, kitti_test::labelLine(2, 1, "Car", NAN, 7, 0)),
 	               "0007.txt:6: column 14: non-finite value 'nan'");
-	expectContains(errorWithLabel(5, kitti_test::labelLine(2, 1, "Bus", 4, 7, 0)),
-	               "0007.txt:6: unknown type 'Bus'");
+	// an unknown type is no error since issue 31 (counted and reported: test_kitti_types.cpp)
+	EXPECT_EQ(errorWithLabel(5, kitti_test::labelLine(1, 0, "Bus", -3, 9, -M_PI / 2)), "");
 	expectContains(errorWithLabel(5, kitti_test::labelLine(2, -1, "Car", 4, 7, 0)),
 	               "0007.txt:6: track_id -1 on a Car box");
 	// line 6 becomes a second "frame 1, track 1": the error names the later line, 7

@@ -280,6 +280,11 @@ TEST(KittiOptions, ShippedIniEqualsTheDefaults)
 	EXPECT_EQ(i.odo_std_phi, d.odo_std_phi);
 	EXPECT_EQ(i.odo_std_phi_per_m, d.odo_std_phi_per_m);
 	EXPECT_EQ(i.detection_groups, d.detection_groups);
+	EXPECT_EQ(i.pose_scale, d.pose_scale);
+	EXPECT_EQ(i.pose_scale_auto, d.pose_scale_auto);
+	const TDetectionOptions dd;
+	EXPECT_EQ(o.detections.classes, dd.classes);
+	EXPECT_EQ(o.detections.min_score, dd.min_score);
 }
 
 TEST(KittiOptions, BadValuesNameSectionAndKey)

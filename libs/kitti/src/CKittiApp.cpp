@@ -52,6 +52,12 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	                                  "", "INI", cmd);
 	TCLAP::ValueArg<std::string> aBase(
 	    "", "base", "base name of the output files (default kitti_SSSS)", false, "", "B", cmd);
+	TCLAP::ValueArg<std::string> aDet(
+	    "", "detections",
+	    "folder of 3-D detections DIR/CLASS/SSSS.txt (read and checked; needs --calib)", false, "",
+	    "DIR", cmd);
+	TCLAP::ValueArg<std::string> aCalib("", "calib", "folder of calibration files DIR/SSSS.txt",
+	                                    false, "", "DIR", cmd);
 	TCLAP::SwitchArg aAnon("", "anonymous",
 	                       "every track anonymous: IDs that say nothing about track or class", cmd);
 	if (!cmd.parse(argc, argv) && helpOrVersionAsked(argc, argv, "dynslam-kitti")) return false;
@@ -61,6 +67,8 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	out_dir = aOut.getValue();
 	config_file = aCfg.getValue();
 	base = aBase.getValue();
+	detections_dir = aDet.getValue();
+	calib_dir = aCalib.getValue();
 	if (!config_file.empty()) loadSectionOfFile(config_file, "KITTI_Import", options);
 	options.import.anonymous = aAnon.getValue();
 	return true;
@@ -69,7 +77,16 @@ bool CKittiApp::initialize(int argc, const char** argv)
 void CKittiApp::run()
 {
 	if (out_dir.empty()) throw std::invalid_argument("--out is required");
-	const TImportResult res = importFromFiles(labels_dir, poses_dir, sequence, options.import);
+	if (detections_dir.empty() != calib_dir.empty())
+		throw std::invalid_argument("--detections and --calib go together");
+	TImportResult res = importFromFiles(labels_dir, poses_dir, sequence, options.import);
+	if (!detections_dir.empty())
+	{
+		detection_summary =
+		    readDetectionSet(detections_dir, calib_dir, sequence, options.detections,
+		                     res.steps.size(), sequenceFile(poses_dir, sequence));
+		res.summary.detections_text = detection_summary.toText();
+	}
 	summary = res.summary;
 	const std::string b = base.empty() ? "kitti_" + sequence : base;
 	written = writeImport(res, options, out_dir, b);

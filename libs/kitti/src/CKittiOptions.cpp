@@ -1,11 +1,46 @@
 #include <dynslam/config_utils.h>
 #include <dynslam/kitti/CKittiOptions.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <ostream>
+#include <sstream>
 
 namespace dynslam::kitti
 {
+namespace
+{
+void loadDetectionKeys(const mrpt::config::CConfigFileBase& c, const std::string& sec,
+                       TDetectionOptions& d)
+{
+	using namespace dynslam::config;
+	if (has(c, sec, "detection_classes"))
+	{
+		const std::string v = c.read_string(sec, "detection_classes", "");
+		d.classes.clear();
+		std::istringstream in(v);
+		for (std::string w; in >> w;)
+		{
+			if (w != "Car" && w != "Pedestrian" && w != "Cyclist")
+				fail(sec, "detection_classes", v, "'" + w + "' is not Car, Pedestrian or Cyclist");
+			if (std::find(d.classes.begin(), d.classes.end(), w) != d.classes.end())
+				fail(sec, "detection_classes", v, "'" + w + "' given twice");
+			d.classes.push_back(w);
+		}
+		if (d.classes.empty()) fail(sec, "detection_classes", v, "no class");
+	}
+	if (has(c, sec, "detection_min_score"))
+	{
+		const std::string v = c.read_string(sec, "detection_min_score", "");
+		d.min_score = v == "none" ? -std::numeric_limits<double>::infinity()
+		                          : readDouble(c, sec, "detection_min_score", 0.0);
+		if (!std::isfinite(d.min_score) && v != "none")
+			fail(sec, "detection_min_score", v, "a finite number, or none");
+	}
+}
+}  // namespace
+
 void TKittiOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                        const std::string& sec)
 {
@@ -13,7 +48,8 @@ void TKittiOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
 	rejectUnknownKeys(c, sec,
 	                  {"dt", "max_range", "fov_deg", "static_radius", "noise", "odometry_noise",
 	                   "seed", "std_range", "std_bearing", "odo_std_xy", "odo_std_xy_per_m",
-	                   "odo_std_phi", "odo_std_phi_per_m", "detection_groups"});
+	                   "odo_std_phi", "odo_std_phi_per_m", "detection_groups", "detection_classes",
+	                   "detection_min_score", "pose_scale"});
 	auto& o = import;
 	o.dt = readPositive(c, sec, "dt", o.dt);
 	o.max_range = readPositive(c, sec, "max_range", o.max_range);
@@ -37,6 +73,15 @@ void TKittiOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
 	o.odo_std_phi = readPositive(c, sec, "odo_std_phi", o.odo_std_phi);
 	o.odo_std_phi_per_m = readNonNegative(c, sec, "odo_std_phi_per_m", o.odo_std_phi_per_m);
 	o.detection_groups = readBool(c, sec, "detection_groups", o.detection_groups);
+	loadDetectionKeys(c, sec, detections);
+	if (has(c, sec, "pose_scale"))
+	{
+		const std::string v = c.read_string(sec, "pose_scale", "");
+		o.pose_scale_auto = v == "auto";
+		if (!o.pose_scale_auto) o.pose_scale = readPositive(c, sec, "pose_scale", 1.0);
+		if (!o.pose_scale_auto && !std::isfinite(o.pose_scale))
+			fail(sec, "pose_scale", v, "auto, or a finite number > 0");
+	}
 }
 
 void TKittiOptions::dumpToTextStream(std::ostream& out) const
@@ -58,6 +103,18 @@ void TKittiOptions::dumpToTextStream(std::ostream& out) const
 	    << "odo_std_xy_per_m = " << o.odo_std_xy_per_m << "\n"
 	    << "odo_std_phi = " << o.odo_std_phi << "\n"
 	    << "odo_std_phi_per_m = " << o.odo_std_phi_per_m << "\n"
-	    << "detection_groups = " << (o.detection_groups ? "true" : "false") << "\n";
+	    << "detection_groups = " << (o.detection_groups ? "true" : "false") << "\n"
+	    << "pose_scale = ";
+	if (o.pose_scale_auto)
+		out << "auto";
+	else
+		out << o.pose_scale;
+	out << "\ndetection_classes =";
+	for (const auto& cls : detections.classes) out << " " << cls;
+	out << "\ndetection_min_score = ";
+	if (std::isfinite(detections.min_score))
+		out << detections.min_score << "\n";
+	else
+		out << "none\n";
 }
 }  // namespace dynslam::kitti

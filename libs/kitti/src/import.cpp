@@ -31,6 +31,7 @@ void checkOptions(const TImportOptions& o)
 	need(o.std_range > 0 && o.std_bearing > 0, "std_range and std_bearing must be > 0");
 	need(o.odo_std_xy > 0 && o.odo_std_phi > 0, "odo_std_xy and odo_std_phi must be > 0");
 	need(o.odo_std_xy_per_m >= 0 && o.odo_std_phi_per_m >= 0, "odo_std_*_per_m must be >= 0");
+	need(o.pose_scale > 0 && std::isfinite(o.pose_scale), "pose_scale must be > 0");
 }
 
 /** Tracks, their classification and which boxes are read. */
@@ -182,17 +183,36 @@ TImportResult importSequence(const std::vector<TCameraPose>& poses, const TKitti
 	checkOptions(opts);
 	if (poses.empty()) throw std::runtime_error("kitti import: no poses");
 	checkLabelsAgainstPoses(labels, poses.size(), "the pose file");
+	if (opts.pose_scale_auto)
+	{
+		TImportOptions at1 = opts;
+		at1.pose_scale_auto = false;
+		at1.pose_scale = 1;
+		const double fit = importSequence(poses, labels, at1, sequence).summary.trajectory_scale;
+		at1.pose_scale = std::isfinite(fit) && fit > 0 ? 1 / fit : 1.0;
+		TImportResult res = importSequence(poses, labels, at1, sequence);
+		res.summary.pose_scale_auto = true;
+		res.summary.trajectory_scale_unscaled = fit;
+		return res;
+	}
 	TImportResult res;
 	auto& s = res.summary;
+	s.pose_scale = opts.pose_scale;
 	s.sequence = sequence;
 	s.steps = poses.size();
 	s.label_rows = labels.rows;
 	s.dontcare = labels.dontcare;
 	s.no3d = labels.no3d;
 	s.boxes = labels.boxes.size();
+	s.types = labels.types;
+	s.unknown_types = labels.unknown_types;
 	std::vector<Eigen::Vector3d> ego;
 	ego.reserve(poses.size());
-	for (const auto& T : poses) ego.push_back(egoPoseFromCamera(T));
+	for (const auto& T : poses)
+	{
+		ego.push_back(egoPoseFromCamera(T));
+		ego.back().head<2>() *= opts.pose_scale;
+	}
 	std::vector<uint8_t> read;
 	buildTracks(labels, ego, opts, res, read);
 	const auto ids = assignIds(res, opts);
@@ -207,6 +227,25 @@ TImportResult importSequence(const std::vector<TCameraPose>& poses, const TKitti
 	return res;
 }
 
+namespace
+{
+std::string numberText(double v)
+{
+	std::ostringstream o;
+	o << v;
+	return o.str();
+}
+
+std::string countsText(const std::map<std::string, size_t>& m)
+{
+	if (m.empty()) return " none";
+	std::string s;
+	for (const auto& [k, n] : m) s += " " + k + " " + std::to_string(n) + ",";
+	s.pop_back();
+	return s;
+}
+}  // namespace
+
 std::string TImportSummary::toText() const
 {
 	std::ostringstream o;
@@ -219,10 +258,18 @@ std::string TImportSummary::toText() const
 	  << "\n"
 	  << "  tracks " << tracks << ": static " << static_tracks << ", moving " << moving_tracks
 	  << ", never read " << tracks_never_read << "\n"
+	  << "  label lines per type:" << countsText(types) << "\n"
+	  << "  types that are not KITTI types (kept as boxes):" << countsText(unknown_types) << "\n"
 	  << "  annotation jitter (static tracks, read): frame-to-frame motion rms " << floor_trans_rmse
 	  << " m, " << floor_rot_rmse << " rad (" << floor_n << " motions); corners about their mean "
 	  << static_corner_rms << " m rms\n"
-	  << "  trajectory / labels scale (static tracks, diagnostic) " << trajectory_scale << "\n";
+	  << "  trajectory / labels scale (static tracks, diagnostic) " << trajectory_scale << "\n"
+	  << "  trajectory positions scaled by " << pose_scale
+	  << (pose_scale_auto ? " (pose_scale = auto: 1 / the diagnostic at scale 1, " +
+	                            numberText(trajectory_scale_unscaled) + ")"
+	                      : " (pose_scale)")
+	  << "\n"
+	  << detections_text;
 	return o.str();
 }
 }  // namespace dynslam::kitti

@@ -32,9 +32,15 @@ std::ifstream openIn(const std::string& path)
 	return f;
 }
 
-const std::vector<std::string> kTypes = {"Car",     "Van",  "Truck", "Pedestrian", "Person_sitting",
-                                         "Cyclist", "Tram", "Misc",  "DontCare"};
+const std::vector<std::string> kTypes = {
+    "Car",     "Van",  "Truck", "Pedestrian", "Person", "Person_sitting",
+    "Cyclist", "Tram", "Misc",  "DontCare"};
 }  // namespace
+
+bool isKnownType(const std::string& type)
+{
+	return std::find(kTypes.begin(), kTypes.end(), type) != kTypes.end();
+}
 
 void checkSequenceName(const std::string& seq)
 {
@@ -106,8 +112,7 @@ TKittiLabels readLabels(const std::string& path)
 		const int frame = integer(t[0], path, line, 0);
 		const int track = integer(t[1], path, line, 1);
 		if (frame < 0) throwAtLine(path, line, "negative frame " + t[0]);
-		if (std::find(kTypes.begin(), kTypes.end(), t[2]) == kTypes.end())
-			throwAtLine(path, line, "unknown type '" + t[2] + "'");
+		if (!isKnownType(t[2])) ++L.unknown_types[t[2]];
 		std::vector<double> v(17);
 		for (size_t i = 3; i < 17; ++i) v[i] = parseFiniteField(t[i], path, line, i);
 		if (frame > L.max_frame)
@@ -120,6 +125,7 @@ TKittiLabels readLabels(const std::string& path)
 			++L.dontcare;
 			continue;
 		}
+		++L.types[t[2]];
 		if (track < 0) throwAtLine(path, line, "track_id " + t[1] + " on a " + t[2] + " box");
 		if (!seen.emplace(frame, track).second)
 			throwAtLine(path, line, "track " + t[1] + " given twice in frame " + t[0]);

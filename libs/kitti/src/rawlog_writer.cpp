@@ -131,6 +131,8 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 		            << "\nfloor_rot_rmse = " << s.floor_rot_rmse
 		            << "\nstatic_corner_rms = " << s.static_corner_rms
 		            << "\ntrajectory_scale = " << s.trajectory_scale
+		            << "\npose_scale_applied = " << s.pose_scale
+		            << "\ntrajectory_scale_unscaled = " << s.trajectory_scale_unscaled
 		            << "\n\n[DynamicKFSLAM]\ninitial_pose = [0 0 0]\nSigma_0 = [0 0 0]\n\n";
 		          opts.dumpToTextStream(f);
 	          });

@@ -3,11 +3,15 @@
  * The dynslam-kitti app (a thin main() around this class):
  *
  *   dynslam-kitti --labels DIR --poses DIR --sequence SSSS --out DIR [-c INI] [--anonymous]
- *                 [--base B]
+ *                 [--base B] [--detections DIR --calib DIR]
  *
  * Reads DIR/SSSS.txt of the labels (label_02) and of the poses, converts them (import.h) and
  * writes into --out `<B>.rawlog` and the ground truth (rawlog_writer.h); B defaults to
- * kitti_SSSS. Everything is read and checked before anything is written. */
+ * kitti_SSSS. Everything is read and checked before anything is written.
+ * --detections DIR --calib DIR (both or neither): the detector's boxes DIR/CLASS/SSSS.txt for
+ * the classes of detection_classes and the calibration DIR/SSSS.txt are read and checked
+ * (detection_files.h) and counted per class and frame in the summary; they are not written to
+ * the rawlog yet (that needs the box measurement design of issue 31). */
 #include <dynslam/kitti/CKittiOptions.h>
 #include <dynslam/kitti/import.h>
 #include <mrpt/system/COutputLogger.h>
@@ -30,10 +34,12 @@ public:
 
 	// --- settings (filled by initialize(), or set directly by tests) ---
 	std::string labels_dir, poses_dir, sequence, out_dir, config_file, base;
+	std::string detections_dir, calib_dir;  ///< both empty: no detections
 	TKittiOptions options;
 
 	// --- results ---
 	TImportSummary summary;
+	TDetectionSummary detection_summary;  ///< with --detections
 	std::vector<std::string> written;
 
 private:

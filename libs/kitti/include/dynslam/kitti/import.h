@@ -37,6 +37,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -70,6 +71,15 @@ struct TImportOptions
 	 * (dynslam/detection_groups.h): every corner's group is its KITTI track ID (the box it
 	 * belongs to), the optional hint of the classifying filter. Off: the rawlog is unchanged. */
 	bool detection_groups = false;
+	/** The camera trajectory's positions are multiplied by pose_scale (headings unchanged; the
+	 * world origin is frame 0's position, so the path is scaled about it): 1 = as given. With
+	 * pose_scale_auto, pose_scale is ignored and the factor is 1 / trajectory_scale of an
+	 * import at scale 1 (TImportSummary: the least-squares fit of the trajectory to the static
+	 * boxes' geometry), so that the ground truth, the odometry and the box readings agree;
+	 * without a static track of >= 10 frames the factor stays 1 (reported). INI: pose_scale =
+	 * auto or a number > 0. */
+	double pose_scale = 1.0;
+	bool pose_scale_auto = false;
 };
 
 /** One track (persistent KITTI track ID). */
@@ -125,7 +135,9 @@ struct TImportSummary
 	size_t steps = 0, label_rows = 0, dontcare = 0, no3d = 0, boxes = 0;
 	size_t boxes_read = 0, out_of_range = 0, out_of_fov = 0, readings = 0;
 	size_t tracks = 0, static_tracks = 0, moving_tracks = 0, tracks_never_read = 0;
-	double path_length = 0;  ///< [m] of the 2-D ego path
+	std::map<std::string, size_t> types;          ///< TKittiLabels::types
+	std::map<std::string, size_t> unknown_types;  ///< TKittiLabels::unknown_types
+	double path_length = 0;                       ///< [m] of the 2-D ego path
 	/** The annotation jitter, measured on the static tracks (their true motion is zero):
 	 * frame-to-frame motions between consecutive frames where the track is read (body frame,
 	 * as eval::objectErrors scores objects): n, RMSE of |translation| [m] and |rotation| [rad];
@@ -137,7 +149,12 @@ struct TImportSummary
 	 * 1 if the trajectory and the boxes agree; > 1: the trajectory is longer than the boxes'
 	 * geometry says. NaN without such tracks. */
 	double trajectory_scale = 0;
+	/** The factor applied to the trajectory's positions (TImportOptions::pose_scale), and, with
+	 * pose_scale = auto, trajectory_scale of the import at scale 1 (NaN otherwise). */
+	double pose_scale = 1, trajectory_scale_unscaled = std::numeric_limits<double>::quiet_NaN();
+	bool pose_scale_auto = false;
 	double floor_trans_rmse = 0, floor_rot_rmse = 0, static_corner_rms = 0;
+	std::string detections_text;  ///< the detection counts (CKittiApp), appended by toText
 	std::string toText() const;
 };
 

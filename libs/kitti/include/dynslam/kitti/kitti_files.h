@@ -7,12 +7,15 @@
  *    `frame track_id type truncated occluded alpha left top right bottom h w l x y z
  * rotation_y`.
  * Every malformed line throws std::runtime_error "FILE:LINE: what" (wrong column count, a
- * token that is not a number, NaN/Inf, a negative frame, an unknown type, a track ID < 0 on a
- * box that is not DontCare, a (frame, track) pair given twice, a rotation that is not one).
+ * token that is not a number, NaN/Inf, a negative frame, a track ID < 0 on a box that is not
+ * DontCare, a (frame, track) pair given twice, a rotation that is not one).
  * DontCare lines and boxes without 3-D data (dimensions <= 0 or the -1000 placeholders) are
- * skipped and counted, not errors. */
+ * skipped and counted, not errors. Every type is accepted (the importer never decides from the
+ * type): the KITTI types (isKnownType) and any other word, which is counted per type
+ * (TKittiLabels::unknown_types) and reported in the import summary. */
 #include <Eigen/Core>
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -41,7 +44,16 @@ struct TKittiLabels
 	size_t no3d = 0;               ///< boxes without 3-D data (skipped)
 	int max_frame = -1;            ///< largest frame index on any line (DontCare included)
 	int max_frame_line = 0;        ///< the line where it occurs
+	/** Label lines per type, DontCare excluded (boxes without 3-D data included). */
+	std::map<std::string, size_t> types;
+	/** Lines per type that is not a KITTI type (e.g. a typo, or a type of another data set). */
+	std::map<std::string, size_t> unknown_types;
 };
+
+/** The types of KITTI's tracking and object labels: Car, Van, Truck, Pedestrian, Person (the
+ * tracking labels' sitting person), Person_sitting (the object labels' name), Cyclist, Tram,
+ * Misc, DontCare. */
+bool isKnownType(const std::string& type);
 
 /** "SSSS": exactly four digits, else std::invalid_argument. */
 void checkSequenceName(const std::string& seq);
