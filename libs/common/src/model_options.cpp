@@ -33,14 +33,8 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	o.cv.accel_psd = readVector(c, s, "cv_accel_psd", o.cv.accel_psd, 3);
 	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
 	o.cv_gate = readNonNegative(c, s, "cv_gate", o.cv_gate);
-	o.cv.inflation_threshold =
-	    readNonNegative(c, s, "cv_inflation_threshold", o.cv.inflation_threshold);
-	o.cv.inflation_factor = readNonNegative(c, s, "cv_inflation_factor", o.cv.inflation_factor);
-	o.cv.inflation_window = int(readInt(c, s, "cv_inflation_window", o.cv.inflation_window));
-	o.cv.inflation_decay = readNonNegative(c, s, "cv_inflation_decay", o.cv.inflation_decay);
 	o.cv.fallback_steps = int(readInt(c, s, "cv_fallback_steps", o.cv.fallback_steps));
 	o.cv.heading_inflation = readNonNegative(c, s, "cv_heading_inflation", o.cv.heading_inflation);
-	o.cv.ego_velocity_std = readNonNegative(c, s, "cv_ego_velocity_std", o.cv.ego_velocity_std);
 }
 }  // namespace
 
@@ -84,13 +78,8 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "cv_accel_psd",
                                           "cv_velocity_prior_std",
                                           "cv_gate",
-                                          "cv_inflation_threshold",
-                                          "cv_inflation_factor",
-                                          "cv_inflation_window",
-                                          "cv_inflation_decay",
                                           "cv_fallback_steps",
                                           "cv_heading_inflation",
-                                          "cv_ego_velocity_std",
                                           "feature_labels",
                                           "classify_alpha",
                                           "classify_beta",
@@ -113,12 +102,7 @@ const std::vector<std::string> kModelKeys{"measurement_model",
                                           "classify_merge_linked",
                                           "classify_merge_live",
                                           "classify_merge_live_window",
-                                          "classify_merge_live_alpha",
                                           "classify_static_test",
-                                          "classify_drift_window",
-                                          "classify_drift_prob",
-                                          "classify_drift_scale",
-
                                           "classify_assoc_method",
                                           "classify_assoc_metric",
                                           "classify_assoc_IC_chi2_thres",
@@ -157,14 +141,9 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	p.merge_linked = readBool(c, s, "classify_merge_linked", p.merge_linked);
 	p.merge_live = readBool(c, s, "classify_merge_live", p.merge_live);
 	p.merge_live_window = int(readInt(c, s, "classify_merge_live_window", p.merge_live_window));
-	p.merge_live_alpha = readDouble(c, s, "classify_merge_live_alpha", p.merge_live_alpha);
 	using Test = estimator::TClassifyParams::StaticTest;
 	p.static_test = readChoice(c, s, "classify_static_test", {"robot", "map"}, 0) == 0 ? Test::Robot
 	                                                                                   : Test::Map;
-	p.drift_window = int(readInt(c, s, "classify_drift_window", p.drift_window));
-	p.drift_prob = readDouble(c, s, "classify_drift_prob", p.drift_prob);
-	p.drift_population =
-	    readChoice(c, s, "classify_drift_scale", {"nominal", "population"}, 0) == 1;
 	// ID -1 readings (estimator/unknown_id_association.h): MRPT's data_assoc_* names and values.
 	estimator::TUnknownIdParams& a = p.assoc;
 	const std::vector<std::string> methods{"assocNN", "assocJCBB"};
@@ -315,13 +294,8 @@ void dumpObjectModel(std::ostream& out, const TModelOptions& o)
 	out << "cv_velocity_prior_std          = " << formatMatrix(o.cv.velocity_prior_std.transpose())
 	    << "\n";
 	out << "cv_gate                        = " << o.cv_gate << "\n";
-	out << "cv_inflation_threshold         = " << o.cv.inflation_threshold << "\n";
-	out << "cv_inflation_factor            = " << o.cv.inflation_factor << "\n";
-	out << "cv_inflation_window            = " << o.cv.inflation_window << "\n";
-	out << "cv_inflation_decay             = " << o.cv.inflation_decay << "\n";
 	out << "cv_fallback_steps              = " << o.cv.fallback_steps << "\n";
 	out << "cv_heading_inflation           = " << o.cv.heading_inflation << "\n";
-	out << "cv_ego_velocity_std            = " << o.cv.ego_velocity_std << "\n";
 }
 
 /** The feature_labels = classify keys of the dump. */
@@ -354,14 +328,9 @@ void dumpClassify(std::ostream& out, const std::string& feature_labels,
 	    << "\n";
 	out << "classify_merge_live            = " << (classify.merge_live ? "true" : "false") << "\n";
 	out << "classify_merge_live_window     = " << classify.merge_live_window << "\n";
-	out << "classify_merge_live_alpha      = " << classify.merge_live_alpha << "\n";
 	out << "classify_static_test           = "
 	    << (classify.static_test == estimator::TClassifyParams::StaticTest::Map ? "map" : "robot")
 	    << "\n";
-	out << "classify_drift_window          = " << classify.drift_window << "\n";
-	out << "classify_drift_prob            = " << classify.drift_prob << "\n";
-	out << "classify_drift_scale           = "
-	    << (classify.drift_population ? "population" : "nominal") << "\n";
 	const estimator::TUnknownIdParams& a = classify.assoc;
 	out << "classify_assoc_method          = " << a.method << "\n";
 	out << "classify_assoc_metric          = " << a.metric << "\n";
