@@ -1,5 +1,6 @@
 /** TModelOptions: reading, validation and dump of section [DynamicKFSLAM]. */
 #include <dynslam/config_utils.h>
+#include <dynslam/model_keys.h>
 #include <dynslam/model_options.h>
 
 #include <ostream>
@@ -40,77 +41,6 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 
 namespace
 {
-/** Every key of the [DynamicKFSLAM] model options (unknown keys throw). */
-const std::vector<std::string> kModelKeys{"measurement_model",
-                                          "odometry_bias",
-                                          "odometry_dt",
-                                          "bias_rate_std0",
-                                          "bias_rate_rw",
-                                          "bias_scale_std0",
-                                          "bias_scale_rw",
-                                          "Sigma_v",
-                                          "motion_noise",
-                                          "Sigma_w",
-                                          "initial_pose",
-                                          "Sigma_0",
-                                          "prior_gauge",
-                                          "Sigma_xi",
-                                          "smoothing",
-                                          "Sigma_s",
-                                          "drop_time_t_features",
-                                          "keep_last_poses",
-                                          "drop_static_after_unseen_steps",
-                                          "skip_prediction_on_empty_map",
-                                          "static_update",
-                                          "innovation_gate",
-                                          "first_estimate_jacobians",
-                                          "record_dropped",
-                                          "outlier_method",
-                                          "robust_kernel_c",
-                                          "robust_iterations",
-                                          "recovery_count",
-                                          "compressed_passive_after",
-                                          "compressed_batch",
-                                          "recovery_inflation",
-                                          "recovery_min_updates",
-                                          "object_model",
-                                          "cv_dt",
-                                          "cv_accel_psd",
-                                          "cv_velocity_prior_std",
-                                          "cv_gate",
-                                          "cv_fallback_steps",
-                                          "cv_heading_inflation",
-                                          "feature_labels",
-                                          "classify_alpha",
-                                          "classify_beta",
-                                          "classify_motion_std",
-                                          "classify_max_window",
-                                          "classify_forget_steps",
-                                          "classify_group_prob",
-                                          "classify_group_max_dist",
-                                          "classify_reclassify_count",
-                                          "classify_reclassify_gate",
-                                          "classify_candidate_landmarks",
-                                          "classify_reclassify",
-                                          "classify_stop_count",
-                                          "classify_reuse_gap",
-                                          "classify_split_count",
-                                          "classify_join",
-                                          "classify_use_hints",
-                                          "classify_link",
-                                          "classify_link_gap",
-                                          "classify_merge_linked",
-                                          "classify_merge_live",
-                                          "classify_merge_live_window",
-                                          "classify_static_test",
-                                          "classify_assoc_method",
-                                          "classify_assoc_metric",
-                                          "classify_assoc_IC_chi2_thres",
-                                          "classify_assoc_IC_metric",
-                                          "classify_assoc_IC_ml_threshold",
-                                          "classify_assoc_moving_gate",
-                                          "classify_assoc_max_step"};
-
 /** feature_labels and the classify_* keys (issue 12). */
 void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
@@ -161,7 +91,7 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
-	rejectUnknownKeys(c, s, kModelKeys);
+	rejectUnknownKeys(c, s, modelKeyNames());  // the descriptor table, model_keys.h
 	measurement_model =
 	    readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 	        ? models::MeasurementModel::Cartesian
