@@ -370,14 +370,9 @@ TEST(ClassifyHighway, BadOptionsAreClearErrors)
 	expectError("classify_typo = 1\n", "classify_typo");
 	expectError("feature_labels = classify\nclassify_static_test = world\n",
 	            "classify_static_test");
-	expectError("feature_labels = classify\nclassify_drift_window = 1\n", "classify_drift_window");
-	expectError("feature_labels = classify\nclassify_drift_prob = 1\n", "classify_drift_prob");
-	expectError("feature_labels = classify\nclassify_drift_scale = median\n",
-	            "classify_drift_scale");
+	// Removed keys (the drift test, 2026-11-28) are unknown keys now: an error, never ignored.
+	expectError("feature_labels = classify\nclassify_drift_window = 40\n", "classify_drift_window");
 	EXPECT_NO_THROW(load("feature_labels = classify\nclassify_alpha = 0.05\n"));
-	EXPECT_NO_THROW(
-	    load("feature_labels = classify\nclassify_drift_window = 40\n"
-	         "classify_drift_prob = 0.99999999\nclassify_drift_scale = population\n"));
 	// The default is the ID-range router, unchanged.
 	mrpt::config::CConfigFileMemory cfg(kIni);
 	CDynamicKFSLAM2D ekf;

@@ -320,8 +320,7 @@ TEST(LiveMerge, ClutterHighway)
 
 TEST(LiveMerge, BadKeysAreClearErrorsAndTheKeysAreDumped)
 {
-	for (const char* bad : {"classify_merge_live = maybe\n", "classify_merge_live_window = -1\n",
-	                        "classify_merge_live_alpha = 1.5\n", "classify_merge_live_alpha = 0\n"})
+	for (const char* bad : {"classify_merge_live = maybe\n", "classify_merge_live_window = -1\n"})
 	{
 		SCOPED_TRACE(bad);
 		mrpt::config::CConfigFileMemory cfg(
@@ -339,15 +338,13 @@ TEST(LiveMerge, BadKeysAreClearErrorsAndTheKeysAreDumped)
 		}
 	}
 	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(
-	    "feature_labels = classify\nclassify_merge_live = true\nclassify_merge_live_window = 7\n"
-	    "classify_merge_live_alpha = 0.002\n"));
+	    "feature_labels = classify\nclassify_merge_live = true\nclassify_merge_live_window = 7\n"));
 	CDynamicKFSLAM2D ekf;
 	ekf.loadOptions(cfg, "DynamicKFSLAM");
 	std::ostringstream d;
 	ekf.options.dumpToTextStream(d);
 	EXPECT_NE(d.str().find("classify_merge_live            = true"), std::string::npos);
 	EXPECT_NE(d.str().find("classify_merge_live_window     = 7"), std::string::npos);
-	EXPECT_NE(d.str().find("classify_merge_live_alpha      = 0.002"), std::string::npos);
 }
 
 TEST(LiveMerge, HintsKeepCarsMovingTogetherApart)

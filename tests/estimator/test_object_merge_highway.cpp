@@ -173,24 +173,19 @@ void print(const char* what, const TMergeRun& r)
 
 TEST(ObjectMergeHighway, LinkedCarsMergeIntoTheirLostObjects)
 {
-	// A loose process noise (the cars change speed by up to 2.5 m/s); the tight one of
-	// config/compare_tunnel.ini with its gate and Schmidt update (cv_ego_velocity_std).
 	struct TSetting
 	{
 		const char* keys;
 		bool accurate;  ///< the process noise covers the cars' speed changes in the gap
 	};
 	// A loose process noise (the cars change speed by up to 2.5 m/s in their gaps); the tight one
-	// of config/compare_tunnel.ini with its gate and Schmidt update (cv_ego_velocity_std), which
-	// cannot follow them (documented), and the same with the fallback of a lost object.
+	// of config/compare_tunnel.ini with its gate (setting E without the anchor), which cannot
+	// follow them (documented), and the same with the fallback of a lost object.
 	const TSetting settings[] = {
 	    {"object_model = cv\ncv_accel_psd = [0.1 0.1 1e-3]\n", true},
 	    {"object_model = ctrv\ncv_accel_psd = [0.1 0.1 1e-3]\n", true},
+	    {"object_model = cv\ncv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\n", false},
 	    {"object_model = cv\ncv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\n"
-	     "cv_ego_velocity_std = 0.01\n",
-	     false},
-	    {"object_model = cv\ncv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\n"
-	     "cv_ego_velocity_std = 0.01\n"
 	     "cv_fallback_steps = 3\n",
 	     false}};
 	for (const TSetting& st : settings)

@@ -246,27 +246,10 @@ TEST(Alg1, ObjectModelsBadInput)
 		CAlg1Backend alg(bo);
 	};
 	EXPECT_NO_THROW(make(""));
-	EXPECT_THROW(make("cv_inflation_threshold = 8\ncv_inflation_factor = 100\n"),
-	             std::invalid_argument);
-	try  // with the window and the decay too; the message names the keys
-	{
-		make(
-		    "cv_inflation_threshold = 8\ncv_inflation_factor = 1e4\ncv_inflation_window = 3\n"
-		    "cv_inflation_decay = 0.5\n");
-		ADD_FAILURE() << "the framework accepted the inflation rule";
-	}
-	catch (const std::invalid_argument& e)
-	{
-		EXPECT_NE(std::string(e.what()).find("cv_inflation_threshold"), std::string::npos)
-		    << e.what();
-	}
-	EXPECT_NO_THROW(make("cv_inflation_window = 3\ncv_inflation_decay = 0.5\n"));  // rule off
-	EXPECT_THROW(make("cv_fallback_steps = 3\n"), std::invalid_argument);          // EKF only
-	EXPECT_NO_THROW(make("cv_fallback_steps = 0\n"));                              // off
-	EXPECT_THROW(make("cv_heading_inflation = 3\n"), std::invalid_argument);       // EKF only
-	EXPECT_NO_THROW(make("cv_heading_inflation = 0\n"));                           // off
-	EXPECT_THROW(make("cv_ego_velocity_std = 0.02\n"), std::invalid_argument);     // EKF only
-	EXPECT_NO_THROW(make("cv_ego_velocity_std = 0\n"));                            // off
+	EXPECT_THROW(make("cv_fallback_steps = 3\n"), std::invalid_argument);     // EKF only
+	EXPECT_NO_THROW(make("cv_fallback_steps = 0\n"));                         // off
+	EXPECT_THROW(make("cv_heading_inflation = 3\n"), std::invalid_argument);  // EKF only
+	EXPECT_NO_THROW(make("cv_heading_inflation = 0\n"));                      // off
 	EXPECT_THROW(make("cv_accel_psd = [0.01 0 1e-4]\n"), std::invalid_argument);
 	EXPECT_THROW(make("cv_velocity_prior_std = [0.5 0 0.05]\n"), std::invalid_argument);
 }

@@ -1,6 +1,7 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/mrpt_sections.h>
+#include <dynslam/config_include.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/eval/writers.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -32,11 +33,7 @@ void loadIniFile(const std::string& path, mrpt::config::CConfigFileMemory& out)
 	std::error_code ec;
 	if (!std::filesystem::is_regular_file(path, ec))
 		throw std::runtime_error("config file '" + path + "' not found");
-	std::ifstream f(path, std::ios::binary);
-	if (!f) throw std::runtime_error("cannot read config file '" + path + "'");
-	std::ostringstream ss;
-	ss << f.rdbuf();
-	out.setContent(ss.str());
+	config::loadIniWithIncludes(path, out);  // @include (doc/configuration.md)
 }
 
 std::vector<std::string> checkSharedSections(const mrpt::config::CConfigFileBase& params,

@@ -211,10 +211,17 @@ int readChoice(const mrpt::config::CConfigFileBase& c, const std::string& sectio
 void rejectUnknownKeys(const mrpt::config::CConfigFileBase& c, const std::string& section,
                        const std::vector<std::string>& known)
 {
+	// Case-insensitive, as MRPT's reader (SimpleIni's SI_GenericNoCase) finds the keys.
+	const auto lower = [](std::string x)
+	{
+		for (char& ch : x) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+		return x;
+	};
 	std::vector<std::string> keys;
 	c.getAllKeys(section, keys);
 	for (const auto& k : keys)
-		if (std::find(known.begin(), known.end(), k) == known.end())
+		if (std::none_of(known.begin(), known.end(),
+		                 [&](const std::string& n) { return lower(n) == lower(k); }))
 			throw std::invalid_argument("[" + section + "] " + k + ": unknown key (misspelled?)");
 }
 

@@ -1,5 +1,6 @@
 /** TModelOptions: reading, validation and dump of section [DynamicKFSLAM]. */
 #include <dynslam/config_utils.h>
+#include <dynslam/model_keys.h>
 #include <dynslam/model_options.h>
 
 #include <ostream>
@@ -33,100 +34,13 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	o.cv.accel_psd = readVector(c, s, "cv_accel_psd", o.cv.accel_psd, 3);
 	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
 	o.cv_gate = readNonNegative(c, s, "cv_gate", o.cv_gate);
-	o.cv.inflation_threshold =
-	    readNonNegative(c, s, "cv_inflation_threshold", o.cv.inflation_threshold);
-	o.cv.inflation_factor = readNonNegative(c, s, "cv_inflation_factor", o.cv.inflation_factor);
-	o.cv.inflation_window = int(readInt(c, s, "cv_inflation_window", o.cv.inflation_window));
-	o.cv.inflation_decay = readNonNegative(c, s, "cv_inflation_decay", o.cv.inflation_decay);
 	o.cv.fallback_steps = int(readInt(c, s, "cv_fallback_steps", o.cv.fallback_steps));
 	o.cv.heading_inflation = readNonNegative(c, s, "cv_heading_inflation", o.cv.heading_inflation);
-	o.cv.ego_velocity_std = readNonNegative(c, s, "cv_ego_velocity_std", o.cv.ego_velocity_std);
 }
 }  // namespace
 
 namespace
 {
-/** Every key of the [DynamicKFSLAM] model options (unknown keys throw). */
-const std::vector<std::string> kModelKeys{"measurement_model",
-                                          "odometry_bias",
-                                          "odometry_dt",
-                                          "bias_rate_std0",
-                                          "bias_rate_rw",
-                                          "bias_scale_std0",
-                                          "bias_scale_rw",
-                                          "Sigma_v",
-                                          "motion_noise",
-                                          "Sigma_w",
-                                          "initial_pose",
-                                          "Sigma_0",
-                                          "prior_gauge",
-                                          "Sigma_xi",
-                                          "smoothing",
-                                          "Sigma_s",
-                                          "drop_time_t_features",
-                                          "keep_last_poses",
-                                          "drop_static_after_unseen_steps",
-                                          "skip_prediction_on_empty_map",
-                                          "static_update",
-                                          "innovation_gate",
-                                          "first_estimate_jacobians",
-                                          "record_dropped",
-                                          "outlier_method",
-                                          "robust_kernel_c",
-                                          "robust_iterations",
-                                          "recovery_count",
-                                          "compressed_passive_after",
-                                          "compressed_batch",
-                                          "recovery_inflation",
-                                          "recovery_min_updates",
-                                          "object_model",
-                                          "cv_dt",
-                                          "cv_accel_psd",
-                                          "cv_velocity_prior_std",
-                                          "cv_gate",
-                                          "cv_inflation_threshold",
-                                          "cv_inflation_factor",
-                                          "cv_inflation_window",
-                                          "cv_inflation_decay",
-                                          "cv_fallback_steps",
-                                          "cv_heading_inflation",
-                                          "cv_ego_velocity_std",
-                                          "feature_labels",
-                                          "classify_alpha",
-                                          "classify_beta",
-                                          "classify_motion_std",
-                                          "classify_max_window",
-                                          "classify_forget_steps",
-                                          "classify_group_prob",
-                                          "classify_group_max_dist",
-                                          "classify_reclassify_count",
-                                          "classify_reclassify_gate",
-                                          "classify_candidate_landmarks",
-                                          "classify_reclassify",
-                                          "classify_stop_count",
-                                          "classify_reuse_gap",
-                                          "classify_split_count",
-                                          "classify_join",
-                                          "classify_use_hints",
-                                          "classify_link",
-                                          "classify_link_gap",
-                                          "classify_merge_linked",
-                                          "classify_merge_live",
-                                          "classify_merge_live_window",
-                                          "classify_merge_live_alpha",
-                                          "classify_static_test",
-                                          "classify_drift_window",
-                                          "classify_drift_prob",
-                                          "classify_drift_scale",
-
-                                          "classify_assoc_method",
-                                          "classify_assoc_metric",
-                                          "classify_assoc_IC_chi2_thres",
-                                          "classify_assoc_IC_metric",
-                                          "classify_assoc_IC_ml_threshold",
-                                          "classify_assoc_moving_gate",
-                                          "classify_assoc_max_step"};
-
 /** feature_labels and the classify_* keys (issue 12). */
 void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
@@ -157,14 +71,9 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 	p.merge_linked = readBool(c, s, "classify_merge_linked", p.merge_linked);
 	p.merge_live = readBool(c, s, "classify_merge_live", p.merge_live);
 	p.merge_live_window = int(readInt(c, s, "classify_merge_live_window", p.merge_live_window));
-	p.merge_live_alpha = readDouble(c, s, "classify_merge_live_alpha", p.merge_live_alpha);
 	using Test = estimator::TClassifyParams::StaticTest;
 	p.static_test = readChoice(c, s, "classify_static_test", {"robot", "map"}, 0) == 0 ? Test::Robot
 	                                                                                   : Test::Map;
-	p.drift_window = int(readInt(c, s, "classify_drift_window", p.drift_window));
-	p.drift_prob = readDouble(c, s, "classify_drift_prob", p.drift_prob);
-	p.drift_population =
-	    readChoice(c, s, "classify_drift_scale", {"nominal", "population"}, 0) == 1;
 	// ID -1 readings (estimator/unknown_id_association.h): MRPT's data_assoc_* names and values.
 	estimator::TUnknownIdParams& a = p.assoc;
 	const std::vector<std::string> methods{"assocNN", "assocJCBB"};
@@ -182,7 +91,7 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
-	rejectUnknownKeys(c, s, kModelKeys);
+	rejectUnknownKeys(c, s, modelKeyNames());  // the descriptor table, model_keys.h
 	measurement_model =
 	    readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 	        ? models::MeasurementModel::Cartesian
@@ -315,13 +224,8 @@ void dumpObjectModel(std::ostream& out, const TModelOptions& o)
 	out << "cv_velocity_prior_std          = " << formatMatrix(o.cv.velocity_prior_std.transpose())
 	    << "\n";
 	out << "cv_gate                        = " << o.cv_gate << "\n";
-	out << "cv_inflation_threshold         = " << o.cv.inflation_threshold << "\n";
-	out << "cv_inflation_factor            = " << o.cv.inflation_factor << "\n";
-	out << "cv_inflation_window            = " << o.cv.inflation_window << "\n";
-	out << "cv_inflation_decay             = " << o.cv.inflation_decay << "\n";
 	out << "cv_fallback_steps              = " << o.cv.fallback_steps << "\n";
 	out << "cv_heading_inflation           = " << o.cv.heading_inflation << "\n";
-	out << "cv_ego_velocity_std            = " << o.cv.ego_velocity_std << "\n";
 }
 
 /** The feature_labels = classify keys of the dump. */
@@ -354,14 +258,9 @@ void dumpClassify(std::ostream& out, const std::string& feature_labels,
 	    << "\n";
 	out << "classify_merge_live            = " << (classify.merge_live ? "true" : "false") << "\n";
 	out << "classify_merge_live_window     = " << classify.merge_live_window << "\n";
-	out << "classify_merge_live_alpha      = " << classify.merge_live_alpha << "\n";
 	out << "classify_static_test           = "
 	    << (classify.static_test == estimator::TClassifyParams::StaticTest::Map ? "map" : "robot")
 	    << "\n";
-	out << "classify_drift_window          = " << classify.drift_window << "\n";
-	out << "classify_drift_prob            = " << classify.drift_prob << "\n";
-	out << "classify_drift_scale           = "
-	    << (classify.drift_population ? "population" : "nominal") << "\n";
 	const estimator::TUnknownIdParams& a = classify.assoc;
 	out << "classify_assoc_method          = " << a.method << "\n";
 	out << "classify_assoc_metric          = " << a.metric << "\n";

@@ -80,13 +80,6 @@ std::vector<int> concat(std::vector<int> a, const std::vector<int>& b)
 	return a;
 }
 
-/** The std of an object's velocity: sqrt of the largest eigenvalue of its (vx, vy) block. */
-double velocityStd(const Eigen::Ref<const ekf::RowMatrixXd>& P, const std::vector<int>& iv)
-{
-	const std::vector<int> xy{iv[0], iv[1]};
-	const Eigen::Matrix2d B = P(xy, xy);
-	return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(B).eigenvalues()[1]);
-}
 }  // namespace
 
 std::set<int32_t> CDynamicKFSLAM2D::objectsWithVelocity() const
@@ -126,8 +119,6 @@ void CDynamicKFSLAM2D::predictObjects()
 		const std::vector<int> idx = concat(ip, iv);
 		Eigen::MatrixXd F, Q;
 		const Eigen::VectorXd s = m_motion->predict(x(idx), &F, &Q);
-		const double scale = m_motion->processNoiseScale(obj);  // inflation rule (issue 13)
-		if (scale != 1.0) Q *= scale;
 		ekf::predictSubset(x, P, idx, s, F, Q);
 		m_layout.setStep(st.pose, m_step);
 	}
@@ -151,7 +142,6 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 	auto x = m_xkk.asEigen();
 	auto P = cov();
 	const double gate = m_motion->readingGate();
-	const bool track = m_motion->tracksInnovations();
 	for (const auto& [obj, readings] : byObject)
 	{
 		const estimator::TObjectEntry& info = m_router->registry().at(obj);
@@ -168,7 +158,6 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 		const int d = int(ip.size());
 		std::vector<Eigen::MatrixXd> Hs;
 		std::vector<Eigen::Vector2d> nus;
-		double nisSum = 0;
 		for (const auto& m : readings)
 		{
 			models::Matrix23d J_z_x;
@@ -180,11 +169,10 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 			H << J_z_x, J_z_xi, J_z_f0;
 			const Eigen::Vector2d nu =
 			    models::innovation(options.measurement_model, m.reading.z, zhat);
-			if (std::isfinite(gate) || track)
+			if (std::isfinite(gate))
 			{
 				const Eigen::Matrix2d S = H * Pii * H.transpose() + options.Sigma_v;
 				const double nis = nu.dot(S.ldlt().solve(nu));
-				nisSum += nis;
 				if (nis > gate)
 				{
 					++m_report.object_gated_out;
@@ -194,7 +182,6 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 			Hs.push_back(H);
 			nus.push_back(nu);
 		}
-		if (track) m_motion->reportInnovations(obj, nisSum, 2 * int(readings.size()));
 		// Every reading gated out: the object coasts on its prediction; at the model's count of
 		// such steps in a row it is lost (planFallbacks removes its motion state).
 		if (m_motion->reportGating(obj, Hs.empty())) m_lostNow.insert(obj);
@@ -203,13 +190,7 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 		Eigen::MatrixXd H, R;
 		Eigen::VectorXd nu;
 		stackReadings(Hs, nus, options.Sigma_v, options.cv.heading_inflation * P(2, 2), H, nu, R);
-		const std::vector<int> iv = m_layout.indices(states.at(obj).velocity);
-		const double egoStd = options.cv.ego_velocity_std;
-		if (egoStd > 0 && velocityStd(P, iv) > egoStd)  // not converged: the object alone
-			ekf::schmidtUpdate(x, P, idx, concat(std::vector<int>(idx.begin() + 3, idx.end()), iv),
-			                   H, nu, R);
-		else
-			ekf::sparseUpdate(x, P, idx, H, nu, R);
+		ekf::sparseUpdate(x, P, idx, H, nu, R);
 		if (d == 3) x[ip[2]] = models::wrapToPi(x[ip[2]]);
 		OnNormalizeStateVector();
 		m_report.object_feature_updates += size_t(m);

@@ -166,18 +166,4 @@ TRigidNow rigidNowTest(const std::map<int, TPoint2>& a, const TPoint2& za,
 	out.z2 = e * e / (v + 1 / sw);
 	return out;
 }
-
-double driftStatistic(const std::vector<TDriftTerm>& terms)
-{
-	Eigen::Vector2d D = Eigen::Vector2d::Zero();
-	Eigen::Matrix2d C = Eigen::Matrix2d::Zero();
-	for (const TDriftTerm& t : terms)
-	{
-		D += t.w;
-		C += t.W;
-	}
-	const Eigen::LLT<Eigen::Matrix2d> llt(C);
-	if (terms.empty() || llt.info() != Eigen::Success) return 0;
-	return llt.matrixL().solve(D).squaredNorm();
-}
 }  // namespace dynslam::estimator

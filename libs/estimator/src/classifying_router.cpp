@@ -47,10 +47,6 @@ void TClassifyParams::validate() const
 	if (reuse_gap < 0) throw std::invalid_argument("classify_reuse_gap must be >= 0 (0: off)");
 	if (split_count < 0) throw std::invalid_argument("classify_split_count must be >= 0 (0: off)");
 	if (link_gap < 1) throw std::invalid_argument("classify_link_gap must be >= 1");
-	if (drift_window < 0 || drift_window == 1)
-		throw std::invalid_argument("classify_drift_window must be 0 (off) or >= 2");
-	prob(drift_prob, "classify_drift_prob");
-	prob(merge_live_alpha, "classify_merge_live_alpha");
 	if (merge_live_window < 0)
 		throw std::invalid_argument("classify_merge_live_window must be >= 0 (0: automatic)");
 	assoc.validate();
@@ -77,9 +73,6 @@ void CClassifyingRouter::reset()
 	m_ctx.reset();
 	m_unknown.reset();
 	m_rawNow.clear();
-	m_heading = 0;
-	m_driftSum = 0;
-	m_driftTests = 0;
 }
 
 int32_t CClassifyingRouter::featureId(int32_t object, int32_t feature) const
@@ -114,7 +107,6 @@ void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
 	const int steps = m_lastStep < 0 ? 0 : step - m_lastStep;
 	m_lastStep = step;
 	const TStaticMotion motion(m_ctx->u, m_ctx->U);  // rotations once per step, not per track
-	if (steps > 0) m_heading += m_ctx->u[2];
 	for (auto it = m_tracks.begin(); it != m_tracks.end();)
 	{
 		TTrack& t = it->second;
@@ -233,15 +225,10 @@ CClassifyingRouter::Act CClassifyingRouter::classifyOne(
 	}
 	else if (t.cls == TrackClass::Static)
 	{
-		bool drifted = false;
-		const bool consistent = checkStatic(id, t, z, step, drifted);
-		if (consistent && !drifted)
+		if (checkStatic(id, t, z, step))
 			act = Act::Static;
-		else if (drifted || t.bad_streak >= m_p.reclassify_count)
-		{
-			out.drift += drifted ? 1 : 0;
+		else if (t.bad_streak >= m_p.reclassify_count)
 			reclassifyStatic(id, t, out, turnedMoving, isKnownStatic);
-		}
 		else
 			++out.held;
 	}
@@ -252,7 +239,6 @@ CClassifyingRouter::Act CClassifyingRouter::classifyOne(
 		t.object = t.feature = -1;
 		t.decided_step = t.last_good = step;
 		t.bad_streak = t.still_streak = 0;
-		t.drift.clear();
 		++out.stopped;
 		act = Act::Static;
 	}

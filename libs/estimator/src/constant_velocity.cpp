@@ -1,7 +1,6 @@
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/models/object_motion.h>
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -18,21 +17,8 @@ void TCvParams::validate() const
 		    "cv_velocity_prior_std: must be finite and > 0 (the velocity prior must be positive "
 		    "definite)");
 	if (!(gate > 0)) throw std::invalid_argument("cv gate threshold: must be > 0");
-	if (!(inflation_threshold >= 0) || !std::isfinite(inflation_threshold))
-		throw std::invalid_argument("cv_inflation_threshold: must be finite and >= 0 (0 = off)");
-	if (!(inflation_factor >= 1) || !std::isfinite(inflation_factor))
-		throw std::invalid_argument("cv_inflation_factor: must be finite and >= 1 (1 = off)");
-	if (inflation_window < 1)
-		throw std::invalid_argument("cv_inflation_window = " + std::to_string(inflation_window) +
-		                            ": must be >= 1");
-	if (!(inflation_decay >= 0 && inflation_decay < 1))
-		throw std::invalid_argument("cv_inflation_decay = " + std::to_string(inflation_decay) +
-		                            ": must be in [0, 1) (0 = back to 1 at once)");
 	if (!(heading_inflation >= 0) || !std::isfinite(heading_inflation))
 		throw std::invalid_argument("cv_heading_inflation = " + std::to_string(heading_inflation) +
-		                            ": must be finite and >= 0 (0 = off)");
-	if (!(ego_velocity_std >= 0) || !std::isfinite(ego_velocity_std))
-		throw std::invalid_argument("cv_ego_velocity_std = " + std::to_string(ego_velocity_std) +
 		                            ": must be finite and >= 0 (0 = off)");
 	if (fallback_steps < 0)
 		throw std::invalid_argument("cv_fallback_steps = " + std::to_string(fallback_steps) +
@@ -40,28 +26,6 @@ void TCvParams::validate() const
 }
 
 CConstantVelocity::CConstantVelocity(const TCvParams& p) : m_p(p) { m_p.validate(); }
-
-void CConstantVelocity::reportInnovations(int32_t object, double nisSum, int dof)
-{
-	if (!m_p.inflationOn() || dof <= 0) return;
-	TInflationState& st = m_state[object];
-	st.window.emplace_back(nisSum, dof);
-	while (st.window.size() > size_t(m_p.inflation_window)) st.window.pop_front();
-	double nis = 0;
-	int n = 0;
-	for (const auto& [s, d] : st.window)
-	{
-		nis += s;
-		n += d;
-	}
-	if (nis / n > m_p.inflation_threshold)
-	{
-		st.scale = m_p.inflation_factor;
-		++m_inflations;
-	}
-	else  // consistent: decay towards the nominal noise (decay 0: at once)
-		st.scale = std::max(1.0, st.scale * m_p.inflation_decay);
-}
 
 bool CConstantVelocity::reportGating(int32_t object, bool allGatedOut)
 {
@@ -73,15 +37,8 @@ bool CConstantVelocity::reportGating(int32_t object, bool allGatedOut)
 	}
 	if (++m_gatedSteps[object] < m_p.fallback_steps) return false;
 	m_gatedSteps.erase(object);  // lost: its next velocity starts afresh
-	m_state.erase(object);
 	++m_fallbacks;
 	return true;
-}
-
-double CConstantVelocity::processNoiseScale(int32_t object) const
-{
-	const auto it = m_state.find(object);
-	return it == m_state.end() ? 1.0 : it->second.scale;
 }
 
 Eigen::VectorXd CConstantVelocity::residual(const TPseudoMeasurement&,

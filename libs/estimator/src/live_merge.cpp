@@ -52,7 +52,7 @@ CLiveMergeDetector::CLiveMergeDetector(const TLiveMergeParams& p) : m_p(p)
 {
 	if (p.window < 1) throw std::invalid_argument("classify_merge_live_window must be >= 1");
 	if (!(p.alpha > 0 && p.alpha < 1))
-		throw std::invalid_argument("classify_merge_live_alpha = " + std::to_string(p.alpha) +
+		throw std::invalid_argument("live merge alpha = " + std::to_string(p.alpha) +
 		                            ": must be a probability in (0, 1)");
 }
 
@@ -115,6 +115,6 @@ std::unique_ptr<CLiveMergeDetector> makeLiveMergeDetector(const TClassifyParams&
 	if (!c.merge_live) return nullptr;
 	const int w = c.merge_live_window > 0 ? c.merge_live_window : objectCentric ? 5 : 20;
 	return std::make_unique<CLiveMergeDetector>(
-	    TLiveMergeParams{w, c.merge_live_alpha, c.beta, c.motion_std, c.group_prob});
+	    TLiveMergeParams{w, TLiveMergeParams().alpha, c.beta, c.motion_std, c.group_prob});
 }
 }  // namespace dynslam::estimator

@@ -26,11 +26,9 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeObjectCen
 	p.gate = estimator::gateThreshold2Dof(o.cv_gate);
 	// The EKF-only cv keys: each names what the framework does not implement.
 	const std::pair<bool, const char*> ekfOnly[] = {
-	    {p.inflationOn(),
-	     "cv_inflation_threshold / cv_inflation_factor: the process-noise inflation rule"},
 	    {p.fallback_steps > 0, "cv_fallback_steps: the fallback of a lost object"},
-	    {p.heading_inflation > 0, "cv_heading_inflation: the heading inflation of object readings"},
-	    {p.ego_velocity_std > 0, "cv_ego_velocity_std: the Schmidt update of unconverged objects"}};
+	    {p.heading_inflation > 0,
+	     "cv_heading_inflation: the heading inflation of object readings"}};
 	for (const auto& [set, what] : ekfOnly)
 		if (set)
 			throw std::invalid_argument(
@@ -79,8 +77,7 @@ void CAlg1Backend::predictObjects()
 		const TVarKey vNext = TVarKey::objectVelocity(obj, m_step);
 		m_cost.addVariable(xiNext, pred.head(d));
 		m_cost.addVariable(vNext, pred.tail(dv));
-		m_cost.addTerm(std::make_shared<CObjectMotionTerm>(m_motion, xi, v, xiNext, vNext,
-		                                                   m_motion->processNoiseScale(obj)));
+		m_cost.addTerm(std::make_shared<CObjectMotionTerm>(m_motion, xi, v, xiNext, vNext));
 		m_cost.marginalize({xi, v});
 	}
 }

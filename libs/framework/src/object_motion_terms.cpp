@@ -7,11 +7,10 @@ namespace dynslam::framework
 {
 CObjectMotionTerm::CObjectMotionTerm(std::shared_ptr<const estimator::IObjectMotionModel> model,
                                      const TVarKey& xiPrev, const TVarKey& vPrev, const TVarKey& xi,
-                                     const TVarKey& v, double noiseScale)
-    : CTerm({xiPrev, vPrev, xi, v}), m_model(std::move(model)), m_scale(noiseScale)
+                                     const TVarKey& v)
+    : CTerm({xiPrev, vPrev, xi, v}), m_model(std::move(model))
 {
 	if (!m_model) throw std::invalid_argument("CObjectMotionTerm: null model");
-	if (!(noiseScale > 0)) throw std::invalid_argument("CObjectMotionTerm: noise scale <= 0");
 }
 
 TLinearization CObjectMotionTerm::linearize(const std::vector<Eigen::VectorXd>& x) const
@@ -26,8 +25,8 @@ TLinearization CObjectMotionTerm::linearize(const std::vector<Eigen::VectorXd>& 
 	TLinearization L;
 	L.r.resize(d + dv);
 	L.r << blockMinus(VarKind::ObjectPose, x[2], f.head(d)), x[3] - f.tail(dv);
-	L.W = spdInverse(m_scale * Q, "CObjectMotionTerm: the process noise of '" + m_model->name() +
-	                                  "' (every cv_accel_psd entry must be > 0 in the framework)");
+	L.W = spdInverse(Q, "CObjectMotionTerm: the process noise of '" + m_model->name() +
+	                        "' (every cv_accel_psd entry must be > 0 in the framework)");
 	const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(d + dv, d + dv);
 	L.J = {-F.leftCols(d), -F.rightCols(dv), I.leftCols(d), I.rightCols(dv)};
 	return L;

@@ -66,16 +66,11 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * densities ax, ay, alpha), cv_velocity_prior_std (vx, vy, omega; > 0), cv_gate (chi-square
 	 * probability of the per-reading gate on object readings, 0 = no gate; a gated reading is
 	 * not used and counted in TStepReport::object_gated_out, the object coasts on its
-	 * prediction), cv_inflation_threshold / cv_inflation_factor (per-object process-noise
-	 * inflation: mean NIS per dof of an object's readings at a step above the threshold ->
-	 * its next prediction's acceleration PSD times the factor; 0 / 1 = off, the defaults;
-	 * doc/state-layout.md), cv_fallback_steps (an object whose readings were all gated out
+	 * prediction), cv_fallback_steps (an object whose readings were all gated out
 	 * at that many consecutive steps falls back to the paper's formulation until two poses
 	 * give it a new velocity; 0 = off, the default), cv_heading_inflation (object readings' noise
 	 * Sigma_v + c P_thth h h^T, h the reading's Jacobian on the ego heading; 0 = off, the
-	 * default; estimator::TCvParams::heading_inflation), cv_ego_velocity_std (an object's
-	 * readings correct only the object while its velocity std is above it [m/s]; 0 = off, the
-	 * default; estimator::TCvParams::ego_velocity_std). */
+	 * default; estimator::TCvParams::heading_inflation). */
 	estimator::TCvParams cv;
 	double cv_gate = 0;
 	bool drop_time_t_features = true;  ///< drop f_t after pose augmentation

@@ -166,18 +166,6 @@ void propagate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P, const E
 void predictSubset(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
                    const std::vector<int>& idx, const Eigen::VectorXd& x_new,
                    const Eigen::MatrixXd& F, const Eigen::MatrixXd& Q);
-/** Schmidt (consider) update: the update of sparseUpdate with the gain's rows outside `upd`
- * set to zero, and the exact covariance of that estimator (Joseph form):
- *   A = H P[idx,:], S = H P[idx,idx] H^T + R, K_u = A[:,upd]^T S^-1,
- *   x[upd] += K_u nu, P[upd,:] -= K_u A, P[:,upd] mirrored;
- * the entries outside `upd` keep their mean and their covariance block among themselves
- * (they are "considered": neither corrected nor credited with information); their
- * cross-covariances with `upd` are updated. With upd = every index it is sparseUpdate.
- * Used by cv_ego_velocity_std (doc/state-layout.md "Objects that tell the ego only once
- * converged"). @return the NIS. @throws std::runtime_error if S is not positive definite. */
-double schmidtUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
-                     const std::vector<int>& idx, const std::vector<int>& upd,
-                     const Eigen::MatrixXd& H, const Eigen::VectorXd& nu, const Eigen::MatrixXd& R);
 /** The indices 0..n-1 that are not in `remove` (any order, duplicates allowed), ascending. */
 std::vector<int> keptIndices(int n, const std::vector<int>& remove);
 

@@ -69,19 +69,4 @@ struct TRigidNow
 TRigidNow rigidNowTest(const std::map<int, TPoint2>& a, const TPoint2& za,
                        const std::map<int, TPoint2>& b, const TPoint2& zb);
 
-/** One term of the drift test of a static track (classify_drift_window, doc/classification.md
- * "Slow movers: the drift test"): an innovation of the track's static filter, mapped into a
- * frame fixed over the window (w), and its covariance (W). */
-struct TDriftTerm
-{
-	Eigen::Vector2d w = Eigen::Vector2d::Zero();
-	Eigen::Matrix2d W = Eigen::Matrix2d::Zero();
-};
-
-/** The drift statistic of terms: D = sum w_i, C = sum W_i, T = D^T C^-1 D. The innovations of a
- * Kalman filter are a martingale-difference sequence under its model (E[nu_j | readings before
- * j] = 0), so their sum has covariance sum W_i with no cross terms and T is chi-square with 2
- * dof under the static hypothesis; a point that moves with a constant velocity biases every
- * innovation the same way and T grows with the window. 0 if C is not positive definite. */
-double driftStatistic(const std::vector<TDriftTerm>& terms);
 }  // namespace dynslam::estimator

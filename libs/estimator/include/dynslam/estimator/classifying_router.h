@@ -103,11 +103,9 @@ struct TClassifyParams
 	/** classify_merge_live: two live objects that move as one rigid body (CLiveMergeDetector,
 	 * live_merge.h) are merged in the estimator (the filter calls mergeObjects; off by default:
 	 * doc/classification.md "Merging two live objects"). merge_live_window: increments per
-	 * decision, >= 1, or 0 (default): 5 with cv / ctrv, 20 with the paper's model;
-	 * merge_live_alpha: the SPRT's false-merge probability, in (0, 1). */
+	 * decision, >= 1, or 0 (default): 5 with cv / ctrv, 20 with the paper's model. */
 	bool merge_live = false;
 	int merge_live_window = 0;
-	double merge_live_alpha = 1e-3;
 	/** classify_static_test: how a static track's reading is tested before it updates the
 	 * filter (reclassification). Robot (default): the robot-frame static filter carried by the
 	 * odometry alone (TTrack::q). Map: if the track has a landmark in the filter's state, the
@@ -120,23 +118,6 @@ struct TClassifyParams
 		Map
 	};
 	StaticTest static_test = StaticTest::Robot;
-	/** classify_drift_window: the drift test of a static track (slow movers,
-	 * doc/classification.md "Slow movers: the drift test"): the sum of the innovations of its
-	 * last drift_window consistent readings (the static test's own: the EKF's, mapped to the
-	 * world frame by J_z_f^-1, with static_test = map, else the robot-frame filter's, rotated
-	 * into the odometry frame) against the sum of their covariances; beyond the chi-square
-	 * quantile (2 dof) at drift_prob the track is reclassified moving as by reclassify_count
-	 * (0: off, the default; else >= 2). */
-	int drift_window = 0;
-	/** classify_drift_prob: chi-square probability of the drift test, in (0, 1); 1 - drift_prob
-	 * is its false-alarm rate per test under the static hypothesis. */
-	double drift_prob = 0.9999;
-	/** classify_drift_scale: nominal (false, the default): T against the chi-square quantile, exact
-	 * when the innovations are white; population (true): against the quantile times the
-	 * variance inflation measured on the run's static tracks (the winsorised mean of T / 2 over
-	 * all tests so far, >= 1; no decision before 20 tests): for data whose innovations are
-	 * correlated over time (doc/classification.md). */
-	bool drift_population = false;
 	TUnknownIdParams assoc;  ///< classify_assoc_*: ID -1 (unknown_id_association.h)
 	/** Throws std::invalid_argument naming the key. */
 	void validate() const;
@@ -165,11 +146,6 @@ struct TTrack
 	int32_t object = -1, feature = -1;  ///< moving: its object and feature index
 	int32_t hint = -1;                  ///< its first detection group (classify_use_hints)
 	std::map<int, TPoint2> history;     ///< the last readings (robot frame), by step
-	/** static, classify_drift_window > 0: the drift terms of its last consistent readings (a
-	 * ring of drift_window, next to overwrite at drift_next) and their source (map or robot). */
-	std::vector<TDriftTerm> drift;
-	size_t drift_next = 0;
-	bool drift_map = false;
 };
 
 class CClassifyingRouter : public IMeasurementRouter
@@ -216,13 +192,9 @@ private:
 	bool stoppedEvidence(TTrack& t, const TPoint2& z);
 	/** Adds the evidence of one reading to a candidate; returns its decision (if any). */
 	std::optional<TrackClass> addEvidence(TTrack& t, const TPoint2& z, int step);
-	/** A static track's reading: true if consistent (and used by its filter); drifted: the
-	 * drift test (classify_drift_window) fired with this reading. */
-	bool checkStatic(int32_t id, TTrack& t, const TPoint2& z, int step, bool& drifted);
-	/** classify_drift_window: adds a consistent reading's term to t's window; true if the
-	 * full window's drift statistic is beyond the classify_drift_prob quantile. */
-	bool driftDetected(TTrack& t, const TDriftTerm& term, bool fromMap);
-	/** A static track decided moving now (inconsistent readings or drift): grouped after the
+	/** A static track's reading: true if consistent (and used by its filter). */
+	bool checkStatic(int32_t id, TTrack& t, const TPoint2& z, int step);
+	/** A static track decided moving now (inconsistent readings): grouped after the
 	 * step's readings (turnedMoving); its landmark converted (surgery) or dropped. */
 	void reclassifyStatic(int32_t id, TTrack& t, TRoutedStep& out,
 	                      std::vector<int32_t>& turnedMoving,
@@ -308,11 +280,5 @@ private:
 	int m_lastStep = -1;
 	CUnknownIdResolver m_unknown;
 	std::map<int32_t, Eigen::Vector2d> m_rawNow;  ///< this step's readings (model space) by track
-	double m_heading = 0;   ///< sum of the odometry headings: the robot frame in the drift test's
-	                        ///< odometry frame (classify_drift_window, robot-frame terms)
-	double m_driftSum = 0;  ///< classify_drift_scale = population: sum of min(T, quantile)
-	int m_driftTests = 0;   ///< ... over this many full-window tests
-	/** classify_drift_scale = population: tests before the scale is used (none fires before). */
-	static constexpr int kDriftCalibration = 20;
 };
 }  // namespace dynslam::estimator

@@ -6,9 +6,7 @@
  * ego: a car driving steadily beside it is a reference where static landmarks are scarce. */
 #include <dynslam/estimator/object_motion_model.h>
 
-#include <deque>
 #include <map>
-#include <utility>
 
 namespace dynslam::estimator
 {
@@ -21,18 +19,6 @@ struct TCvParams
 	Eigen::Vector3d velocity_prior_std = Eigen::Vector3d(1.0, 1.0, 0.1);
 	/** Chi-square threshold (2 dof) of the gate on object readings (infinity: no gate). */
 	double gate = std::numeric_limits<double>::infinity();
-	/** Process-noise inflation (doc/state-layout.md "Process-noise inflation"): at every step
-	 * with readings of an object, r = (sum of the NIS of its readings over its last
-	 * inflation_window steps with readings) / (their dof). r > inflation_threshold: the
-	 * object's factor on Q becomes inflation_factor; otherwise it decays to
-	 * max(1, factor * inflation_decay) (decay 0: back to 1 at once). The factor scales the
-	 * object's next predictions. Off when inflation_threshold = 0 or inflation_factor = 1 (the
-	 * defaults); window 1 and decay 0 are the rule of one step. */
-	double inflation_threshold = 0.0;
-	double inflation_factor = 1.0;
-	int inflation_window = 1;      ///< steps with readings in the NIS window (>= 1)
-	double inflation_decay = 0.0;  ///< in [0, 1): factor on the inflation per consistent step
-	bool inflationOn() const { return inflation_threshold > 0 && inflation_factor != 1.0; }
 	/** Fallback of a lost object (doc/state-layout.md "Fallback of a lost object"): after
 	 * fallback_steps consecutive steps whose readings of an object were all gated out, the
 	 * object's velocity and pose leave the state; it is then handled by the paper's
@@ -46,13 +32,6 @@ struct TCvParams
 	 * heading, which the object readings otherwise leak into the estimate; doc/results.md
 	 * 4.3.2). The gate is unchanged. 0 = off (default). EKF only. */
 	double heading_inflation = 0.0;
-	/** Objects that tell the ego only once converged (doc/state-layout.md): while the std of
-	 * an object's velocity (the largest of its (vx, vy) block) is above this [m/s], its readings
-	 * correct only the object's own entries (pose, velocity, body-frame features; a Schmidt
-	 * update, ekf::schmidtUpdate); the ego, the static map and the other objects are then
-	 * considered, not corrected. 0 = off (default): every reading corrects the whole state. EKF
-	 * only. */
-	double ego_velocity_std = 0.0;
 	/** Throws std::invalid_argument naming the parameter. */
 	void validate() const;
 };
@@ -77,31 +56,18 @@ public:
 	                                Eigen::MatrixXd* Sigma) const override;
 	double readingGate() const override { return m_p.gate; }
 	const TCvParams& params() const { return m_p; }
-	bool tracksInnovations() const override { return m_p.inflationOn(); }
-	void reportInnovations(int32_t object, double nisSum, int dof) override;
-	double processNoiseScale(int32_t object) const override;
 	bool reportGating(int32_t object, bool allGatedOut) override;
 	void resetObjectState() override
 	{
-		m_state.clear();
 		m_gatedSteps.clear();
-		m_inflations = 0;
 		m_fallbacks = 0;
 	}
-	/** Steps at which some object's process noise was inflated, since construction/reset. */
-	size_t inflationCount() const { return m_inflations; }
 	/** Objects handed back to the paper's formulation since construction/reset. */
 	size_t fallbackCount() const { return m_fallbacks; }
 
 private:
-	struct TInflationState
-	{
-		std::deque<std::pair<double, int>> window;  ///< (NIS sum, dof) of the last steps
-		double scale = 1.0;                         ///< factor on Q for the next prediction
-	};
 	TCvParams m_p;
-	std::map<int32_t, TInflationState> m_state;  ///< per object
-	std::map<int32_t, int> m_gatedSteps;         ///< consecutive all-gated-out steps per object
-	size_t m_inflations = 0, m_fallbacks = 0;
+	std::map<int32_t, int> m_gatedSteps;  ///< consecutive all-gated-out steps per object
+	size_t m_fallbacks = 0;
 };
 }  // namespace dynslam::estimator

@@ -33,7 +33,7 @@ namespace dynslam::estimator
 struct TLiveMergeParams
 {
 	int window = 5;            ///< classify_merge_live_window: increments per decision, >= 1
-	double alpha = 1e-3;       ///< classify_merge_live_alpha: false-merge probability, (0, 1)
+	double alpha = 1e-3;       ///< the SPRT's false-merge probability, (0, 1) (no INI key)
 	double beta = 0.01;        ///< classify_beta
 	double motion_std = 0.5;   ///< classify_motion_std [m per step]
 	double rigid_prob = 0.99;  ///< classify_group_prob

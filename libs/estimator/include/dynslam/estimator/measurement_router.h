@@ -55,9 +55,6 @@ struct TRoutedStep
 	size_t unknown_id_static = 0, unknown_id_moving = 0, unknown_id_new = 0;
 	size_t candidates = 0;  ///< readings of undecided tracks (not used by the filter)
 	size_t held = 0;        ///< readings of static tracks held back as inconsistent (not used)
-	/** Static tracks decided moving in this step by the drift test (classify_drift_window);
-	 * they are also in `converted` or `reclassified`. */
-	size_t drift = 0;
 	/** Moving tracks decided static in this step (their object stopped, classify_stop_count):
 	 * their reading starts a static landmark (StaticNew). */
 	size_t stopped = 0;

@@ -59,14 +59,6 @@ public:
 	                                        Eigen::MatrixXd* J_v_xi, Eigen::MatrixXd* Sigma) const;
 	/** Chi-square threshold (2 dof) of the gate on object readings (infinity: no gate). */
 	virtual double readingGate() const;
-	/** Per-object process-noise inflation (issue 13 item 3). Whether the model wants the
-	 * innovations of object readings reported (false: reportInnovations is never called). */
-	virtual bool tracksInnovations() const { return false; }
-	/** The innovations of one object's readings at one step, all of them, gated or not: the sum
-	 * of their normalised innovation squared nu^T S^-1 nu (S at the prior) and their dof. */
-	virtual void reportInnovations(int32_t /*object*/, double /*nisSum*/, int /*dof*/) {}
-	/** Factor on the process noise Q of the object's next prediction (1: none). */
-	virtual double processNoiseScale(int32_t /*object*/) const { return 1.0; }
 	/** Fallback of a lost object: called at every step with readings of an object that has a
 	 * velocity; allGatedOut = the gate rejected all of them. True: the object is lost and its
 	 * motion state leaves the filter now (the model has then forgotten its per-object state). */

@@ -18,21 +18,19 @@
 
 namespace dynslam::framework
 {
-/** Keys {xi_{t-1}, v_{t-1}, xi_t, v_t}; Q times `noiseScale` (the inflation rule's factor);
- * throws std::invalid_argument if that covariance is not positive definite (a zero spectral
- * density: the framework needs an invertible process noise). */
+/** Keys {xi_{t-1}, v_{t-1}, xi_t, v_t}; throws std::invalid_argument if the process noise Q is
+ * not positive definite (a zero spectral density: the framework needs an invertible one). */
 class CObjectMotionTerm : public CTerm
 {
 public:
 	CObjectMotionTerm(std::shared_ptr<const estimator::IObjectMotionModel> model,
 	                  const TVarKey& xiPrev, const TVarKey& vPrev, const TVarKey& xi,
-	                  const TVarKey& v, double noiseScale = 1.0);
+	                  const TVarKey& v);
 	std::string name() const override { return "object_motion:" + m_model->name(); }
 	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
 
 private:
 	std::shared_ptr<const estimator::IObjectMotionModel> m_model;
-	double m_scale;
 };
 
 /** A sighting of feature k of an object with pose xi_t and time-0 (body-frame) features f0

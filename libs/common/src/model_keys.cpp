@@ -1,0 +1,199 @@
+/** The descriptor table of [DynamicKFSLAM] and the generated key reference (model_keys.h). */
+#include <dynslam/model_keys.h>
+
+#include <ostream>
+
+namespace dynslam
+{
+namespace
+{
+constexpr const char* kModel = "Measurement, motion and prior";
+constexpr const char* kObjects = "Objects (the paper's formulation)";
+constexpr const char* kMotion = "Object motion models (object_model = cv, ctrv)";
+constexpr const char* kUpdate = "Static update and outliers";
+constexpr const char* kBias = "Odometry bias (odometry_bias = rate, rate_scale)";
+constexpr const char* kClassify = "Classification (feature_labels = classify)";
+constexpr const char* kProb = "probability in (0, 1)";
+
+/** The table (a variable, not a function: one row per key). */
+const std::vector<TKeyInfo> kKeys{
+    {"measurement_model", "cartesian | range_bearing", "required", "-",
+     "cartesian: Sigma_v on the sensor-frame point (paper); range_bearing: MRPT's", kModel},
+    {"Sigma_v", "2x2 covariance", "required", "m^2 or [m^2, rad^2]",
+     "measurement noise in the model's space; `[a b]` is the diagonal", kModel},
+    {"motion_noise", "action | config", "action", "-",
+     "odometry noise: the action's covariance (rotated as MRPT does) or Sigma_w", kModel},
+    {"Sigma_w", "3x3 covariance", "[0.0001 0 0; 0 0.0001 0; 0 0 0.0001]", "[m^2, m^2, rad^2]",
+     "odometry increment noise; required with motion_noise = config", kModel},
+    {"initial_pose", "vector of 3", "[0 0 0]", "[m, m, rad]", "mean of x_0", kModel},
+    {"Sigma_0", "3x3 covariance (PSD)", "[0 0 0; 0 0 0; 0 0 0]", "[m^2, m^2, rad^2]",
+     "covariance of x_0", kModel},
+    {"prior_gauge", "prior | anchor", "prior", "-",
+     "anchor: the filter runs with x_0 as the gauge, Sigma_0 enters only the reported "
+     "covariances (doc/state-layout.md); EKF only",
+     kModel},
+    {"Sigma_xi", "2x2 covariance", "[0.1 0; 0 0.1]", "m^2",
+     "per-feature residual covariance of the object-pose map (Alg. 4)", kObjects},
+    {"smoothing", "bool", "false", "-", "Alg. 6 (the paper's smoothing)", kObjects},
+    {"Sigma_s", "3x3 covariance", "[0.01 0 0; 0 0.01 0; 0 0 0.01]", "[m^2, m^2, rad^2]",
+     "smoothing covariance; required with smoothing = true", kObjects},
+    {"drop_time_t_features", "bool", "true", "-", "drop f_t after the pose augmentation", kObjects},
+    {"keep_last_poses", "int >= 1", "1", "poses",
+     "object poses kept per object (>= 3 with smoothing)", kObjects},
+    {"drop_static_after_unseen_steps", "int >= 0", "0", "steps",
+     "drop static landmarks unseen this long (0: never)", kObjects},
+    {"skip_prediction_on_empty_map", "bool", "false", "-",
+     "no prediction while the map is empty (MRPT's CRangeBearingKFSLAM2D)", kObjects},
+    {"object_model", "paper | paper_smoothing | cv | ctrv", "paper", "-",
+     "how objects move: the paper's formulation, or a velocity in the state", kMotion},
+    {"cv_dt", "real > 0", "0.5", "s", "seconds per step; required with cv and ctrv", kMotion},
+    {"cv_accel_psd", "vector of 3, >= 0", "[0.1 0.1 0.01]", "[m^2/s^3, m^2/s^3, rad^2/s^3]",
+     "white-acceleration spectral densities", kMotion},
+    {"cv_velocity_prior_std", "vector of 3, > 0", "[1 1 0.1]", "[m/s, m/s, rad/s]",
+     "initialisation noise of an object's velocity", kMotion},
+    {"cv_gate", "probability in [0, 1)", "0", "-", "chi-square gate on object readings (0: none)",
+     kMotion},
+    {"cv_fallback_steps", "int >= 0", "0", "steps",
+     "an object gated out this many steps in a row falls back to the paper's formulation "
+     "(0: off); EKF only",
+     kMotion},
+    {"cv_heading_inflation", "real >= 0", "0", "-",
+     "object readings' noise Sigma_v + c P_thth h h^T (0: off); EKF only", kMotion},
+    {"static_update", "mrpt | sparse | compressed", "sparse", "-",
+     "the static update engine (compressed: the exact compressed EKF)", kUpdate},
+    {"compressed_passive_after", "int in [1, 1000000]", "3", "steps",
+     "compressed: a landmark unseen this long becomes passive", kUpdate},
+    {"compressed_batch", "int in [1, 1000000]", "8", "landmarks",
+     "compressed: landmarks made passive only when this many are due", kUpdate},
+    {"innovation_gate", "probability in [0, 1)", "0", "-",
+     "chi-square gate on static readings (0: none)", kUpdate},
+    {"outlier_method", "gate | none | huber | cauchy | gate_recovery | jcbb", "gate", "-",
+     "static outlier handling; all but gate need static_update = sparse", kUpdate},
+    {"robust_kernel_c", "real > 0", "2", "Mahalanobis units", "huber / cauchy: the kernel's width",
+     kUpdate},
+    {"robust_iterations", "int >= 1", "5", "-", "huber / cauchy: IRLS updates at most", kUpdate},
+    {"recovery_count", "int >= 1", "5", "readings",
+     "gate_recovery: consecutive rejections of a landmark before the inflation", kUpdate},
+    {"recovery_inflation", "real > 1", "4", "-", "gate_recovery: factor on the ego covariance",
+     kUpdate},
+    {"recovery_min_updates", "int >= 0", "3", "readings",
+     "gate_recovery: accepted readings a landmark needs first", kUpdate},
+    {"first_estimate_jacobians", "bool", "false", "-",
+     "first-estimate Jacobians (Huang et al. 2008)", kUpdate},
+    {"record_dropped", "bool", "true", "-", "keep the last estimate of dropped poses and landmarks",
+     kUpdate},
+    {"odometry_bias", "none | rate | rate_scale", "none", "-",
+     "online odometry bias: turn rate, and the translation scale", kBias},
+    {"odometry_dt", "real > 0", "required", "s",
+     "step duration when the actions' timestamps give none", kBias},
+    {"bias_rate_std0", "real > 0", "required", "rad/s", "prior std of the turn-rate bias", kBias},
+    {"bias_rate_rw", "real >= 0", "required", "rad/s/sqrt(s)", "random walk of the turn-rate bias",
+     kBias},
+    {"bias_scale_std0", "real > 0", "required", "-", "rate_scale: prior std of the scale error",
+     kBias},
+    {"bias_scale_rw", "real >= 0", "required", "1/sqrt(s)",
+     "rate_scale: random walk of the scale error", kBias},
+    {"feature_labels", "ids | classify", "ids", "-",
+     "ids: the ID ranges say what a reading is; classify: anonymous tracks classified "
+     "online (EKF only)",
+     kClassify},
+    {"classify_alpha", kProb, "0.01", "-", "P(decide moving | static) of the SPRT", kClassify},
+    {"classify_beta", kProb, "0.01", "-", "P(decide static | moving); alpha + beta < 1", kClassify},
+    {"classify_motion_std", "real > 0", "0.5", "m per step",
+     "the moving hypothesis: a random walk of this std", kClassify},
+    {"classify_max_window", "int >= 2", "10", "sightings", "sightings before a forced decision",
+     kClassify},
+    {"classify_forget_steps", "int >= 1", "20", "steps",
+     "an unseen candidate is forgotten after this many steps", kClassify},
+    {"classify_group_prob", kProb, "0.99", "-",
+     "rigid-distance chi-square probability of the grouping", kClassify},
+    {"classify_group_max_dist", "real > 0", "6", "m",
+     "features of one object at most this far apart", kClassify},
+    {"classify_reclassify_count", "int >= 0", "3", "readings",
+     "consecutive inconsistent readings that turn a static track moving (0: never)", kClassify},
+    {"classify_reclassify_gate", kProb, "0.999", "-",
+     "chi-square probability of a static track's gate", kClassify},
+    {"classify_candidate_landmarks", "bool", "true", "-",
+     "a candidate's first reading initialises an isolated landmark", kClassify},
+    {"classify_reclassify", "surgery | restart", "surgery", "-",
+     "a reclassified landmark becomes its object's f_0, or is dropped", kClassify},
+    {"classify_stop_count", "int >= 0", "0", "readings",
+     "consistent readings that turn a moving track static (0: never)", kClassify},
+    {"classify_reuse_gap", "int >= 0", "0", "steps",
+     "a track unseen this long and inconsistent restarts under a fresh ID (0: never)", kClassify},
+    {"classify_split_count", "int >= 0", "3", "readings",
+     "inconsistent readings that split a track off its object (0: never)", kClassify},
+    {"classify_join", "bool", "true", "-", "a moving track may join an object of an earlier step",
+     kClassify},
+    {"classify_use_hints", "bool", "false", "-",
+     "detection groups (boxes) are evidence for the grouping", kClassify},
+    {"classify_link", "off | hints | all", "hints", "-",
+     "which new objects may continue an object lost after a break", kClassify},
+    {"classify_link_gap", "int >= 1", "80", "steps", "the longest break a link may span",
+     kClassify},
+    {"classify_merge_linked", "bool", "false", "-",
+     "a link also merges the new object into the lost one (cv, ctrv)", kClassify},
+    {"classify_merge_live", "bool", "false", "-",
+     "two live objects moving as one rigid body are merged", kClassify},
+    {"classify_merge_live_window", "int >= 0", "0", "steps",
+     "increments per live-merge decision (0: 5 with cv / ctrv, 20 with paper)", kClassify},
+    {"classify_static_test", "robot | map", "robot", "-",
+     "a static track's reading tested in the robot frame or against the map", kClassify},
+    {"classify_assoc_method", "assocNN | assocJCBB", "assocNN", "-",
+     "ID -1, static stage (MRPT's data_assoc_method)", kClassify},
+    {"classify_assoc_metric", "metricMaha | metricML", "metricMaha", "-",
+     "MRPT's data_assoc_metric", kClassify},
+    {"classify_assoc_IC_chi2_thres", kProb, "0.99", "-",
+     "individual compatibility (MRPT's data_assoc_IC_chi2_thres)", kClassify},
+    {"classify_assoc_IC_metric", "metricMaha | metricML", "metricMaha", "-",
+     "MRPT's data_assoc_IC_metric", kClassify},
+    {"classify_assoc_IC_ml_threshold", "real", "0", "-", "MRPT's data_assoc_IC_ml_threshold",
+     kClassify},
+    {"classify_assoc_moving_gate", kProb, "0.99", "-",
+     "ID -1, moving stage: chi-square probability (2 dof)", kClassify},
+    {"classify_assoc_max_step", "real >= 0", "0", "m per step",
+     "ID -1, second sightings of candidates (0: off)", kClassify}};
+}  // namespace
+
+const std::vector<TKeyInfo>& modelKeys() { return kKeys; }
+
+std::vector<std::string> modelKeyNames()
+{
+	std::vector<std::string> n;
+	for (const TKeyInfo& k : modelKeys()) n.push_back(k.key);
+	return n;
+}
+
+namespace
+{
+std::string profilesSetting(const std::string& key, const std::vector<TProfileKeys>& profiles)
+{
+	std::string s;
+	for (const TProfileKeys& p : profiles)
+		for (const auto& [k, v] : p.keys)
+			if (k == key) s += (s.empty() ? "" : "; ") + p.name + " `" + v + "`";
+	return s.empty() ? "-" : s;
+}
+}  // namespace
+
+void writeKeyReference(std::ostream& out, const std::vector<TProfileKeys>& profiles)
+{
+	std::string group;
+	for (const TKeyInfo& k : modelKeys())
+	{
+		if (k.capability != group)
+		{
+			group = k.capability;
+			out << "\n### " << group << "\n\n"
+			    << "| key | type | default | unit | profiles | what |\n"
+			    << "|---|---|---|---|---|---|\n";
+		}
+		std::string type = k.type;
+		for (size_t p = type.find('|'); p != std::string::npos; p = type.find('|', p + 2))
+			type.replace(p, 1, "\\|");
+		out << "| `" << k.key << "` | " << type << " | `" << k.def << "` | " << k.unit << " | "
+		    << profilesSetting(k.key, profiles) << " | " << k.what << " |\n";
+	}
+	out << "\n" << modelKeys().size() << " keys.\n";
+}
+}  // namespace dynslam
