@@ -31,6 +31,7 @@ public:
 	// --- settings (filled by initialize(), or set directly by tests) ---
 	std::string labels_dir, poses_dir, sequence, out_dir, config_file, base;
 	TKittiOptions options;
+	bool quiet = false;  ///< -q: no summary on stdout, only warnings and errors
 
 	// --- results ---
 	TImportSummary summary;
