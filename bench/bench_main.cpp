@@ -1,7 +1,8 @@
 /** dynslam-bench main: Google Benchmark's, plus --peak-memory (one default highway run, then
  * the process's peak resident set size from getrusage) and --isa=sse2|avx2 (the kernel variant,
  * dynslam/kernels.h; default: DYNSLAM_ISA, else the best the CPU runs; reported in the context
- * as dynslam_isa). Run it through scripts/bench.sh. */
+ * as dynslam_isa). Run it through scripts/bench.sh. CSV output (--benchmark_format=csv,
+ * --benchmark_out_format=csv) has the union of the counters of all benchmarks (csv_reporter.h). */
 #include <benchmark/benchmark.h>
 #include <dynslam/kernels.h>
 
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "bench_setup.h"
+#include "csv_reporter.h"
 
 using namespace dynslam_bench;
 
@@ -64,9 +66,20 @@ int main(int argc, char** argv)
 		}
 	benchmark::AddCustomContext("dynslam_isa",
 	                            dynslam::kernels::isaName(dynslam::kernels::activeIsa()));
+	// CSV: the union of the counters of all benchmarks (csv_reporter.h).
+	bool csvDisplay = false, csvFile = false, outFile = false;
+	for (int i = 1; i < argc; ++i)
+	{
+		const std::string a = argv[i];
+		csvDisplay = csvDisplay || a == "--benchmark_format=csv";
+		csvFile = csvFile || a == "--benchmark_out_format=csv";
+		outFile = outFile || a.rfind("--benchmark_out=", 0) == 0;
+	}
 	benchmark::Initialize(&argc, argv);
 	if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-	benchmark::RunSpecifiedBenchmarks();
+	CUnionCsvReporter display, file;
+	benchmark::RunSpecifiedBenchmarks(csvDisplay ? &display : nullptr,
+	                                  csvFile && outFile ? &file : nullptr);
 	benchmark::Shutdown();
 	return 0;
 }

@@ -4,10 +4,12 @@
 #include <dynslam/apps/CStaticBaselineBackend.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
+#include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/landmark_ids.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 
+#include <cstdio>
 #include <set>
 
 using namespace dynslam;
@@ -116,38 +118,61 @@ TEST(StaticBaseline, FactoryKnowsEveryKind)
 	}
 }
 
-TEST(StaticBaseline, MixedUnknownAndLabelledIdsAreAnErrorNamingTheReading)
+TEST(StaticBaseline, MixedUnknownAndLabelledIdsRunAsMrptAssociatesThem)
 {
-	// Issue 12: clutter with clutter_ids = unknown (-1) next to labelled readings. MRPT's
-	// CRangeBearingKFSLAM2D would throw "Duplicated `key`" a few steps later from its bimap.
+	// Issue 30: -1 readings next to labelled ones. MRPT keys a landmark started by a -1 reading
+	// by its map index, so handing it the given IDs unchanged threw "Duplicated `key`" from its
+	// bimap (this test threw at step 1 before the fix). Every reading of a static landmark after
+	// its first sighting is given as -1: both modes run through, MRPT's data association decides
+	// each -1 reading, and the landmarks keep their given IDs (those of -1 landmarks are from
+	// kFirstResolvedId on). With this INI's R (too small for the highway's Cartesian noise, see
+	// doc/apps.md "R of MRPT's filter") MRPT's chi-square gate rejects part of the correct
+	// pairings: numbers printed, not asserted.
 	const TRawlog r = loadRawlog(apps_test::dataset("highway.rawlog"));
 	mrpt::config::CConfigFileMemory ini(kIni);
-	CStaticBaselineBackend all(CStaticBaselineBackend::Mode::AllFeatures);
-	all.loadOptions(ini);
-	all.processActionObservation(r.actions[0], r.frames[0]);
-	auto obs = std::make_shared<mrpt::obs::CObservationBearingRange>(
-	    *r.frames[1]->getObservationByClass<mrpt::obs::CObservationBearingRange>());
-	obs->sensedData[2].landmarkID = -1;
-	auto sf = mrpt::obs::CSensoryFrame::Create();
-	sf->insert(obs);
-	try
+	std::vector<mrpt::obs::CSensoryFrame::Ptr> frames;
+	std::set<int32_t> seen;
+	size_t unknown = 0;
+	for (const auto& f : r.frames)
 	{
-		all.processActionObservation(r.actions[1], sf);
-		ADD_FAILURE() << "a -1 ID among labelled readings was accepted";
+		auto obs = std::make_shared<mrpt::obs::CObservationBearingRange>(
+		    *f->getObservationByClass<mrpt::obs::CObservationBearingRange>());
+		for (auto& m : obs->sensedData)
+			if (ids::isStatic(m.landmarkID) && !seen.insert(m.landmarkID).second)
+				m.landmarkID = -1, ++unknown;
+		auto sf = mrpt::obs::CSensoryFrame::Create();
+		sf->insert(obs);
+		frames.push_back(sf);
 	}
-	catch (const std::runtime_error& e)
+	ASSERT_GT(unknown, 800u);  // 852 on the shipped highway
+	for (auto mode :
+	     {CStaticBaselineBackend::Mode::StaticOnly, CStaticBaselineBackend::Mode::AllFeatures})
 	{
-		EXPECT_NE(std::string(e.what()).find("step 1: measurement 2 (landmark ID -1)"),
-		          std::string::npos)
-		    << e.what();
+		CStaticBaselineBackend mixed(mode);
+		mixed.loadOptions(ini);
+		size_t associated = 0, created = 0;
+		for (size_t k = 0; k < r.actions.size(); ++k)
+		{
+			ASSERT_NO_THROW(mixed.processActionObservation(r.actions[k], frames[k])) << k;
+			associated += mixed.getLastStepReport().unknown_id_associated;
+			created += mixed.getLastStepReport().unknown_id_new;
+		}
+		EXPECT_EQ(associated + created, unknown);
+		EXPECT_GT(associated, 0u);
+		std::printf("[  info    ] %s: %zu of %zu readings with ID -1 associated, %zu new\n",
+		            mixed.name().c_str(), associated, unknown, created);
+		size_t given = 0, fromUnknown = 0;
+		for (const auto& l : mixed.getStaticLandmarks())
+		{
+			if (l.id >= estimator::kFirstResolvedId)
+				++fromUnknown;
+			else
+			{
+				++given;
+				EXPECT_TRUE(seen.count(l.id) || ids::isObjectFeature(l.id)) << l.id;
+			}
+		}
+		EXPECT_EQ(fromUnknown, created);
+		if (mode == CStaticBaselineBackend::Mode::StaticOnly) EXPECT_EQ(given, seen.size());
 	}
-	// static_landmarks_only removes the -1 reading and counts it.
-	CStaticBaselineBackend only(CStaticBaselineBackend::Mode::StaticOnly);
-	only.loadOptions(ini);
-	only.processActionObservation(r.actions[0], r.frames[0]);
-	const size_t before = only.removedReadings();
-	only.processActionObservation(r.actions[1], sf);
-	size_t objects = 0;
-	for (const auto& m : obs->sensedData) objects += ids::isObjectFeature(m.landmarkID);
-	EXPECT_EQ(only.removedReadings() - before, objects + 1);
 }

@@ -6,6 +6,7 @@
  * (fixed in the camera frame, so it moves in the world). The parked car leaves the 90 deg field
  * of view at frame 8 (bearing 56 deg) and is not annotated after it.
  */
+#include <dynslam_test/temp_dir.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -19,9 +20,8 @@ namespace kitti_test
 {
 inline std::string tempDir(const std::string& name)
 {
-	const auto d = std::filesystem::temp_directory_path() /
-	               ("dynslam_kitti_test_" + name + "_" + std::to_string(::getpid()));
-	std::filesystem::remove_all(d);
+	// Removed when the test program ends (dynslam_test/temp_dir.h).
+	const std::filesystem::path d = dynslam_test::tempDir("kitti_test_" + name);
 	std::filesystem::create_directories(d / "label_02");
 	std::filesystem::create_directories(d / "poses");
 	return d.string();

@@ -38,11 +38,9 @@ TExcerpt convert(bool anonymous)
 	const auto res = kitti::importFromFiles(data + "/label_02", data + "/poses", "0000", o.import);
 	// One folder per test: ctest runs the tests of this file in parallel processes.
 	const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-	const std::string dir = (std::filesystem::temp_directory_path() /
-	                         ("dynslam_kitti_excerpt_" + std::string(info ? info->name() : "main") +
-	                          (anonymous ? "_anon" : "") + "_" + std::to_string(getpid())))
-	                            .string();
-	std::filesystem::remove_all(dir);
+	// Removed when the test program ends (dynslam_test/temp_dir.h).
+	const std::string dir = dynslam_test::tempDir(
+	    "kitti_excerpt_" + std::string(info ? info->name() : "main") + (anonymous ? "_anon" : ""));
 	kitti::writeImport(res, o, dir, "kitti_0000");
 	x.rawlog = dir + "/kitti_0000.rawlog";
 	x.summary = res.summary;

@@ -2,6 +2,7 @@
 /** A tiny synthetic MRCLAM folder written into a temp dir, for the bad-input tests.
  * Subjects 1..20 have barcode 10 + subject; robots drive straight lines during 10 s;
  * robot 1 (the ego) measures landmark 6 and robot 2 at t = 1, 1.01, 2 and 3 s. */
+#include <dynslam_test/temp_dir.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -18,11 +19,7 @@ inline const char* kHeader =
 
 inline std::string tempDir(const std::string& name)
 {
-	const auto d = std::filesystem::temp_directory_path() /
-	               ("dynslam_mrclam_" + name + "_" + std::to_string(::getpid()));
-	std::filesystem::remove_all(d);
-	std::filesystem::create_directories(d);
-	return d.string();
+	return dynslam_test::tempDir("mrclam_" + name);  // removed when the test program ends
 }
 
 inline void writeFile(const std::string& path, const std::string& body)

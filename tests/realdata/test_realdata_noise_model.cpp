@@ -46,10 +46,8 @@ TModelRun runModel(const std::string& model)
 	o.import.odometry_noise.model = model == "inflated"
 	                                    ? mrclam::TOdometryNoiseModel::Model::inflated
 	                                    : mrclam::TOdometryNoiseModel::Model::white;
-	const auto dir = (std::filesystem::temp_directory_path() /
-	                  ("dynslam_realdata_noise_" + model + "_" + std::to_string(getpid())))
-	                     .string();
-	std::filesystem::remove_all(dir);
+	// Removed when the test program ends (dynslam_test/temp_dir.h).
+	const std::string dir = dynslam_test::tempDir("realdata_noise_" + model);
 	const auto res = mrclam::importRobot(mrclam::loadDataset(kExcerpt, 3), o.import);
 	mrclam::writeImport(res, o, dir, "robot3");
 	const std::string rawlog = dir + "/robot3.rawlog";

@@ -4,6 +4,7 @@
 #include <dynslam/landmark_ids.h>
 #include <dynslam/sim/CSimulateApp.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/temp_dir.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <unistd.h>
@@ -398,9 +399,8 @@ TEST(SimEffects, BadOptionsNameTheKey)
 TEST(SimEffects, ClassFileRoundTripAndAppWritesIt)
 {
 	const TSimulatedRun run = simulate(loadScenario(cfgPath("highway_clutter.ini")));
-	const auto dir = std::filesystem::temp_directory_path() /
-	                 ("dynslam_test_classes_" + std::to_string(getpid()));
-	std::filesystem::create_directories(dir);
+	const dynslam_test::TTempDir tmp("test_classes");  // removed at the end of the test
+	const std::filesystem::path dir = tmp.path();
 	const std::string p = (dir / "x_gt_classes.csv").string();
 	writeClassGroundTruth(run.classes, p);
 	EXPECT_EQ(readClassGroundTruth(p), run.classes);

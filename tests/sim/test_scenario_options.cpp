@@ -1,5 +1,6 @@
 /** Scenario INI reading: the shipped configs load, bad input is rejected naming the key. */
 #include <dynslam/sim/TScenarioOptions.h>
+#include <dynslam_test/temp_dir.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -139,9 +140,8 @@ TEST(SimOptions, BadIniIsRejectedNamingTheKey)
 
 TEST(SimOptions, BadIniFileIsNamedInTheError)
 {
-	const std::string path = (std::filesystem::temp_directory_path() /
-	                          ("dynslam_sim_bad_scenario_" + std::to_string(getpid()) + ".ini"))
-	                             .string();
+	const dynslam_test::TTempDir tmp("sim_bad_scenario");  // removed at the end of the test
+	const std::string path = tmp.path() + "/bad_scenario.ini";
 	{
 		std::ofstream f(path);
 		f << setIniKey(readFile(dynslam_test::highwayIni()), "Sensor", "range", "abc");

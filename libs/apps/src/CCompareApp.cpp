@@ -141,7 +141,8 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	fullCovariance = argCov.getValue();
 	sceneFile = argScene.getValue();
 	videoFile = argVideo.getValue();
-	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
+	quiet = argQuiet.getValue();
+	if (quiet) setMinLoggingLevel(mrpt::system::LVL_WARN);
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
 	loadIniFile(iniFile, params);
@@ -154,7 +155,11 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	o.noFigures = argNoFig.getValue();
 	o.strict = argStrict.getValue();
 	readSettings(o);
-	if (!outDir.empty()) makeOutputDir(outDir);  // an unusable folder fails before the run
+	// Every output path checked before any input is read; nothing is created until the run is
+	// done (a bad input leaves no output folder).
+	if (!outDir.empty()) checkOutputDirUsable(outDir);
+	checkOutputFile(sceneFile, "--scene");
+	checkOutputFile(videoFile, "--video", videoExtensions());
 	return true;
 }
 
@@ -204,15 +209,19 @@ void CCompareApp::run()
 	clearResults();
 	TLoadedData d = loadData(data, params, "DynamicKFSLAM", "RangeBearingKFSLAM");
 	for (const auto& w : d.rawlog.warnings) MRPT_LOG_WARN(w);
+	for (const auto& n : d.rawlog.notes) MRPT_LOG_DEBUG(n);
 	hasGroundTruth = d.gt.has_value();
 	if (hasGroundTruth) gt = *d.gt;
 	groundTruthUsed = d.groundTruthUsed;
 	noiseUsed = d.noiseUsed;
 	m_rawlog = d.rawlog;
-	std::cout << "dynslam-compare: config " << iniFile << "\n  rawlog " << data.rawlog << " ("
-	          << d.rawlog.size() << " steps)\n  ground truth "
-	          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
-	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
+	if (!quiet)
+	{
+		std::cout << "dynslam-compare: config " << iniFile << "\n  rawlog " << data.rawlog << " ("
+		          << d.rawlog.size() << " steps)\n  ground truth "
+		          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
+		if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
+	}
 
 	landmarkGaps = dataGaps(data, hasGroundTruth);
 	std::ostringstream dump;
@@ -269,10 +278,10 @@ void CCompareApp::run()
 	if (!hasGroundTruth) differenceRows();
 
 	buildTable();
-	std::cout << "\n" << tableText;
+	std::cout << (quiet ? "" : "\n") << tableText;
 	if (!outDir.empty())
 		writeOutputs(dump.str());
-	else
+	else if (!quiet)
 		std::cout << "(add --out DIR to write metrics.csv, per-filter estimates and figures)\n";
 	writeVisualOutputs();
 }
@@ -384,7 +393,7 @@ void CCompareApp::writeOutputs(const std::string& optionsDump)
 		       << optionsDump;
 	    });
 	if (figures) drawFigures();
-	std::cout << "wrote " << writtenFiles.size() << " files into " << outDir << "\n";
+	if (!quiet) std::cout << "wrote " << writtenFiles.size() << " files into " << outDir << "\n";
 }
 
 void CCompareApp::drawFigures()

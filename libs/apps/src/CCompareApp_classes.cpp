@@ -1,5 +1,6 @@
 /** CCompareApp: the class scores of rows that classify (feature_labels = classify). */
 #include <dynslam/apps/CCompareApp.h>
+#include <dynslam/apps/data_files.h>
 #include <dynslam/class_ground_truth.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/object_matching.h>
@@ -45,10 +46,14 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 		return;
 	}
 	const TClassDecisions& d = *classifying;
+	const bool mrptFiles = isMrptGroundTruthSpec(groundTruthUsed);
 	const std::string file = groundTruthUsed + "_gt_classes.csv";
 	std::string why;
 	const std::vector<TReadingClass>* classes = classTruth();
-	if (!classes)
+	if (!classes && mrptFiles)
+		why = "MRPT's ground truth (" + groundTruthUsed +
+		      ") has no classes of readings (dynslam-simulate's BASE_gt_classes.csv has)";
+	else if (!classes)
 		why = "no class ground truth " + file;
 	else if (classes->size() != d.decisions.size())
 		why = file + " has " + std::to_string(classes->size()) + " readings, the run " +
@@ -102,7 +107,7 @@ const std::vector<TReadingClass>* CCompareApp::classTruth()
 	{
 		m_classTruthRead = true;
 		const std::string file = groundTruthUsed + "_gt_classes.csv";
-		if (std::filesystem::exists(file))
+		if (!isMrptGroundTruthSpec(groundTruthUsed) && std::filesystem::exists(file))
 		{
 			m_classTruth = readClassGroundTruth(file);
 			++classTruthFilesRead;

@@ -82,8 +82,9 @@ void readMonteCarloSettings(CMonteCarloApp& app, TCLAP::ValueArg<int>& argRuns,
 	runs = int(readInt(params, kSection, "runs", 25));
 	if (argRuns.isSet()) runs = argRuns.getValue();
 	if (runs < 1) fail(kSection, "runs", std::to_string(runs), "must be >= 1");
-	const std::string lv =
-	    argLevels.isSet() ? argLevels.getValue() : readString(params, kSection, "levels", "all");
+	const std::string lv = !argLevels.getValue().empty()
+	                           ? argLevels.getValue()  // --noise (or --levels)
+	                           : readString(params, kSection, "levels", "all");
 	try
 	{
 		app.levels = parseLevels(lv);
@@ -240,12 +241,22 @@ void runJobs(CMonteCarloApp& app, const std::vector<TLevelSetup>& lv,
 }
 }  // namespace
 
+namespace
+{
+/** --levels, the old spelling of --noise: its value goes to --noise; both is an error. */
+void takeOldSpelling(TCLAP::ValueArg<std::string>& noise, TCLAP::ValueArg<std::string>& levels)
+{
+	if (levels.isSet() && noise.isSet())
+		throw std::invalid_argument("give --noise or --levels (its old spelling), not both");
+	if (levels.isSet()) noise.getValue() = levels.getValue();
+}
+}  // namespace
+
 bool CMonteCarloApp::initialize(int argc, const char** argv)
 {
 	TCLAP::CmdLine cmd(
 	    "dynslam-montecarlo: the Monte Carlo experiment of the paper (Table I): noise levels x "
-	    "runs of "
-	    "the highway scenario, simulated in memory, on all cores. See doc/apps.md.",
+	    "runs of the highway scenario, simulated in memory, on all cores. See doc/apps.md.",
 	    ' ', "0.1");
 	TCLAP::ValueArg<std::string> argIni(
 	    "c", "config",
@@ -254,8 +265,10 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	TCLAP::ValueArg<int> argRuns("", "runs", "Runs per noise level ([MonteCarlo] runs)", false, 0,
 	                             "N", cmd);
 	TCLAP::ValueArg<std::string> argLevels(
-	    "", "levels", "Comma-separated noise levels w1v1..w3v3, or all ([MonteCarlo] levels)",
+	    "", "noise", "Noise levels w1v1..w3v3, comma-separated, or all ([MonteCarlo] levels)",
 	    false, "", "list", cmd);
+	TCLAP::ValueArg<std::string> argLevelsOld("", "levels", "Deprecated spelling of --noise", false,
+	                                          "", "list", cmd);
 	TCLAP::ValueArg<int> argThreads(
 	    "", "threads", "Worker threads (0: all cores) ([MonteCarlo] threads)", false, -1, "T", cmd);
 	TCLAP::ValueArg<long long> argSeed("", "seed", "Base noise seed ([MonteCarlo] seed)", false, -1,
@@ -279,6 +292,9 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	                           "[*_KalmanFilter]) are errors, not warnings",
 	                           cmd);
 	if (!detail::parseCommandLine(cmd, argc, argv, "dynslam-montecarlo")) return false;
+	takeOldSpelling(argLevels, argLevelsOld);
+	progress = !argQuiet.getValue();
+	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
 	// The folder list takes any word, so an unknown option lands there.
 	for (const auto& d : argDirs.getValue())
 		if (!d.empty() && d[0] == '-')
@@ -292,8 +308,6 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 		if (argShard.isSet()) throw std::invalid_argument("--merge and --shard exclude each other");
 		outDir = argOut.getValue();
 		figures = !argNoFig.getValue();
-		progress = !argQuiet.getValue();
-		if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
 		return true;
 	}
 	if (!argDirs.getValue().empty())
@@ -309,15 +323,13 @@ bool CMonteCarloApp::initialize(int argc, const char** argv)
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile("config/montecarlo.ini");
 	loadIniFile(iniFile, params);
 	outDir = argOut.getValue();
-	progress = !argQuiet.getValue();
-	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
 	namingTheIniFile(iniFile,
 	                 [&]
 	                 {
 		                 readMonteCarloSettings(*this, argRuns, argLevels, argThreads, argSeed,
 		                                        argNoFig, argStrict.getValue());
 	                 });
-	if (!outDir.empty()) makeOutputDir(outDir);
+	if (!outDir.empty()) checkOutputDirUsable(outDir);  // created when the results are written
 	return true;
 }
 

@@ -78,7 +78,11 @@ bool CRunApp::initialize(int argc, const char** argv)
 	o.noFigures = argNoFig.getValue();
 	o.strict = argStrict.getValue();
 	readSettings(o);
-	makeOutputDir(outDir);  // an unusable folder fails before the run
+	// Every output path checked before any input is read; nothing is created until the run is
+	// done (a bad input leaves no output folder).
+	checkOutputDirUsable(outDir);
+	checkOutputFile(sceneFile, "--scene");
+	checkOutputFile(videoFile, "--video", videoExtensions());
 	return true;
 }
 
@@ -132,6 +136,7 @@ void CRunApp::run()
 	TLoadedData data =
 	    loadData(ds, params, isStatic ? "" : "DynamicKFSLAM", isStatic ? "RangeBearingKFSLAM" : "");
 	for (const auto& w : data.rawlog.warnings) MRPT_LOG_WARN(w);
+	for (const auto& n : data.rawlog.notes) MRPT_LOG_DEBUG(n);
 	hasGroundTruth = data.gt.has_value();
 	if (hasGroundTruth) gt = *data.gt;
 	groundTruthUsed = data.groundTruthUsed;

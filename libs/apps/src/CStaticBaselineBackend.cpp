@@ -1,10 +1,13 @@
 #include <dynslam/apps/CStaticBaselineBackend.h>
 #include <dynslam/config_utils.h>
+#include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/landmark_ids.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/slam/CRangeBearingKFSLAM2D.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <ostream>
 #include <stdexcept>
 
@@ -43,7 +46,8 @@ void CStaticBaselineBackend::loadOptions(const mrpt::config::CConfigFileBase& in
 	m_filter->reset();
 	m_report = TStepReport();
 	m_removed = 0;
-	m_seenId = m_seenUnknown = false;
+	m_keys.clear();
+	m_idOfKey.clear();
 }
 
 void CStaticBaselineBackend::dumpOptions(std::ostream& out) const
@@ -64,24 +68,11 @@ void CStaticBaselineBackend::processActionObservation(
 		throw std::runtime_error(name() + ": the sensory frame holds no CObservationBearingRange");
 
 	mrpt::obs::CActionCollection::Ptr act = action;
-	mrpt::obs::CSensoryFrame::Ptr sf = SF;
-	size_t readings = obs->sensedData.size();
-	if (m_mode == Mode::StaticOnly)
-	{
-		// A filtered copy; the caller's data stay untouched (other filters use them too).
-		auto filtered = std::make_shared<mrpt::obs::CObservationBearingRange>(*obs);
-		filtered->sensedData.clear();
-		for (const auto& m : obs->sensedData)
-			if (ids::isStatic(m.landmarkID))
-				filtered->sensedData.push_back(m);
-			else
-				++m_removed;
-		readings = filtered->sensedData.size();
-		sf = mrpt::obs::CSensoryFrame::Create();
-		sf->insert(filtered);
-	}
-	else
-		checkIdsNotMixed(*obs, m_report.step + 1);
+	// A copy with MRPT's keys; the caller's data stay untouched (other filters use them too).
+	const auto input = mrptInput(*obs);
+	const size_t readings = input->sensedData.size();
+	mrpt::obs::CSensoryFrame::Ptr sf = mrpt::obs::CSensoryFrame::Create();
+	sf->insert(input);
 	m_filter->processActionObservation(act, sf);
 
 	const int step = m_report.step + 1;
@@ -89,25 +80,60 @@ void CStaticBaselineBackend::processActionObservation(
 	m_report.step = step;
 	m_report.static_new = m_filter->getLastDataAssociation().newly_inserted_landmarks.size();
 	m_report.static_updates = readings >= m_report.static_new ? readings - m_report.static_new : 0;
+	for (const auto& m : input->sensedData)
+		if (m.landmarkID < 0) ++m_report.unknown_id_associated;
+	const size_t unknownNew = [&]
+	{
+		size_t n = 0;
+		for (const auto& [obsIdx, idx] :
+		     m_filter->getLastDataAssociation().newly_inserted_landmarks)
+			n += input->sensedData.at(obsIdx).landmarkID < 0;
+		return n;
+	}();
+	m_report.unknown_id_new = unknownNew;
+	m_report.unknown_id_associated -= unknownNew;
 }
 
-void CStaticBaselineBackend::checkIdsNotMixed(const mrpt::obs::CObservationBearingRange& obs,
-                                              int step)
+std::shared_ptr<mrpt::obs::CObservationBearingRange> CStaticBaselineBackend::mrptInput(
+    const mrpt::obs::CObservationBearingRange& obs)
 {
-	// MRPT's CRangeBearingKFSLAM2D keeps a bimap landmark ID <-> index: a second new landmark
-	// with ID -1 (association unknown, e.g. clutter) next to labelled readings throws
-	// "Duplicated `key` with different `value`" from deep inside MRPT. Say which reading.
-	for (size_t i = 0; i < obs.sensedData.size(); ++i)
+	auto out = std::make_shared<mrpt::obs::CObservationBearingRange>(obs);
+	out->sensedData.clear();
+	for (auto m : obs.sensedData)
 	{
-		const bool unknown = obs.sensedData[i].landmarkID < 0;
-		(unknown ? m_seenUnknown : m_seenId) = true;
-		if (m_seenUnknown && m_seenId)
-			throw std::runtime_error(
-			    name() + ": step " + std::to_string(step) + ": measurement " + std::to_string(i) +
-			    " (landmark ID " + std::to_string(obs.sensedData[i].landmarkID) +
-			    "): the rawlog mixes landmark IDs with -1 (association unknown), which MRPT's "
-			    "CRangeBearingKFSLAM2D does not support");
+		if (m_mode == Mode::StaticOnly && m.landmarkID >= 0 && !ids::isStatic(m.landmarkID))
+		{
+			++m_removed;
+			continue;
+		}
+		if (m.landmarkID >= 0) m.landmarkID = keyOf(m.landmarkID);
+		out->sensedData.push_back(m);
 	}
+	// The -1 readings first: MRPT 2.5.8 writes the association of the k-th -1 reading into row
+	// k of the whole observation (CRangeBearingKFSLAM2D::OnGetObservationsAndDataAssociation,
+	// data_association[it->first] with it->first the row among the -1 readings), which is that
+	// reading's row only if the -1 readings come first.
+	std::stable_partition(out->sensedData.begin(), out->sensedData.end(),
+	                      [](const auto& m) { return m.landmarkID < 0; });
+	return out;
+}
+
+int32_t CStaticBaselineBackend::keyOf(int32_t id)
+{
+	const auto [it, added] = m_keys.try_emplace(id, 0);
+	if (added)
+	{
+		it->second = std::numeric_limits<int32_t>::max() - int32_t(m_idOfKey.size());
+		m_idOfKey.push_back(id);
+	}
+	return it->second;
+}
+
+int32_t CStaticBaselineBackend::idOfKey(int64_t key) const
+{
+	const int64_t k = int64_t(std::numeric_limits<int32_t>::max()) - key;
+	if (k >= 0 && k < int64_t(m_idOfKey.size())) return m_idOfKey[size_t(k)];
+	return estimator::kFirstResolvedId + int32_t(key);  // a landmark started by a -1 reading
 }
 
 mrpt::poses::CPosePDFGaussian CStaticBaselineBackend::getEgoPose() const
@@ -131,7 +157,7 @@ std::vector<TStaticLandmarkEstimate> CStaticBaselineBackend::getStaticLandmarks(
 	{
 		TStaticLandmarkEstimate e;
 		const auto it = ids.find(static_cast<unsigned int>(i));
-		e.id = it == ids.end() ? -1 : static_cast<int32_t>(it->second);
+		e.id = it == ids.end() ? -1 : idOfKey(int64_t(it->second));
 		e.mean = Eigen::Vector2d(lms[i].x, lms[i].y);
 		const size_t k = 3 + 2 * i;
 		e.cov << P(k, k), P(k, k + 1), P(k + 1, k), P(k + 1, k + 1);

@@ -10,12 +10,12 @@
 
 namespace dynslam::apps::detail
 {
-/** True: go on. False: --help or --version was shown. Throws std::invalid_argument on a bad
- * command line (TCLAP has printed the details). */
+/** True: go on. False: --help or --version was shown. Throws std::invalid_argument with one
+ * line naming the argument and the problem (dynslam::parseCommandLine). */
 inline bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, const char** argv,
                              const std::string& app)
 {
-	return cmd.parse(argc, argv) || !helpOrVersionAsked(argc, argv, app);
+	return dynslam::parseCommandLine(cmd, argc, argv, app);
 }
 /** The value of an optional argument, or nothing if it was not given (INI overrides). */
 inline std::optional<std::string> valueIfSet(TCLAP::ValueArg<std::string>& a)

@@ -1,4 +1,5 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/apps/app_main.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/slam_services.h>
 #include <dynslam/framework/TBackendOptions.h>
@@ -197,7 +198,7 @@ TFilterRun runFilter(ISlamBackend& backend,
 		catch (const std::exception& e)
 		{
 			throw std::runtime_error(r.name + ": step " + std::to_string(k) + ": " +
-			                         mrpt::exception_to_str(e));
+			                         oneLineReason(e));
 		}
 		ns +=
 		    double(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());

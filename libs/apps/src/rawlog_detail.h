@@ -18,7 +18,9 @@ struct TEntry
 /** "rawlog 'path'" for messages. */
 inline std::string rawlogWhat(const std::string& path) { return "rawlog '" + path + "'"; }
 
-/** Throws if the observation's sensorLocationOnRobot is not finite. */
+/** Throws if the observation's sensorLocationOnRobot is not finite, or a reading's range, yaw
+ * or pitch is not finite or its range negative (named by entry, measurement and landmark ID):
+ * when the file is read, before any output exists. */
 void checkSensorPose(const mrpt::obs::CObservationBearingRange& obs, const std::string& path,
                      size_t entry);
 

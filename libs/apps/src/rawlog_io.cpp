@@ -52,6 +52,19 @@ void detail::checkSensorPose(const mrpt::obs::CObservationBearingRange& obs,
 			                         ": the bearing-range observation's sensorLocationOnRobot is "
 			                         "not finite (x y z yaw pitch roll = " +
 			                         p.asString() + ")");
+	for (size_t i = 0; i < obs.sensedData.size(); ++i)
+	{
+		const auto& m = obs.sensedData[i];
+		const char* bad = !std::isfinite(m.range)   ? "its range is not a number (NaN or Inf)"
+		                  : !std::isfinite(m.yaw)   ? "its yaw is not a number (NaN or Inf)"
+		                  : !std::isfinite(m.pitch) ? "its pitch is not a number (NaN or Inf)"
+		                  : m.range < 0             ? "its range is negative"
+		                                            : nullptr;
+		if (bad)
+			throw std::runtime_error(detail::rawlogWhat(path) + ": entry " + std::to_string(entry) +
+			                         ": measurement " + std::to_string(i) + " (landmark ID " +
+			                         std::to_string(m.landmarkID) + "): " + bad);
+	}
 }
 
 void detail::pairActionsAndFrames(const std::vector<TEntry>& entries, TRawlog& out)
@@ -59,6 +72,7 @@ void detail::pairActionsAndFrames(const std::vector<TEntry>& entries, TRawlog& o
 	const std::string what = detail::rawlogWhat(out.path);
 	mrpt::obs::CActionCollection::Ptr pendingAction;
 	size_t pendingEntry = 0, standalone = 0;
+	std::string leading;  // the warning of a sensory frame at the start of the file
 	for (const auto& [entry, obj] : entries)
 	{
 		if (auto act = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj))
@@ -79,10 +93,15 @@ void detail::pairActionsAndFrames(const std::vector<TEntry>& entries, TRawlog& o
 				detail::checkSensorPose(*o, out.path, entry);
 			if (!pendingAction)
 			{
-				out.warnings.push_back(
+				const std::string w =
 				    what + ": the sensory frame at entry " + std::to_string(entry) +
 				    " comes before any action: skipped, as MRPT's kf-slam does (MRPT's "
-				    "simul-landmarks writes each step as sensory frame, then action)");
+				    "simul-landmarks writes each step as sensory frame, then action)";
+				// The first frame of the file: decided at the end (MRPT's order or not).
+				if (out.frames.empty() && leading.empty())
+					leading = w;
+				else
+					out.warnings.push_back(w);
 				continue;
 			}
 			out.actions.push_back(pendingAction);
@@ -94,10 +113,15 @@ void detail::pairActionsAndFrames(const std::vector<TEntry>& entries, TRawlog& o
 		         !std::dynamic_pointer_cast<mrpt::obs::CObservationComment>(obj))
 			++standalone;
 	}
+	// A leading frame and a trailing action and nothing else dropped: MRPT's simul-landmarks
+	// order (SF_0 ACT_0 ... SF_N-1 ACT_N-1), not a defect of the file: notes, not warnings.
+	const bool mrptOrder = !leading.empty() && pendingAction && out.warnings.empty();
+	auto& to = mrptOrder ? out.notes : out.warnings;
+	if (!leading.empty()) to.insert(to.begin(), leading);
 	if (pendingAction)
-		out.warnings.push_back(what + ": the action at entry " + std::to_string(pendingEntry) +
-		                       " has no sensory frame after it: ignored, as MRPT's kf-slam does (" +
-		                       std::to_string(out.size()) + " pairs before it)");
+		to.push_back(what + ": the action at entry " + std::to_string(pendingEntry) +
+		             " has no sensory frame after it: ignored, as MRPT's kf-slam does (" +
+		             std::to_string(out.size()) + " pairs before it)");
 	if (standalone > 0)
 		out.warnings.push_back(what + ": " + std::to_string(standalone) +
 		                       " standalone observation(s) outside sensory frames ignored (the "

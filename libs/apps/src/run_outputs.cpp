@@ -1,5 +1,6 @@
 #include <dynslam/apps/run_outputs.h>
 #include <dynslam/landmark_ids.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -32,6 +33,72 @@ void makeOutputDir(const std::string& dir)
 	if (!why.empty()) why[0] = char(std::tolower(static_cast<unsigned char>(why[0])));
 	throw std::runtime_error("cannot create the output folder '" + dir + "': " + why +
 	                         " (give another folder with -o/--out)");
+}
+
+namespace
+{
+/** makeOutputDir's reason why `dir` cannot be a folder, or empty if it can (creating nothing). */
+std::string whyNotUsable(const std::string& dir)
+{
+	namespace fs = std::filesystem;
+	std::error_code ec;
+	fs::path p = fs::absolute(fs::path(dir), ec);
+	if (ec) return ec.message();
+	for (; !p.empty(); p = p.parent_path())
+	{
+		std::error_code e2;
+		if (fs::exists(p, e2))
+		{
+			if (!fs::is_directory(p, e2)) return "'" + p.string() + "' is a file, not a folder";
+			if (::access(p.c_str(), W_OK | X_OK) != 0)
+				return "folder '" + p.string() + "' is not writable";
+			return {};
+		}
+		if (p == p.parent_path()) break;
+	}
+	return "no existing folder on the path";
+}
+}  // namespace
+
+void checkOutputDirUsable(const std::string& dir)
+{
+	if (const std::string why = whyNotUsable(dir); !why.empty())
+		throw std::runtime_error("cannot create the output folder '" + dir + "': " + why +
+		                         " (give another folder with -o/--out)");
+}
+
+const std::vector<std::string>& videoExtensions()
+{
+	static const std::vector<std::string> e{".mp4", ".avi", ".mov", ".mkv"};
+	return e;
+}
+
+void checkOutputFile(const std::string& path, const std::string& flag,
+                     const std::vector<std::string>& extensions)
+{
+	namespace fs = std::filesystem;
+	if (path.empty()) return;
+	const std::string what = flag + " '" + path + "'";
+	std::error_code ec;
+	if (fs::is_directory(path, ec))
+		throw std::runtime_error(what + ": is a folder (give a file name)");
+	if (!extensions.empty())
+	{
+		std::string ext = fs::path(path).extension().string();
+		for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+		if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end())
+		{
+			std::string list;
+			for (const auto& e : extensions) list += (list.empty() ? "" : ", ") + e;
+			throw std::runtime_error(what + ": unsupported extension '" + ext + "' (use one of " +
+			                         list + ")");
+		}
+	}
+	if (fs::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
+		throw std::runtime_error(what + ": the file exists and is not writable");
+	const fs::path parent = fs::path(path).parent_path();
+	if (const std::string why = whyNotUsable(parent.empty() ? "." : parent.string()); !why.empty())
+		throw std::runtime_error(what + ": cannot write there: " + why);
 }
 
 std::string timeBaseWarning(const TFilterRun& run, const TGroundTruth& gt)

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -132,6 +133,9 @@ void addRun(mrpt::opengl::COpenGLScene& scene, const TDrawnRun& r, size_t every,
 void writeScene(const std::string& path, const std::vector<TDrawnRun>& runs, const TGroundTruth* gt,
                 size_t ellipseEvery)
 {
+	// The folder of the file (checked by checkOutputFile before the run).
+	if (const auto parent = std::filesystem::path(path).parent_path(); !parent.empty())
+		makeOutputDir(parent.string());
 	mrpt::opengl::COpenGLScene scene;
 	double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, ymin = xmin, ymax = -xmin;
 	auto grow = [&](const Eigen::Vector2d& p)

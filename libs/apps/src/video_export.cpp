@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -98,6 +99,9 @@ void writeVideo(const std::string& path, const std::vector<TDrawnRun>& runs, con
                 int height)
 {
 	if (runs.empty() || !runs.front().run) throw std::invalid_argument("writeVideo: no run");
+	// The folder of the file (checked by checkOutputFile before the run).
+	if (const auto parent = std::filesystem::path(path).parent_path(); !parent.empty())
+		makeOutputDir(parent.string());
 	std::vector<Eigen::Vector2d> extent;
 	if (gt)
 	{

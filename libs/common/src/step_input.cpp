@@ -1,6 +1,7 @@
 #include <dynslam/detection_groups.h>
 #include <dynslam/step_input.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/system/datetime.h>
@@ -50,14 +51,20 @@ estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& ac
 {
 	if (!action) throw std::runtime_error(who + ": null action collection");
 	const auto mov = action->getBestMovementEstimation();
-	if (!mov)
-		throw std::runtime_error(who + ": the action collection holds no CActionRobotMovement2D (" +
-		                         std::to_string(action->size()) + " action(s) of another type)");
-	const mrpt::poses::CPosePDFGaussian inc(*mov->poseChange);
 	estimator::TStepInput in;
-	in.u = Eigen::Vector3d(inc.mean.x(), inc.mean.y(), inc.mean.phi());
-	in.U = inc.cov.asEigen();
-	if (mov->timestamp != INVALID_TIMESTAMP) in.stamp = mrpt::Clock::toDouble(mov->timestamp);
+	if (mov)
+	{
+		const mrpt::poses::CPosePDFGaussian inc(*mov->poseChange);
+		in.u = Eigen::Vector3d(inc.mean.x(), inc.mean.y(), inc.mean.phi());
+		in.U = inc.cov.asEigen();
+		if (mov->timestamp != INVALID_TIMESTAMP) in.stamp = mrpt::Clock::toDouble(mov->timestamp);
+	}
+	else if (action->getActionByClass<mrpt::obs::CActionRobotMovement3D>())
+		throw std::runtime_error(who +
+		                         ": the action collection holds a CActionRobotMovement3D and no "
+		                         "CActionRobotMovement2D: 2-D SLAM needs the 2-D odometry");
+	else  // no odometry: CRangeBearingKFSLAM2D's u = 0, Q = diag(stds_Q_no_odo^2)
+		in.U = opts.stds_Q_no_odo.cwiseAbs2().asDiagonal();
 	if (!in.u.allFinite() || !in.U.allFinite())
 		throw std::runtime_error(who + ": odometry increment or covariance not finite");
 	if (opts.odometry_cov_used) checkOdometryCov(in.U, who);

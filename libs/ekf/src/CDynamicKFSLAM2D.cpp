@@ -93,9 +93,8 @@ void CDynamicKFSLAM2D::reset()
 		// "Merging a linked object"): object-centric models only.
 		classify.merge_linked = classify.merge_linked && options.objectCentric();
 		m_router = estimator::makeRouter(options.feature_labels, &classify);
-		// feature_labels = classify: ID -1 readings associated with MRPT's data association.
-		if (auto* c = dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
-			c->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
+		// ID -1 readings associated with MRPT's data association (as CRangeBearingKFSLAM2D).
+		m_router->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
 	m_liveMerge.reset();  // classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp)
 	if (dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
@@ -227,6 +226,8 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		m_report.classify_held = m_routed.held;
 		m_report.classify_stopped = m_routed.stopped;
 		m_report.skipped_unknown_id = m_routed.skipped_unknown_id;
+		m_report.unknown_id_associated = m_routed.unknown_id_static;
+		m_report.unknown_id_new = m_routed.unknown_id_new;
 		m_report.classify_restarted = m_routed.restarted;
 		m_report.classify_split = m_routed.split;
 		m_report.classify_joined = m_routed.joined;

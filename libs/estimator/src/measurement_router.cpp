@@ -1,6 +1,8 @@
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/measurement_router.h>
+#include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/landmark_ids.h>
+#include <dynslam/models/se2.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -89,15 +91,92 @@ void CIdRangeRouter::validate(const std::vector<TReading>& readings, const std::
 	for (size_t i = 0; i < readings.size(); ++i)
 	{
 		const int32_t id = readings[i].id;
-		if (ids::classify(id) == ids::IdKind::Invalid)
+		if (id == -1) continue;  // MRPT's unknown landmark: associated in route()
+		if (ids::classify(id) == ids::IdKind::Invalid || id >= kFirstResolvedId)
 			throw std::runtime_error(
 			    who + ": " + where(i) +
-			    " is in no known ID range (static 0..99999, object features >= 100000; see "
+			    " is in no known ID range (static landmarks 0..99999, features of moving objects "
+			    "100000..999999999 as 100000 + 1000 x object + feature, -1 unknown; "
 			    "dynslam/landmark_ids.h)");
 		const auto it = std::lower_bound(seen.begin(), seen.end(), id);
 		if (it != seen.end() && *it == id)
 			throw std::runtime_error(who + ": duplicate " + where(i));
 		seen.insert(it, id);
+	}
+}
+
+void CIdRangeRouter::reset()
+{
+	m_registry.clear();
+	m_statics.clear();
+	m_next = kFirstResolvedId;
+}
+
+void CIdRangeRouter::addStatic(int32_t id)
+{
+	const auto it = std::lower_bound(m_statics.begin(), m_statics.end(), id);
+	if (it == m_statics.end() || *it != id) m_statics.insert(it, id);
+}
+
+void CIdRangeRouter::resolveUnknown(TRoutedStep& out,
+                                    const std::function<bool(int32_t)>& isKnownStatic)
+{
+	std::vector<size_t> unknown;
+	std::vector<int32_t> readNow;  // landmarks read with their own ID in this step
+	for (size_t i = 0; i < out.readings.size(); ++i)
+		(out.readings[i].reading.id == -1 ? (void)unknown.push_back(i)
+		                                  : (void)readNow.push_back(out.readings[i].reading.id));
+	if (unknown.empty()) return;
+	if (!m_assoc || !m_hasCtx || !m_ctx.static_innovation)
+	{
+		out.skipped_unknown_id += unknown.size();  // route stays Skip
+		return;
+	}
+	// The predictions h (measurement space) with S = H P H^T + R of the static landmarks in the
+	// state, as CRangeBearingKFSLAM2D gives them to data_association_full_covariance.
+	std::sort(readNow.begin(), readNow.end());
+	std::vector<TAssocTarget> pred;
+	std::vector<Eigen::Vector2d> obs;
+	for (size_t i : unknown) obs.push_back(out.readings[i].reading.z);
+	const Eigen::Vector2d& z0 = obs.front();
+	for (int32_t id : m_statics)
+	{
+		TStaticInnovation inn;
+		if (std::binary_search(readNow.begin(), readNow.end(), id) || !isKnownStatic(id) ||
+		    !m_ctx.static_innovation(id, z0, inn))
+			continue;
+		TAssocTarget t;
+		t.id = id;
+		t.pred.p = z0 - inn.nu;
+		if (m_ctx.model == models::MeasurementModel::RangeBearing)
+			t.pred.p[1] = models::wrapToPi(t.pred.p[1]);
+		t.pred.C = inn.S;
+		pred.push_back(t);
+	}
+	const std::vector<int> a = pred.empty() ? std::vector<int>(obs.size(), -1) : m_assoc(obs, pred);
+	if (a.size() != obs.size())
+		throw std::logic_error("CIdRangeRouter: the static association returned a wrong size");
+	std::vector<int32_t> taken;
+	for (size_t k = 0; k < unknown.size(); ++k)
+	{
+		TRoutedReading& m = out.readings[unknown[k]];
+		const int j = a[k];
+		const bool ok = j >= 0 && size_t(j) < pred.size() &&
+		                std::find(taken.begin(), taken.end(), pred[size_t(j)].id) == taken.end();
+		if (ok)
+		{
+			m.reading.id = pred[size_t(j)].id;
+			m.route = Route::StaticKnown;
+			taken.push_back(m.reading.id);
+			++out.unknown_id_static;
+		}
+		else
+		{
+			m.reading.id = m_next++;
+			m.route = Route::StaticNew;
+			addStatic(m.reading.id);
+			++out.unknown_id_new;
+		}
 	}
 }
 
@@ -110,8 +189,13 @@ TRoutedStep CIdRangeRouter::route(int step, const std::vector<TReading>& reading
 	{
 		TRoutedReading m;
 		m.reading = r;
-		if (ids::isStatic(r.id))
+		if (r.id == -1)
+			m.route = Route::Skip;  // resolveUnknown below
+		else if (ids::isStatic(r.id))
+		{
 			m.route = isKnownStatic(r.id) ? Route::StaticKnown : Route::StaticNew;
+			if (m.route == Route::StaticNew) addStatic(r.id);
+		}
 		else
 		{
 			m.object = ids::objectOf(r.id);
@@ -120,6 +204,7 @@ TRoutedStep CIdRangeRouter::route(int step, const std::vector<TReading>& reading
 		}
 		out.readings.push_back(m);
 	}
+	resolveUnknown(out, isKnownStatic);
 	return out;
 }
 

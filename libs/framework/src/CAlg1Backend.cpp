@@ -93,7 +93,8 @@ void CAlg1Backend::processActionObservation(const mrpt::obs::CActionCollection::
 	const estimator::TRoutedStep routed = m_router->route(
 	    m_step, in.readings, [this](int32_t id) { return m_cost.has(TVarKey::landmark(id)); });
 	m_report.skipped_unknown_object_feature = routed.skipped_unknown_object_feature;
-	propagate(in);                      // Alg. 7 / Theorem A.5
+	m_report.skipped_unknown_id = routed.skipped_unknown_id;  // ID -1: no association here
+	propagate(in);                                            // Alg. 7 / Theorem A.5
 	predictObjects();                   // object-centric models only (cv, ctrv)
 	staticSteps(routed);                // Alg. 5 / A.3, then Alg. 3 / A.1
 	objectFeatureUpdates(routed);       // object-centric models only

@@ -80,6 +80,7 @@ void CWindowBackend::processActionObservation(const mrpt::obs::CActionCollection
 	const estimator::TRoutedStep routed = m_router->route(
 	    m_step, in.readings, [this](int32_t id) { return m_cost.has(TVarKey::landmark(id)); });
 	m_report.skipped_unknown_object_feature = routed.skipped_unknown_object_feature;
+	m_report.skipped_unknown_id = routed.skipped_unknown_id;  // ID -1: no association here
 	const TVarKey ego = TVarKey::ego(m_step);
 	const Eigen::Matrix3d Su = mo.motion_noise_from_action ? in.U : mo.Sigma_w;
 	// 1. ego pose: prior (first step) or odometry residual

@@ -46,7 +46,7 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	                                    true, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> aSeq("", "sequence", "sequence, four digits (e.g. 0000)", true, "",
 	                                  "SSSS", cmd);
-	TCLAP::ValueArg<std::string> aOut("", "out", "output folder", true, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> aOut("o", "out", "output folder", true, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> aCfg("c", "config",
 	                                  "INI with a [KITTI_Import] section (config/kitti.ini)", false,
 	                                  "", "INI", cmd);
@@ -60,7 +60,10 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	                                    false, "", "DIR", cmd);
 	TCLAP::SwitchArg aAnon("", "anonymous",
 	                       "every track anonymous: IDs that say nothing about track or class", cmd);
-	if (!cmd.parse(argc, argv) && helpOrVersionAsked(argc, argv, "dynslam-kitti")) return false;
+	TCLAP::SwitchArg aQuiet("q", "quiet", "Only warnings and errors (no summary)", cmd);
+	if (!parseCommandLine(cmd, argc, argv, "dynslam-kitti")) return false;  // --help
+	quiet = aQuiet.getValue();
+	if (quiet) setMinLoggingLevel(mrpt::system::LVL_WARN);
 	labels_dir = aLabels.getValue();
 	poses_dir = aPoses.getValue();
 	sequence = aSeq.getValue();
@@ -90,7 +93,7 @@ void CKittiApp::run()
 	summary = res.summary;
 	const std::string b = base.empty() ? "kitti_" + sequence : base;
 	written = writeImport(res, options, out_dir, b);
-	std::cout << summary.toText();
+	if (!quiet) std::cout << summary.toText();
 	logFmt(mrpt::system::LVL_INFO, "wrote %s/%s.rawlog (%zu steps, %s) and ground truth",
 	       out_dir.c_str(), b.c_str(), summary.steps,
 	       options.import.anonymous ? "anonymous" : "labelled");

@@ -26,10 +26,10 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	    "", "dataset", "MRCLAM dataset folder (Barcodes.dat, RobotN_*.dat, ...)", true, "", "DIR",
 	    cmd);
 	TCLAP::ValueArg<int> argRobot("", "robot", "ego robot, 1..5", false, 0, "N", cmd);
-	TCLAP::ValueArg<std::string> argOut("", "out", "output folder (required for an import)", false,
+	TCLAP::ValueArg<std::string> argOut("o", "out", "output folder (required for an import)", false,
 	                                    "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> argConfig(
-	    "", "config", "INI with a [MRCLAM_Import] section (e.g. config/mrclam.ini)", false, "",
+	    "c", "config", "INI with a [MRCLAM_Import] section (e.g. config/mrclam.ini)", false, "",
 	    "INI", cmd);
 	TCLAP::ValueArg<double> argDuration(
 	    "", "duration", "only the first S seconds of measurements (overrides the INI)", false, 0,
@@ -49,7 +49,10 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	                                 "with --all-robots: estimate on the other four robots (1..5)",
 	                                 false, 0, "N", cmd);
 
-	if (!cmd.parse(argc, argv) && helpOrVersionAsked(argc, argv, "dynslam-mrclam")) return false;
+	TCLAP::SwitchArg argQuiet("q", "quiet", "Only warnings and errors (no import summary)", cmd);
+	if (!parseCommandLine(cmd, argc, argv, "dynslam-mrclam")) return false;  // --help
+	quiet = argQuiet.getValue();
+	if (quiet) setMinLoggingLevel(mrpt::system::LVL_WARN);
 	dataset_dir = argDataset.getValue();
 	robot = argRobot.getValue();
 	out_dir = argOut.getValue();
@@ -96,7 +99,7 @@ void CMrclamApp::runImport()
 	summary = res.summary;
 	writeImport(res, options, out_dir, b);
 	const std::string text = summary.toText();
-	std::cout << text;
+	if (!quiet) std::cout << text;
 	logFmt(mrpt::system::LVL_INFO, "wrote %s/%s.rawlog (%zu steps) and ground truth",
 	       out_dir.c_str(), b.c_str(), summary.steps);
 }

@@ -1,3 +1,4 @@
+#include <dynslam/app_support.h>
 #include <dynslam/sim/CSimulateApp.h>
 #include <dynslam/sim/figure.h>
 #include <dynslam/sim/scenario.h>
@@ -40,16 +41,9 @@ bool CSimulateApp::initialize(int argc, const char** argv)
 	TCLAP::SwitchArg argStream(
 	    "", "stream",
 	    "Stream the simulation into the rawlog (long scenarios; no DA ground-truth file)", cmd);
-	// MRPT's TCLAP returns false both for --help/--version and for errors (after printing).
-	if (!cmd.parse(argc, argv))
-	{
-		for (int i = 1; i < argc; ++i)
-		{
-			const std::string a = argv[i];
-			if (a == "-h" || a == "--help" || a == "--version") return false;
-		}
-		throw std::invalid_argument("dynslam-simulate: bad command line (see --help)");
-	}
+	TCLAP::SwitchArg argQuiet("q", "quiet", "Only warnings and errors on the console", cmd);
+	if (!parseCommandLine(cmd, argc, argv, "dynslam-simulate")) return false;  // --help
+	if (argQuiet.getValue()) setMinLoggingLevel(mrpt::system::LVL_WARN);
 
 	iniFile = argConfig.getValue();
 	options = loadScenario(iniFile);

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers of the app tests: fresh temporary folders, running an executable with its output
 // captured, small file utilities.
+#include <dynslam_test/temp_dir.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,17 +15,14 @@
 
 namespace apps_test
 {
-/** A fresh, empty folder for the current test (removed first if it exists). */
+/** A fresh, empty folder for the current test (removed first if it exists), removed when the
+ * test program ends (dynslam_test/temp_dir.h). */
 inline std::string freshDir(const std::string& tag)
 {
 	const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
 	const std::string name = std::string(info ? info->test_suite_name() : "x") + "_" +
-	                         (info ? info->name() : "y") + "_" + tag + "_" +
-	                         std::to_string(getpid());
-	const auto p = std::filesystem::temp_directory_path() / ("dynslam_apps_" + name);
-	std::filesystem::remove_all(p);
-	std::filesystem::create_directories(p);
-	return p.string();
+	                         (info ? info->name() : "y") + "_" + tag;
+	return dynslam_test::tempDir("apps_" + name);
 }
 
 struct TCommandResult

@@ -78,6 +78,10 @@ struct TStepReport
 	 * static tracks held back as inconsistent (both unused), readings with ID -1 (skipped),
 	 * static landmarks reclassified moving and dropped from the state. */
 	size_t classify_candidates = 0, classify_held = 0, skipped_unknown_id = 0;
+	/** Readings with ID -1 (MRPT's unknown landmark) associated with a static landmark of the
+	 * state, and those that started a new static landmark (CRangeBearingKFSLAM2D's rule; the
+	 * ones that could not be associated at all are in skipped_unknown_id). */
+	size_t unknown_id_associated = 0, unknown_id_new = 0;
 	size_t reclassified_static = 0;
 	/** Static landmarks reclassified moving and turned into object f_0 by state surgery
 	 * (classify_reclassify = surgery; reclassified_static counts the dropped ones, restart). */

@@ -7,8 +7,19 @@
 #include <stdexcept>
 #include <string>
 
+namespace TCLAP
+{
+class CmdLine;
+}
+
 namespace dynslam
 {
+/** Parses a TCLAP command line of app `app` (MRPT's bundled TCLAP): true to go on, false if
+ * --help or --version was shown (the app exits 0). On an error TCLAP's own text ("PARSE ERROR",
+ * the usage) is not printed; throws std::invalid_argument("app: bad command line: ARG: PROBLEM
+ * (see app --help)"), e.g. "--runs: 'abc' is not a valid value". */
+bool parseCommandLine(TCLAP::CmdLine& cmd, int argc, const char** argv, const std::string& app);
+
 /** For an app whose TCLAP parse returned false (MRPT's bundled TCLAP returns false both for
  * --help/--version and for errors, after printing them): true if -h, --help or --version was
  * asked (the app exits 0); otherwise throws std::invalid_argument("app: bad command line (see

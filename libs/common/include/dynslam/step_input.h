@@ -6,13 +6,15 @@
  * reading is (static, object feature, ...) is the measurement router's business
  * (dynslam/estimator/measurement_router.h), which validates the IDs. Throws
  * std::runtime_error, prefixed by `who`, before anything is changed. The sensor's pose on the
- * robot (sensorLocationOnRobot, see sensorPoseOnRobot) goes to TStepInput::sensor_pose. */
+ * robot (sensorLocationOnRobot, see sensorPoseOnRobot) goes to TStepInput::sensor_pose. A step
+ * without odometry is taken as MRPT takes it (TParseOptions::stds_Q_no_odo). */
 #include <dynslam/estimator/readings.h>
 #include <dynslam/models/measurement.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <cmath>
 #include <string>
 
 namespace dynslam
@@ -23,6 +25,10 @@ struct TParseOptions
 	/** The action's covariance is the motion noise (motion_noise = action): it must then be
 	 * symmetric positive semi-definite. */
 	bool odometry_cov_used = true;
+	/** A step whose action collection holds no CActionRobotMovement2D (no odometry): u = 0 and
+	 * U = diag(stds_Q_no_odo^2), as CRangeBearingKFSLAM2D::OnTransitionNoise does with its
+	 * option of that name (x [m], y [m], phi [rad]; MRPT's default 0.10 m, 0.10 m, 4 deg). */
+	Eigen::Vector3d stds_Q_no_odo = Eigen::Vector3d(0.10, 0.10, 4.0 * M_PI / 180.0);
 };
 
 /** The SE(2) pose (x, y, yaw) of a sensor on the robot from MRPT's sensorLocationOnRobot.

@@ -100,6 +100,7 @@ public:
 	std::string outDir;  ///< empty: print only
 	bool figures = true;
 	bool fullCovariance = false;  ///< --full-covariance: DIR/<filter>_covariance.txt
+	bool quiet = false;           ///< -q: only the table, warnings and errors on the console
 	std::string sceneFile;        ///< --scene FILE.3Dscene (empty: none)
 	std::string videoFile;        ///< --video FILE.mp4 (empty: none)
 	int progressEvery = 0;  ///< [Compare] progress_every (0: ten lines per filter on long runs)

@@ -7,6 +7,8 @@
  *  - StaticOnly ("static_landmarks_only"): readings whose landmark ID is an object feature
  *    (dynslam/landmark_ids.h) are removed before the filter sees them (an oracle baseline
  *    that knows which features move).
+ * Readings with MRPT's unknown landmark ID -1 go to the filter in both modes, which associates
+ * them as MRPT does (data_assoc_* keys of [RangeBearingKFSLAM]); IDs may be mixed with -1.
  *
  * Configuration: MRPT's own sections [RangeBearingKFSLAM] and [RangeBearingKFSLAM_KalmanFilter]
  * (read by CRangeBearingKFSLAM2D::loadOptions). MRPT reads them leniently (defaults for
@@ -15,8 +17,10 @@
 #include <dynslam/ISlamBackend.h>
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace mrpt::obs
 {
@@ -66,13 +70,25 @@ public:
 	mrpt::slam::CRangeBearingKFSLAM2D& filter() { return *m_filter; }
 
 private:
-	/** Mode AllFeatures: throws naming the reading once -1 IDs and IDs >= 0 have both come. */
-	void checkIdsNotMixed(const mrpt::obs::CObservationBearingRange& obs, int step);
+	/** The observation handed to MRPT: each ID >= 0 replaced by its key (keyOf), -1 kept (MRPT
+	 * associates it) and put first (MRPT 2.5.8 writes the association of the k-th -1 reading
+	 * into row k); mode StaticOnly: object features removed. */
+	std::shared_ptr<mrpt::obs::CObservationBearingRange> mrptInput(
+	    const mrpt::obs::CObservationBearingRange& obs);
+	/** MRPT's CRangeBearingKFSLAM2D keys a landmark started by a -1 reading by its map index
+	 * (OnNewLandmarkAddedToMap) in the same ID <-> index bimap as the given IDs, so a given ID
+	 * equal to a later index throws "Duplicated `key`" from inside MRPT. Given IDs are therefore
+	 * handed to MRPT as keys from INT32_MAX down (INT32_MAX - n for the n-th distinct ID), which
+	 * no map index reaches; the association by ID is unchanged. */
+	int32_t keyOf(int32_t id);
+	/** The ID of MRPT key `key`: a given ID, or kFirstResolvedId + index for a -1 landmark. */
+	int32_t idOfKey(int64_t key) const;
 
 	Mode m_mode;
 	std::unique_ptr<mrpt::slam::CRangeBearingKFSLAM2D> m_filter;
 	TStepReport m_report;
 	size_t m_removed = 0;
-	bool m_seenId = false, m_seenUnknown = false;  ///< IDs >= 0 / -1 seen (mode AllFeatures)
+	std::map<int32_t, int32_t> m_keys;  ///< given ID -> MRPT key (keyOf)
+	std::vector<int32_t> m_idOfKey;     ///< INT32_MAX - key -> given ID
 };
 }  // namespace dynslam::apps

@@ -72,6 +72,10 @@ struct TRawlog
 	size_t framesInFile =
 	    0;  ///< sensory frames (format #2: bearing-range observations) in the file
 	std::vector<std::string> warnings;  ///< dropped entries etc., one sentence each
+	/** What is normal in MRPT's files but dropped all the same: the leading sensory frame and
+	 * the trailing action of MRPT's simul-landmarks order (SF_0 ACT_0 ... SF_N-1 ACT_N-1), which
+	 * kf-slam drops too (the apps log them at DEBUG level, not as warnings). */
+	std::vector<std::string> notes;
 	size_t size() const { return actions.size(); }
 };
 

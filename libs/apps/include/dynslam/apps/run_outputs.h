@@ -23,6 +23,22 @@ namespace dynslam::apps
  * folder") instead of a raw std::filesystem error. */
 void makeOutputDir(const std::string& dir);
 
+/** Checks, creating nothing, that makeOutputDir(dir) can succeed: `dir` is a writable folder, or
+ * its nearest existing ancestor is a writable folder (no file in the way). Throws
+ * std::runtime_error with makeOutputDir's sentences. Every app calls it before reading its
+ * inputs, so that a bad input leaves no output folder behind. */
+void checkOutputDirUsable(const std::string& dir);
+
+/** Checks, creating nothing, an output file given on the command line (`flag`, e.g.
+ * "--video"): not a folder, its folder usable (checkOutputDirUsable; created when the file is
+ * written), and, if `extensions` is not empty, one of them (case-insensitive). Empty `path`:
+ * nothing asked, nothing checked. Throws std::runtime_error naming the flag and the path. */
+void checkOutputFile(const std::string& path, const std::string& flag,
+                     const std::vector<std::string>& extensions = {});
+
+/** The video extensions writeVideo's codec (mp4v) can be written in. */
+const std::vector<std::string>& videoExtensions();
+
 /** Empty if the ego time stamps of `run` (the rawlog's) equal gt.t at every step within
  * 1 ms (or if either is missing); otherwise a warning naming the first differing step, since
  * trajectory.tum and the ground truth's BASE_gt_ego.tum would then not be associated by evo. */

@@ -175,7 +175,7 @@ public:
 	const TClassifyParams& params() const { return m_p; }
 	/** With a static association function, ID -1 readings are associated
 	 * (unknown_id_association.h); without one they are skipped and counted. */
-	void setStaticAssociation(StaticAssociationFn f)
+	void setStaticAssociation(StaticAssociationFn f) override
 	{
 		m_unknown.setStaticAssociation(std::move(f));
 	}

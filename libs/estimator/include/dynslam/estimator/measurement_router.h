@@ -48,8 +48,9 @@ struct TRoutedStep
 {
 	std::vector<TRoutedReading> readings;
 	size_t skipped_unknown_object_feature = 0;  ///< object feature without an f_0
-	/** feature_labels = classify only (CClassifyingRouter); 0 / empty for the ID-range rule. */
-	size_t skipped_unknown_id = 0;  ///< readings with ID -1 (no association yet: skipped)
+	/** Readings with ID -1 skipped (no association: CIdRangeRouter without an association
+	 * function or context; CClassifyingRouter without a static association). */
+	size_t skipped_unknown_id = 0;
 	/** ID -1 readings associated (unknown_id_association.h): with a static or candidate track,
 	 * with a moving track, or started as a new track. */
 	size_t unknown_id_static = 0, unknown_id_moving = 0, unknown_id_new = 0;
@@ -140,6 +141,14 @@ struct TRouterContext
 	    static_innovation;
 };
 
+struct TAssocTarget;  // unknown_id_association.h
+/** Static association of ID -1 readings: for every observed point the index of its
+ * prediction, or -1 (unassociated). Points and predictions are in one 2-D space (the classifying
+ * router: the robot frame; CIdRangeRouter: the measurement space); TAssocTarget in
+ * unknown_id_association.h. */
+using StaticAssociationFn = std::function<std::vector<int>(
+    const std::vector<Eigen::Vector2d>& observed, const std::vector<TAssocTarget>& predictions)>;
+
 class IMeasurementRouter
 {
 public:
@@ -148,6 +157,9 @@ public:
 	/** Checks every reading of a step before the filter changes anything: throws
 	 * std::runtime_error naming the reading, prefixed by `who`. */
 	virtual void validate(const std::vector<TReading>& readings, const std::string& who) const = 0;
+	/** The association of ID -1 readings with the static landmarks (ignored by routers that
+	 * have none; without it, -1 readings are skipped and counted). */
+	virtual void setStaticAssociation(StaticAssociationFn) {}
 	/** The step's context, given before route() (ignored by routers that need none). */
 	virtual void setContext(const TRouterContext&) {}
 	/** Routes the readings of `step` (validated). isKnownStatic(id) says whether static
@@ -166,21 +178,44 @@ public:
 };
 
 /** The ID-range rule (dynslam/landmark_ids.h): 0..99,999 static, 100,000 + 1000 object + k
- * feature k of object `object`; any other ID (MRPT's -1 included) is rejected. */
+ * feature k of object `object`. MRPT's "unknown landmark" ID -1 (INVALID_LANDMARK_ID) is
+ * associated as CRangeBearingKFSLAM2D associates it: against the predictions of the static
+ * landmarks in the state (TRouterContext::static_innovation) by a StaticAssociationFn (the EKF
+ * installs MRPT's mrpt::slam::data_association_full_covariance with the classify_assoc_* keys,
+ * MRPT's data_assoc_* names and defaults); a -1 reading associated with landmark `id` is that
+ * landmark's reading (StaticKnown), an unassociated one starts a static landmark (StaticNew)
+ * with a fresh ID kFirstResolvedId, kFirstResolvedId + 1, ... (MRPT: the map index). Unlike
+ * MRPT, a landmark read with its own ID in the step is not a candidate (one reading per
+ * landmark and step). Without an association function or a context (e.g. the framework
+ * back-ends), -1 readings are skipped and counted (TRoutedStep::skipped_unknown_id). Any other
+ * ID outside the ranges, and IDs from kFirstResolvedId on, are rejected by validate(). */
 class CIdRangeRouter : public IMeasurementRouter
 {
 public:
 	std::string name() const override { return "ids"; }
 	void validate(const std::vector<TReading>& readings, const std::string& who) const override;
+	void setContext(const TRouterContext& ctx) override { m_ctx = ctx, m_hasCtx = true; }
+	void setStaticAssociation(StaticAssociationFn f) override { m_assoc = std::move(f); }
 	TRoutedStep route(int step, const std::vector<TReading>& readings,
 	                  const std::function<bool(int32_t)>& isKnownStatic) override;
 	const CObjectRegistry& registry() const override { return m_registry; }
 	CObjectRegistry& registry() override { return m_registry; }
 	int32_t featureId(int32_t object, int32_t feature) const override;
-	void reset() override { m_registry.clear(); }
+	CIdRangeRouter() { reset(); }
+	void reset() override;
 
 private:
+	/** Gives every -1 reading of `out` a route and an ID (or skips and counts it). */
+	void resolveUnknown(TRoutedStep& out, const std::function<bool(int32_t)>& isKnownStatic);
 	CObjectRegistry m_registry;
+	StaticAssociationFn m_assoc;
+	TRouterContext m_ctx;
+	bool m_hasCtx = false;
+	void addStatic(int32_t id);
+	/** The static IDs routed StaticNew so far, sorted (the candidates of the -1 association;
+	 * those no longer in the state are left out by isKnownStatic). */
+	std::vector<int32_t> m_statics;
+	int32_t m_next = 0;  ///< the next ID of a landmark started by a -1 reading (reset())
 };
 
 struct TClassifyParams;

@@ -56,10 +56,7 @@ struct TAssocTarget
 	TPoint2 pred;
 };
 
-/** Static association: for every observed point (robot frame) the index of its prediction, or
- * -1 (unassociated). */
-using StaticAssociationFn = std::function<std::vector<int>(
-    const std::vector<Eigen::Vector2d>& observed, const std::vector<TAssocTarget>& predictions)>;
+// StaticAssociationFn (the static association of -1 readings): measurement_router.h.
 
 /** What became of the -1 readings of one step. */
 struct TResolvedIds

@@ -36,6 +36,7 @@ public:
 	std::string labels_dir, poses_dir, sequence, out_dir, config_file, base;
 	std::string detections_dir, calib_dir;  ///< both empty: no detections
 	TKittiOptions options;
+	bool quiet = false;  ///< -q: no summary on stdout, only warnings and errors
 
 	// --- results ---
 	TImportSummary summary;

@@ -43,6 +43,7 @@ public:
 	bool estimate_noise = false, all_robots = false;
 	int leave_out = 0;       ///< with all_robots: a robot 1..5 left out of the estimate (0: none)
 	bool anonymous = false;  ///< import with anonymous IDs (anonymous.h)
+	bool quiet = false;      ///< -q: no import summary on stdout, only warnings and errors
 	uint32_t anonymous_seed = 1;  ///< the permutation's seed
 	TMrclamOptions options;
 
