@@ -1,7 +1,7 @@
 /** CJcbbUpdateEngine: MRPT's JCBB on the step's own landmarks, then the joint chi-square test
  * by branch and bound, then the sparse update of the accepted readings (CJcbbUpdateEngine.h). */
 #include <dynslam/CJcbbUpdateEngine.h>
-#include <dynslam/eval/chi2.h>
+#include <dynslam/chi2.h>
 #include <mrpt/slam/data_association.h>
 
 #include <Eigen/Cholesky>
@@ -78,7 +78,7 @@ public:
 	{
 		m_threshold.push_back(0);
 		for (size_t n = 1; n <= m_cand.size(); ++n)
-			m_threshold.push_back(eval::chi2Quantile(confidence, double(2 * n)));
+			m_threshold.push_back(chi2Quantile(confidence, double(2 * n)));
 	}
 	void run()
 	{

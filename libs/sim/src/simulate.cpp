@@ -72,19 +72,34 @@ public:
 			m_grid[cellKey(cellOf(p[0]), cellOf(p[1]))].push_back(id);
 	}
 
+	/** Step k: ACT_k (the noisy odometry increment), then SF_k (the readings); the noise draws
+	 * in that order. */
 	void step(size_t k, mrpt::obs::CActionCollection::Ptr& actOut,
 	          mrpt::obs::CSensoryFrame::Ptr& sfOut)
 	{
-		using namespace mrpt::obs;
 		const auto stamp = stepTimestamp(m_o, k);
-		const Eigen::Vector3d& x = m_gt.ego[k];
+		actOut = makeAction(k, stamp);
+		auto obs = makeObservation(stamp);
+		// The readings are taken from the sensor's pose (x itself for a sensor at the origin).
+		const Eigen::Vector3d xs = models::sensorPoseInWorld(m_gt.ego[k], m_o.sensor_pose);
+		measure(k, xs, *obs);
+		// Issue 12's front-end effects (after every noise draw, from their own generator).
+		if (m_o.effects.any()) m_effects.apply(k, *obs, m_truth);
+		sfOut = makeFrame(obs);
+	}
 
-		// --- ACT_k: noisy increment into pose k (zero with zero covariance for k = 0)
+	/** Class ground truth of step k's readings (in the order of the observation). */
+	const std::vector<TReadingClass>& truth() const { return m_truth; }
+
+private:
+	/** ACT_k: noisy increment into pose k (zero with zero covariance for k = 0); 3 draws. */
+	mrpt::obs::CActionCollection::Ptr makeAction(size_t k, mrpt::Clock::time_point stamp)
+	{
 		Eigen::Vector3d u = Eigen::Vector3d::Zero();
 		Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
 		if (k > 0)
 		{
-			u = models::poseDifference(x, m_gt.ego[k - 1]);
+			u = models::poseDifference(m_gt.ego[k], m_gt.ego[k - 1]);
 			if (m_o.odometry_rate_bias != 0 || m_o.odometry_scale_error != 0)
 			{  // a biased reading of the true increment (TScenarioOptions::odometry_rate_bias)
 				u.head<2>() /= 1 - m_o.odometry_scale_error;
@@ -96,11 +111,15 @@ public:
 		}
 		// The covariance travels with the file (makeOdometryMovement: not emOdometry, whose
 		// covariance MRPT rebuilds from its default motion model when the rawlog is read).
-		actOut = CActionCollection::Create();
-		actOut->insert(makeOdometryMovement(u, cov, stamp));
+		auto act = mrpt::obs::CActionCollection::Create();
+		act->insert(makeOdometryMovement(u, cov, stamp));
+		return act;
+	}
 
-		// --- SF_k: one bearing-range observation
-		auto obs = CObservationBearingRange::Create();
+	/** SF_k's bearing-range observation without readings: the sensor's description. */
+	mrpt::obs::CObservationBearingRange::Ptr makeObservation(mrpt::Clock::time_point stamp) const
+	{
+		auto obs = mrpt::obs::CObservationBearingRange::Create();
 		obs->sensorLabel = m_o.sensor_label;
 		obs->timestamp = stamp;
 		obs->minSensorDistance = 0;
@@ -115,9 +134,12 @@ public:
 		// rotation matrix, a different file.)
 		if (!sp.isZero())
 			obs->sensorLocationOnRobot = mrpt::poses::CPose3D(sp[0], sp[1], 0, sp[2], 0, 0);
-		// The readings are taken from the sensor's pose (x itself for a sensor at the origin).
-		const Eigen::Vector3d xs = models::sensorPoseInWorld(x, sp);
-		// Static landmarks within the true range of the sensor, by increasing ID.
+		return obs;
+	}
+
+	/** m_ids: the static landmarks within the true range of the sensor at xs, by increasing ID. */
+	void landmarksInRange(const Eigen::Vector3d& xs)
+	{
 		m_ids.clear();
 		const long cx = cellOf(xs[0]), cy = cellOf(xs[1]);
 		for (long i = cx - 1; i <= cx + 1; ++i)
@@ -130,14 +152,21 @@ public:
 						m_ids.push_back(id);
 			}
 		std::sort(m_ids.begin(), m_ids.end());
+	}
+
+	/** The readings of step k from the sensor pose xs (2 draws each, static landmarks first)
+	 * and their class truth (m_truth). */
+	void measure(size_t k, const Eigen::Vector3d& xs, mrpt::obs::CObservationBearingRange& obs)
+	{
+		landmarksInRange(xs);
 		// At most this many readings: the vector is grown once (the sweep of the Monte Carlo
 		// app simulates 225 runs of 121 steps).
 		size_t readings = m_ids.size();
 		for (const TObjectGroundTruth& og : m_gt.objects) readings += size_t(og.num_features);
-		obs->sensedData.reserve(readings);
+		obs.sensedData.reserve(readings);
 		m_truth.clear();
 		for (int32_t id : m_ids)
-			if (addMeasurement(*obs, xs, m_gt.landmarks.at(id), id))
+			if (addMeasurement(obs, xs, m_gt.landmarks.at(id), id))
 				addTruth(k, id, TrueClass::Static, -1, id);
 		// Objects whose centroid is within range of the robot (ground truth's `visible`): all
 		// their features.
@@ -150,31 +179,31 @@ public:
 				for (int j = 0; j < og.num_features; ++j)
 				{
 					const int32_t id = ids::objectFeatureId(og.object, j);
-					if (addMeasurement(*obs, xs, og.features[k].col(j), id))
+					if (addMeasurement(obs, xs, og.features[k].col(j), id))
 						addTruth(k, id, c, og.object, j);
 				}
 			}
-		// Issue 12's front-end effects (after every noise draw, from their own generator).
-		if (m_o.effects.any()) m_effects.apply(k, *obs, m_truth);
-		sfOut = CSensoryFrame::Create();
-		sfOut->insert(obs);
+	}
+
+	/** SF_k: the observation and, with detection groups, the box ID of every object reading
+	 * (moving or parked): its object index. */
+	mrpt::obs::CSensoryFrame::Ptr makeFrame(const mrpt::obs::CObservationBearingRange::Ptr& obs)
+	{
+		auto sf = mrpt::obs::CSensoryFrame::Create();
+		sf->insert(obs);
 		if (m_o.effects.detection_groups)
 		{
-			// The box ID of every object reading (moving or parked): its object index.
 			std::vector<int32_t> ids, groups;
 			for (size_t i = 0; i < obs->sensedData.size(); ++i)
 			{
 				ids.push_back(obs->sensedData[i].landmarkID);
 				groups.push_back(m_truth.at(i).object);
 			}
-			sfOut->insert(makeDetectionGroups(ids, groups));
+			sf->insert(makeDetectionGroups(ids, groups));
 		}
+		return sf;
 	}
 
-	/** Class ground truth of step k's readings (in the order of the observation). */
-	const std::vector<TReadingClass>& truth() const { return m_truth; }
-
-private:
 	Eigen::Vector3d draw3()
 	{
 		Eigen::Vector3d n;

@@ -1,7 +1,7 @@
 // Uses every installed dynslam library through the package: the dynamic EKF (ekf), configured
 // from an INI through the model options (common), the framework's Alg. 1 (framework) and MRPT's
 // static filter behind the project's interface (apps) on the same few steps, and one function
-// each of core, sim, eval and mrclam. Exit code 0 only if every result is as expected.
+// each of core, io, sim, eval and mrclam. Exit code 0 only if every result is as expected.
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CStaticBaselineBackend.h>
 #include <dynslam/config_utils.h>
@@ -11,6 +11,7 @@
 #include <dynslam/kitti/geometry.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/mrclam/odometry.h>
+#include <dynslam/number_format.h>
 #include <dynslam/sim/motion.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -98,13 +99,15 @@ int main()
 		          << " landmarks=" << st.getStaticLandmarks().size() << "\n";
 		ok &= check(std::abs(xs - 4.0) < 1e-3 && st.getStaticLandmarks().size() == 1,
 		            "apps: CStaticBaselineBackend");
-		// core, sim, eval, mrclam
+		// core, io, sim, eval, mrclam
 		ok &= check(dynslam::ids::isStatic(3) &&
 		                dynslam::ids::isObjectFeature(dynslam::ids::objectFeatureId(1, 2)),
 		            "core: landmark IDs");
 		ok &= check(dynslam::sim::carCorners(4.0, 2.0).cols() == 4, "sim: carCorners");
-		ok &= check(std::abs(dynslam::eval::chi2Quantile(0.95, 2) - 5.9915) < 1e-3,
-		            "eval: chi2Quantile");
+		ok &= check(std::abs(dynslam::chi2Quantile(0.95, 2) - 5.9915) < 1e-3, "core: chi2Quantile");
+		ok &= check(std::abs(dynslam::eval::averageChi2Bounds(2, 1).upper - 7.3778) < 1e-3,
+		            "eval: averageChi2Bounds");
+		ok &= check(dynslam::formatShortest(0.1) == "0.1", "io: formatShortest");
 		ok &= check(
 		    (dynslam::mrclam::unicycleArc(1.0, 0.0, 2.0) - Eigen::Vector3d(2, 0, 0)).norm() < 1e-12,
 		    "mrclam: unicycleArc");

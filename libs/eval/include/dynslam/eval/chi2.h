@@ -1,33 +1,21 @@
 #pragma once
 /** @file chi2.h
- * Exact chi-square distribution function and quantiles for consistency bounds (NEES, NIS).
- * The CDF is the regularized lower incomplete gamma function P(dof/2, x/2), evaluated by its
- * power series (x < a + 1) or its continued fraction (otherwise), to about 1e-14. Quantiles are
- * found by bisection on the CDF; no Wilson-Hilferty approximation (mrpt::math::chi2inv) is used:
- * it is off by 1e-2 at 2 dof. */
+ * Chi-square bounds of the evaluation: the interval of an average of NEES/NIS values over
+ * independent runs. The distribution function and quantiles are core's (dynslam/chi2.h: pure
+ * math, used by the estimators' gates too); the using-declarations keep them reachable as
+ * dynslam::eval::chi2Quantile etc. for the evaluation's callers. */
+#include <dynslam/chi2.h>
 
 namespace dynslam::eval
 {
-/** P(X <= x) for X ~ chi2(dof); dof > 0 (non-integer allowed). Throws std::invalid_argument
- * for dof <= 0 or NaN input. */
-double chi2Cdf(double x, double dof);
-
-/** The p-quantile of chi2(dof), 0 < p < 1, by bisection to a relative tolerance of 1e-13. */
-double chi2Quantile(double p, double dof);
-
-/** A two-sided interval [lower, upper]. */
-struct TChi2Interval
-{
-	double lower = 0;
-	double upper = 0;
-	bool contains(double v) const { return v >= lower && v <= upper; }
-};
-
-/** Two-sided (confidence) interval of chi2(dof): [q((1-c)/2), q((1+c)/2)]. */
-TChi2Interval chi2Interval(double dof, double confidence = 0.95);
+using dynslam::chi2Cdf;
+using dynslam::chi2Interval;
+using dynslam::chi2Quantile;
+using dynslam::TChi2Interval;
 
 /** Bounds for the average of `runs` independent NEES/NIS values whose degrees of freedom add up
  * to total_dof (N runs of n dof each: total_dof = N n): the sum is chi2(total_dof), so the
- * average lies in [q((1-c)/2, total_dof), q((1+c)/2, total_dof)] / runs. */
+ * average lies in [q((1-c)/2, total_dof), q((1+c)/2, total_dof)] / runs. Throws
+ * std::invalid_argument for runs < 1. */
 TChi2Interval averageChi2Bounds(double total_dof, int runs, double confidence = 0.95);
 }  // namespace dynslam::eval

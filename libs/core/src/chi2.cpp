@@ -1,11 +1,11 @@
-#include "dynslam/eval/chi2.h"
+#include <dynslam/chi2.h>
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-namespace dynslam::eval
+namespace dynslam
 {
 namespace
 {
@@ -88,13 +88,4 @@ TChi2Interval chi2Interval(double dof, double confidence)
 	const double alpha = 1.0 - confidence;
 	return {chi2Quantile(0.5 * alpha, dof), chi2Quantile(1.0 - 0.5 * alpha, dof)};
 }
-
-TChi2Interval averageChi2Bounds(double total_dof, int runs, double confidence)
-{
-	if (runs < 1)
-		throw std::invalid_argument("averageChi2Bounds: runs must be >= 1, got " +
-		                            std::to_string(runs));
-	const TChi2Interval s = chi2Interval(total_dof, confidence);
-	return {s.lower / runs, s.upper / runs};
-}
-}  // namespace dynslam::eval
+}  // namespace dynslam
