@@ -4,7 +4,7 @@
 # Usage: scripts/bench.sh [repetitions, default 5] [extra benchmark flags, e.g. --benchmark_filter=Highway]
 # Results: build-bench/bench.json (all repetitions) and build-bench/bench-summary.md.
 # DYNSLAM_BENCH_CMAKE_ARGS: extra cmake arguments, e.g. the CPU-specific build of
-# doc/performance.md:  DYNSLAM_BENCH_BUILD_DIR=build-bench-native \
+# doc/results/performance.md:  DYNSLAM_BENCH_BUILD_DIR=build-bench-native \
 #   DYNSLAM_BENCH_CMAKE_ARGS=-DDYNSLAM_NATIVE=ON scripts/bench.sh 3
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Checks that the AVX2/FMA kernel object (libs/core/src/kernels/kernels_avx2.cpp) shares no
-# symbol with the rest of the program (doc/performance.md, section 10): every global or weak
+# symbol with the rest of the program (doc/results/performance.md, section 10): every global or weak
 # symbol it defines must be in its own namespaces (dynslam::kernels::avx2, the renamed Eigen
 # EigenAvx2) or the exception-personality reference every C++ object has. A weak symbol outside
 # them (an Eigen or standard-library inline function compiled with AVX2) could be the copy the

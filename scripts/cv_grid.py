@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Mean ego ATE per Table I level of object-model settings (doc/results.md 4.3).
+"""Mean ego ATE per Table I level of object-model settings (doc/results/results.md 4.3).
 
 Runs dynslam-montecarlo once per setting on config/montecarlo.ini with the setting's
 [DynamicKFSLAM] keys added, and prints one CSV row per setting: its name and the mean over the
@@ -9,7 +9,7 @@ runs of the ego ATE at each level. A setting is a line "name: key = value; key =
         --runs 8 --out OUT [--levels all] [--threads 1]
 
 --seed is the base noise seed of dynslam-montecarlo (run r at level L: seed + 1000 L + r): the
-Table I runs of doc/results.md section 2 use seed 1 and 25 runs (seeds 1..8025); a development
+Table I runs of doc/results/results.md section 2 use seed 1 and 25 runs (seeds 1..8025); a development
 set must use a base whose seeds do not meet them (e.g. 500000).
 """
 import argparse

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Tunnel ego ATE of object-model settings (doc/results.md 4.3.2).
+"""Tunnel ego ATE of object-model settings (doc/results/results.md 4.3.2).
 
 Runs dynslam-compare once per setting on config/compare_tunnel.ini with the setting's
 [DynamicKFSLAM] keys written over the INI's (filters = dynamic_cv only, no figures) and prints

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The odometry-bias comparison of doc/real-data.md 5.10 (issue 17 item 2): imports one MRCLAM
+# The odometry-bias comparison of doc/results/real-data.md 5.10 (issue 17 item 2): imports one MRCLAM
 # dataset for each robot as ego and runs the dynamic EKF of config/mrclam_compare.ini with and
 # without the odometry bias block, every other setting unchanged. The bias parameters are fixed
-# here, before the runs, the same for every robot (doc/real-data.md 5.10 says why these).
+# here, before the runs, the same for every robot (doc/results/real-data.md 5.10 says why these).
 #
 #   scripts/mrclam_bias.sh DATASET_DIR [OUT_DIR] [BUILD_DIR]
 #
@@ -21,7 +21,7 @@ DATA=$1
 OUT=${2:-out/mrclam_bias}
 SRC=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${3:-$SRC/build}
-# The bias parameters (fixed before the runs, doc/real-data.md 5.10): prior std 1 deg/s,
+# The bias parameters (fixed before the runs, doc/results/real-data.md 5.10): prior std 1 deg/s,
 # random walk 0.17 deg/s per sqrt(s) (the bias may change by ~0.5 deg/s within 10 s),
 # odometry_dt = 0.4 s (only for the first step: the actions carry timestamps).
 BIAS_KEYS="odometry_bias = rate

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 12 on real data (doc/real-data.md section 6, doc/classification.md): for each of the five
+# Issue 12 on real data (doc/results/real-data.md section 6, doc/results/classification.md): for each of the five
 # robots of an MRCLAM dataset, imports it labelled and with anonymous IDs (dynslam-mrclam
 # --anonymous --seed 1), runs dynslam-compare with config/mrclam_compare.ini on the labelled
 # rawlog (static_all, static_landmarks_only, dynamic, dynamic_classified) and on the anonymous

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Leave-one-robot-out check of the parameters estimated from the data (doc/real-data.md 5.12,
+# Leave-one-robot-out check of the parameters estimated from the data (doc/results/real-data.md 5.12,
 # issue 17): for each robot N of an MRCLAM dataset, every [MRCLAM_Import] parameter that
 # config/mrclam.ini takes from the ground truth (std_range, std_bearing, odo_delay, odo_scale_v,
 # the six odometry noise coefficients, odo_tau_xy, odo_tau_phi) is re-estimated with

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The motion-noise-model comparison of doc/real-data.md 5.11 (issue 17 item 2): imports one
+# The motion-noise-model comparison of doc/results/real-data.md 5.11 (issue 17 item 2): imports one
 # MRCLAM dataset for each robot as ego once per odometry noise model ([MRCLAM_Import] keys on
 # top of config/mrclam.ini) and runs the dynamic EKF of config/mrclam_compare.ini once per
 # outlier method, every other setting unchanged.

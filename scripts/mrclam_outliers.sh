@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The outlier-method comparison of doc/real-data.md 5.9 (issue 17): imports one MRCLAM dataset
+# The outlier-method comparison of doc/results/real-data.md 5.9 (issue 17): imports one MRCLAM dataset
 # for each robot as ego and runs the dynamic EKF of config/mrclam_compare.ini once per
 # outlier_method, every other setting unchanged (the method's parameters are the defaults).
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The real-data results of doc/real-data.md, section 5: imports one MRCLAM dataset for each of
+# The real-data results of doc/results/real-data.md, section 5: imports one MRCLAM dataset for each of
 # the five robots as ego and runs the filters of dynslam-compare on each.
 #
 #   scripts/mrclam_results.sh DATASET_DIR [OUT_DIR] [BUILD_DIR]
@@ -55,7 +55,7 @@ for N in 1 2 3 4 5; do
 	tail -n +2 "$D/report/tracked_robots.csv" >> "$OUT/tracked_robots.csv"
 done
 
-# One markdown table (the one in doc/real-data.md, section 5.3).
+# One markdown table (the one in doc/results/real-data.md, section 5.3).
 awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
 function f(x, d) { return (x == "nan" || x == "-nan" || x == "") ? "-" : sprintf("%." d "f", x) }
 {

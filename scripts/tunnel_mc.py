@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Tunnel Monte Carlo: ego ATE and ego NEES inside the gap over many noise draws
-(doc/results.md 4.6; development tool, no test needs it).
+(doc/results/results.md 4.6; development tool, no test needs it).
 
     scripts/tunnel_mc.py --build build --out OUT [--seed 900001] [--runs 100]
         [--ini config/compare_tunnel.ini] [--filters dynamic,dynamic_cv] [--matched]
@@ -16,7 +16,7 @@ bounds of 3 N dof / N, and the mean over all gap steps and runs against the same
 3-dof sample per run: the gap's steps are strongly correlated, so this is the bound to use),
 with its split per axis (mean (e / sigma)^2 of x, y, theta in the gap, each 1 if consistent).
 
---matched: the model-matched truth (doc/simulator.md "Model-matched truth", doc/results.md
+--matched: the model-matched truth (doc/simulator.md "Model-matched truth", doc/results/results.md
 4.9): the scenario gets [Noise] start_from_prior = true (the true start drawn from the filter's
 prior Sigma_0 = Sigma_w) and object_accel_psd = the filter's cv_accel_psd (the cars' velocities
 driven by the white acceleration the cv filter assumes).

@@ -5,7 +5,7 @@
  * every use of MRPT's slam library, compiled and linked in the module. The executable defines
  * the same four functions itself (slam_services_lazy.cpp) and loads the module on first use,
  * so a sweep of the EKF never loads libmrpt-slam and its ~125 dependent libraries
- * (doc/performance.md section 14). */
+ * (doc/results/performance.md section 14). */
 #include <dynslam/apps/slam_services.h>
 #include <dynslam/slam_services.h>
 

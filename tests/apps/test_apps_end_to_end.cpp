@@ -182,7 +182,7 @@ TEST(CompareApp, TunnelObjectModelsCvHelpsTheEgo)
 	    "[ measured ] tunnel ATE: static_landmarks_only %.4f m, dynamic %.4f m, "
 	    "dynamic_cv %.4f m, dynamic_ctrv %.4f m\n",
 	    so.ate, dy.ate, cv.ate, ctrv.ate);
-	// The shipped cv_* keys, setting E (doc/results.md 4.10): process noise [1e-7 1e-7 1e-9],
+	// The shipped cv_* keys, setting E (doc/results/results.md 4.10): process noise [1e-7 1e-7 1e-9],
 	// cv_gate = 0.999, prior_gauge = anchor (every dynamic row), chosen on development seeds of
 	// the highway and this tunnel. Measured 2026-11-25: 0.7475, 0.7497, 0.0807, 0.2641 m (with
 	// D of 4.8: 0.7475, 0.7497, 0.0809, 0.3436). The paper's objects never update the ego:
@@ -194,7 +194,7 @@ TEST(CompareApp, TunnelObjectModelsCvHelpsTheEgo)
 	// The gap (datasets/tunnel_scenario.ini: landmark_gaps = [200 800]) is scored for every row
 	// (eval::gapMetrics, metrics.csv columns ate_gap ...): 72 steps; measured in the gap
 	// 0.5659 / 0.5694 / 0.0736 / 0.2154 m, ego NEES 4.24 / 3.16 / 0.90 / 1.32 in [2.461, 3.592]
-	// (cv and ctrv conservative on this truth, which starts at the prior mean: doc/results.md
+	// (cv and ctrv conservative on this truth, which starts at the prior mean: doc/results/results.md
 	// 4.8, 4.10).
 	for (const auto& r : app.rows)
 	{
@@ -252,7 +252,7 @@ TEST(CompareApp, SmoothingFilterRowRunsAlg6)
 TEST(CompareApp, ClassifiedRowHasClassColumns)
 {
 	// config/compare_classified.ini: dynamic and dynamic_classified (feature_labels = classify,
-	// issue 12, doc/classification.md) on the shipped highway; the class columns are scored
+	// issue 12, doc/results/classification.md) on the shipped highway; the class columns are scored
 	// against datasets/highway_gt_classes.csv and empty for the other rows.
 	const std::string out = apps_test::freshDir("cmp_classified");
 	CCompareApp app;
@@ -360,7 +360,7 @@ TEST(CompareApp, ClassifiedRowWithoutClassTruthHasEmptyObjectColumns)
 	EXPECT_NE(app.tableText.find("no class ground truth"), std::string::npos) << app.tableText;
 }
 
-// Issue 12 figures (doc/classification.md "Figures"): with --out and figures on, a classifying
+// Issue 12 figures (doc/results/classification.md "Figures"): with --out and figures on, a classifying
 // row writes its class map and decision timeline; the timeline holds many readings decided
 // moving (red) and static (blue): measured on the shipped highway 98 tracks.
 TEST(CompareApp, ClassifiedRowWritesClassFigures)

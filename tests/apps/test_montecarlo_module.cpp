@@ -1,4 +1,4 @@
-/** dynslam-montecarlo without libmrpt-slam (doc/performance.md section 14): the executable does
+/** dynslam-montecarlo without libmrpt-slam (doc/results/performance.md section 14): the executable does
  * not link it, and the back-ends that need it (MRPT's static filter, JCBB, the classify
  * association) come from the module libdynslam_slam_services.so, loaded on first use, with the
  * same results as the classes linked in (the in-process CMonteCarloApp of this test binary):

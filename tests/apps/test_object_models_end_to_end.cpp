@@ -1,7 +1,7 @@
 /** The object-centric models end to end (issue 13): dynslam-compare on a generated scenario
  * whose cars turn (circle of radius 70 m) and brake hard (config/generated_turning_braking.ini,
  * the shipped datasets/turning_braking.rawlog): the object models must not drag the ego; and
- * dynslam-montecarlo honours prior_gauge (doc/results.md 4.10). */
+ * dynslam-montecarlo honours prior_gauge (doc/results/results.md 4.10). */
 #include <apps_test_utils.h>
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/CMonteCarloApp.h>
@@ -29,7 +29,7 @@ TEST(CompareApp, TurningBrakingObjectsDoNotDragTheEgo)
 	    "dynamic_cv %.4f m, dynamic_ctrv %.4f m\n",
 	    so, dy, cv, ctrv);
 	// The issue's target: no worse than 1.05 x static_landmarks_only.
-	// Measured 2026-11-25 with the shipped cv_* keys (setting E, doc/results.md 4.10: D of 4.8
+	// Measured 2026-11-25 with the shipped cv_* keys (setting E, doc/results/results.md 4.10: D of 4.8
 	// without cv_ego_velocity_std and with prior_gauge = anchor, chosen on highway and tunnel
 	// development seeds; this scenario is a held-out check): 0.0144, 0.0084, 0.0087, 0.0098 m
 	// (with D: 0.0144, 0.0085, 0.0089, 0.0096). The static baseline is MRPT's filter with
@@ -83,7 +83,7 @@ double egoNees(const CMonteCarloApp& app)
 
 TEST(MonteCarloApp, PriorGaugeAnchorIsHonoured)
 {
-	// prior_gauge = anchor through the app (issue 13, doc/results.md 4.10): with the protocol's
+	// prior_gauge = anchor through the app (issue 13, doc/results/results.md 4.10): with the protocol's
 	// Sigma_0 = Sigma_w the anchored mean equals the prior filter's with Sigma_0 = 0 (the same
 	// ATE to the last digit), while its reported covariance carries N Sigma_0 N^T (another ego
 	// NEES); the prior gauge with Sigma_w differs (the leak of 4.3.2).

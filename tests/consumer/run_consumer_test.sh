@@ -9,7 +9,7 @@ cmake -S "$SRC" -B "$WORK/build" -DCMAKE_PREFIX_PATH="$WORK/prefix" -DCMAKE_BUIL
 cmake --build "$WORK/build" -j2 >/dev/null
 "$WORK/build/consumer"
 # The installed dynslam-montecarlo finds its module libdynslam_slam_services.so (MRPT's static
-# filter; doc/performance.md section 14) through its RUNPATH $ORIGIN/../lib: one static run.
+# filter; doc/results/performance.md section 14) through its RUNPATH $ORIGIN/../lib: one static run.
 MC="$WORK/prefix/bin/dynslam-montecarlo"
 if [ -x "$MC" ]; then
   CFG="$WORK/prefix/share/dynslam/config"

@@ -1,5 +1,5 @@
 /** The velocity residual of the live-merge test (models/live_merge.h, classify_merge_live,
- * doc/classification.md "Merging two live objects"): zero for a point carried by A's twist (the
+ * doc/results/classification.md "Merging two live objects"): zero for a point carried by A's twist (the
  * rigid flow differentiated numerically, independent of the formula), and J_out_in against
  * central differences at random states and at headings +-pi, for B with 2 and 3 pose entries. */
 #include <dynslam/models/live_merge.h>

@@ -1,4 +1,4 @@
-/** Late joining (doc/classification.md, "Grouping"): the object pose with its centroid fixed by
+/** Late joining (doc/results/classification.md, "Grouping"): the object pose with its centroid fixed by
  * the founders (models::objectPoseInverse / objectPoseMap, centroidCols) and the time-0
  * position of a feature that joins an object later (ekf::appendJoinedFeatures): values on
  * noise-free data, Jacobians against central differences, the noise layout. */

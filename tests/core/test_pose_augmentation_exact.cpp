@@ -1,6 +1,6 @@
 /** objectPoseAugmentations with the portable kernels is the arithmetic of before, bit for bit:
  * its workspaces (the rows of the extended covariance in a reused row-major buffer, the products
- * in reused temporaries, doc/performance.md section 16) change where the numbers are stored, not
+ * in reused temporaries, doc/results/performance.md section 16) change where the numbers are stored, not
  * how they are computed. The reference below is the code of before (2026-11-24, 4d20605),
  * copied. With the AVX2 kernels Gamma * rows (kernels::productColRow) differs in the last bits:
  * measured here against the portable variant, within 1e-12 relative. */
@@ -123,7 +123,7 @@ TEST(PoseAugmentationExact, EqualsTheCodeOfBeforeBitForBit)
 	}
 }
 
-// max |avx2 - sse2| / max |sse2| (the measure of doc/performance.md section 10).
+// max |avx2 - sse2| / max |sse2| (the measure of doc/results/performance.md section 10).
 TEST(PoseAugmentationExact, Avx2EqualsPortableWithin1e12)
 {
 	if (!kernels::isaAvailable(kernels::Isa::Avx2))

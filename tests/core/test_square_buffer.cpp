@@ -1,4 +1,4 @@
-/** The in-place commit (doc/performance.md, section 10): ekf::assembleInPlace equals
+/** The in-place commit (doc/results/performance.md, section 10): ekf::assembleInPlace equals
  * ekf::assembleExtended bit for bit, in a buffer with an outer stride larger than the matrix,
  * and ekf::CSquareBuffer keeps its contents while a size fits its side and reuses the buffers
  * freed in the same thread. */

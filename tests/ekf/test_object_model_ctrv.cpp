@@ -100,7 +100,7 @@ TEST(ObjectModelCtrv, ObjectsOnArcsAreTrackedBetterThanWithCv)
 	    runs, cv.object, ctrv.object, cv.ego, ctrv.ego);
 	// Measured: object 0.3592 m (cv) vs 0.0827 m (ctrv); ego 0.0845 vs 0.0851 m. Without
 	// static landmarks the objects cannot fix the ego's linear drift (unknown velocities,
-	// doc/results.md): the better object model does not move the ego, and must not hurt it.
+	// doc/results/results.md): the better object model does not move the ego, and must not hurt it.
 	EXPECT_LT(ctrv.object, 0.5 * cv.object);
 	EXPECT_LT(ctrv.ego, 1.05 * cv.ego);
 }

@@ -1,7 +1,7 @@
 /** object_model = cv (issue 13): the heading inflation of object readings
  * (cv_heading_inflation, doc/state-layout.md "Heading inflation of object readings"). With a
  * large prior heading variance (Sigma_0 = Sigma_w, as in the paper's Table I), precise readings
- * and large odometry noise, steady objects pull the ego away from the truth (doc/results.md
+ * and large odometry noise, steady objects pull the ego away from the truth (doc/results/results.md
  * 4.3.2); the inflation limits that. Off, the filter is today's to the last digit. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/ground_truth.h>

@@ -144,7 +144,7 @@ TEST(PriorGauge, AnchoredMeanDoesNotDependOnSigma0)
 		const TEnd p1 = run(model, false, kS0, 940002, 200);
 		EXPECT_EQ((a0.x - a1.x).cwiseAbs().maxCoeff(), 0.0) << model;
 		EXPECT_EQ((a0.P_internal - a1.P_internal).cwiseAbs().maxCoeff(), 0.0) << model;
-		// The prior gauge's mean moves with Sigma_0 (the leak of doc/results.md 4.3.2).
+		// The prior gauge's mean moves with Sigma_0 (the leak of doc/results/results.md 4.3.2).
 		const double moved = (p0.x - p1.x).head<3>().cwiseAbs().maxCoeff();
 		std::printf("[ measured ] %s: prior gauge ego moved by %.3g with Sigma_0\n", model.c_str(),
 		            moved);

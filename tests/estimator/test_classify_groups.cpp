@@ -1,4 +1,4 @@
-/** CClassifyingRouter's groups after they are formed (doc/classification.md, "Grouping"):
+/** CClassifyingRouter's groups after they are formed (doc/results/classification.md, "Grouping"):
  * a track ID reused by another point after a break restarts as a new track (counted), a
  * track decided moving joins an object of an earlier step, a feature that stops moving with
  * its object is split off. Synthetic tracks (router_synth.h). */

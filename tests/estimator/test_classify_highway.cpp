@@ -1,8 +1,8 @@
-/** feature_labels = classify end to end on the simulated highway (doc/classification.md):
+/** feature_labels = classify end to end on the simulated highway (doc/results/classification.md):
  * anonymous IDs (config/highway_anonymous.ini) against the ID-labelled filter on the same
  * noise, a parked car that drives off (config/highway_parked_driveoff.ini), and missed
  * detections with clutter (config/highway_clutter.ini). Thresholds are a few times the
- * measured values (measured values in the comments and in doc/classification.md). */
+ * measured values (measured values in the comments and in doc/results/classification.md). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/sim/scenario.h>
@@ -38,7 +38,7 @@ struct TResult
 	double ari = 0;
 	size_t objects = 0, reclassified = 0, converted = 0, stopped = 0, unknownIds = 0, held = 0,
 	       candidates = 0, updates = 0;
-	size_t restarted = 0, split = 0, joined = 0, joinedF0 = 0;  ///< doc/classification.md
+	size_t restarted = 0, split = 0, joined = 0, joinedF0 = 0;  ///< doc/results/classification.md
 	/** Largest error [m] of the f_0 estimates of late joiners and of founders: against the true
 	 * position of the track's (majority) true feature at its object's time 0. */
 	double joinerF0Err = 0, founderF0Err = 0;
@@ -195,7 +195,7 @@ TEST(ClassifyHighway, NoiseLevelsAgainstTheLabelledFilterOnTheSameTrackBreaks)
 		const TResult cls = run(anonymousAt(level, true), true, "", v);
 		print(std::string(level) + " labelled", labelled);
 		print(std::string(level) + " classify", cls);
-		// Measured: per-reading F1 0.983..0.985, per-track F1 0.973..1 (doc/classification.md).
+		// Measured: per-reading F1 0.983..0.985, per-track F1 0.973..1 (doc/results/classification.md).
 		EXPECT_GE(cls.reading.f1, 0.95) << level;
 		EXPECT_GE(cls.track.f1, 0.9) << level;
 		// Measured: classify / labelled ATE 0.92 (w3v2) .. 1.012 (w3v1); issue 12's target.

@@ -1,4 +1,4 @@
-/** classify_static_test (doc/classification.md): with `map` a static track's reading is tested
+/** classify_static_test (doc/results/classification.md): with `map` a static track's reading is tested
  * with the filter's own innovation (TRouterContext::static_innovation) instead of the robot-frame
  * static filter; without a landmark in the state (the callback says no) the robot-frame test
  * stays. Synthetic tracks with a fake innovation callback. */
@@ -70,7 +70,7 @@ TEST(ClassifyStaticTest, MapInnovationDecidesTheReclassification)
 }
 
 // chiSquareQuantile remembers the normal quantile of its last few probabilities (the router's
-// hot path, doc/performance.md 14): the values must not depend on what was asked before.
+// hot path, doc/results/performance.md 14): the values must not depend on what was asked before.
 // Reference values: the Wilson-Hilferty formula with the standard normal quantiles
 // z(0.99) = 2.326347874, z(0.999) = 3.090232306, z(0.9) = 1.281551566.
 TEST(ClassifyStaticTest, ChiSquareQuantileIsTheSameWhateverWasAskedBefore)

@@ -1,5 +1,5 @@
 /** Merging two live objects that move as one rigid body (classify_merge_live,
- * doc/classification.md "Merging two live objects"): the detector on synthetic samples, a car
+ * doc/results/classification.md "Merging two live objects"): the detector on synthetic samples, a car
  * deliberately split into two objects (half its features first seen 6 steps later) merged within
  * a bounded number of steps, two cars side by side at different speeds never merged, the shipped
  * clutter highway end to end, and the keys. Thresholds a few times the measured values (in the

@@ -1,5 +1,5 @@
 /** The false-merge and missed-merge rates of classify_merge_live, measured by a seeded Monte Carlo
- * of whole filter runs (doc/classification.md "Merging two live objects", "Measured rates"): the
+ * of whole filter runs (doc/results/classification.md "Merging two live objects", "Measured rates"): the
  * nominal alpha is not the false-merge rate (the cross-time covariance is not tracked), so the
  * rates are measured here over N seeded draws (world and noise seed) of a 60-step highway:
  *

@@ -1,4 +1,4 @@
-/** Merging a linked object end to end (classify_merge_linked, doc/classification.md "Merging a
+/** Merging a linked object end to end (classify_merge_linked, doc/results/classification.md "Merging a
  * linked object"): config/highway_anonymous.ini with detection-group hints, whose two cars come
  * back under new IDs after a track break, through the classifying EKF with object_model = cv.
  * With the key on, each link merges the new object into the lost one (fewer objects, the lost

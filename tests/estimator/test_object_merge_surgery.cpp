@@ -1,4 +1,4 @@
-/** Merging a linked object (classify_merge_linked, doc/classification.md "Merging a linked
+/** Merging a linked object (classify_merge_linked, doc/results/classification.md "Merging a linked
  * object"): the state surgery CDynamicKFSLAM2D::mergeObjects against an independent dense
  * computation by entry labels. The map x' = G(x) (N's features re-expressed in L's body frame,
  * written here from the pose-map formulas, not with the library's merge function) is

@@ -1,4 +1,4 @@
-/** Merging a linked object on a turning car (classify_merge_linked, doc/classification.md
+/** Merging a linked object on a turning car (classify_merge_linked, doc/results/classification.md
  * "Merging a linked object"): after a merge the cv / ctrv sighting must keep the centroid of the
  * lost object's founders as its pose's centroid. Using the centroid of all its features
  * instead shifts every prediction by (I - R(theta)) (c_all - c0), theta the object's rotation

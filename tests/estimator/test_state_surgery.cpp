@@ -1,4 +1,4 @@
-/** State surgery (feature_labels = classify, doc/classification.md): a static landmark that
+/** State surgery (feature_labels = classify, doc/results/classification.md): a static landmark that
  * turns out to be moving becomes its object's f_0 in place. Checked against an independent
  * dense bookkeeping by entry labels: every entry of the state and of the covariance after the
  * surgery equals the entry before it under the renaming lm<id> -> obj<o>.f<k>.t0, nothing else

@@ -6,7 +6,7 @@
  * each object's last pose), which are independent over runs, so the average over N runs lies
  * inside chi2(N d)/N bounds if the filter is consistent. Four such checks (ego, three objects) at
  * 99 % each: a consistent filter fails one with probability <= 4 %. (Averages over all steps of
- * a run are not independent samples: a run's errors are a correlated drift, doc/results.md;
+ * a run are not independent samples: a run's errors are a correlated drift, doc/results/results.md;
  * they are printed only.)
  *
  * Measured (100 runs, seeds 100..199): ego 3.296, objects 3.243, 3.571, 2.704, 99 % bounds

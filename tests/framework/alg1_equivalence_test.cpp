@@ -217,7 +217,7 @@ TEST(Alg1, WholeRunEquivalenceObjectModels)
 TEST(Alg1, WholeRunEquivalenceObjectModelsIllConditioned)
 {
 	// The tunnel comparison's former settings (config/compare_tunnel.ini before the inflation
-	// rule of doc/results.md 4.3): a process noise 10-100 times smaller
+	// rule of doc/results/results.md 4.3): a process noise 10-100 times smaller
 	// and a velocity prior 2 times tighter than the defaults. Q^-1 then dominates the
 	// information of the object blocks; the Schur complements of the prediction and the
 	// inversion that reports the covariance lose about kappa * eps (doc/framework.md). The

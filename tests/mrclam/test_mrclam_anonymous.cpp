@@ -1,4 +1,4 @@
-/** dynslam-mrclam --anonymous (issue 12; anonymous.h, doc/real-data.md section 6): the ID
+/** dynslam-mrclam --anonymous (issue 12; anonymous.h, doc/results/real-data.md section 6): the ID
  * permutation, the rewritten readings, and the class ground truth of every reading, on the
  * shipped excerpt and through the app class. */
 #include <dynslam/class_ground_truth.h>

@@ -1,7 +1,7 @@
 /** dynslam-realdata-report: development tool of scripts/mrclam_results.sh (not a test). Runs
  * static_all, static_landmarks_only, dynamic and dynamic_nogate (realdata_run.h) on one imported
  * MRCLAM rawlog and writes, into --out:
- *   summary.csv          one row per filter (the columns of doc/real-data.md, section 5)
+ *   summary.csv          one row per filter (the columns of doc/results/real-data.md, section 5)
  *   tracked_robots.csv   per filter and robot: sightings scored, position RMSE, NEES
  *   tracked_positions.csv every online estimate p_t = f_0 + xi_t with its truth
  *   tracked.png          the other robots' true paths and the dynamic filter's estimates

@@ -1,6 +1,6 @@
 #pragma once
 /** @file realdata_run.h
- * Evaluation of the three filters of dynslam-compare on imported MRCLAM data (doc/real-data.md,
+ * Evaluation of the three filters of dynslam-compare on imported MRCLAM data (doc/results/real-data.md,
  * section 5), shared by the end-to-end test (test_realdata) and the development tool
  * dynslam-realdata-report (scripts/mrclam_results.sh).
  *

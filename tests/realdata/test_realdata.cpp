@@ -1,6 +1,6 @@
 /** End to end on real data: the shipped MRCLAM excerpt (Dataset 6, robot 3, 121 s, 313 steps,
  * converted by the build target mrclam_excerpt with config/mrclam.ini) through the three filters
- * of dynslam-compare with config/mrclam_compare.ini (doc/real-data.md, section 5.4).
+ * of dynslam-compare with config/mrclam_compare.ini (doc/results/real-data.md, section 5.4).
  *
  * Thresholds come from the values measured on this excerpt (listed with each test and in the
  * doc) with a stated margin; they are not tuned to make the tests pass. Measured (Release,
@@ -174,7 +174,7 @@ TEST(RealDataExcerpt, CompareAppRunsTheConfig)
 // 20 subjects permuted into IDs 0..19) through dynslam-compare's static_all and
 // dynamic_classified rows, scored against robot3_excerpt_anon_gt_classes.csv, with the classify_*
 // keys of config/mrclam_compare.ini (classify_static_test = map, chosen on Dataset 6 robots 1-3;
-// doc/real-data.md 6.2). Measured 2026-11-24: static_all 0.3205 m, dynamic_classified 0.0997 m
+// doc/results/real-data.md 6.2). Measured 2026-11-24: static_all 0.3205 m, dynamic_classified 0.0997 m
 // (0.3625 m with the robot-frame test of the library defaults), the same ATE as on the labelled
 // rawlog (neither filter uses the ID values, only their identity); class precision 1, recall
 // 0.788, F1 0.881, group ARI 0.775. Issue 12's target (<= static_all and within 25 % of the
@@ -218,7 +218,7 @@ TEST(RealDataExcerpt, AnonymousImportThroughTheClassifyingFilter)
 	          << " m, dynamic_classified " << cls.metrics.ate << " m, class P/R/F1 "
 	          << cls.classes->precision << " / " << cls.classes->recall << " / " << cls.classes->f1
 	          << ", ARI " << cls.classes->ari << "\n";
-	// The shipped classify_static_test = map (doc/real-data.md 6.2) against the robot-frame
+	// The shipped classify_static_test = map (doc/results/real-data.md 6.2) against the robot-frame
 	// test on the same data: the map test must be the one that runs and it must help here.
 	// Measured 2026-11-25: map ATE 0.0997 m, recall 0.788, F1 0.881; robot 0.1296 m, 0.682,
 	// 0.811. A map test that always passes gives 0.2745 m, recall 0.347, F1 0.515 (the old

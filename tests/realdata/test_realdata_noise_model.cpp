@@ -1,5 +1,5 @@
 /** End to end on the shipped MRCLAM excerpt with the two odometry noise models of
- * [MRCLAM_Import] odo_noise_model (doc/real-data.md 5.11): the excerpt imported with
+ * [MRCLAM_Import] odo_noise_model (doc/results/real-data.md 5.11): the excerpt imported with
  * config/mrclam.ini as shipped (white) and with odo_noise_model = inflated (the taus of
  * config/mrclam.ini), both through the dynamic EKF of config/mrclam_compare.ini.
  *
@@ -79,7 +79,7 @@ TEST(RealDataNoiseModel, InflatedModelIsLessOverconfidentOnTheExcerpt)
 }
 
 // The final odometry bias reaches the metrics (metrics.csv columns odometry_bias_*_final): the
-// shipped excerpt with the bias keys of config/mrclam_compare.ini's comment (doc/real-data.md
+// shipped excerpt with the bias keys of config/mrclam_compare.ini's comment (doc/results/real-data.md
 // 5.10). Measured: b_w = 0.0090 rad/s (ATE 0.108 m); the prior std is 0.0175 rad/s.
 TEST(RealDataNoiseModel, FinalOdometryBiasIsInTheMetrics)
 {

@@ -201,7 +201,7 @@ void extendedRowsInto(const Eigen::Ref<const RowMatrixXd>& P, const Augmentation
 
 /** objectPoseAugmentations' temporaries, kept per thread (no allocation while the sizes do not
  * grow). The product operands have the plain types the expressions of before evaluated into
- * (doc/performance.md section 16; test PoseAugmentationExact). */
+ * (doc/results/performance.md section 16; test PoseAugmentationExact). */
 struct TPoseWorkspace
 {
 	RowMatrixXd rows;

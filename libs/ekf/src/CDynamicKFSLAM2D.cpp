@@ -89,7 +89,7 @@ void CDynamicKFSLAM2D::reset()
 		// (cv, ctrv) keep body-frame features of a fixed set: no joining there.
 		estimator::TClassifyParams classify = options.classify;
 		classify.join = classify.join && !options.objectCentric();
-		// A merge needs the lost object predicted across the gap (doc/classification.md
+		// A merge needs the lost object predicted across the gap (doc/results/classification.md
 		// "Merging a linked object"): object-centric models only.
 		classify.merge_linked = classify.merge_linked && options.objectCentric();
 		m_router = estimator::makeRouter(options.feature_labels, &classify);

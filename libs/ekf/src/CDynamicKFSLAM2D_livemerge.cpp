@@ -1,5 +1,5 @@
 /** CDynamicKFSLAM2D: merging two live objects that move as one rigid body (classify_merge_live,
- * doc/classification.md "Merging two live objects"). At the end of a step, every pair of objects
+ * doc/results/classification.md "Merging two live objects"). At the end of a step, every pair of objects
  * seen in it is tested (estimator::CLiveMergeDetector) on B's features expressed in A's frame,
  * f' = g_A^-1(xi_A, g_B(xi_B, f^B)) (models::mergeObjectFeatures, the map the merge applies),
  * with their covariance J P J^T from the filter's joint covariance, and, with an object-centric

@@ -84,7 +84,7 @@ TObjectIndex indexObjects(const estimator::CPaddedLayout& L, int step)
 
 /** An object's pose fit at this step: its features with an f_0 block (founders first, in
  * feature-set order; only the founder for a one-founder object), the seen ones among them, and
- * the seen features without an f_0 yet (late joiners, doc/classification.md). */
+ * the seen features without an f_0 yet (late joiners, doc/results/classification.md). */
 struct TObjectFit
 {
 	std::vector<int> f0_idx, ft_idx, seen;
@@ -415,7 +415,7 @@ void CDynamicKFSLAM2D::commit(TPending& plan)
 	const std::vector<int> keep = ext.keptStorage(drop);
 	const Eigen::Index N = Eigen::Index(keep.size());
 
-	// The new covariance is written in place (doc/performance.md, section 10): the kept old
+	// The new covariance is written in place (doc/results/performance.md, section 10): the kept old
 	// entries move towards the top-left corner (not at all if nothing old is dropped), the new
 	// ones are written after them. Only a state that outgrows the buffer's side is copied into
 	// a larger buffer.

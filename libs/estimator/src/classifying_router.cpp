@@ -1,4 +1,4 @@
-/** CClassifyingRouter (classifying_router.h, doc/classification.md). */
+/** CClassifyingRouter (classifying_router.h, doc/results/classification.md). */
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/models/measurement.h>
 

@@ -1,6 +1,6 @@
 /** CClassifyingRouter: the input IDs (validate), tracks whose readings contradict their
  * assignment (an ID reused after a break, a feature that leaves its object) and late joining
- * (doc/classification.md, "Grouping"). */
+ * (doc/results/classification.md, "Grouping"). */
 #include <dynslam/estimator/classifying_router.h>
 
 #include <Eigen/LU>

@@ -1,5 +1,5 @@
 /** CClassifyingRouter: detection-group hints and the links of new objects to lost ones after a
- * track break (doc/classification.md, "Hints and links after a track break"). */
+ * track break (doc/results/classification.md, "Hints and links after a track break"). */
 #include <dynslam/estimator/classifying_router.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 /** CClassifyingRouter: the tests of a static track (classify_static_test) and of a moving one
- * that stops (doc/classification.md). */
+ * that stops (doc/results/classification.md). */
 #include <dynslam/estimator/classifying_router.h>
 
 #include <Eigen/LU>

@@ -126,7 +126,7 @@ void TBackendOptions::validate() const
 		throw std::invalid_argument(
 		    "[" + model_section + "] feature_labels = " + model.feature_labels +
 		    ": classification of anonymous tracks is implemented in the dynamic EKF only "
-		    "(CDynamicKFSLAM2D, doc/classification.md); the framework back-ends need "
+		    "(CDynamicKFSLAM2D, doc/results/classification.md); the framework back-ends need "
 		    "feature_labels = ids");
 	model.validate();
 }

@@ -38,7 +38,7 @@ bool CMrclamApp::initialize(int argc, const char** argv)
 	    "", "base", "base name of the output files (default robotN)", false, "", "B", cmd);
 	TCLAP::SwitchArg argAnon("", "anonymous",
 	                         "anonymous IDs: robots and landmarks permuted into one range 0..19 "
-	                         "(issue 12, doc/real-data.md section 6)",
+	                         "(issue 12, doc/results/real-data.md section 6)",
 	                         cmd);
 	TCLAP::ValueArg<unsigned> argSeed("", "seed", "with --anonymous: the permutation's seed", false,
 	                                  1, "S", cmd);

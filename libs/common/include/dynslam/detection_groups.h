@@ -12,7 +12,7 @@
  * landmarkID: its ID there (a check; -1 allowed); group: the detection group (box ID), >= 0.
  * Empty lines and lines starting with '#' are ignored; readings not listed have no hint.
  * Programs that do not know the label ignore the comment (MRPT's CRangeBearingKFSLAM2D does).
- * The hint is evidence for grouping only (doc/classification.md, "Hints"). */
+ * The hint is evidence for grouping only (doc/results/classification.md, "Hints"). */
 #include <dynslam/estimator/readings.h>
 #include <mrpt/obs/CObservationComment.h>
 #include <mrpt/obs/CSensoryFrame.h>

@@ -86,7 +86,7 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * the EKF update as a rank-2k correction using only the non-zero columns of H
 	 * (ekf::sparseUpdate, O(n^2 k)); equal to MRPT's kfEKFNaive within rounding (tested), and
 	 * numerically stable where MRPT's dense P <- (I - K H) P is not (it lost positive
-	 * definiteness in 3 of 25 highway runs at noise level w3v1, doc/results.md).
+	 * definiteness in 3 of 25 highway runs at noise level w3v1, doc/results/results.md).
 	 * static_update = mrpt: CMrptUpdateEngine, MRPT's own update (KF_options.method) run by
 	 * runOneKalmanIteration with its prediction skipped (doc/architecture.md). */
 	bool sparse_static_update = true;
@@ -135,12 +135,12 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * estimate (its mean at the end of the step in which it was initialized); the
 	 * innovation still uses the current estimates. Object steps are unchanged. The
 	 * linearized system then keeps the 3-dof unobservable subspace (global translation
-	 * and rotation) of the true one. See doc/results.md. */
+	 * and rotation) of the true one. See doc/results/results.md. */
 	bool first_estimate_jacobians = false;
 	/** Online odometry bias estimation (issue 17): odometry_bias = none | rate | rate_scale
 	 * and its keys, dynslam/odometry_bias_options.h. Only the dynamic EKF supports it. */
 	TOdometryBiasOptions odometry_bias;
-	/** feature_labels (issue 12, doc/classification.md): ids (default: the ID ranges of
+	/** feature_labels (issue 12, doc/results/classification.md): ids (default: the ID ranges of
 	 * dynslam/landmark_ids.h say what each reading is) or classify (every ID >= 0 is an
 	 * anonymous track, classified online by estimator::CClassifyingRouter with the
 	 * classify_* keys; EKF only). */

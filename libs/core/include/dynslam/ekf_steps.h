@@ -70,7 +70,7 @@ ObjectPoseLinearization linearizeObjectPose(const Eigen::Ref<const Eigen::Vector
                                             const std::vector<int>& seen,
                                             const Eigen::Matrix2d& Sigma_xi, int centroidCols = 0);
 
-/** Late joining (doc/classification.md): `pose` (a linearizeObjectPose result whose first
+/** Late joining (doc/results/classification.md): `pose` (a linearizeObjectPose result whose first
  * 2 * nc entries of idx are the object's founders' f0, nc = centroid columns) extended by the
  * time-0 positions of features that join the object at this step, f0_j = (g^o)^-1(xi, ft_j):
  *   3-dof: f0_j = R(dtheta)^T (ft_j - c0 - (dx, dy)) + c0, c0 the founders' centroid;

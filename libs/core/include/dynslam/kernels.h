@@ -1,7 +1,7 @@
 #pragma once
 /** @file kernels.h
  * The hot numeric kernels of the EKF, compiled twice and chosen at run time
- * (doc/performance.md, section 10): once with the build's baseline flags ("sse2": x86-64's
+ * (doc/results/performance.md, section 10): once with the build's baseline flags ("sse2": x86-64's
  * SSE2 in the default, portable build) and, on x86-64, once with -mavx2 -mfma ("avx2": Eigen's
  * AVX2/FMA products). The default binary uses the AVX2 variant if the CPU it runs on has AVX2
  * and FMA, and stays runnable on any x86-64.

@@ -1,6 +1,6 @@
 #pragma once
 /** @file square_buffer.h
- * A square row-major matrix in a buffer that keeps its capacity, pure Eigen (doc/performance.md,
+ * A square row-major matrix in a buffer that keeps its capacity, pure Eigen (doc/results/performance.md,
  * sections 9 and 10). The filter's covariance changes size on most steps of a run (a new
  * landmark, a dropped pose). The buffer is a side x side row-major array (side >= n, the outer
  * stride of the view, fixed until the next reallocation), so the n x n matrix can grow and

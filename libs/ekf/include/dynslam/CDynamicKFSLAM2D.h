@@ -203,14 +203,14 @@ public:
 	std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> getOdometryBias() const;
 
 protected:
-	/** State surgery (feature_labels = classify, doc/classification.md): each static landmark
+	/** State surgery (feature_labels = classify, doc/results/classification.md): each static landmark
 	 * c.id becomes, in place, f_0 of feature c.feature of object c.object; the mean and the
 	 * covariance (cross-covariances included) are unchanged, only the block's label changes. The
 	 * step calls it with the router's TRoutedStep::converted right after routing (the router
 	 * has registered the objects). Throws std::logic_error if an ID is not a static landmark in
 	 * the state. Counted in TStepReport::converted_static. */
 	void convertStaticLandmarks(const std::vector<estimator::TRoutedStep::TConversion>& c);
-	/** Merge (classify_merge_linked, doc/classification.md "Merging a linked object"): the
+	/** Merge (classify_merge_linked, doc/results/classification.md "Merging a linked object"): the
 	 * features of object `from` are re-expressed in the body frame of object `into`
 	 * (models/object_merge.h; x' = g(x), P' = J P J^T), from's poses, velocity and time-t
 	 * features leave the state, and the router routes from's tracks as into's. False (nothing
@@ -350,7 +350,7 @@ private:
 	std::map<int32_t, int> m_passiveStatic;  ///< passive landmark ID -> its block's step
 	int m_nextLevel = 0;
 
-	/** Per-step scratch that keeps its capacity between steps (doc/performance.md, section 16,
+	/** Per-step scratch that keeps its capacity between steps (doc/results/performance.md, section 16,
 	 * sixth round): the extended layout, the plan, commit's drop flags and mean. */
 	estimator::CPaddedLayout m_ext;
 	TPending m_plan;
@@ -385,7 +385,7 @@ private:
 	int m_step = -1;
 	TStepReport m_report;
 	bool m_failed = false;  ///< a step threw midway: refuse to go on until reset()
-	// The covariance (doc/performance.md, section 9): the filter works on m_cov, a buffer that
+	// The covariance (doc/results/performance.md, section 9): the filter works on m_cov, a buffer that
 	// keeps its capacity; MRPT's m_pkk is a copy brought up to date by syncPkk() when it is read
 	// (fullCov(), MRPT's update engine).
 	ekf::CSquareBuffer m_cov;

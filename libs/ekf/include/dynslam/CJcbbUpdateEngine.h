@@ -1,7 +1,7 @@
 #pragma once
 /** @file CJcbbUpdateEngine.h
  * Joint compatibility of a step's static readings (outlier_method = jcbb; issue 17,
- * doc/real-data.md 5.9): a single bad reading can neither pass nor block the set.
+ * doc/results/real-data.md 5.9): a single bad reading can neither pass nor block the set.
  *
  * The readings carry known IDs, so the candidate prediction of each reading is the predicted
  * reading of its own ID's landmark: the predictions are the step's own landmarks, one per

@@ -10,7 +10,7 @@
  * never pulls slam_services.cpp.o (nor CJcbbUpdateEngine.cpp.o, mrpt_static_association.cpp.o)
  * out of the archive. dynslam-montecarlo does so (apps/dynslam-montecarlo/slam_services_lazy.cpp):
  * half of its start-up was the dynamic linking of libmrpt-slam's dependency chain (vision,
- * OpenCV, FFmpeg, Qt; doc/performance.md section 14), which it now loads on first use. */
+ * OpenCV, FFmpeg, Qt; doc/results/performance.md section 14), which it now loads on first use. */
 #include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/estimator/update_engine.h>
 

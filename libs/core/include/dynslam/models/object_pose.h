@@ -40,7 +40,7 @@ Eigen::Matrix2Xd objectPoseMap(const Eigen::Vector3d& xi, const Eigen::Matrix2Xd
  * @param Gamma2 out: d xi / d vec(ft) (3 x 2m).
  * @param centroidCols c0 is the centroid of the first centroidCols columns of f0 (0: all). An
  *        object's founders (its features at time 0) define c0; features that joined later
- *        (doc/classification.md, "Late joining") follow them and leave c0 unchanged.
+ *        (doc/results/classification.md, "Late joining") follow them and leave c0 unchanged.
  * @throws std::invalid_argument on inconsistent sizes or indices;
  * @throws std::domain_error when the rotation is undetermined: fewer than 2 seen features, or
  *         the seen features all coincide (at time 0 or at time t). Collinear features are

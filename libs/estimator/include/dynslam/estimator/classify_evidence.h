@@ -1,6 +1,6 @@
 #pragma once
 /** @file classify_evidence.h
- * The statistics of the classifying router (doc/classification.md), pure functions:
+ * The statistics of the classifying router (doc/results/classification.md), pure functions:
  * a reading as a point in the robot frame, a static point carried through the odometry
  * increment, the log-likelihood ratio of one reading (moving vs static), the chi-square
  * quantile, and the rigid-distance test of two tracks. */

@@ -1,6 +1,6 @@
 #pragma once
 /** @file classifying_router.h
- * feature_labels = classify (issue 12, doc/classification.md): every non-negative reading ID
+ * feature_labels = classify (issue 12, doc/results/classification.md): every non-negative reading ID
  * is an anonymous persistent track; the router decides static vs moving online and groups the
  * moving tracks into rigid objects, with no ID oracle.
  *
@@ -67,7 +67,7 @@ struct TClassifyParams
 	 * with every other seen feature of its object) restarts as a new candidate under a fresh
 	 * track ID (its ID was reused by another point; TRoutedStep::restarted; 0: never, the
 	 * default: on real data it competes with the reclassification of slow movers held static,
-	 * doc/classification.md). */
+	 * doc/results/classification.md). */
 	int reuse_gap = 0;
 	/** classify_split_count: consecutive readings of a moving track inconsistent with every
 	 * other seen feature of its object that split it off: it restarts as a new candidate
@@ -84,7 +84,7 @@ struct TClassifyParams
 	/** classify_link: which new objects may continue (identity, TRoutedReading::identity) an
 	 * object lost after a track break: none (Off), only objects of the same hint (Hints, the
 	 * default: with use_hints off no link is made), or also without hints, the nearest in the
-	 * gate (All). See linkNewObjects and doc/classification.md. */
+	 * gate (All). See linkNewObjects and doc/results/classification.md. */
 	enum class Link : uint8_t
 	{
 		Off,
@@ -98,11 +98,11 @@ struct TClassifyParams
 	/** classify_merge_linked: a link also merges the new object into the lost one in the
 	 * estimator (TRoutedStep::merges; the filter calls mergeObjects). The EKF sets it only with
 	 * an object-centric model (cv, ctrv), which predicts the lost object across the gap
-	 * (doc/classification.md "Merging a linked object"); false (default): identities only. */
+	 * (doc/results/classification.md "Merging a linked object"); false (default): identities only. */
 	bool merge_linked = false;
 	/** classify_merge_live: two live objects that move as one rigid body (CLiveMergeDetector,
 	 * live_merge.h) are merged in the estimator (the filter calls mergeObjects; off by default:
-	 * doc/classification.md "Merging two live objects"). merge_live_window: increments per
+	 * doc/results/classification.md "Merging two live objects"). merge_live_window: increments per
 	 * decision, >= 1, or 0 (default): 5 with cv / ctrv, 20 with the paper's model. */
 	bool merge_live = false;
 	int merge_live_window = 0;

@@ -29,7 +29,7 @@ struct TCvParams
 	 * column on the ego heading and P_thth the ego heading variance before the object update:
 	 * an object's information on the ego shrinks when the ego heading is poorly known (at the
 	 * Table I levels with large odometry noise that variance is mostly the unobservable prior
-	 * heading, which the object readings otherwise leak into the estimate; doc/results.md
+	 * heading, which the object readings otherwise leak into the estimate; doc/results/results.md
 	 * 4.3.2). The gate is unchanged. 0 = off (default). EKF only. */
 	double heading_inflation = 0.0;
 	/** Throws std::invalid_argument naming the parameter. */

@@ -1,7 +1,7 @@
 #pragma once
 /** @file live_merge.h
  * The test that two live objects A and B (both in the filter, both seen) move as one rigid body
- * (classify_merge_live, doc/classification.md "Merging two live objects"). The filter hands it,
+ * (classify_merge_live, doc/results/classification.md "Merging two live objects"). The filter hands it,
  * at every step at which both are seen, y = B's features expressed in A's frame (the merge's own
  * map, models::mergeObjectFeatures: constant when they are one body) with its covariance S from
  * the filter's joint covariance, and (object-centric models) the chi-square of the velocity
@@ -89,7 +89,7 @@ private:
 
 /** The detector of classify_merge_live (null when it is off). Window 0 (automatic): 5 with an
  * object-centric model, 20 with the paper's, whose pose noise Sigma_xi dominates the statistic's
- * covariance (doc/classification.md "Merging two live objects"). */
+ * covariance (doc/results/classification.md "Merging two live objects"). */
 std::unique_ptr<CLiveMergeDetector> makeLiveMergeDetector(const TClassifyParams& c,
                                                           bool objectCentric);
 }  // namespace dynslam::estimator

@@ -67,7 +67,7 @@ struct TRoutedStep
 	/** Tracks decided moving that joined an object created in an earlier step (late joining:
 	 * the filter gives them an f_0 from the object's pose). */
 	size_t joined = 0;
-	/** Hints (classify_use_hints, doc/classification.md "Hints"): readings whose hint differs
+	/** Hints (classify_use_hints, doc/results/classification.md "Hints"): readings whose hint differs
 	 * from their track's first hint (the track keeps the first; the reading's is not used), and
 	 * objects whose readings of this step carry two or more different hints (the grouping,
 	 * decided by motion, is kept). */
@@ -77,7 +77,7 @@ struct TRoutedStep
 	size_t linked = 0, link_ambiguous = 0;
 	/** classify_merge_linked: links whose new object `from` (first seen in this step) the filter
 	 * should merge into the lost object `into` (IMeasurementRouter::mergeObjects, after the
-	 * step's commit; doc/classification.md "Merging a linked object"). */
+	 * step's commit; doc/results/classification.md "Merging a linked object"). */
 	struct TMerge
 	{
 		int32_t from = -1, into = -1;
@@ -89,7 +89,7 @@ struct TRoutedStep
 	std::vector<int32_t> reclassified;
 	/** Static landmarks decided moving in this step with classify_reclassify = surgery: the
 	 * filter turns each, in place, into f_0 of feature `feature` of object `object` (its mean
-	 * and covariance, cross-covariances included, unchanged; doc/classification.md); the
+	 * and covariance, cross-covariances included, unchanged; doc/results/classification.md); the
 	 * object is registered with its time 0 before this step, so their readings of this step
 	 * are ObjectTimeT. */
 	struct TConversion

@@ -1,7 +1,7 @@
 #pragma once
 /** @file unknown_id_association.h
  * Readings with ID -1 (MRPT's "association unknown") under feature_labels = classify (issue 12,
- * item 4; doc/classification.md, "Unknown IDs"). Before the classifying router classifies a
+ * item 4; doc/results/classification.md, "Unknown IDs"). Before the classifying router classifies a
  * step, every -1 reading gets a track ID:
  *  1. static: associated with the static and candidate tracks by a StaticAssociationFn (the EKF
  *     installs MRPT's mrpt::slam::data_association_full_covariance with the classify_assoc_*

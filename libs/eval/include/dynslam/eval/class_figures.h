@@ -1,7 +1,7 @@
 #pragma once
 /** @file class_figures.h
  * Figures of online static / moving classification (feature_labels = classify, issue 12;
- * doc/classification.md "Figures"), headless PNG through plot_canvas.h:
+ * doc/results/classification.md "Figures"), headless PNG through plot_canvas.h:
  *  - drawClassMap: the final map coloured by the decided class: the estimated ego path, every
  *    static landmark of the final map (blue square; orange if its readings are truly moving or
  *    clutter: a wrong static landmark), the tracks decided moving (estimated object tracks, red,

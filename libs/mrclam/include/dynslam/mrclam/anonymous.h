@@ -1,6 +1,6 @@
 #pragma once
 /** @file anonymous.h
- * `dynslam-mrclam --anonymous` (issue 12, doc/real-data.md section 6): the readings carry IDs
+ * `dynslam-mrclam --anonymous` (issue 12, doc/results/real-data.md section 6): the readings carry IDs
  * that say nothing about what was measured, and the class ground truth of every reading.
  *
  * Anonymous IDs: the 20 MRCLAM subjects (robots 1..5, landmarks 6..20) are mapped by a seeded

@@ -1,7 +1,7 @@
 #pragma once
 /** @file import.h
  * Conversion of one MRCLAM robot's data into filter steps and ground truth (pure, no MRPT;
- * the rawlog is written by rawlog_writer.h). Rules (also in doc/real-data.md):
+ * the rawlog is written by rawlog_writer.h). Rules (also in doc/results/real-data.md):
  *
  * - Time window: from the first measurement that the ground truth covers to the last one;
  *   with clip_to_ground_truth, the window is limited to where the Vicon data of all five
@@ -40,7 +40,7 @@
 namespace dynslam::mrclam
 {
 /** Defaults: the Dataset 6 values of config/mrclam.ini (estimated with --estimate-noise,
- * doc/real-data.md); a test checks that both agree. */
+ * doc/results/real-data.md); a test checks that both agree. */
 struct TImportOptions
 {
 	TImportOptions();

@@ -1,7 +1,7 @@
 #pragma once
 /** @file noise_estimation.h
  * Noise parameters of the MRCLAM data estimated from its Vicon ground truth (issue 7, item 3).
- * Pure C++/Eigen. Method (also in doc/real-data.md):
+ * Pure C++/Eigen. Method (also in doc/results/real-data.md):
  *
  * Measurements: for every kept measurement (import.h rules) at its own time t, the ego pose
  * p(t) and the subject's position q(t) (landmark: surveyed position; robot: Vicon, interpolated)
