@@ -109,6 +109,24 @@ TEST(DynamicOptions, DumpLoadsBackIdentically)
 	EXPECT_EQ(o2.measurement_model, f.options.measurement_model);
 }
 
+TEST(DynamicOptions, CompressedGoesWithTheOutlierMethodsEngine)
+{
+	// static_update = compressed and outlier_method = huber: the robust engine on the compressed
+	// state (the lifecycle is its own seam; it used to be dropped silently in favour of huber).
+	const std::string ini = replaced("keep_last_poses",
+	                                 "keep_last_poses = 2\nstatic_update = compressed\n"
+	                                 "outlier_method = huber");
+	mrpt::config::CConfigFileMemory c(ini);
+	CDynamicKFSLAM2D f;
+	f.loadOptions(c);
+	EXPECT_EQ(f.updateEngine().name(), "huber");
+	EXPECT_EQ(f.stateLifecycle().name(), "compressed");
+	CDynamicKFSLAM2D g;  // the default: the full state
+	mrpt::config::CConfigFileMemory c2(kGood);
+	g.loadOptions(c2);
+	EXPECT_EQ(g.stateLifecycle().name(), "full");
+}
+
 TEST(DynamicOptions, CompressedEngineKnobs)
 {
 	// static_update = compressed: compressed_passive_after and compressed_batch reach the engine
@@ -119,8 +137,9 @@ TEST(DynamicOptions, CompressedEngineKnobs)
 	mrpt::config::CConfigFileMemory c(ini);
 	CDynamicKFSLAM2D f;
 	f.loadOptions(c);
-	const auto* e = dynamic_cast<const estimator::CCompressedUpdateEngine*>(&f.updateEngine());
+	const auto* e = dynamic_cast<const estimator::CCompressedLifecycle*>(&f.stateLifecycle());
 	ASSERT_NE(e, nullptr);
+	EXPECT_EQ(f.updateEngine().name(), "sparse");
 	EXPECT_EQ(e->passiveAfter(), 5);
 	EXPECT_EQ(e->batch(), 2);
 	// the dump loads back

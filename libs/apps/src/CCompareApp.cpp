@@ -5,6 +5,7 @@
 #include <dynslam/apps/run_outputs.h>
 #include <dynslam/class_ground_truth.h>
 #include <dynslam/config_utils.h>
+#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
@@ -239,7 +240,8 @@ void CCompareApp::run()
 		MRPT_LOG_INFO_FMT("filter %zu/%zu: %s on %zu steps", i + 1, filters.size(), f.c_str(), n);
 		// feature_labels = classify: the decision about every reading, for the class metrics.
 		const auto* ekf = dynamic_cast<const CDynamicKFSLAM2D*>(backend.get());
-		const bool classifies = ekf && ekf->options.feature_labels == "classify";
+		const bool classifies =
+		    ekf && estimator::routers().caps(ekf->options.feature_labels).classifies;
 		TClassDecisions decisions;
 		TFilterRun r =
 		    runFilter(*backend, d.rawlog.actions, d.rawlog.frames,

@@ -2,6 +2,7 @@
 #include <dynslam/apps/app_main.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/slam_services.h>
+#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/TBackendOptions.h>
 #include <dynslam/framework/backend_factory.h>
 #include <mrpt/core/exceptions.h>
@@ -23,14 +24,15 @@ namespace
 void overrideObjectModel(CDynamicKFSLAM2D& f, const mrpt::config::CConfigFileBase& ini,
                          const std::string& model)
 {
-	if ((model == "cv" || model == "ctrv") && !ini.keyExists("DynamicKFSLAM", "cv_dt"))
+	const estimator::TObjectMotionCaps& caps = estimator::objectMotionModels().caps(model);
+	if (caps.object_centric && !ini.keyExists("DynamicKFSLAM", "cv_dt"))
 		throw std::invalid_argument("[DynamicKFSLAM] cv_dt: required by the filter dynamic_" +
 		                            model + " (seconds per step)");
-	if (model == "paper_smoothing" && !ini.keyExists("DynamicKFSLAM", "Sigma_s"))
+	if (caps.smoothing && !ini.keyExists("DynamicKFSLAM", "Sigma_s"))
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] Sigma_s: required by the filter dynamic_smoothing");
 	f.options.object_model = model;
-	f.options.smoothing = model == "paper_smoothing";
+	f.options.smoothing = caps.smoothing;
 	if (f.options.smoothing) f.options.keep_last_poses = std::max(3, f.options.keep_last_poses);
 	f.options.validate();
 	f.reset();

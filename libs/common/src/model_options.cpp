@@ -1,6 +1,7 @@
 /** TModelOptions: reading, validation and dump of section [DynamicKFSLAM]. */
 #include <dynslam/config_utils.h>
 #include <dynslam/model_keys.h>
+#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/model_options.h>
 
 #include <ostream>
@@ -18,7 +19,7 @@ namespace
 void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
-	const std::vector<std::string> objectModels{"paper", "paper_smoothing", "cv", "ctrv"};
+	const std::vector<std::string> objectModels = estimator::objectMotionModels().names();
 	o.object_model = objectModels[size_t(readChoice(c, s, "object_model", objectModels, 0))];
 	if (o.object_model == "paper_smoothing")
 	{
@@ -154,6 +155,12 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	}
 }
 
+bool TModelOptions::objectCentric() const
+{
+	const auto& models = estimator::objectMotionModels();
+	return models.has(object_model) && models.caps(object_model).object_centric;
+}
+
 void TModelOptions::validate() const
 {
 	if (keep_last_poses < 1)
@@ -163,9 +170,13 @@ void TModelOptions::validate() const
 		throw std::invalid_argument(
 		    "keep_last_poses = " + std::to_string(keep_last_poses) +
 		    ": smoothing needs the last 3 object poses (keep_last_poses >= 3)");
-	if (object_model != "paper" && object_model != "paper_smoothing" && !objectCentric())
-		throw std::invalid_argument("object_model = " + object_model +
-		                            ": must be paper, paper_smoothing, cv or ctrv");
+	if (!estimator::objectMotionModels().has(object_model))
+	{
+		std::string known;
+		for (const auto& n : estimator::objectMotionModels().names())
+			known += (known.empty() ? "" : ", ") + n;
+		throw std::invalid_argument("object_model = " + object_model + ": must be one of " + known);
+	}
 	if (objectCentric() && smoothing)
 		throw std::invalid_argument("object_model = " + object_model +
 		                            ": the paper's smoothing (smoothing = true) "

@@ -6,12 +6,12 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/CMrptUpdateEngine.h>
 #include <dynslam/ekf_odometry_bias.h>
+#include <dynslam/ekf_registries.h>
 #include <dynslam/ekf_steps.h>
 #include <dynslam/estimator/classifying_router.h>
-#include <dynslam/estimator/constant_turn_rate.h>
-#include <dynslam/estimator/constant_velocity.h>
-#include <dynslam/estimator/robust_update_engines.h>
+#include <dynslam/estimator/state_helper.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/seam_options.h>
 #include <dynslam/slam_services.h>
 #include <mrpt/system/string_utils.h>
 
@@ -67,11 +67,61 @@ void CDynamicKFSLAM2D::setUpdateEngine(std::unique_ptr<estimator::IUpdateEngine>
 	m_userEngine = true;
 }
 
+void CDynamicKFSLAM2D::setStateLifecycle(std::unique_ptr<estimator::IStateLifecycle> l)
+{
+	if (!l) throw std::invalid_argument("CDynamicKFSLAM2D::setStateLifecycle: null");
+	m_lifecycle = std::move(l);
+	m_userLifecycle = true;
+}
+
 void CDynamicKFSLAM2D::setObjectMotionModel(std::unique_ptr<estimator::IObjectMotionModel> m)
 {
 	if (!m) throw std::invalid_argument("CDynamicKFSLAM2D::setObjectMotionModel: null");
 	m_motion = std::move(m);
 	m_userMotion = true;
+}
+
+void CDynamicKFSLAM2D::makeSeams()
+{
+	// The seams: the options' implementations (their registries, seam_options.h) unless another
+	// one was set. The motion model first: its capabilities shape the router's.
+	if (!m_userMotion)
+		m_motion =
+		    estimator::objectMotionModels().make(options.object_model, objectMotionParams(options));
+	m_motion->resetObjectState();  // per-object state of the rule (a user model too)
+	const bool objectCentric = m_motion->objectCentric();
+	if (!m_userRouter)
+	{
+		// Late joining gives a joiner an f_0 from the paper model's pose; object-centric models
+		// (cv, ctrv) keep body-frame features of a fixed set: no joining there.
+		estimator::TClassifyParams classify = options.classify;
+		classify.join = classify.join && !objectCentric;
+		// A merge needs the lost object predicted across the gap (doc/results/classification.md
+		// "Merging a linked object"): object-centric models only.
+		classify.merge_linked = classify.merge_linked && objectCentric;
+		m_router = estimator::routers().make(options.feature_labels, {&classify});
+		// ID -1 readings associated with MRPT's data association (as CRangeBearingKFSLAM2D).
+		m_router->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
+	}
+	m_liveMerge.reset();  // classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp)
+	if (dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
+		m_liveMerge = estimator::makeLiveMergeDetector(options.classify, objectCentric);
+	m_router->reset();
+	if (!m_userEngine && !options.sparse_static_update)
+		m_engine = std::make_unique<CMrptUpdateEngine>(*this);  // static_update = mrpt
+	else if (!m_userEngine)
+		m_engine = ekfUpdateEngines().make(options.outlier_method, updateEngineParams(options));
+	// The gate threshold goes to the engine unless the method has none (outlier_method = none).
+	m_engineGated = ekfUpdateEngines().caps(options.outlier_method).gate;
+	if (!m_userLifecycle)
+		m_lifecycle = estimator::stateLifecycles().make(stateLifecycleName(options),
+		                                                lifecycleParams(options));
+	if (m_lifecycle->rewritesStorage() && !m_engine->updatesGivenState())
+		throw std::invalid_argument("CDynamicKFSLAM2D: the state lifecycle " + m_lifecycle->name() +
+		                            " cannot be combined with the update engine " +
+		                            m_engine->name() +
+		                            " (it works on the filter's own storage, not on the state "
+		                            "it is given)");
 }
 
 void CDynamicKFSLAM2D::reset()
@@ -82,62 +132,11 @@ void CDynamicKFSLAM2D::reset()
 	// prior_gauge = anchor: x_0 is the gauge; Sigma_0 enters only the reported covariances.
 	cov() = options.prior_gauge_anchor ? Eigen::Matrix3d::Zero().eval() : options.Sigma_0;
 	m_gaugeOrigin = options.initial_pose.head<2>();
-	// The seams: the options' implementations unless another one was set.
-	if (!m_userRouter)
-	{
-		// Late joining gives a joiner an f_0 from the paper model's pose; object-centric models
-		// (cv, ctrv) keep body-frame features of a fixed set: no joining there.
-		estimator::TClassifyParams classify = options.classify;
-		classify.join = classify.join && !options.objectCentric();
-		// A merge needs the lost object predicted across the gap (doc/results/classification.md
-		// "Merging a linked object"): object-centric models only.
-		classify.merge_linked = classify.merge_linked && options.objectCentric();
-		m_router = estimator::makeRouter(options.feature_labels, &classify);
-		// ID -1 readings associated with MRPT's data association (as CRangeBearingKFSLAM2D).
-		m_router->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
-	}
-	m_liveMerge.reset();  // classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp)
-	if (dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
-		m_liveMerge = estimator::makeLiveMergeDetector(options.classify, options.objectCentric());
-	m_router->reset();
-	if (!m_userEngine)
-	{
-		const auto& m = options.outlier_method;
-		if (m == "huber" || m == "cauchy")
-			m_engine = std::make_unique<estimator::CRobustUpdateEngine>(
-			    m == "huber" ? estimator::RobustKernel::Huber : estimator::RobustKernel::Cauchy,
-			    options.robust_kernel_c, options.robust_iterations);
-		else if (m == "gate_recovery")
-			m_engine = std::make_unique<estimator::CGateRecoveryUpdateEngine>(
-			    estimator::TGateRecoveryParams{options.recovery_count, options.recovery_inflation,
-			                                   options.recovery_min_updates});
-		else if (m == "jcbb")
-			m_engine = slamJcbbEngine(options.innovation_gate);
-		else if (options.compressed_static_update)
-			m_engine = std::make_unique<estimator::CCompressedUpdateEngine>(
-			    options.compressed_passive_after, options.compressed_batch);
-		else if (options.sparse_static_update)
-			m_engine = std::make_unique<estimator::CSparseUpdateEngine>();
-		else
-			m_engine = std::make_unique<CMrptUpdateEngine>(*this);
-	}
-	if (!m_userMotion && options.objectCentric())
-	{
-		estimator::TCvParams cv = options.cv;
-		cv.gate = estimator::gateThreshold2Dof(options.cv_gate);
-		if (options.object_model == "ctrv")
-			m_motion = std::make_unique<estimator::CConstantTurnRate>(cv);
-		else
-			m_motion = std::make_unique<estimator::CConstantVelocity>(cv);
-	}
-	else if (!m_userMotion)
-		m_motion = estimator::makeObjectMotionModel(options.smoothing, options.Sigma_s);
-	m_motion->resetObjectState();  // per-object state of the rule (a user model too)
+	makeSeams();
 	m_drop = estimator::CDropPolicy(options.dropOptions());
+	m_lifecycle->reset();
+	m_whole.valid = false;
 	m_layout.clear();
-	m_passive.clear();
-	m_passiveStatic.clear();
-	m_nextLevel = 0;
 	if (options.odometry_bias.enabled()) addOdometryBiasBlock();
 	onLayoutChanged();
 	m_droppedStatic.clear();
@@ -206,6 +205,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 	++m_step;
 	m_report = TStepReport();
 	m_report.step = m_step;
+	m_whole.valid = false;
 	try
 	{
 		expandIfNeeded();  // compressed EKF only
@@ -246,7 +246,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		plan.remove.clear();
 		planFeatures(plan);     // Alg. 3
 		planObjectPoses(plan);  // Alg. 4
-		if (m_motion->name() != "none")
+		if (m_motion->actsOnNewPoses())
 		{
 			commit(plan);
 			applyObjectMotion();         // Alg. 6
@@ -302,9 +302,8 @@ estimator::TUpdateContext CDynamicKFSLAM2D::updateContext() const
 	ctx.model = options.measurement_model;
 	ctx.R = options.Sigma_v;
 	ctx.sensor_pose = m_in.sensor_pose;
-	ctx.gate_threshold = options.outlier_method == "none"
-	                         ? std::numeric_limits<double>::infinity()
-	                         : estimator::gateThreshold2Dof(options.innovation_gate);
+	ctx.gate_threshold = m_engineGated ? estimator::gateThreshold2Dof(options.innovation_gate)
+	                                   : std::numeric_limits<double>::infinity();
 	if (options.first_estimate_jacobians)
 		ctx.jacobians = [this](int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& Jx,
 		                       Eigen::Matrix2d& Jf) { firstEstimateJacobians(id, ego, Jx, Jf); };
@@ -318,7 +317,8 @@ void CDynamicKFSLAM2D::staticUpdate()
 		obs.push_back({m.reading.id, m.reading.z, m_layout.first(m_staticBlock.at(m.reading.id))});
 	auto x = m_xkk.asEigen();
 	auto P = cov();
-	const estimator::TUpdateResult r = m_engine->update(x, P, obs, updateContext());
+	const estimator::TUpdateResult r =
+	    estimator::state::update(*m_engine, x, P, obs, updateContext());
 	m_report.static_updates = r.updates;
 	m_report.gated_out = r.gated_out;
 	m_report.nis_static = r.nis;
@@ -344,7 +344,7 @@ void CDynamicKFSLAM2D::recordFirstEstimates()
 		m_firstEstimate.emplace(id, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
 	}
 	for (auto it = m_firstEstimate.begin(); it != m_firstEstimate.end();)
-		it = inState.count(it->first) || m_passiveStatic.count(it->first)
+		it = inState.count(it->first) || m_lifecycle->isPassive(it->first)
 		         ? std::next(it)
 		         : m_firstEstimate.erase(it);
 }

@@ -1,84 +1,70 @@
-/** CDynamicKFSLAM2D: the compressed EKF (static_update = compressed; the math in
- * dynslam/estimator/compressed_state.h). The step runs unchanged on the working state (ego,
- * objects, static landmarks seen recently, and the compressed entries); static landmarks unseen
- * for a while are taken out at the end of a step, and everything is brought up to date (the
- * global update) when one of them is read again, is due to be dropped, or a getter of the whole
- * state is called. */
+/** CDynamicKFSLAM2D: the state's lifecycle (estimator::IStateLifecycle; the compressed EKF of
+ * static_update = compressed is estimator::CCompressedLifecycle, its math
+ * dynslam/estimator/compressed_state.h). The step runs unchanged on the working state; the
+ * lifecycle may take entries out of it at the end of a step and needs them back (the global
+ * update) when one is read again or is due to be dropped. Getters of the whole state read an
+ * expanded copy and leave the working state as it is. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 
 namespace dynslam
 {
-using estimator::BlockKind;
-
-namespace
+void CDynamicKFSLAM2D::writeWorkingState(const Eigen::VectorXd& x, const ekf::RowMatrixXd& P)
 {
-void readState(const CDynamicKFSLAM2D::KFVector& xs, const ekf::CSquareBuffer& Ps,
-               Eigen::VectorXd& x, ekf::RowMatrixXd& P)
-{
-	x = xs.asEigen();
-	P = Ps.view();
-}
-}  // namespace
-
-void CDynamicKFSLAM2D::globalUpdate()
-{
-	if (m_passive.empty()) return;
-	Eigen::VectorXd x;
-	ekf::RowMatrixXd P;
-	readState(m_xkk, m_cov, x, P);
-	estimator::expandState(x, P, m_layout, m_passive);
 	m_xkk.resize(size_t(x.size()));
 	m_xkk.asEigen() = x;
 	setCov(P);
-	m_passiveStatic.clear();
 	onLayoutChanged();
 }
 
-void CDynamicKFSLAM2D::ensureExpanded() const
+void CDynamicKFSLAM2D::globalUpdate()
 {
-	// The global update changes how the estimate is stored, not the estimate: a getter may do it.
-	if (!m_passive.empty()) const_cast<CDynamicKFSLAM2D*>(this)->globalUpdate();
+	if (!m_lifecycle->holdsPassive()) return;
+	Eigen::VectorXd x = m_xkk.asEigen();
+	ekf::RowMatrixXd P = m_cov.view();
+	m_lifecycle->expand(x, P, m_layout);
+	writeWorkingState(x, P);
 }
 
 void CDynamicKFSLAM2D::expandIfNeeded()
 {
-	if (m_passive.empty()) return;
-	bool need = false;
-	for (const auto& r : m_in.readings) need = need || m_passiveStatic.count(r.id) != 0;
-	for (const auto& [id, step] : m_passiveStatic)
-		need = need || m_drop.staticDue(id, m_step, step);
-	if (need) globalUpdate();
+	if (!m_lifecycle->holdsPassive()) return;
+	std::vector<int32_t>& ids = m_idScratch;
+	ids.clear();
+	for (const auto& r : m_in.readings) ids.push_back(r.id);
+	if (m_lifecycle->expansionNeeded(ids, [this](int32_t id, int blockStep)
+	                                 { return m_drop.staticDue(id, m_step, blockStep); }))
+		globalUpdate();
 }
 
 void CDynamicKFSLAM2D::compressIfDue()
 {
-	const auto* engine = dynamic_cast<const estimator::CCompressedUpdateEngine*>(m_engine.get());
-	if (!engine) return;
-	std::vector<bool> passive(m_layout.size(), false);
-	int stale = 0;
-	for (size_t b = 0; b < m_layout.size(); ++b)
-	{
-		const estimator::TBlock& t = m_layout[b];
-		if (t.kind == BlockKind::Compressed)
-			passive[b] = true;
-		else if (t.kind == BlockKind::StaticLandmark &&
-		         m_step - m_drop.lastSeen(t.id, t.step) >= engine->passiveAfter())
-		{
-			passive[b] = true;
-			++stale;
-		}
-	}
-	if (stale < engine->batch()) return;
 	Eigen::VectorXd x;
 	ekf::RowMatrixXd P;
-	for (size_t b = 0; b < m_layout.size(); ++b)
-		if (passive[b] && m_layout[b].kind == BlockKind::StaticLandmark)
-			m_passiveStatic[m_layout[b].id] = m_layout[b].step;
-	m_passive.push_back(estimator::compressState(m_xkk.asEigen(), m_cov.view(), m_layout, passive,
-	                                             m_nextLevel++, x, P));
-	m_xkk.resize(size_t(x.size()));
-	m_xkk.asEigen() = x;
-	setCov(P);
-	onLayoutChanged();
+	const auto unseen = [this](const estimator::TBlock& t)
+	{ return m_step - m_drop.lastSeen(t.id, t.step); };
+	if (m_lifecycle->compressIfDue(m_xkk.asEigen(), m_cov.view(), m_layout, unseen, x, P))
+		writeWorkingState(x, P);
+}
+
+const CDynamicKFSLAM2D::TWholeState& CDynamicKFSLAM2D::whole() const
+{
+	if (m_whole.valid) return m_whole;
+	Eigen::VectorXd x;
+	ekf::RowMatrixXd P;
+	m_lifecycle->expandedCopy(m_xkk.asEigen(), m_cov.view(), m_layout, x, P, m_whole.layout);
+	m_whole.x.resize(size_t(x.size()));
+	m_whole.x.asEigen() = x;
+	m_whole.P.setSize(size_t(P.rows()), size_t(P.cols()));
+	m_whole.P.asEigen() = P;
+	slotsOf(m_whole.layout, m_whole.slots, nullptr);
+	m_whole.valid = true;
+	return m_whole;
+}
+
+CDynamicKFSLAM2D::TStateRef CDynamicKFSLAM2D::wholeState() const
+{
+	if (!m_lifecycle->holdsPassive()) return {m_layout, m_xkk.asEigen(), m_cov.view()};
+	const TWholeState& w = whole();
+	return {w.layout, w.x.asEigen(), w.P.asEigen()};
 }
 }  // namespace dynslam

@@ -92,7 +92,7 @@ std::set<int32_t> CDynamicKFSLAM2D::objectsWithVelocity() const
 
 void CDynamicKFSLAM2D::predictObjects()
 {
-	if (m_motion->velocityDim(3) == 0 && m_motion->velocityDim(2) == 0) return;
+	if (!m_motion->objectCentric()) return;
 	auto x = m_xkk.asEigen();
 	auto P = cov();
 	for (const auto& [obj, st] : objectStates(m_layout))
@@ -247,7 +247,7 @@ bool CDynamicKFSLAM2D::velocityInit(int32_t obj, size_t pose, TVelocityInit& out
 
 void CDynamicKFSLAM2D::planObjectVelocities(TPending& plan)
 {
-	if (m_motion->velocityDim(3) == 0 && m_motion->velocityDim(2) == 0) return;
+	if (!m_motion->objectCentric()) return;
 	const Eigen::Index n = m_xkk.size();
 	std::vector<Eigen::MatrixXd> Gs;  // rows of G (the velocity as a function of the state)
 	std::vector<Eigen::VectorXd> means;

@@ -45,15 +45,15 @@ Eigen::MatrixXd CDynamicKFSLAM2D::gaugeTerm(const TBlock* block, const Eigen::Ve
 
 Eigen::MatrixXd CDynamicKFSLAM2D::gaugeJacobian() const
 {
-	ensureExpanded();
-	const Eigen::VectorXd x = m_xkk.asEigen();
+	const TStateRef s = wholeState();
+	const Eigen::VectorXd x = s.x;
 	Eigen::MatrixXd N = Eigen::MatrixXd::Zero(x.size(), 3);
 	N.topRows<3>() = models::J_block_delta(models::GaugeKind::EgoPose, x.head<3>(), m_gaugeOrigin);
-	for (size_t b = 0; b < m_layout.size(); ++b)
+	for (size_t b = 0; b < s.layout.size(); ++b)
 	{
-		const std::vector<int> idx = m_layout.indices(b);
+		const std::vector<int> idx = s.layout.indices(b);
 		N(idx, Eigen::all) =
-		    models::J_block_delta(gaugeKind(m_layout[b]), x(idx).eval(), m_gaugeOrigin);
+		    models::J_block_delta(gaugeKind(s.layout[b]), x(idx).eval(), m_gaugeOrigin);
 	}
 	return N;
 }

@@ -149,7 +149,7 @@ void CDynamicKFSLAM2D::mergeLiveObjects()
 		if (r.route == estimator::Route::ObjectTimeT && r.object >= 0) seen.insert(r.object);
 	const Eigen::VectorXd x = m_xkk.asEigen();
 	const std::vector<TLive> live =
-	    liveObjects(m_layout, m_router->registry(), x, m_step, options.objectCentric(), seen);
+	    liveObjects(m_layout, m_router->registry(), x, m_step, m_motion->objectCentric(), seen);
 	const ekf::CSquareBuffer::ConstView P = std::as_const(m_cov).view();
 	const auto* router = dynamic_cast<const estimator::CClassifyingRouter*>(m_router.get());
 	std::vector<std::pair<int32_t, int32_t>> merges;  // (from, into)

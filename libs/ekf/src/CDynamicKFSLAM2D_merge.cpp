@@ -3,6 +3,7 @@
  * linked object"): a state surgery x' = g(x), P' = J P J^T (models/object_merge.h). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/ekf_steps.h>
+#include <dynslam/estimator/state_helper.h>
 #include <dynslam/models/object_merge.h>
 
 #include <stdexcept>
@@ -64,7 +65,7 @@ bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 		                       std::to_string(from) + " into " + std::to_string(into));
 	const TObjectBlocks L = blocksOf(m_layout, into), N = blocksOf(m_layout, from);
 	if (L.pose == SIZE_MAX) return false;
-	if (options.objectCentric())
+	if (m_motion->objectCentric())
 	{
 		// Without a velocity the lost object was not predicted across the gap: nothing to merge
 		// into.
@@ -107,13 +108,10 @@ bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 	// router that cannot merge throws with the filter unchanged. The f_0 blocks follow below.
 	m_router->mergeObjects(from, into);
 	// x' = g(x): identity outside N's features, whose rows are J (P' = J P J^T).
-	Eigen::MatrixXd F = Eigen::MatrixXd::Identity(xin.size(), xin.size());
-	F.bottomRows(2 * m) = J;
-	Eigen::VectorXd xnew = xin;
-	for (Eigen::Index k = 0; k < m; ++k) xnew.segment(off + 2 * k, 2) = f.col(k);
-	const Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(xin.size(), xin.size());
+	const std::vector<int> out(in.begin() + off, in.end());
+	const Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(f.data(), 2 * m);
 	auto P = cov();
-	ekf::predictSubset(x, P, in, xnew, F, Q);
+	estimator::state::replace(x, P, in, out, g, J);
 	const estimator::TObjectEntry& eM = m_router->registry().at(into);
 	for (const int32_t id : eN.feature_ids)
 		m_layout.reassignObjectFeature0(N.f0.at(id), into,

@@ -31,17 +31,17 @@ mrpt::poses::CPosePDFGaussian CDynamicKFSLAM2D::getEgoPose() const
 
 std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks(bool includeDropped) const
 {
-	ensureExpanded();
+	const TStateRef s = wholeState();
 	std::vector<TStaticLandmarkEstimate> out;
-	for (size_t b = 0; b < m_layout.size(); ++b)
+	for (size_t b = 0; b < s.layout.size(); ++b)
 	{
-		if (m_layout[b].kind != BlockKind::StaticLandmark) continue;
-		const int k = m_layout.first(b);
+		if (s.layout[b].kind != BlockKind::StaticLandmark) continue;
+		const int k = s.layout.first(b);
 		TStaticLandmarkEstimate e;
-		e.id = m_layout[b].id;
-		e.mean = Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]);
-		e.cov << cov()(k, k), cov()(k, k + 1), cov()(k + 1, k), cov()(k + 1, k + 1);
-		e.cov += gaugeTerm(&m_layout[b], e.mean);
+		e.id = s.layout[b].id;
+		e.mean = s.x.segment<2>(k);
+		e.cov = s.P.block<2, 2>(k, k);
+		e.cov += gaugeTerm(&s.layout[b], e.mean);
 		e.in_state = true;
 		out.push_back(e);
 	}
@@ -124,8 +124,7 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 
 std::vector<size_t> CDynamicKFSLAM2D::padIndices() const
 {
-	ensureExpanded();
-	const std::vector<int> p = m_layout.padIndices();
+	const std::vector<int> p = wholeState().layout.padIndices();
 	return std::vector<size_t>(p.begin(), p.end());
 }
 
@@ -155,12 +154,19 @@ void assignInPlace(std::map<int32_t, size_t>& map, std::vector<std::pair<int32_t
 
 void CDynamicKFSLAM2D::onLayoutChanged()
 {
-	m_slots.clear();
 	static thread_local std::vector<std::pair<int32_t, size_t>> statics;
-	statics.clear();
-	for (size_t b = 0; b < m_layout.size(); ++b)
+	slotsOf(m_layout, m_slots, &statics);
+	assignInPlace(m_staticBlock, statics);
+}
+
+void CDynamicKFSLAM2D::slotsOf(const estimator::CPaddedLayout& layout, std::vector<TSlot>& slots,
+                               std::vector<std::pair<int32_t, size_t>>* statics)
+{
+	slots.clear();
+	if (statics) statics->clear();
+	for (size_t b = 0; b < layout.size(); ++b)
 	{
-		const TBlock& t = m_layout[b];
+		const TBlock& t = layout[b];
 		TSlot s;
 		s.id = t.id;
 		s.object = t.object;
@@ -170,7 +176,7 @@ void CDynamicKFSLAM2D::onLayoutChanged()
 		{
 			case BlockKind::StaticLandmark:
 				s.kind = SlotKind::StaticLandmark;
-				statics.emplace_back(t.id, b);
+				if (statics) statics->emplace_back(t.id, b);
 				break;
 			case BlockKind::ObjectFeature0:
 				s.kind = SlotKind::ObjectFeature0;
@@ -193,19 +199,18 @@ void CDynamicKFSLAM2D::onLayoutChanged()
 				s.kind = SlotKind::Compressed;
 				break;
 		}
-		m_slots.push_back(s);
+		slots.push_back(s);
 		if (t.kind == BlockKind::ObjectPose && t.dim == 3)
 		{
 			s.kind = SlotKind::ObjectPoseB;  // [dtheta, pad]
-			m_slots.push_back(s);
+			slots.push_back(s);
 		}
 		if (t.kind == BlockKind::ObjectVelocity && t.dim == 3)
 		{
 			s.kind = SlotKind::ObjectVelocityB;  // [omega, pad]
-			m_slots.push_back(s);
+			slots.push_back(s);
 		}
 	}
-	assignInPlace(m_staticBlock, statics);
 }
 
 namespace
@@ -245,7 +250,7 @@ void appendLabels(const TBlock& t, std::vector<std::string>& labels)
 			labels.push_back("odo.b_w");
 			if (t.dim == 2) labels.push_back("odo.s");
 			break;
-		case BlockKind::Compressed:  // never seen by a getter (ensureExpanded)
+		case BlockKind::Compressed:  // never seen by a getter (wholeState() is expanded)
 			labels.push_back("c" + std::to_string(t.object) + "." + std::to_string(t.feature) +
 			                 ".0");
 			labels.push_back("c" + std::to_string(t.object) + "." + std::to_string(t.feature) +
@@ -258,13 +263,13 @@ void appendLabels(const TBlock& t, std::vector<std::string>& labels)
 void CDynamicKFSLAM2D::getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& P,
                                            std::vector<std::string>* labels) const
 {
-	ensureExpanded();
-	const std::vector<int> keep = ekf::keptIndices(int(m_xkk.size()), m_layout.padIndices());
-	x = m_xkk.asEigen()(keep);
+	const TStateRef s = wholeState();
+	const std::vector<int> keep = ekf::keptIndices(int(s.x.size()), s.layout.padIndices());
+	x = s.x(keep);
 	P = options.prior_gauge_anchor ? Eigen::MatrixXd(reportedCov()(keep, keep))
-	                               : Eigen::MatrixXd(cov()(keep, keep));
+	                               : Eigen::MatrixXd(s.P(keep, keep));
 	if (!labels) return;
 	labels->assign({"ego.x", "ego.y", "ego.theta"});
-	for (const TBlock& t : m_layout.blocks()) appendLabels(t, *labels);
+	for (const TBlock& t : s.layout.blocks()) appendLabels(t, *labels);
 }
 }  // namespace dynslam

@@ -1,6 +1,7 @@
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/unknown_id_association.h>
+#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/se2.h>
 
@@ -216,10 +217,7 @@ int32_t CIdRangeRouter::featureId(int32_t object, int32_t feature) const
 std::unique_ptr<IMeasurementRouter> makeRouter(const std::string& feature_labels,
                                                const TClassifyParams* classify)
 {
-	if (feature_labels == "ids") return std::make_unique<CIdRangeRouter>();
-	if (feature_labels == "classify")
-		return std::make_unique<CClassifyingRouter>(classify ? *classify : TClassifyParams());
-	throw std::invalid_argument("feature_labels = " + feature_labels + ": known: ids, classify");
+	return routers().make(feature_labels, {classify});
 }
 void IMeasurementRouter::mergeObjects(int32_t from, int32_t into)
 {

@@ -56,10 +56,4 @@ Eigen::VectorXd CPaperSmoothing::residual(const TPseudoMeasurement& m,
 	return models::smoothingResidual(poses[0], poses[1], poses[2], &(*J)[0], &(*J)[1], &(*J)[2]);
 }
 
-std::unique_ptr<IObjectMotionModel> makeObjectMotionModel(bool smoothing,
-                                                          const Eigen::Matrix3d& Sigma_s)
-{
-	if (smoothing) return std::make_unique<CPaperSmoothing>(Sigma_s);
-	return std::make_unique<CNoObjectMotion>();
-}
 }  // namespace dynslam::estimator

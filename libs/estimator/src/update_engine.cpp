@@ -11,14 +11,6 @@ double gateThreshold2Dof(double p)
 	return p > 0 ? -2.0 * std::log(1.0 - p) : std::numeric_limits<double>::infinity();
 }
 
-CCompressedUpdateEngine::CCompressedUpdateEngine(int passive_after, int batch)
-    : m_passiveAfter(passive_after), m_batch(batch)
-{
-	if (passive_after < 1 || batch < 1)
-		throw std::invalid_argument(
-		    "CCompressedUpdateEngine: passive_after and batch must be >= 1");
-}
-
 TUpdateResult CSparseUpdateEngine::update(Eigen::Ref<Eigen::VectorXd> x,
                                           Eigen::Ref<ekf::RowMatrixXd> P,
                                           const std::vector<TStaticObservation>& obs,

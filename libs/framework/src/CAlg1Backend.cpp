@@ -1,9 +1,11 @@
 #include <dynslam/backend_results.h>
+#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/framework/object_pose_step.h>
 #include <dynslam/models/gauge.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/seam_options.h>
 #include <dynslam/step_input.h>
 
 #include <Eigen/Cholesky>
@@ -32,12 +34,9 @@ void CAlg1Backend::reset()
 		                                          m_opts.model.Sigma_0));
 	}
 	m_step = -1;
-	if (!m_userRouter) m_router = estimator::makeRouter("ids");
+	if (!m_userRouter) m_router = estimator::routers().make("ids", {});
 	m_router->reset();
-	if (!m_userMotion && m_opts.model.objectCentric())
-		m_motion = makeObjectCentricModel(m_opts.model);
-	else if (!m_userMotion)
-		m_motion = estimator::makeObjectMotionModel(m_opts.model.smoothing, m_opts.model.Sigma_s);
+	if (!m_userMotion) m_motion = makeMotionModel(m_opts.model);
 	m_velocitySince.clear();
 	m_drop = estimator::CDropPolicy(m_opts.model.dropOptions());
 	m_droppedStatic.clear();

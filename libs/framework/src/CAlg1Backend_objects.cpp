@@ -5,11 +5,10 @@
  * a new object is an augmentation (GN step on its initialisation term, Theorem A.1). The EKF's
  * counterparts are in libs/ekf/src/CDynamicKFSLAM2D_cv.cpp. */
 #include <dynslam/backend_results.h>
-#include <dynslam/estimator/constant_turn_rate.h>
-#include <dynslam/estimator/constant_velocity.h>
-#include <dynslam/estimator/update_engine.h>
+#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/framework/object_motion_terms.h>
+#include <dynslam/seam_options.h>
 
 #include <cmath>
 #include <map>
@@ -19,11 +18,16 @@
 
 namespace dynslam::framework
 {
-std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeObjectCentricModel(
+std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeMotionModel(
     const TModelOptions& o)
 {
-	estimator::TCvParams p = o.cv;
-	p.gate = estimator::gateThreshold2Dof(o.cv_gate);
+	const estimator::TObjectMotionParams params = objectMotionParams(o);
+	if (!estimator::objectMotionModels().caps(o.object_model).framework)
+		throw std::invalid_argument("[DynamicKFSLAM] object_model = " + o.object_model +
+		                            ": not implemented in the framework");
+	if (!estimator::objectMotionModels().caps(o.object_model).object_centric)
+		return estimator::objectMotionModels().make(o.object_model, params);
+	const estimator::TCvParams& p = params.cv;
 	// The EKF-only cv keys: each names what the framework does not implement.
 	const std::pair<bool, const char*> ekfOnly[] = {
 	    {p.fallback_steps > 0, "cv_fallback_steps: the fallback of a lost object"},
@@ -38,14 +42,10 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeObjectCen
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] cv_accel_psd: every entry must be > 0 in the framework (its motion "
 		    "term needs an invertible process noise; the dynamic EKF accepts 0)");
-	if (o.object_model == "ctrv") return std::make_shared<estimator::CConstantTurnRate>(p);
-	return std::make_shared<estimator::CConstantVelocity>(p);
+	return estimator::objectMotionModels().make(o.object_model, params);
 }
 
-bool CAlg1Backend::objectCentric() const
-{
-	return m_motion->velocityDim(3) > 0 || m_motion->velocityDim(2) > 0;
-}
+bool CAlg1Backend::objectCentric() const { return m_motion->objectCentric(); }
 
 void CAlg1Backend::predictObjects()
 {

@@ -1,8 +1,10 @@
 #include <dynslam/backend_results.h>
+#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/object_pose_step.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/seam_options.h>
 #include <dynslam/step_input.h>
 
 #include <algorithm>
@@ -27,12 +29,13 @@ void CWindowBackend::reset()
 	m_objCost = CRunningCost();
 	m_egoLink.reset();
 	m_step = -1;
-	m_router = estimator::makeRouter("ids");
-	if (m_opts.model.objectCentric())
+	m_router = estimator::routers().make("ids", {});
+	if (!estimator::objectMotionModels().caps(m_opts.model.object_model).window)
 		throw std::invalid_argument("[DynamicKFSLAM] object_model = " + m_opts.model.object_model +
 		                            ": not implemented in the windowed back-end "
 		                            "(the dynamic EKF only, issue 13)");
-	m_motion = estimator::makeObjectMotionModel(m_opts.model.smoothing, m_opts.model.Sigma_s);
+	m_motion = estimator::objectMotionModels().make(m_opts.model.object_model,
+	                                                objectMotionParams(m_opts.model));
 	m_drop = estimator::CDropPolicy(m_opts.model.dropOptions());
 	m_body.clear();
 	m_droppedStatic.clear();

@@ -1,4 +1,5 @@
 #include <dynslam/config_utils.h>
+#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/TBackendOptions.h>
 
 #include <algorithm>
@@ -122,7 +123,7 @@ void TBackendOptions::validate() const
 		    "[" + model_section + "] odometry_bias = " + model.odometry_bias.mode +
 		    ": online odometry bias estimation is implemented in the dynamic EKF only "
 		    "(CDynamicKFSLAM2D); the framework back-ends need odometry_bias = none");
-	if (model.feature_labels != "ids")
+	if (estimator::routers().caps(model.feature_labels).classifies)
 		throw std::invalid_argument(
 		    "[" + model_section + "] feature_labels = " + model.feature_labels +
 		    ": classification of anonymous tracks is implemented in the dynamic EKF only "

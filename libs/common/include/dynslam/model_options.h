@@ -60,8 +60,9 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * body-frame features together), ctrv (the same with a constant turn rate: the velocity
 	 * turns at omega, models::ctrvPredict; it reads the cv_* keys). */
 	std::string object_model = "paper";
-	/** cv or ctrv: an object-centric model (objects have a velocity and update the state). */
-	bool objectCentric() const { return object_model == "cv" || object_model == "ctrv"; }
+	/** An object-centric model (objects have a velocity and update the state: cv, ctrv): the
+	 * capability of object_model in estimator::objectMotionModels(); false if unknown. */
+	bool objectCentric() const;
 	/** cv: cv_dt [s per step] (required with cv), cv_accel_psd (white-acceleration spectral
 	 * densities ax, ay, alpha), cv_velocity_prior_std (vx, vy, omega; > 0), cv_gate (chi-square
 	 * probability of the per-reading gate on object readings, 0 = no gate; a gated reading is
@@ -91,7 +92,7 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * runOneKalmanIteration with its prediction skipped (doc/architecture.md). */
 	bool sparse_static_update = true;
 	/** static_update = compressed (sets sparse_static_update too): the sparse update on the
-	 * exact compressed EKF (estimator::CCompressedUpdateEngine, compressed_state.h): static
+	 * exact compressed EKF (estimator::CCompressedLifecycle, compressed_state.h): static
 	 * landmarks left behind are kept out of the working state and brought up to date when
 	 * needed; equal to the full EKF to rounding. */
 	bool compressed_static_update = false;

@@ -43,6 +43,7 @@
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/estimator/state_layout.h>
+#include <dynslam/estimator/state_lifecycle.h>
 #include <dynslam/estimator/update_engine.h>
 #include <dynslam/model_options.h>
 #include <dynslam/models/measurement.h>
@@ -127,9 +128,13 @@ public:
 	void setRouter(std::unique_ptr<estimator::IMeasurementRouter> r);
 	void setUpdateEngine(std::unique_ptr<estimator::IUpdateEngine> e);
 	void setObjectMotionModel(std::unique_ptr<estimator::IObjectMotionModel> m);
+	/** The state's lifecycle (how it is stored between steps: full or compressed); reset()
+	 * throws std::invalid_argument if it cannot compose with the update engine. */
+	void setStateLifecycle(std::unique_ptr<estimator::IStateLifecycle> l);
 	const estimator::IMeasurementRouter& router() const { return *m_router; }
 	const estimator::IUpdateEngine& updateEngine() const { return *m_engine; }
 	const estimator::IObjectMotionModel& objectMotionModel() const { return *m_motion; }
+	const estimator::IStateLifecycle& stateLifecycle() const { return *m_lifecycle; }
 
 	// --- results --------------------------------------------------------------
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
@@ -140,17 +145,17 @@ public:
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
 	/** Every object's pose history: dropped poses (recorded) and poses in the state. */
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
-	/** The typed state after the ego pose (blocks and where they are stored). */
+	/** The typed state after the ego pose (blocks and where they are stored; of the whole
+	 * state, like every getter below: with compressed entries in the working state, of its
+	 * expanded copy, see wholeState()). */
 	const estimator::CPaddedLayout& getLayout() const
 	{
-		ensureExpanded();
-		return m_layout;
+		return m_lifecycle->holdsPassive() ? whole().layout : m_layout;
 	}
 	/** The layout as MRPT's 2-dof slots (a 3-dof pose is ObjectPoseA + ObjectPoseB). */
 	const std::vector<TSlot>& getSlots() const
 	{
-		ensureExpanded();
-		return m_slots;
+		return m_lifecycle->holdsPassive() ? whole().slots : m_slots;
 	}
 	/** Mean and covariance without pad entries; labels[i] names entry i. */
 	void getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& P,
@@ -164,23 +169,24 @@ public:
 	/** Full mean / covariance including pads (MRPT's storage). */
 	const KFVector& fullMean() const
 	{
-		ensureExpanded();
+		if (m_lifecycle->holdsPassive()) return whole().x;
 		return m_xkk;
 	}
 	const KFMatrix& fullCov() const
 	{
-		ensureExpanded();
+		if (m_lifecycle->holdsPassive()) return whole().P;
 		syncPkk();
 		return m_pkk;
 	}
-	/** static_update = compressed: the global update (compressed_state.h), which getters of the
-	 * whole state (landmarks, layout, full mean and covariance) do by themselves; the estimate
-	 * is unchanged, the storage order of the landmarks is not. No-op otherwise. */
+	/** static_update = compressed: the global update (compressed_state.h) of the working state;
+	 * the estimate is unchanged, the storage order of the landmarks is not. Getters of the whole
+	 * state do not need it (they read an expanded copy and leave the working state as it is).
+	 * No-op when nothing is held out of the working state. */
 	void globalUpdate();
 	/** Working storage size (with compressed entries; equals fullMean().size() otherwise) and
 	 * the static landmarks kept out of it (static_update = compressed). */
 	size_t workingDim() const { return m_xkk.size(); }
-	size_t passiveLandmarks() const { return m_passiveStatic.size(); }
+	size_t passiveLandmarks() const { return m_lifecycle->passiveCount(); }
 	/** First-estimate Jacobians only (empty otherwise): the first estimate of static landmark
 	 * `id`, i.e. its mean at the end of the step in which it was initialized. */
 	std::optional<Eigen::Vector2d> firstEstimate(int32_t id) const;
@@ -335,20 +341,39 @@ private:
 	std::set<int32_t> m_reinitNow;    ///< lost objects given a velocity in this step
 	/** Objects that have a velocity block (their readings are updates, not time-t features). */
 	std::set<int32_t> objectsWithVelocity() const;
-	// compressed EKF (static_update = compressed, CDynamicKFSLAM2D_compressed.cpp)
-	/** At the start of a step: the global update if a passive landmark is read or due. */
+	// the state's lifecycle (IStateLifecycle, CDynamicKFSLAM2D_compressed.cpp)
+	/** At the start of a step: the global update if the lifecycle needs it (a passive landmark
+	 * is read or due to be dropped). */
 	void expandIfNeeded();
-	/** At the end of a step: compresses the static landmarks unseen for long enough. */
+	/** At the end of a step: the lifecycle's compression of the entries that are due. */
 	void compressIfDue();
-	/** Getters: the global update if the state is compressed (the estimate is unchanged). */
-	void ensureExpanded() const;
+	/** Writes (x, P) as the working state after a lifecycle changed the layout. */
+	void writeWorkingState(const Eigen::VectorXd& x, const ekf::RowMatrixXd& P);
+	/** The whole state while the working state holds compressed entries: an expanded copy,
+	 * made on the first read after the working state changed (getters stay const and leave the
+	 * working state as it is). */
+	struct TWholeState
+	{
+		bool valid = false;
+		KFVector x;
+		KFMatrix P;
+		estimator::CPaddedLayout layout;
+		std::vector<TSlot> slots;
+	};
+	mutable TWholeState m_whole;
+	const TWholeState& whole() const;
+	/** The whole state's layout, mean and covariance: the working state's storage, or whole(). */
+	struct TStateRef
+	{
+		const estimator::CPaddedLayout& layout;
+		Eigen::Ref<const Eigen::VectorXd> x;
+		Eigen::Ref<const ekf::RowMatrixXd> P;
+	};
+	TStateRef wholeState() const;
 	/** prior_gauge = anchor: the output term J Sigma_0 J^T of a block of `kind` (or of the
 	 * ego, ego = true) with mean `mean`; a zero matrix with prior_gauge = prior. */
 	Eigen::MatrixXd gaugeTerm(const estimator::TBlock* block, const Eigen::VectorXd& mean) const;
 	Eigen::Vector2d m_gaugeOrigin = Eigen::Vector2d::Zero();  ///< p0 of the gauge (reset())
-	std::vector<estimator::TPassiveLevel> m_passive;          ///< compression levels, oldest first
-	std::map<int32_t, int> m_passiveStatic;  ///< passive landmark ID -> its block's step
-	int m_nextLevel = 0;
 
 	/** Per-step scratch that keeps its capacity between steps (doc/results/performance.md, section 16,
 	 * sixth round): the extended layout, the plan, commit's drop flags and mean. */
@@ -361,12 +386,22 @@ private:
 
 	/** Rebuilds what is derived from the layout: the slot view and the static-landmark index. */
 	void onLayoutChanged();
+	/** The slot view of `layout` (and, if given, its (landmark ID, block) pairs). */
+	static void slotsOf(const estimator::CPaddedLayout& layout, std::vector<TSlot>& slots,
+	                    std::vector<std::pair<int32_t, size_t>>* statics);
 
 	// the seams (doc/architecture.md)
 	std::unique_ptr<estimator::IMeasurementRouter> m_router;
 	std::unique_ptr<estimator::IUpdateEngine> m_engine;
 	std::unique_ptr<estimator::IObjectMotionModel> m_motion;
+	std::unique_ptr<estimator::IStateLifecycle> m_lifecycle;
 	bool m_userRouter = false, m_userEngine = false, m_userMotion = false;  ///< set by setX()
+	bool m_userLifecycle = false;
+	bool m_engineGated = true;  ///< the update context carries the gate (outlier_method's caps)
+	/** reset(): the seams from their registries (estimator/seam_registries.h) and the options,
+	 * except those set by setX(); throws std::invalid_argument on a combination that cannot work.
+	 */
+	void makeSeams();
 	estimator::CDropPolicy m_drop;
 
 	// inputs of the current step
@@ -394,6 +429,7 @@ private:
 	ekf::CSquareBuffer::View cov()
 	{
 		m_pkkStale = true;
+		m_whole.valid = false;
 		return m_cov.view();
 	}
 	ekf::CSquareBuffer::ConstView cov() const { return m_cov.view(); }

@@ -19,6 +19,10 @@ public:
 	estimator::TUpdateResult update(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
 	                                const std::vector<estimator::TStaticObservation>& obs,
 	                                const estimator::TUpdateContext& ctx) override;
+	/** MRPT updates the filter's own storage (m_xkk, m_pkk) through its hooks, whose slot table
+	 * has no compressed entries: no lifecycle that rewrites the storage (a clear error in
+	 * CDynamicKFSLAM2D::reset(); static_update = mrpt cannot name one anyway). */
+	bool updatesGivenState() const override { return false; }
 
 private:
 	CDynamicKFSLAM2D& m_kf;

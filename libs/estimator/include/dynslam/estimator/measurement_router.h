@@ -219,8 +219,9 @@ private:
 };
 
 struct TClassifyParams;
-/** The router of the INI option feature_labels: "ids" (CIdRangeRouter) or "classify"
- * (CClassifyingRouter with `classify`, its defaults if null). Throws std::invalid_argument. */
+/** The router of the INI option feature_labels: routers().make (seam_registries.h): "ids"
+ * (CIdRangeRouter) or "classify" (CClassifyingRouter with `classify`, its defaults if null).
+ * Throws std::invalid_argument. */
 std::unique_ptr<IMeasurementRouter> makeRouter(const std::string& feature_labels,
                                                const TClassifyParams* classify = nullptr);
 }  // namespace dynslam::estimator

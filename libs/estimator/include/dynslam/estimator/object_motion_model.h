@@ -50,6 +50,12 @@ public:
 	// its features is a measurement update of ego, pose and body-frame features together.
 	/** Entries of the velocity block of an object with a pose of poseDim entries (0: none). */
 	virtual int velocityDim(int /*poseDim*/) const { return 0; }
+	/** Capability: an object-centric model (a velocity block for a pose of 2 or 3 entries). */
+	bool objectCentric() const { return velocityDim(3) > 0 || velocityDim(2) > 0; }
+	/** Capability: the model acts on an object's poses once they are in the state (pseudo-
+	 * measurements, velocity blocks): the step commits the new poses before it. False for the
+	 * paper's model without smoothing (CNoObjectMotion). */
+	virtual bool actsOnNewPoses() const { return true; }
 	/** One step's transition of s = [pose; velocity]: returns s', J_out_s and Q. */
 	virtual Eigen::VectorXd predict(const Eigen::VectorXd& s, Eigen::MatrixXd* J_out_s,
 	                                Eigen::MatrixXd* Q) const;
@@ -73,6 +79,7 @@ class CNoObjectMotion : public IObjectMotionModel
 public:
 	std::string name() const override { return "none"; }
 	int posesNeeded() const override { return 1; }
+	bool actsOnNewPoses() const override { return false; }
 	std::vector<TPseudoMeasurement> select(int32_t, int, const std::vector<int>&,
 	                                       int) const override
 	{
@@ -100,8 +107,4 @@ public:
 private:
 	Eigen::Matrix3d m_Sigma_s;
 };
-
-/** The model of the options: smoothing on -> CPaperSmoothing(Sigma_s), off -> none. */
-std::unique_ptr<IObjectMotionModel> makeObjectMotionModel(bool smoothing,
-                                                          const Eigen::Matrix3d& Sigma_s);
 }  // namespace dynslam::estimator

@@ -2,8 +2,10 @@
 /** @file update_engine.h
  * Seam 3 of the estimator core (doc/architecture.md): the static update (Alg. 5) with the
  * tracked static landmarks read in a step. Implementations: CSparseUpdateEngine (the EKF
- * update as a symmetric rank-2k correction on the non-zero columns of H, default) here, and
- * MRPT's own update (CKalmanFilterCapable's kfEKFNaive / kfEKFAlaDavison) in libs/ekf. */
+ * update as a symmetric rank-2k correction on the non-zero columns of H, default) here, the
+ * robust engines (robust_update_engines.h), and MRPT's own update (CKalmanFilterCapable's
+ * kfEKFNaive / kfEKFAlaDavison) and JCBB in libs/ekf. How the state is stored between steps
+ * (e.g. compressed) is a seam of its own, state_lifecycle.h. */
 #include <dynslam/ekf_steps.h>
 #include <dynslam/models/measurement.h>
 
@@ -57,6 +59,11 @@ public:
 	virtual TUpdateResult update(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
 	                             const std::vector<TStaticObservation>& obs,
 	                             const TUpdateContext& ctx) = 0;
+	/** Whether the engine updates the (x, P) it is given, reading and writing through the
+	 * readings' entries and the ego only (a linear Kalman update of the whole Gaussian): then
+	 * it composes with every state lifecycle (state_lifecycle.h). False for an engine bound to
+	 * its filter's own storage (MRPT's). */
+	virtual bool updatesGivenState() const { return true; }
 };
 
 /** The sparse symmetric update (ekf::sparseUpdate): O(n^2 k) for k readings. */
@@ -75,22 +82,6 @@ private:
 	std::vector<models::Matrix23d> m_Jx;
 	std::vector<Eigen::Matrix2d> m_Jf;
 	std::vector<Eigen::Vector2d> m_nus;
-};
-
-/** static_update = compressed: the sparse update on the active state of the compressed EKF
- * (compressed_state.h). The EKF that is given this engine keeps the static landmarks unseen for
- * `passive_after` steps out of its working state, `batch` of them at a time, and brings them up
- * to date (exactly) when one is read again, is due to be dropped, or a getter needs them. */
-class CCompressedUpdateEngine : public CSparseUpdateEngine
-{
-public:
-	explicit CCompressedUpdateEngine(int passive_after = 3, int batch = 8);
-	std::string name() const override { return "compressed"; }
-	int passiveAfter() const { return m_passiveAfter; }
-	int batch() const { return m_batch; }
-
-private:
-	int m_passiveAfter, m_batch;
 };
 
 /** Chi-square quantile with 2 dof in closed form (F(x) = 1 - exp(-x/2)) of probability p;

@@ -78,9 +78,10 @@ private:
 	void drops();
 	// object-centric models (CAlg1Backend_objects.cpp; nothing with the paper's models)
 	bool objectCentric() const;
-	/** cv or ctrv from the options (gate from cv_gate); the inflation rule is EKF only:
-	 * std::invalid_argument if it is on. */
-	static std::shared_ptr<const estimator::IObjectMotionModel> makeObjectCentricModel(
+	/** object_model from its registry (estimator::objectMotionModels(); cv's gate from
+	 * cv_gate); std::invalid_argument for a model or an EKF-only cv key the framework does not
+	 * implement. */
+	static std::shared_ptr<const estimator::IObjectMotionModel> makeMotionModel(
 	    const TModelOptions& o);
 	void predictObjects();
 	void objectFeatureUpdates(const estimator::TRoutedStep& in);
