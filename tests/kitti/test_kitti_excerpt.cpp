@@ -6,6 +6,7 @@
 #include <dynslam/kitti/CKittiApp.h>
 #include <dynslam/kitti/rawlog_writer.h>
 #include <dynslam/landmark_ids.h>
+#include <dynslam_test/temp_dir.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <unistd.h>

@@ -12,6 +12,7 @@
 #include <dynslam/mrclam/CMrclamOptions.h>
 #include <dynslam/mrclam/import.h>
 #include <dynslam/mrclam/rawlog_writer.h>
+#include <dynslam_test/temp_dir.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <unistd.h>
