@@ -18,12 +18,12 @@ namespace
  * 2 = compressed (static_update = compressed; the final global update included), 3 = sparse
  * with feature_labels = classify (issue 12: what classification costs), 4 = sparse with
  * object_model = cv and the shipped cv_* keys of config/compare_tunnel.ini, setting B of
- * doc/results/results.md 4.3.1 (issue 13: what the object-centric model costs; cv_accel_psd = [1e-6 1e-6
- * 1e-8], cv_gate = 0.5, no fallback), 5 = the tight noise of doc/results/results.md 4.8 (cv_accel_psd =
- * [1e-7 1e-7 1e-9], cv_gate = 0.999; setting D without its Schmidt delay, whose key
- * cv_ego_velocity_std was removed on 2026-11-28), 6 = setting E of doc/results/results.md 4.10 (5 with
- * prior_gauge = anchor), 7 = the
- * paper's objects with prior_gauge = anchor (the output term's cost: only getEgoPose per step). */
+ * doc/results/results.md 4.3.1 (issue 13: what the object-centric model costs; cv_accel_psd = [1e-6
+ * 1e-6 1e-8], cv_gate = 0.5, no fallback), 5 = the tight noise of doc/results/results.md 4.8
+ * (cv_accel_psd = [1e-7 1e-7 1e-9], cv_gate = 0.999; setting D without its Schmidt delay, whose key
+ * cv_ego_velocity_std was removed on 2026-11-28), 6 = setting E of doc/results/results.md 4.10 (5
+ * with prior_gauge = anchor), 7 = the paper's objects with prior_gauge = anchor (the output term's
+ * cost: only getEgoPose per step). */
 void BM_HighwayRun(benchmark::State& state)
 {
 	const TRun& run = highwayRun();

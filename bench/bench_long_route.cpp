@@ -1,6 +1,6 @@
 /** dynslam-bench: BM_LongRoute, the per-step time on a route that never revisits, against the
- * size of the map (doc/results/performance.md). The map of N landmarks is pre-built (step 0 reports N
- * landmarks behind the start, never seen again); then the ego drives the straight track into new
+ * size of the map (doc/results/performance.md). The map of N landmarks is pre-built (step 0 reports
+ * N landmarks behind the start, never seen again); then the ego drives the straight track into new
  * land: a landmark every 3 m, range 30 m (20 in view), 2 objects in convoy, K = 1, no drops,
  * so the map keeps growing by ~2 landmarks per 3 steps. After 11 untimed steps (step 0 and
  * 10 more) each benchmark iteration times one step (processActionObservation only). The filter is

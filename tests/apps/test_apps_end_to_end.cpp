@@ -182,9 +182,9 @@ TEST(CompareApp, TunnelObjectModelsCvHelpsTheEgo)
 	    "[ measured ] tunnel ATE: static_landmarks_only %.4f m, dynamic %.4f m, "
 	    "dynamic_cv %.4f m, dynamic_ctrv %.4f m\n",
 	    so.ate, dy.ate, cv.ate, ctrv.ate);
-	// The shipped cv_* keys, setting E (doc/results/results.md 4.10): process noise [1e-7 1e-7 1e-9],
-	// cv_gate = 0.999, prior_gauge = anchor (every dynamic row), chosen on development seeds of
-	// the highway and this tunnel. Measured 2026-11-25: 0.7475, 0.7497, 0.0807, 0.2641 m (with
+	// The shipped cv_* keys, setting E (doc/results/results.md 4.10): process noise [1e-7 1e-7
+	// 1e-9], cv_gate = 0.999, prior_gauge = anchor (every dynamic row), chosen on development seeds
+	// of the highway and this tunnel. Measured 2026-11-25: 0.7475, 0.7497, 0.0807, 0.2641 m (with
 	// D of 4.8: 0.7475, 0.7497, 0.0809, 0.3436). The paper's objects never update the ego:
 	// dynamic is the oracle that drops them, within its update's rounding (0.3 %).
 	EXPECT_NEAR(dy.ate, so.ate, 0.02 * so.ate);
@@ -194,8 +194,8 @@ TEST(CompareApp, TunnelObjectModelsCvHelpsTheEgo)
 	// The gap (datasets/tunnel_scenario.ini: landmark_gaps = [200 800]) is scored for every row
 	// (eval::gapMetrics, metrics.csv columns ate_gap ...): 72 steps; measured in the gap
 	// 0.5659 / 0.5694 / 0.0736 / 0.2154 m, ego NEES 4.24 / 3.16 / 0.90 / 1.32 in [2.461, 3.592]
-	// (cv and ctrv conservative on this truth, which starts at the prior mean: doc/results/results.md
-	// 4.8, 4.10).
+	// (cv and ctrv conservative on this truth, which starts at the prior mean:
+	// doc/results/results.md 4.8, 4.10).
 	for (const auto& r : app.rows)
 	{
 		ASSERT_TRUE(r.gap.has_value()) << r.filter;
@@ -360,9 +360,9 @@ TEST(CompareApp, ClassifiedRowWithoutClassTruthHasEmptyObjectColumns)
 	EXPECT_NE(app.tableText.find("no class ground truth"), std::string::npos) << app.tableText;
 }
 
-// Issue 12 figures (doc/results/classification.md "Figures"): with --out and figures on, a classifying
-// row writes its class map and decision timeline; the timeline holds many readings decided
-// moving (red) and static (blue): measured on the shipped highway 98 tracks.
+// Issue 12 figures (doc/results/classification.md "Figures"): with --out and figures on, a
+// classifying row writes its class map and decision timeline; the timeline holds many readings
+// decided moving (red) and static (blue): measured on the shipped highway 98 tracks.
 TEST(CompareApp, ClassifiedRowWritesClassFigures)
 {
 	const std::string out = apps_test::freshDir("cmp_class_figures");

@@ -1,5 +1,5 @@
-/** dynslam-montecarlo without libmrpt-slam (doc/results/performance.md section 14): the executable does
- * not link it, and the back-ends that need it (MRPT's static filter, JCBB, the classify
+/** dynslam-montecarlo without libmrpt-slam (doc/results/performance.md section 14): the executable
+ * does not link it, and the back-ends that need it (MRPT's static filter, JCBB, the classify
  * association) come from the module libdynslam_slam_services.so, loaded on first use, with the
  * same results as the classes linked in (the in-process CMonteCarloApp of this test binary):
  * every written file byte for byte (runs.csv without its timing column). */

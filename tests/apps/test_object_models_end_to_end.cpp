@@ -29,10 +29,10 @@ TEST(CompareApp, TurningBrakingObjectsDoNotDragTheEgo)
 	    "dynamic_cv %.4f m, dynamic_ctrv %.4f m\n",
 	    so, dy, cv, ctrv);
 	// The issue's target: no worse than 1.05 x static_landmarks_only.
-	// Measured 2026-11-25 with the shipped cv_* keys (setting E, doc/results/results.md 4.10: D of 4.8
-	// without cv_ego_velocity_std and with prior_gauge = anchor, chosen on highway and tunnel
-	// development seeds; this scenario is a held-out check): 0.0144, 0.0084, 0.0087, 0.0098 m
-	// (with D: 0.0144, 0.0085, 0.0089, 0.0096). The static baseline is MRPT's filter with
+	// Measured 2026-11-25 with the shipped cv_* keys (setting E, doc/results/results.md 4.10: D
+	// of 4.8 without cv_ego_velocity_std and with prior_gauge = anchor, chosen on highway and
+	// tunnel development seeds; this scenario is a held-out check): 0.0144, 0.0084, 0.0087, 0.0098
+	// m (with D: 0.0144, 0.0085, 0.0089, 0.0096). The static baseline is MRPT's filter with
 	// range-bearing noise equivalent to the Cartesian noise only at 27.5 m, hence worse than the
 	// dynamic EKF, which equals the oracle that drops the moving features: against that one cv
 	// costs 4 % and ctrv 17 % (D: 5 %, 14 %) (with setting B, gate 0.5: cv 0.99 x, ctrv 0.85 x;
@@ -83,10 +83,10 @@ double egoNees(const CMonteCarloApp& app)
 
 TEST(MonteCarloApp, PriorGaugeAnchorIsHonoured)
 {
-	// prior_gauge = anchor through the app (issue 13, doc/results/results.md 4.10): with the protocol's
-	// Sigma_0 = Sigma_w the anchored mean equals the prior filter's with Sigma_0 = 0 (the same
-	// ATE to the last digit), while its reported covariance carries N Sigma_0 N^T (another ego
-	// NEES); the prior gauge with Sigma_w differs (the leak of 4.3.2).
+	// prior_gauge = anchor through the app (issue 13, doc/results/results.md 4.10): with the
+	// protocol's Sigma_0 = Sigma_w the anchored mean equals the prior filter's with Sigma_0 = 0
+	// (the same ATE to the last digit), while its reported covariance carries N Sigma_0 N^T
+	// (another ego NEES); the prior gauge with Sigma_w differs (the leak of 4.3.2).
 	CMonteCarloApp anchor, zero, prior;
 	monteCarloWith(anchor, "anchor", "prior_gauge = anchor\n", "");
 	monteCarloWith(zero, "zero", "Sigma_0 = [0 0 0]\n", "initial_covariance = ini\n");

@@ -1,5 +1,5 @@
-/** Late joining (doc/results/classification.md, "Grouping"): the object pose with its centroid fixed by
- * the founders (models::objectPoseInverse / objectPoseMap, centroidCols) and the time-0
+/** Late joining (doc/results/classification.md, "Grouping"): the object pose with its centroid
+ * fixed by the founders (models::objectPoseInverse / objectPoseMap, centroidCols) and the time-0
  * position of a feature that joins an object later (ekf::appendJoinedFeatures): values on
  * noise-free data, Jacobians against central differences, the noise layout. */
 #include <dynslam/ekf_steps.h>

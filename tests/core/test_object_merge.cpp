@@ -1,7 +1,7 @@
 /** Merging an object N into an object L (models/object_merge.h, classify_merge_linked,
- * doc/results/classification.md "Merging a linked object"): N's features re-expressed in L's body frame
- * are where N put them (g_L(xi_L, f') = g_N(xi_N, f^N), L's centroid fixed by its founders), and
- * the Jacobian J_out_in against central differences, at random states and at headings +-pi, for
+ * doc/results/classification.md "Merging a linked object"): N's features re-expressed in L's body
+ * frame are where N put them (g_L(xi_L, f') = g_N(xi_N, f^N), L's centroid fixed by its founders),
+ * and the Jacobian J_out_in against central differences, at random states and at headings +-pi, for
  * every pose dimension (L: 2 or 3 entries; N: none, 2 or 3). */
 #include <dynslam/models/object_merge.h>
 #include <dynslam/models/object_pose.h>

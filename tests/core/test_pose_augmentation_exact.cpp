@@ -1,9 +1,9 @@
 /** objectPoseAugmentations with the portable kernels is the arithmetic of before, bit for bit:
  * its workspaces (the rows of the extended covariance in a reused row-major buffer, the products
- * in reused temporaries, doc/results/performance.md section 16) change where the numbers are stored, not
- * how they are computed. The reference below is the code of before (2026-11-24, 4d20605),
- * copied. With the AVX2 kernels Gamma * rows (kernels::productColRow) differs in the last bits:
- * measured here against the portable variant, within 1e-12 relative. */
+ * in reused temporaries, doc/results/performance.md section 16) change where the numbers are
+ * stored, not how they are computed. The reference below is the code of before (2026-11-24,
+ * 4d20605), copied. With the AVX2 kernels Gamma * rows (kernels::productColRow) differs in the last
+ * bits: measured here against the portable variant, within 1e-12 relative. */
 #include <dynslam/ekf_steps.h>
 #include <dynslam/kernels.h>
 #include <gtest/gtest.h>

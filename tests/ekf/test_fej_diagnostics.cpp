@@ -51,8 +51,8 @@ protected:
 // 12 m) with large odometry noise (0.1 m, 0.01 rad per step), precise range-bearing
 // measurements (0.01 m, 1 mrad) and Sigma_0 = 0, for the standard EKF, FEJ, and the ideal EKF
 // (Jacobians at the true states). The per-20-run ANEES varies from 2 to 6.5 (heavy tails), so
-// 20 runs are not enough to compare the filters reliably. Measured (doc/results/results.md): standard
-// 3.40, FEJ 3.29, ideal 2.53.
+// 20 runs are not enough to compare the filters reliably. Measured (doc/results/results.md):
+// standard 3.40, FEJ 3.29, ideal 2.53.
 TEST(Fej, DISABLED_MonteCarloEgoAneesAgainstIdealEkf)
 {
 	double sum[3] = {0, 0, 0};  // standard, FEJ, ideal
@@ -101,7 +101,8 @@ TEST(Fej, DISABLED_MonteCarloEgoAneesAgainstIdealEkf)
 // ANEES of the standard EKF, FEJ and the ideal EKF (MRPT's update path with the Jacobians at
 // the true states) agree; (b) 200 runs of the standard EKF: the 25-run ANEES has a standard
 // error of 0.07-0.19 (the NEES of one run is correlated over its steps), and the 200-run ANEES
-// is within 3 standard errors of 1. Measured numbers: doc/results/results.md, "First-estimate Jacobians".
+// is within 3 standard errors of 1. Measured numbers: doc/results/results.md, "First-estimate
+// Jacobians".
 TEST(Fej, DISABLED_HighwayEgoAneesIdealEkfAndSpread)
 {
 	const std::vector<std::string> levels{"w1v1", "w1v2", "w1v3", "w2v1", "w2v2",

@@ -3,8 +3,8 @@
  * with the model-matched truth (doc/simulator.md "Model-matched truth": the true start drawn from
  * the prior Sigma_0 the filter is given, the cars' poses driven by the white acceleration the cv
  * filter assumes) and filtered with the shipped setting of config/compare_tunnel.ini (E since
- * 2026-11-25, doc/results/results.md 4.10: prior_gauge = anchor; D of 4.8 before): the Monte Carlo mean
- * of the ego NEES in the gap must lie inside the chi-square bounds of its run count
+ * 2026-11-25, doc/results/results.md 4.10: prior_gauge = anchor; D of 4.8 before): the Monte Carlo
+ * mean of the ego NEES in the gap must lie inside the chi-square bounds of its run count
  * (doc/results/results.md 4.9). On the shipped (unmatched) truth it is conservative (4.8, 4.10). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/ground_truth.h>
@@ -83,8 +83,8 @@ TRunNees monteCarlo(const sim::TScenarioOptions& o, uint32_t seed0, int runs)
 
 TEST(ObjectModelCvConsistency, ModelMatchedTunnelNeesInsideChiSquareBounds)
 {
-	// 200 draws, seeds 930001.. (disjoint from every tunnel seed of doc/results/results.md). Each run's
-	// gap mean is an average of 3-dof NEES samples (mean 3 if consistent; its variance is at
+	// 200 draws, seeds 930001.. (disjoint from every tunnel seed of doc/results/results.md). Each
+	// run's gap mean is an average of 3-dof NEES samples (mean 3 if consistent; its variance is at
 	// most a single sample's, so the bounds of 200 independent 3-dof samples, chi2(600) / 200,
 	// are valid, on the wide side). 99 % two-sided (z = 2.576): [2.573, 3.465].
 	const int runs = 200;

@@ -195,7 +195,8 @@ TEST(ClassifyHighway, NoiseLevelsAgainstTheLabelledFilterOnTheSameTrackBreaks)
 		const TResult cls = run(anonymousAt(level, true), true, "", v);
 		print(std::string(level) + " labelled", labelled);
 		print(std::string(level) + " classify", cls);
-		// Measured: per-reading F1 0.983..0.985, per-track F1 0.973..1 (doc/results/classification.md).
+		// Measured: per-reading F1 0.983..0.985, per-track F1 0.973..1
+		// (doc/results/classification.md).
 		EXPECT_GE(cls.reading.f1, 0.95) << level;
 		EXPECT_GE(cls.track.f1, 0.9) << level;
 		// Measured: classify / labelled ATE 0.92 (w3v2) .. 1.012 (w3v1); issue 12's target.

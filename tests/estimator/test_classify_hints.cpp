@@ -1,5 +1,5 @@
-/** Detection-group hints and links after a track break (doc/results/classification.md, "Hints and links
- * after a track break"): the DETECTION_GROUPS comment (dynslam/detection_groups.h), hints as
+/** Detection-group hints and links after a track break (doc/results/classification.md, "Hints and
+ * links after a track break"): the DETECTION_GROUPS comment (dynslam/detection_groups.h), hints as
  * grouping evidence, contradicting hints counted, a car that reappears under new IDs linked to
  * its lost object (classify_link), and the anonymous highway end to end. Synthetic tracks:
  * router_synth.h. */

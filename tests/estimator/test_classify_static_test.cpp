@@ -1,7 +1,7 @@
-/** classify_static_test (doc/results/classification.md): with `map` a static track's reading is tested
- * with the filter's own innovation (TRouterContext::static_innovation) instead of the robot-frame
- * static filter; without a landmark in the state (the callback says no) the robot-frame test
- * stays. Synthetic tracks with a fake innovation callback. */
+/** classify_static_test (doc/results/classification.md): with `map` a static track's reading is
+ * tested with the filter's own innovation (TRouterContext::static_innovation) instead of the
+ * robot-frame static filter; without a landmark in the state (the callback says no) the robot-frame
+ * test stays. Synthetic tracks with a fake innovation callback. */
 #include <dynslam/estimator/classifying_router.h>
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-/** CClassifyingRouter (feature_labels = classify, doc/results/classification.md) on synthetic tracks:
- * the SPRT decides a static and a moving point right within a bounded number of sightings, its
- * false-alarm rate over many seeded static tracks stays near the INI alpha, rigid grouping,
- * the reclassification of a static track that starts moving, and bad input. */
+/** CClassifyingRouter (feature_labels = classify, doc/results/classification.md) on synthetic
+ * tracks: the SPRT decides a static and a moving point right within a bounded number of sightings,
+ * its false-alarm rate over many seeded static tracks stays near the INI alpha, rigid grouping, the
+ * reclassification of a static track that starts moving, and bad input. */
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/models/se2.h>
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 /** Merging two live objects that move as one rigid body (classify_merge_live,
- * doc/results/classification.md "Merging two live objects"): the detector on synthetic samples, a car
- * deliberately split into two objects (half its features first seen 6 steps later) merged within
- * a bounded number of steps, two cars side by side at different speeds never merged, the shipped
- * clutter highway end to end, and the keys. Thresholds a few times the measured values (in the
- * comments and the doc). */
+ * doc/results/classification.md "Merging two live objects"): the detector on synthetic samples, a
+ * car deliberately split into two objects (half its features first seen 6 steps later) merged
+ * within a bounded number of steps, two cars side by side at different speeds never merged, the
+ * shipped clutter highway end to end, and the keys. Thresholds a few times the measured values (in
+ * the comments and the doc). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/live_merge.h>
 #include <dynslam/eval/class_metrics.h>

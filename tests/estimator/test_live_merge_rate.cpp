@@ -1,7 +1,8 @@
 /** The false-merge and missed-merge rates of classify_merge_live, measured by a seeded Monte Carlo
- * of whole filter runs (doc/results/classification.md "Merging two live objects", "Measured rates"): the
- * nominal alpha is not the false-merge rate (the cross-time covariance is not tracked), so the
- * rates are measured here over N seeded draws (world and noise seed) of a 60-step highway:
+ * of whole filter runs (doc/results/classification.md "Merging two live objects", "Measured
+ * rates"): the nominal alpha is not the false-merge rate (the cross-time covariance is not
+ * tracked), so the rates are measured here over N seeded draws (world and noise seed) of a 60-step
+ * highway:
  *
  * - Agent 1 alone in lane 1, its features 2 and 3 first seen at step 6 (a car split into two
  *   objects: one body, a merge is wanted; missed = no merge of its halves by the end);

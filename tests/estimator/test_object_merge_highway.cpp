@@ -1,7 +1,7 @@
-/** Merging a linked object end to end (classify_merge_linked, doc/results/classification.md "Merging a
- * linked object"): config/highway_anonymous.ini with detection-group hints, whose two cars come
- * back under new IDs after a track break, through the classifying EKF with object_model = cv.
- * With the key on, each link merges the new object into the lost one (fewer objects, the lost
+/** Merging a linked object end to end (classify_merge_linked, doc/results/classification.md
+ * "Merging a linked object"): config/highway_anonymous.ini with detection-group hints, whose two
+ * cars come back under new IDs after a track break, through the classifying EKF with object_model =
+ * cv. With the key on, each link merges the new object into the lost one (fewer objects, the lost
  * object's feature set grows by the new tracks); the merged objects' velocity and the world
  * positions of their features stay close to the truth; off is today's filter bit for bit; with
  * the paper's model the key changes nothing. */

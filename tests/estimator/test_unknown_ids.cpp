@@ -1,7 +1,7 @@
 /** ID -1 readings under feature_labels = classify (issue 12 item 4; unknown_id_association.h,
- * doc/results/classification.md "Unknown IDs"): the resolver alone, the router with an injected static
- * association, and the EKF (MRPT's data association) on the simulated highway with every true
- * reading written as -1 (config/highway_unknown_ids.ini) against the anonymous-ID run
+ * doc/results/classification.md "Unknown IDs"): the resolver alone, the router with an injected
+ * static association, and the EKF (MRPT's data association) on the simulated highway with every
+ * true reading written as -1 (config/highway_unknown_ids.ini) against the anonymous-ID run
  * (config/highway_anonymous.ini). Thresholds: a few times the measured values (in the comments
  * and the doc). */
 #include <dynslam/CDynamicKFSLAM2D.h>
@@ -247,10 +247,10 @@ void print(const std::string& what, const TRun& r)
 }  // namespace
 
 // Every true reading -1: the filter associates them all (nothing skipped) and the ego stays close
-// to the anonymous-ID run. Measured (doc/results/classification.md "Unknown IDs"): anonymous IDs ATE
-// 0.1274 m, class F1 0.984; all -1: ATE 0.1242 m, 1552 readings -> 847 static, 528 moving (incl.
-// second sightings), 177 new tracks (177 tracks for 90 true features), purity 0.917, class F1
-// 0.917. Thresholds: errors a few times the measured ones (purity > 0.7, F1 > 0.6, tracks < 500,
+// to the anonymous-ID run. Measured (doc/results/classification.md "Unknown IDs"): anonymous IDs
+// ATE 0.1274 m, class F1 0.984; all -1: ATE 0.1242 m, 1552 readings -> 847 static, 528 moving
+// (incl. second sightings), 177 new tracks (177 tracks for 90 true features), purity 0.917, class
+// F1 0.917. Thresholds: errors a few times the measured ones (purity > 0.7, F1 > 0.6, tracks < 500,
 // ATE < 2 x the anonymous run's + 1 cm), and each stage must work (half the measured counts), so
 // "every reading a new track" (purity 1) fails.
 TEST(UnknownIds, HighwayAllReadingsUnknown)

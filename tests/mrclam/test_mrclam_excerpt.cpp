@@ -272,8 +272,8 @@ TEST(MrclamExcerpt, DeadReckoningFollowsTheGroundTruthAtTheStart)
 		std::cout << "  " << T << ": " << e << " / " << sigmaAt[T] << " / " << pathAt[T] << "\n";
 	std::cout << inside << " of " << n << " steps of the first 60 s inside the 99.9% ellipse\n";
 	ASSERT_GT(n, 100u);
-	// The bound (doc/results/real-data.md): at the start of the run (10 s, 30 s) the position error is
-	// below 15 % of the ground-truth path length plus 2 cm (Vicon and interpolation floor);
+	// The bound (doc/results/real-data.md): at the start of the run (10 s, 30 s) the position error
+	// is below 15 % of the ground-truth path length plus 2 cm (Vicon and interpolation floor);
 	// after 60 s below 25 %. Measured: 4.3 %, 13.6 %, 20.1 % (robot 3 is not the best robot of
 	// Dataset 6 for dead reckoning, nor the worst).
 	for (int T : {10, 30, 60})

@@ -1,8 +1,8 @@
 #pragma once
 /** @file realdata_run.h
- * Evaluation of the three filters of dynslam-compare on imported MRCLAM data (doc/results/real-data.md,
- * section 5), shared by the end-to-end test (test_realdata) and the development tool
- * dynslam-realdata-report (scripts/mrclam_results.sh).
+ * Evaluation of the three filters of dynslam-compare on imported MRCLAM data
+ * (doc/results/real-data.md, section 5), shared by the end-to-end test (test_realdata) and the
+ * development tool dynslam-realdata-report (scripts/mrclam_results.sh).
  *
  * Besides the metrics of dynslam::apps::evaluateRun it records, per step, what the apps do not:
  *  - the static updates rejected by the dynamic filter's innovation gate (TStepReport);

@@ -80,8 +80,9 @@ TEST(RealDataNoiseModel, InflatedModelIsLessOverconfidentOnTheExcerpt)
 }
 
 // The final odometry bias reaches the metrics (metrics.csv columns odometry_bias_*_final): the
-// shipped excerpt with the bias keys of config/mrclam_compare.ini's comment (doc/results/real-data.md
-// 5.10). Measured: b_w = 0.0090 rad/s (ATE 0.108 m); the prior std is 0.0175 rad/s.
+// shipped excerpt with the bias keys of config/mrclam_compare.ini's comment
+// (doc/results/real-data.md 5.10). Measured: b_w = 0.0090 rad/s (ATE 0.108 m); the prior std is
+// 0.0175 rad/s.
 TEST(RealDataNoiseModel, FinalOdometryBiasIsInTheMetrics)
 {
 	const std::string rawlog =

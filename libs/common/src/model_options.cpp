@@ -1,7 +1,7 @@
 /** TModelOptions: reading, validation and dump of section [DynamicKFSLAM]. */
 #include <dynslam/config_utils.h>
-#include <dynslam/model_keys.h>
 #include <dynslam/estimator/seam_registries.h>
+#include <dynslam/model_keys.h>
 #include <dynslam/model_options.h>
 
 #include <ostream>

@@ -1,10 +1,10 @@
 /** CDynamicKFSLAM2D: merging two live objects that move as one rigid body (classify_merge_live,
- * doc/results/classification.md "Merging two live objects"). At the end of a step, every pair of objects
- * seen in it is tested (estimator::CLiveMergeDetector) on B's features expressed in A's frame,
- * f' = g_A^-1(xi_A, g_B(xi_B, f^B)) (models::mergeObjectFeatures, the map the merge applies),
- * with their covariance J P J^T from the filter's joint covariance, and, with an object-centric
- * model, the velocity residual (models::rigidVelocityResidual); a pair decided rigid is merged
- * by mergeObjects (CDynamicKFSLAM2D_merge.cpp). */
+ * doc/results/classification.md "Merging two live objects"). At the end of a step, every pair of
+ * objects seen in it is tested (estimator::CLiveMergeDetector) on B's features expressed in A's
+ * frame, f' = g_A^-1(xi_A, g_B(xi_B, f^B)) (models::mergeObjectFeatures, the map the merge
+ * applies), with their covariance J P J^T from the filter's joint covariance, and, with an
+ * object-centric model, the velocity residual (models::rigidVelocityResidual); a pair decided rigid
+ * is merged by mergeObjects (CDynamicKFSLAM2D_merge.cpp). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/models/live_merge.h>

@@ -81,8 +81,8 @@ double normalQuantile(double p)
 
 /** normalQuantile with the last few probabilities remembered (per thread): the router asks for
  * the same two or three (classify_group_prob, classify_reclassify_gate) many times per step, and
- * the 200 bisection steps on erfc were a third of a classifying highway run (doc/results/performance.md
- * 14). The same values, bit for bit. */
+ * the 200 bisection steps on erfc were a third of a classifying highway run
+ * (doc/results/performance.md 14). The same values, bit for bit. */
 double normalQuantileCached(double p)
 {
 	constexpr int kSlots = 4;

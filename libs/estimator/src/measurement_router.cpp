@@ -1,7 +1,7 @@
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/measurement_router.h>
-#include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/estimator/seam_registries.h>
+#include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/se2.h>
 

@@ -74,8 +74,8 @@ struct TStepReport
 	size_t object_fallbacks = 0, object_reinits = 0;
 	double nis_static = 0;  ///< NIS of the static update (0 if none)
 	size_t nis_static_dof = 0;
-	/** feature_labels = classify (doc/results/classification.md): readings of undecided tracks and of
-	 * static tracks held back as inconsistent (both unused), readings with ID -1 (skipped),
+	/** feature_labels = classify (doc/results/classification.md): readings of undecided tracks and
+	 * of static tracks held back as inconsistent (both unused), readings with ID -1 (skipped),
 	 * static landmarks reclassified moving and dropped from the state. */
 	size_t classify_candidates = 0, classify_held = 0, skipped_unknown_id = 0;
 	/** Readings with ID -1 (MRPT's unknown landmark) associated with a static landmark of the

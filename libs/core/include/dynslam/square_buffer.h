@@ -1,15 +1,14 @@
 #pragma once
 /** @file square_buffer.h
- * A square row-major matrix in a buffer that keeps its capacity, pure Eigen (doc/results/performance.md,
- * sections 9 and 10). The filter's covariance changes size on most steps of a run (a new
- * landmark, a dropped pose). The buffer is a side x side row-major array (side >= n, the outer
- * stride of the view, fixed until the next reallocation), so the n x n matrix can grow and
- * shrink in place: new entries are written after the old block without moving it, drops are
- * compacted towards the top-left corner (ekf::assembleInPlace). It reallocates only when n
- * outgrows the side, geometrically. Freed buffers are kept in a small per-thread cache and
- * handed to the next buffer of that thread (a Monte Carlo sweep runs one filter after the
- * other: no fresh pages from the kernel per run). Copying is not needed by the filter and not
- * provided. */
+ * A square row-major matrix in a buffer that keeps its capacity, pure Eigen
+ * (doc/results/performance.md, sections 9 and 10). The filter's covariance changes size on most
+ * steps of a run (a new landmark, a dropped pose). The buffer is a side x side row-major array
+ * (side >= n, the outer stride of the view, fixed until the next reallocation), so the n x n matrix
+ * can grow and shrink in place: new entries are written after the old block without moving it,
+ * drops are compacted towards the top-left corner (ekf::assembleInPlace). It reallocates only when
+ * n outgrows the side, geometrically. Freed buffers are kept in a small per-thread cache and handed
+ * to the next buffer of that thread (a Monte Carlo sweep runs one filter after the other: no fresh
+ * pages from the kernel per run). Copying is not needed by the filter and not provided. */
 #include <dynslam/ekf_steps.h>
 
 #include <Eigen/Core>

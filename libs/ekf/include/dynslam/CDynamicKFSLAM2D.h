@@ -209,10 +209,10 @@ public:
 	std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> getOdometryBias() const;
 
 protected:
-	/** State surgery (feature_labels = classify, doc/results/classification.md): each static landmark
-	 * c.id becomes, in place, f_0 of feature c.feature of object c.object; the mean and the
-	 * covariance (cross-covariances included) are unchanged, only the block's label changes. The
-	 * step calls it with the router's TRoutedStep::converted right after routing (the router
+	/** State surgery (feature_labels = classify, doc/results/classification.md): each static
+	 * landmark c.id becomes, in place, f_0 of feature c.feature of object c.object; the mean and
+	 * the covariance (cross-covariances included) are unchanged, only the block's label changes.
+	 * The step calls it with the router's TRoutedStep::converted right after routing (the router
 	 * has registered the objects). Throws std::logic_error if an ID is not a static landmark in
 	 * the state. Counted in TStepReport::converted_static. */
 	void convertStaticLandmarks(const std::vector<estimator::TRoutedStep::TConversion>& c);
@@ -375,8 +375,8 @@ private:
 	Eigen::MatrixXd gaugeTerm(const estimator::TBlock* block, const Eigen::VectorXd& mean) const;
 	Eigen::Vector2d m_gaugeOrigin = Eigen::Vector2d::Zero();  ///< p0 of the gauge (reset())
 
-	/** Per-step scratch that keeps its capacity between steps (doc/results/performance.md, section 16,
-	 * sixth round): the extended layout, the plan, commit's drop flags and mean. */
+	/** Per-step scratch that keeps its capacity between steps (doc/results/performance.md, section
+	 * 16, sixth round): the extended layout, the plan, commit's drop flags and mean. */
 	estimator::CPaddedLayout m_ext;
 	TPending m_plan;
 	std::vector<bool> m_dropFlags;
@@ -420,9 +420,9 @@ private:
 	int m_step = -1;
 	TStepReport m_report;
 	bool m_failed = false;  ///< a step threw midway: refuse to go on until reset()
-	// The covariance (doc/results/performance.md, section 9): the filter works on m_cov, a buffer that
-	// keeps its capacity; MRPT's m_pkk is a copy brought up to date by syncPkk() when it is read
-	// (fullCov(), MRPT's update engine).
+	// The covariance (doc/results/performance.md, section 9): the filter works on m_cov, a buffer
+	// that keeps its capacity; MRPT's m_pkk is a copy brought up to date by syncPkk() when it is
+	// read (fullCov(), MRPT's update engine).
 	ekf::CSquareBuffer m_cov;
 	mutable bool m_pkkStale = false;  ///< m_pkk differs from m_cov
 	/** The working covariance (marks m_pkk stale). */

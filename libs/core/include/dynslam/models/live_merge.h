@@ -1,11 +1,11 @@
 #pragma once
 /** @file live_merge.h
  * The velocity part of the test that two live objects A and B move as one rigid body
- * (classify_merge_live with object_model = cv | ctrv, doc/results/classification.md "Merging two live
- * objects"). An object's velocity is that of its reference point p = c0 + (dx, dy) (the centroid
- * c0 of its founders' body-frame features moved by its pose; one founder: that feature), with
- * the turn rate omega for a 3-dof pose. If B is rigidly attached to A, B's reference point moves
- * with A's twist:
+ * (classify_merge_live with object_model = cv | ctrv, doc/results/classification.md "Merging two
+ * live objects"). An object's velocity is that of its reference point p = c0 + (dx, dy) (the
+ * centroid c0 of its founders' body-frame features moved by its pose; one founder: that feature),
+ * with the turn rate omega for a 3-dof pose. If B is rigidly attached to A, B's reference point
+ * moves with A's twist:
  *
  *     r_xy = v_B - v_A - omega_A perp(p_B - p_A),   perp(x, y) = (-y, x),
  *     r_w  = omega_B - omega_A                      (only if B has a 3-dof pose),

@@ -1,7 +1,8 @@
 #pragma once
 /** @file object_merge.h
- * Merging an object N into an object L (classify_merge_linked, doc/results/classification.md "Merging a
- * linked object"): N's features, kept in N's body frame, are re-expressed in L's body frame,
+ * Merging an object N into an object L (classify_merge_linked, doc/results/classification.md
+ * "Merging a linked object"): N's features, kept in N's body frame, are re-expressed in L's body
+ * frame,
  *
  *     f'_k = g_L^-1(xi_L, g_N(xi_N, f^N)_k),
  *

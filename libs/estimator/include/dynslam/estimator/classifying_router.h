@@ -1,7 +1,7 @@
 #pragma once
 /** @file classifying_router.h
- * feature_labels = classify (issue 12, doc/results/classification.md): every non-negative reading ID
- * is an anonymous persistent track; the router decides static vs moving online and groups the
+ * feature_labels = classify (issue 12, doc/results/classification.md): every non-negative reading
+ * ID is an anonymous persistent track; the router decides static vs moving online and groups the
  * moving tracks into rigid objects, with no ID oracle.
  *
  * A new track is a candidate: not routed to the filter (Skip), so neither the ego nor the map
@@ -98,7 +98,8 @@ struct TClassifyParams
 	/** classify_merge_linked: a link also merges the new object into the lost one in the
 	 * estimator (TRoutedStep::merges; the filter calls mergeObjects). The EKF sets it only with
 	 * an object-centric model (cv, ctrv), which predicts the lost object across the gap
-	 * (doc/results/classification.md "Merging a linked object"); false (default): identities only. */
+	 * (doc/results/classification.md "Merging a linked object"); false (default): identities only.
+	 */
 	bool merge_linked = false;
 	/** classify_merge_live: two live objects that move as one rigid body (CLiveMergeDetector,
 	 * live_merge.h) are merged in the estimator (the filter calls mergeObjects; off by default:

@@ -1,9 +1,9 @@
 #pragma once
 /** @file live_merge.h
  * The test that two live objects A and B (both in the filter, both seen) move as one rigid body
- * (classify_merge_live, doc/results/classification.md "Merging two live objects"). The filter hands it,
- * at every step at which both are seen, y = B's features expressed in A's frame (the merge's own
- * map, models::mergeObjectFeatures: constant when they are one body) with its covariance S from
+ * (classify_merge_live, doc/results/classification.md "Merging two live objects"). The filter hands
+ * it, at every step at which both are seen, y = B's features expressed in A's frame (the merge's
+ * own map, models::mergeObjectFeatures: constant when they are one body) with its covariance S from
  * the filter's joint covariance, and (object-centric models) the chi-square of the velocity
  * residual (models::rigidVelocityResidual). Over the pair's last W observations:
  *

@@ -67,9 +67,9 @@ struct TRoutedStep
 	/** Tracks decided moving that joined an object created in an earlier step (late joining:
 	 * the filter gives them an f_0 from the object's pose). */
 	size_t joined = 0;
-	/** Hints (classify_use_hints, doc/results/classification.md "Hints"): readings whose hint differs
-	 * from their track's first hint (the track keeps the first; the reading's is not used), and
-	 * objects whose readings of this step carry two or more different hints (the grouping,
+	/** Hints (classify_use_hints, doc/results/classification.md "Hints"): readings whose hint
+	 * differs from their track's first hint (the track keeps the first; the reading's is not used),
+	 * and objects whose readings of this step carry two or more different hints (the grouping,
 	 * decided by motion, is kept). */
 	size_t hint_track_conflicts = 0, hint_group_conflicts = 0;
 	/** New objects linked to an object lost before (classify_link: the same identity), and of

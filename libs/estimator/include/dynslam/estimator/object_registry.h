@@ -63,14 +63,14 @@ public:
 	 * `obj` at `step` and says its role. A first sighting adds it to the object's feature set. */
 	FeatureRole registerReading(int32_t obj, int32_t id, int32_t feature, int step);
 	/** Registers object `obj` with its whole feature set at once and time 0 `first_step` (state
-	 * surgery: static landmarks that became its f_0, doc/results/classification.md). Its readings are
-	 * time t from the step after first_step on. Throws std::logic_error if obj exists, if ids is
-	 * empty or if ids and index differ in size. */
+	 * surgery: static landmarks that became its f_0, doc/results/classification.md). Its readings
+	 * are time t from the step after first_step on. Throws std::logic_error if obj exists, if ids
+	 * is empty or if ids and index differ in size. */
 	void registerObject(int32_t obj, int first_step, const std::vector<int32_t>& ids,
 	                    const std::vector<int32_t>& index);
-	/** Late joining (doc/results/classification.md): feature `id` (index `feature`) joins object `obj`
-	 * after its time 0; its readings are time t from now on (the filter gives it an f_0 from its
-	 * first one). Throws std::logic_error if obj does not exist or already has id. */
+	/** Late joining (doc/results/classification.md): feature `id` (index `feature`) joins object
+	 * `obj` after its time 0; its readings are time t from now on (the filter gives it an f_0 from
+	 * its first one). Throws std::logic_error if obj does not exist or already has id. */
 	void addFeature(int32_t obj, int32_t id, int32_t feature);
 	/** Removes object obj (merged into another, classify_merge_linked). */
 	void erase(int32_t obj) { m_objects.erase(obj); }

@@ -18,7 +18,8 @@ struct TReading
 	Eigen::Vector2d z;
 	/** Optional detection group (a box / detection ID of the front-end) of this reading, -1:
 	 * none. Read from the step's DETECTION_GROUPS comment (dynslam/detection_groups.h); used only
-	 * by the classifying router with classify_use_hints (doc/results/classification.md, "Hints"). */
+	 * by the classifying router with classify_use_hints (doc/results/classification.md, "Hints").
+	 */
 	int32_t hint = -1;
 };
 

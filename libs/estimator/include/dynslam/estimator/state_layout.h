@@ -75,8 +75,8 @@ public:
 	std::vector<int> keptStorage(const std::vector<bool>& remove) const;
 	/** Sets the step of block b (an object pose predicted in place by a motion model). */
 	void setStep(size_t b, int step) { m_blocks.at(b).step = step; }
-	/** State surgery (doc/results/classification.md): static landmark block b becomes the time-0 feature
-	 * `feature` of object `object`, in place (same storage, ID, creation step and number).
+	/** State surgery (doc/results/classification.md): static landmark block b becomes the time-0
+	 * feature `feature` of object `object`, in place (same storage, ID, creation step and number).
 	 * Throws std::logic_error if block b is not a static landmark. */
 	void convertToObjectFeature0(size_t b, int32_t object, int32_t feature);
 	/** Merge (classify_merge_linked): time-0 feature block b becomes feature `feature` of object

@@ -1,7 +1,7 @@
 #pragma once
 /** @file anonymous.h
- * `dynslam-mrclam --anonymous` (issue 12, doc/results/real-data.md section 6): the readings carry IDs
- * that say nothing about what was measured, and the class ground truth of every reading.
+ * `dynslam-mrclam --anonymous` (issue 12, doc/results/real-data.md section 6): the readings carry
+ * IDs that say nothing about what was measured, and the class ground truth of every reading.
  *
  * Anonymous IDs: the 20 MRCLAM subjects (robots 1..5, landmarks 6..20) are mapped by a seeded
  * random permutation onto 0..19, one range for both kinds, so neither the value nor the range
