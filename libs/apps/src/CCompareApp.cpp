@@ -205,6 +205,15 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 	}
 }
 
+void CCompareApp::printHeader(size_t steps) const
+{
+	if (quiet) return;
+	std::cout << "dynslam-compare: config " << iniFile << "\n  rawlog " << data.rawlog << " ("
+	          << steps << " steps)\n  ground truth "
+	          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
+	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
+}
+
 void CCompareApp::run()
 {
 	clearResults();
@@ -216,14 +225,7 @@ void CCompareApp::run()
 	groundTruthUsed = d.groundTruthUsed;
 	noiseUsed = d.noiseUsed;
 	m_rawlog = d.rawlog;
-	if (!quiet)
-	{
-		std::cout << "dynslam-compare: config " << iniFile << "\n  rawlog " << data.rawlog << " ("
-		          << d.rawlog.size() << " steps)\n  ground truth "
-		          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
-		if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
-	}
-
+	printHeader(d.rawlog.size());
 	landmarkGaps = dataGaps(data, hasGroundTruth);
 	std::ostringstream dump;
 	const size_t n = d.rawlog.size();

@@ -153,6 +153,8 @@ private:
 	/** compare_map_start.png: every filter re-run on the first 4 s (ground truth needed). */
 	void drawStartSnapshot(const std::vector<eval::TFigureSeries>& series);
 	void differenceRows();
+	/** The run's header lines (config, rawlog, ground truth, noise); nothing with -q. */
+	void printHeader(size_t steps) const;
 	void buildTable();          ///< tableText: the rows, the footnote, the diverged filters
 	void writeVisualOutputs();  ///< --scene, --video
 	/** The object velocity columns of a row (by object number). A classifying row
