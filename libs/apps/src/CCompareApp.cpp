@@ -213,15 +213,6 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 	}
 }
 
-void CCompareApp::printHeader(size_t steps) const
-{
-	if (quiet) return;
-	std::cout << "dynslam-compare: config " << iniFile << "\n  rawlog " << data.rawlog << " ("
-	          << steps << " steps)\n  ground truth "
-	          << (hasGroundTruth ? groundTruthUsed : std::string("none")) << "\n";
-	if (!noiseUsed.empty()) std::cout << "  " << noiseUsed << "\n";
-}
-
 void CCompareApp::run()
 {
 	clearResults();
