@@ -27,7 +27,7 @@ declare -A ALLOWED=(
 	[io]="dynslam::core Eigen3::Eigen"
 	[estimator]="dynslam::core"
 	[common]="dynslam::core dynslam::estimator Eigen3::Eigen $MRPT_BASE mrpt::io mrpt::serialization
-	          dynslam_mrpt_pch"
+	          mrpt::tclap dynslam_mrpt_pch"
 	[ekf]="dynslam::core dynslam::estimator dynslam::common $MRPT_BASE mrpt::bayes mrpt::slam
 	       mrpt::system dynslam_mrpt_pch"
 	[framework]="dynslam::core dynslam::estimator dynslam::common Eigen3::Eigen $MRPT_BASE

@@ -226,7 +226,7 @@ TEST(CompareApp, SmoothingFilterRowRunsAlg6)
 	// the same filter with the paper's smoothing (Alg. 6, K >= 3 poses, Sigma_s of
 	// config/run_highway_smoothing.ini). Measured ATE: 0.127555 / 0.127578 m (README: the
 	// smoothing changes the ego in the fifth digit). Equal numbers would mean it did not run.
-	std::string ini = apps_test::readFile(apps_test::configFile("compare_highway.ini"));
+	std::string ini = apps_test::shippedIniText("compare_highway.ini");
 	const std::string from =
 	    "filters             = static_all, static_landmarks_only, dynamic, dynamic_classified";
 	ASSERT_NE(ini.find(from), std::string::npos);

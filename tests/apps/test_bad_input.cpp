@@ -28,7 +28,7 @@ void expectCleanFailure(const apps_test::TCommandResult& r, const std::vector<st
 std::string editedIni(const std::string& dir, const std::string& shipped, const std::string& key,
                       const std::string& newLine)
 {
-	std::string text = apps_test::readFile(configFile(shipped));
+	std::string text = apps_test::shippedIniText(shipped);
 	text =
 	    std::regex_replace(text, std::regex("\\.\\./datasets"), std::string(DYNSLAM_DATASETS_DIR));
 	text = std::regex_replace(text, std::regex("(^|\\n)" + key + " *=[^\\n]*"), "$1" + newLine);
@@ -154,7 +154,7 @@ TEST(BadInput, MontecarloIniErrorsNameTheFile)
 {
 	// [MonteCarlo] errors (a missing required key, a bad value) name the INI file.
 	const std::string dir = apps_test::freshDir("mcinifile");
-	const std::string shipped = apps_test::readFile(configFile("montecarlo.ini"));
+	const std::string shipped = apps_test::shippedIniText("montecarlo.ini");
 	const std::string ini = dir + "/mc.ini";
 	apps_test::writeFile(
 	    ini, std::regex_replace(shipped, std::regex("(^|\\n)scenario *=[^\\n]*"), "$1"));
@@ -199,7 +199,7 @@ TEST(BadInput, MisspelledKeyInMrptSectionWarnsOrFailsWithStrict)
 TEST(BadInput, MontecarloStrictRejectsAMisspelledMrptKey)
 {
 	const std::string dir = apps_test::freshDir("mcstrict");
-	std::string text = apps_test::readFile(configFile("montecarlo.ini"));
+	std::string text = apps_test::shippedIniText("montecarlo.ini");
 	text = std::regex_replace(text, std::regex("\\[DynamicKFSLAM_KalmanFilter\\]"),
 	                          "[DynamicKFSLAM_KalmanFilter]\nenable_profilr = false");
 	text = std::regex_replace(text, std::regex("(^|\\n)scenario *= *"),

@@ -41,7 +41,7 @@ TEST(CompareApp, ADivergedFilterIsNamedAndTheOthersRunOn)
 {
 	const std::string dir = apps_test::freshDir("diverged");
 	const std::string rawlog = writeRawlog(dir);
-	std::string ini = apps_test::readFile(apps_test::configFile("compare_highway.ini"));
+	std::string ini = apps_test::shippedIniText("compare_highway.ini");
 	ini = std::regex_replace(ini, std::regex("\\n(std_sensor_range *=)[^\\n]*"), "\n$1 1e-45");
 	apps_test::writeFile(dir + "/compare.ini", ini);
 	CCompareApp app;

@@ -130,7 +130,7 @@ TEST(Messages, CompareLogsAProgressLinePerFilter)
 {
 	// progress_every = 30 stands for a long run (default: ten lines per filter from 2000 steps).
 	const std::string dir = apps_test::freshDir("p");
-	std::string ini = apps_test::readFile(configFile("compare_highway.ini"));
+	std::string ini = apps_test::shippedIniText("compare_highway.ini");
 	ini = std::regex_replace(ini, std::regex("\\[Compare\\]"), "[Compare]\nprogress_every = 30");
 	apps_test::writeFile(dir + "/c.ini", ini);
 	const auto r = runCommand(std::string(q(DYNSLAM_COMPARE_EXE)) + " -c " + q(dir + "/c.ini") +

@@ -26,7 +26,7 @@ std::vector<std::string> runsWithoutTiming(const std::string& path)
  * plus MRPT's static filter's section. */
 std::string writeIni(const std::string& dir, const std::string& backend, const std::string& keys)
 {
-	std::string text = apps_test::readFile(apps_test::configFile("montecarlo.ini"));
+	std::string text = apps_test::shippedIniText("montecarlo.ini");
 	text = std::regex_replace(text, std::regex("(^|\\n)scenario *= *"),
 	                          "$1scenario = " + std::string(DYNSLAM_CONFIG_DIR) + "/");
 	text =

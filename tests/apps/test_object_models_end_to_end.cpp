@@ -51,7 +51,7 @@ namespace
 void monteCarloWith(CMonteCarloApp& app, const std::string& tag, const std::string& dyn,
                     const std::string& mc)
 {
-	std::string ini = apps_test::readFile(apps_test::configFile("montecarlo.ini"));
+	std::string ini = apps_test::shippedIniText("montecarlo.ini");
 	const auto s = ini.find("scenario = highway.ini");
 	ini.replace(s, 22, "scenario = " + apps_test::configFile("highway.ini"));
 	// The keys set here replace the INI's (the last of two equal keys would win).

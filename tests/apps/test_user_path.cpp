@@ -87,7 +87,7 @@ TEST(UserPath, UnknownIdsInABackendWithoutAssociationAreSkippedAndCounted)
 	const auto r = dynslam::apps::loadRawlog(dataset("highway.rawlog"));
 	size_t unknown = 0;
 	const auto frames = withUnknownIds(r, &unknown);
-	mrpt::config::CConfigFileMemory ini(apps_test::readFile(configFile("run_highway.ini")));
+	mrpt::config::CConfigFileMemory ini(apps_test::shippedIniText("run_highway.ini"));
 	auto alg1 = dynslam::apps::makeBackend("alg1", ini);
 	size_t skipped = 0;
 	for (size_t k = 0; k < 6; ++k)

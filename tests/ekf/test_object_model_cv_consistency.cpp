@@ -7,11 +7,12 @@
  * mean of the ego NEES in the gap must lie inside the chi-square bounds of its run count
  * (doc/results/results.md 4.9). On the shipped (unmatched) truth it is conservative (4.8, 4.10). */
 #include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/config_include.h>
 #include <dynslam/ground_truth.h>
 #include <dynslam/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
-#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
 #include <cstdio>
@@ -43,7 +44,9 @@ TRunNees runDraw(sim::TScenarioOptions o, uint32_t seed)
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, seed);
 	CDynamicKFSLAM2D f;
 	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	f.loadOptions(mrpt::config::CConfigFile(DYNSLAM_CONFIG_DIR "/compare_tunnel.ini"));
+	mrpt::config::CConfigFileMemory ini;  // with its @include of the paper profile
+	dynslam::config::loadIniWithIncludes(DYNSLAM_CONFIG_DIR "/compare_tunnel.ini", ini);
+	f.loadOptions(ini);
 	f.options.object_model = "cv";
 	f.options.Sigma_v = o.Sigma_v;  // noise_from_scenario
 	f.options.Sigma_0 = o.Sigma_0;

@@ -6,11 +6,11 @@
  * here, independently, by central differences of the transform applied by entry label; the
  * model-matched tunnel's gap NEES lies in its chi-square bounds; a bad key value throws. */
 #include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/config_include.h>
 #include <dynslam/ground_truth.h>
 #include <dynslam/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <algorithm>
@@ -36,7 +36,9 @@ std::unique_ptr<CDynamicKFSLAM2D> makeFilter(const sim::TScenarioOptions& o,
 {
 	auto f = std::make_unique<CDynamicKFSLAM2D>();
 	f->setMinLoggingLevel(mrpt::system::LVL_ERROR);
-	f->loadOptions(mrpt::config::CConfigFile(DYNSLAM_CONFIG_DIR "/compare_tunnel.ini"));
+	mrpt::config::CConfigFileMemory ini;  // with its @include of the paper profile
+	dynslam::config::loadIniWithIncludes(DYNSLAM_CONFIG_DIR "/compare_tunnel.ini", ini);
+	f->loadOptions(ini);
 	f->options.object_model = model;
 	f->options.Sigma_v = o.Sigma_v;
 	f->options.Sigma_0 = Sigma_0;

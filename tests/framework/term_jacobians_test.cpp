@@ -222,7 +222,7 @@ TEST(TermJacobians, ObjectMotionSightingAndVelocityInit)
 				Eigen::VectorXd s(6);
 				s << 0.3, 0.2, th, v;
 				const Eigen::VectorXd n = model->predict(s, nullptr, nullptr);
-				const CObjectMotionTerm t(model, xa, va, xb, vb, 2.0);
+				const CObjectMotionTerm t(model, xa, va, xb, vb);
 				checkTerm(t, {s.head(3), s.tail(3), n.head(3) + Eigen::Vector3d(0.01, -0.02, 0.003),
 				              n.tail(3) + Eigen::Vector3d(0.02, 0.01, -0.01)});
 				checkTerm(

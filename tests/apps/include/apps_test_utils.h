@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -88,6 +89,15 @@ inline std::string dataset(const std::string& name)
 inline std::string configFile(const std::string& name)
 {
 	return std::string(DYNSLAM_CONFIG_DIR) + "/" + name;
+}
+
+/** The text of the shipped INI `name` with every relative `@include PATH` made absolute (to
+ * the shipped config folder), so that a test can write an edited copy to another folder. */
+inline std::string shippedIniText(const std::string& name)
+{
+	const std::string text = readFile(configFile(name));
+	return std::regex_replace(text, std::regex("(^|\\n)@include[ \\t]+([^/ \\t\\n])"),
+	                          "$1@include " + std::string(DYNSLAM_CONFIG_DIR) + "/$2");
 }
 
 /** Writes `text` to `path`. */
