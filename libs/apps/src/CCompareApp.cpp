@@ -27,7 +27,11 @@ namespace
 const char* kSection = "Compare";
 const char* kDefaultIni = "config/compare_highway.ini";
 
-std::string backendOf(const std::string& filter) { return filter == "dynamic" ? "ekf" : filter; }
+/** `dynamic` and `default` (the default profile's keys: paramsFor) are the dynamic EKF. */
+std::string backendOf(const std::string& filter)
+{
+	return filter == "dynamic" || filter == "default" ? "ekf" : filter;
+}
 
 /** Fixed colours per filter, whatever the subset: static_all red, static only orange, dynamic
  * blue, dynamic_cv green, dynamic_smoothing purple, dynamic_ctrv and dynamic_classified the
@@ -40,6 +44,7 @@ size_t filterColorIndex(const std::string& n)
 	       : n == "dynamic_smoothing"     ? 4
 	       : n == "dynamic_ctrv"          ? 5
 	       : n == "dynamic_classified"    ? 6
+	       : n == "default"               ? 7
 	                                      : 1;
 }
 
@@ -48,8 +53,8 @@ size_t filterColorIndex(const std::string& n)
 const std::vector<std::string>& knownFilters()
 {
 	static const std::vector<std::string> f{
-	    "static_all",   "static_landmarks_only", "dynamic",           "dynamic_cv",
-	    "dynamic_ctrv", "dynamic_smoothing",     "dynamic_classified"};
+	    "static_all",        "static_landmarks_only", "dynamic", "dynamic_cv", "dynamic_ctrv",
+	    "dynamic_smoothing", "dynamic_classified",    "default"};
 	return f;
 }
 
@@ -77,7 +82,7 @@ std::vector<std::string> parseFilterList(const std::string& fl)
 			fail(kSection, "filters", fl,
 			     "unknown filter '" + f +
 			         "' (known: static_all, static_landmarks_only, dynamic, dynamic_cv, "
-			         "dynamic_ctrv, dynamic_smoothing, dynamic_classified)");
+			         "dynamic_ctrv, dynamic_smoothing, dynamic_classified, default)");
 	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
 	return filters;
 }
@@ -171,7 +176,10 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 		using namespace dynslam::config;
 		rejectUnknownKeys(params, kSection,
 		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
-		                   "figures", "out_dir", "progress_every"});
+		                   "figures", "out_dir", "progress_every", "default_profile"});
+		defaultProfile =
+		    resolvePath(readString(params, kSection, "default_profile", "profiles/default.ini"),
+		                folderOf(iniFile));
 		data = readDataSettings(params, kSection, folderOf(iniFile));
 		if (o.rawlog)
 		{
@@ -197,7 +205,7 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 			throw std::invalid_argument("--full-covariance needs --out DIR (the files go there)");
 		for (const auto& w : checkSharedSections(params, iniFile, o.strict)) MRPT_LOG_WARN(w);
 		for (const auto& f : filters)
-			makeBackend(backendOf(f), params);  // fail early on bad options
+			makeBackend(backendOf(f), paramsFor(f));  // fail early on bad options
 	}
 	catch (const std::invalid_argument& e)
 	{
@@ -229,7 +237,7 @@ void CCompareApp::run()
 	{
 		const std::string& f = filters[i];
 		dump << "\n# ======== filter " << f << " ========\n";
-		auto backend = makeBackend(backendOf(f), params, &dump);
+		auto backend = makeBackend(backendOf(f), paramsFor(f), &dump);
 		MRPT_LOG_INFO_FMT("filter %zu/%zu: %s on %zu steps", i + 1, filters.size(), f.c_str(), n);
 		// feature_labels = classify: the decision about every reading, for the class metrics.
 		const auto* ekf = dynamic_cast<const CDynamicKFSLAM2D*>(backend.get());
@@ -459,7 +467,7 @@ void CCompareApp::drawStartSnapshot(const std::vector<eval::TFigureSeries>& seri
 	snaps.reserve(runs.size());
 	for (const auto& r : runs)
 	{
-		auto b = makeBackend(backendOf(r.name), params);
+		auto b = makeBackend(backendOf(r.name), paramsFor(r.name));
 		snaps.push_back(runFilter(*b, acts, sfs));
 		snaps.back().name = r.name;
 	}

@@ -6,7 +6,8 @@
  *  (b) static_landmarks_only: the same filter given only the static landmarks (moving
  *      features removed by ID, dynslam/landmark_ids.h);
  *  (c) dynamic: the dynamic EKF (CDynamicKFSLAM2D);
- *  optional rows: dynamic_cv, dynamic_smoothing (other object models), dynamic_classified
+ *  optional rows: dynamic_cv, dynamic_smoothing (other object models), default (the dynamic
+ *  EKF with the default profile's keys, doc/configuration.md), dynamic_classified
  *  (feature_labels = classify: no ID oracle; metrics.csv then gains class_precision,
  *  class_recall, class_f1, group_ari against <ground truth>_gt_classes.csv).
  * Prints one table of metrics and timing per filter; with --out DIR writes DIR/metrics.csv
@@ -33,6 +34,7 @@
 #include <mrpt/system/COutputLogger.h>
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -104,6 +106,10 @@ public:
 	std::string sceneFile;        ///< --scene FILE.3Dscene (empty: none)
 	std::string videoFile;        ///< --video FILE.mp4 (empty: none)
 	int progressEvery = 0;  ///< [Compare] progress_every (0: ten lines per filter on long runs)
+	/** [Compare] default_profile (default profiles/default.ini, relative to the INI's folder):
+	 * the row `default` is the dynamic EKF on `params` with every [DynamicKFSLAM] key this
+	 * profile sets replaced by its value (doc/configuration.md "Profiles"). */
+	std::string defaultProfile;
 
 	// --- results of run() ---
 	std::vector<TFilterRun> runs;  ///< one per filter that finished, in `filters` order
@@ -140,6 +146,10 @@ private:
 	};
 	/** Reads [Compare] and checks every filter's options, with the command line's overrides. */
 	void readSettings(const TCompareOverrides& o);
+	/** The INI a filter row runs on: `params`, or for `default` params with the default
+	 * profile's keys (rebuilt at each call: params may change, noise_from_scenario). */
+	const mrpt::config::CConfigFileBase& paramsFor(const std::string& filter);
+	std::unique_ptr<mrpt::config::CConfigFileMemory> m_defaultParams;
 	TRawlog m_rawlog;  ///< kept for the snapshot figure
 	/** <groundTruthUsed>_gt_classes.csv, read at the first call of classTruth() in a run (the
 	 * scores and the figures of every classifying row share it); nullopt: no such file. */
