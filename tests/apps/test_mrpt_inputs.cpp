@@ -154,9 +154,13 @@ TEST(SimulLandmarks, EveryBackendRunsOnItAgainstMrptGroundTruth)
 		// MRPT's normal order: no warning (issue 30; the notes are logged at DEBUG level).
 		std::istringstream log(app.getLogAsString());
 		for (std::string line; std::getline(log, line);)
+		{
 			if (contains(line, "has no sensory frame after it") ||
 			    contains(line, "comes before any action"))
+			{
 				EXPECT_TRUE(contains(line, "|DEBUG|")) << line;
+			}
+		}
 		ASSERT_TRUE(app.hasGroundTruth) << backend;
 		EXPECT_TRUE(isMrptGroundTruthSpec(app.groundTruthUsed)) << app.groundTruthUsed;
 		ASSERT_TRUE(app.evaluation.has_value());

@@ -2,6 +2,7 @@
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
+#include <dynslam/apps/noise_sources.h>
 #include <dynslam/apps/run_outputs.h>
 #include <dynslam/class_ground_truth.h>
 #include <dynslam/config_utils.h>
@@ -151,6 +152,7 @@ bool CCompareApp::initialize(int argc, const char** argv)
 	if (quiet) setMinLoggingLevel(mrpt::system::LVL_WARN);
 
 	iniFile = argIni.isSet() ? argIni.getValue() : locateShippedFile(kDefaultIni);
+	iniIsShippedDefault = !argIni.isSet();
 	loadIniFile(iniFile, params);
 	TCompareOverrides o;
 	o.rawlog = detail::valueIfSet(argRawlog);
@@ -177,9 +179,9 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 		rejectUnknownKeys(params, kSection,
 		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
 		                   "figures", "out_dir", "progress_every", "default_profile"});
-		defaultProfile =
-		    resolvePath(readString(params, kSection, "default_profile", "profiles/default.ini"),
-		                folderOf(iniFile));
+		const std::string profile = readString(params, kSection, "default_profile", "");
+		defaultProfile = profile.empty() ? locateShippedFile("config/profiles/default.ini")
+		                                 : resolvePath(profile, folderOf(iniFile));
 		data = readDataSettings(params, kSection, folderOf(iniFile));
 		if (o.rawlog)
 		{
@@ -204,8 +206,11 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 		if (fullCovariance && outDir.empty())
 			throw std::invalid_argument("--full-covariance needs --out DIR (the files go there)");
 		for (const auto& w : checkSharedSections(params, iniFile, o.strict)) MRPT_LOG_WARN(w);
-		for (const auto& f : filters)
-			makeBackend(backendOf(f), paramsFor(f));  // fail early on bad options
+		data.iniIsShippedDefault = iniIsShippedDefault;
+		// Fail early on bad options; noise that will come from the data has a placeholder.
+		mrpt::config::CConfigFileMemory check(params.getContent());
+		fillNoisePlaceholders(check, "DynamicKFSLAM", "RangeBearingKFSLAM", iniIsShippedDefault);
+		for (const auto& f : filters) makeBackend(backendOf(f), paramsFor(f, check));
 	}
 	catch (const std::invalid_argument& e)
 	{
@@ -237,7 +242,7 @@ void CCompareApp::run()
 	{
 		const std::string& f = filters[i];
 		dump << "\n# ======== filter " << f << " ========\n";
-		auto backend = makeBackend(backendOf(f), paramsFor(f), &dump);
+		auto backend = makeBackend(backendOf(f), paramsFor(f, params), &dump);
 		MRPT_LOG_INFO_FMT("filter %zu/%zu: %s on %zu steps", i + 1, filters.size(), f.c_str(), n);
 		// feature_labels = classify: the decision about every reading, for the class metrics.
 		const auto* ekf = dynamic_cast<const CDynamicKFSLAM2D*>(backend.get());
@@ -467,7 +472,7 @@ void CCompareApp::drawStartSnapshot(const std::vector<eval::TFigureSeries>& seri
 	snaps.reserve(runs.size());
 	for (const auto& r : runs)
 	{
-		auto b = makeBackend(backendOf(r.name), paramsFor(r.name));
+		auto b = makeBackend(backendOf(r.name), paramsFor(r.name, params));
 		snaps.push_back(runFilter(*b, acts, sfs));
 		snaps.back().name = r.name;
 	}

@@ -1,5 +1,6 @@
 #include <dynslam/apps/CRunApp.h>
 #include <dynslam/apps/data_files.h>
+#include <dynslam/apps/noise_sources.h>
 #include <dynslam/apps/run_outputs.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/eval/covariance_writer.h>
@@ -115,7 +116,11 @@ void CRunApp::readSettings(const TRunOverrides& o)
 			                            iniFile + ")");
 		// Fail early on bad back-end options (before reading a long rawlog).
 		for (const auto& w : checkSharedSections(params, iniFile, o.strict)) MRPT_LOG_WARN(w);
-		makeBackend(backend, params);
+		const bool isStatic = backend == "static_all" || backend == "static_landmarks_only";
+		mrpt::config::CConfigFileMemory check(params.getContent());  // noise from the data
+		fillNoisePlaceholders(check, isStatic ? "" : "DynamicKFSLAM",
+		                      isStatic ? "RangeBearingKFSLAM" : "", false);
+		makeBackend(backend, check);
 	}
 	catch (const std::invalid_argument& e)
 	{

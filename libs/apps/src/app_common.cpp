@@ -1,6 +1,7 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/mrpt_sections.h>
+#include <dynslam/apps/noise_sources.h>
 #include <dynslam/config_include.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/eval/writers.h>
@@ -121,13 +122,21 @@ TLoadedData loadData(const TDataSettings& s, mrpt::config::CConfigFileMemory& pa
 	{
 		const std::string sc = s.scenario == "auto" ? scenarioBesideRawlog(s.rawlog) : s.scenario;
 		std::error_code ec;
-		if (s.noiseFromScenario == TDataSettings::ScenarioNoise::Auto &&
-		    !std::filesystem::is_regular_file(sc, ec))
-			d.noiseUsed = "no scenario file " + sc + ": noise values from the INI";
-		else
+		if (s.noiseFromScenario == TDataSettings::ScenarioNoise::On ||
+		    std::filesystem::is_regular_file(sc, ec))
+		{
 			d.noiseUsed =
 			    applyScenarioNoise(params, readScenarioNoise(sc), dynSection, staticSection);
+			return d;
+		}
+		d.noiseUsed = "no scenario file " + sc;
 	}
+	const std::string filled =
+	    applyNoiseSources(params, d.rawlog, dynSection, staticSection, s.iniIsShippedDefault);
+	if (!filled.empty())
+		d.noiseUsed += (d.noiseUsed.empty() ? "" : ": ") + filled;
+	else if (!d.noiseUsed.empty())
+		d.noiseUsed += ": noise values from the INI";
 	return d;
 }
 

@@ -5,11 +5,12 @@
 
 namespace dynslam::apps
 {
-const mrpt::config::CConfigFileBase& CCompareApp::paramsFor(const std::string& filter)
+const mrpt::config::CConfigFileBase& CCompareApp::paramsFor(
+    const std::string& filter, const mrpt::config::CConfigFileMemory& base)
 {
-	if (filter != "default") return params;
+	if (filter != "default") return base;
 	m_defaultParams = std::make_unique<mrpt::config::CConfigFileMemory>();
-	config::overlayProfile(params, defaultProfile, "DynamicKFSLAM", *m_defaultParams);
+	config::overlayProfile(base, defaultProfile, "DynamicKFSLAM", *m_defaultParams);
 	return *m_defaultParams;
 }
 }  // namespace dynslam::apps

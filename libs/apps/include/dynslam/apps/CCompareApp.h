@@ -106,10 +106,14 @@ public:
 	std::string sceneFile;        ///< --scene FILE.3Dscene (empty: none)
 	std::string videoFile;        ///< --video FILE.mp4 (empty: none)
 	int progressEvery = 0;  ///< [Compare] progress_every (0: ten lines per filter on long runs)
-	/** [Compare] default_profile (default profiles/default.ini, relative to the INI's folder):
+	/** [Compare] default_profile (relative to the INI's folder; default: the shipped
+	 * config/profiles/default.ini, found as the default INI is):
 	 * the row `default` is the dynamic EKF on `params` with every [DynamicKFSLAM] key this
 	 * profile sets replaced by its value (doc/configuration.md "Profiles"). */
 	std::string defaultProfile;
+	/** The INI is the shipped default (no -c): without a scenario file its noise values do not
+	 * count; the noise then comes from the rawlog's observations (noise_sources.h). */
+	bool iniIsShippedDefault = false;
 
 	// --- results of run() ---
 	std::vector<TFilterRun> runs;  ///< one per filter that finished, in `filters` order
@@ -148,7 +152,8 @@ private:
 	void readSettings(const TCompareOverrides& o);
 	/** The INI a filter row runs on: `params`, or for `default` params with the default
 	 * profile's keys (rebuilt at each call: params may change, noise_from_scenario). */
-	const mrpt::config::CConfigFileBase& paramsFor(const std::string& filter);
+	const mrpt::config::CConfigFileBase& paramsFor(const std::string& filter,
+	                                               const mrpt::config::CConfigFileMemory& base);
 	std::unique_ptr<mrpt::config::CConfigFileMemory> m_defaultParams;
 	TRawlog m_rawlog;  ///< kept for the snapshot figure
 	/** <groundTruthUsed>_gt_classes.csv, read at the first call of classTruth() in a run (the

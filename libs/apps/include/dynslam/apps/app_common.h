@@ -64,6 +64,9 @@ struct TDataSettings
 		On,
 		Auto
 	} noiseFromScenario = ScenarioNoise::Off;
+	/** The INI is the app's shipped default (dynslam-compare without -c): without a scenario
+	 * file its noise values do not count (noise_sources.h). */
+	bool iniIsShippedDefault = false;
 };
 /** Reads rawlog, ground_truth, scenario and noise_from_scenario from [section]; paths are
  * resolved relative to iniDir. */
@@ -75,7 +78,7 @@ struct TLoadedData
 	TRawlog rawlog;
 	std::optional<TGroundTruth> gt;
 	std::string groundTruthUsed;  ///< "DIR/BASE" or empty
-	std::string noiseUsed;  ///< description of the scenario noise written into the INI, or empty
+	std::string noiseUsed;        ///< where the noise written into the INI came from, or empty
 };
 /** The ground truth of a loaded rawlog, checked against it: the project's CSVs (spec "DIR/BASE",
  * loadGroundTruthFor) or MRPT's text files (spec = the robot-path file, isMrptGroundTruthSpec:
