@@ -116,11 +116,12 @@ TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 	TArgs a({"--out", out, "-q"});  // no -c: the shipped default
 	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
 	app.run();
-	ASSERT_EQ(app.rows.size(), 4u);
+	ASSERT_EQ(app.rows.size(), 5u);
 	EXPECT_EQ(app.rows[0].filter, "static_all");
 	EXPECT_EQ(app.rows[1].filter, "static_landmarks_only");
 	EXPECT_EQ(app.rows[2].filter, "dynamic");
 	EXPECT_EQ(app.rows[3].filter, "dynamic_classified");
+	EXPECT_EQ(app.rows[4].filter, "default");
 	const auto& sa = app.rows[0].metrics;
 	const auto& so = app.rows[1].metrics;
 	const auto& dy = app.rows[2].metrics;
@@ -140,9 +141,12 @@ TEST(CompareApp, DynamicBeatsNaiveStaticFilterAndWritesMetricsCsv)
 	EXPECT_GT(app.rows[3].classes->f1, 0.95);
 	EXPECT_LT(app.rows[3].metrics.ate, 1.1 * dy.ate + 0.01);
 	EXPECT_FALSE(app.rows[2].classes.has_value());
+	// profiles/default.ini (anchored gauge): measured 0.1268 m; not `dynamic`'s 0.1276 m digits
+	EXPECT_LT(app.rows[4].metrics.ate, 1.05 * dy.ate);
+	EXPECT_GT(std::abs(app.rows[4].metrics.ate - dy.ate), 1e-5);
 
 	const auto lines = apps_test::readLines(out + "/metrics.csv");
-	ASSERT_EQ(lines.size(), 5u);
+	ASSERT_EQ(lines.size(), 6u);
 	const auto header = apps_test::splitCsv(lines[0]);
 	const std::vector<std::string> required{
 	    "filter",        "ego_rmse_x", "ego_rmse_y",  "ego_rmse_theta", "static_rmse_x",
@@ -169,11 +173,15 @@ TEST(CompareApp, TunnelObjectModelsCvHelpsTheEgo)
 	TArgs a({"-c", apps_test::configFile("compare_tunnel.ini"), "--no-figures", "-q"});
 	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
 	app.run();
-	ASSERT_EQ(app.rows.size(), 4u);
+	ASSERT_EQ(app.rows.size(), 5u);
 	EXPECT_EQ(app.rows[0].filter, "static_landmarks_only");
 	EXPECT_EQ(app.rows[1].filter, "dynamic");
 	EXPECT_EQ(app.rows[2].filter, "dynamic_cv");
 	EXPECT_EQ(app.rows[3].filter, "dynamic_ctrv");
+	EXPECT_EQ(app.rows[4].filter, "default");
+	// default: the paper's filter + anchor, as this INI's dynamic row (0.7497 m both)
+	EXPECT_EQ(app.rows[4].metrics.ate, app.rows[1].metrics.ate);
+	EXPECT_FALSE(app.rows[4].velocity.has_value());
 	const auto& so = app.rows[0].metrics;
 	const auto& dy = app.rows[1].metrics;
 	const auto& cv = app.rows[2].metrics;
@@ -218,35 +226,6 @@ TEST(CompareApp, TunnelObjectModelsCvHelpsTheEgo)
 		EXPECT_GE(app.rows[i].velocity->n, 200u) << app.rows[i].filter;
 		EXPECT_LT(app.rows[i].velocity->speed_rmse, 0.3) << app.rows[i].filter;
 	}
-}
-
-TEST(CompareApp, SmoothingFilterRowRunsAlg6)
-{
-	// [Compare] filters = dynamic, dynamic_smoothing on the shipped highway: the second row is
-	// the same filter with the paper's smoothing (Alg. 6, K >= 3 poses, Sigma_s of
-	// config/run_highway_smoothing.ini). Measured ATE: 0.127555 / 0.127578 m (README: the
-	// smoothing changes the ego in the fifth digit). Equal numbers would mean it did not run.
-	std::string ini = apps_test::shippedIniText("compare_highway.ini");
-	const std::string from =
-	    "filters             = static_all, static_landmarks_only, dynamic, dynamic_classified";
-	ASSERT_NE(ini.find(from), std::string::npos);
-	ini.replace(ini.find(from), from.size(), "filters = dynamic, dynamic_smoothing");
-	ini.replace(ini.find("[DynamicKFSLAM]\n"), 16, "[DynamicKFSLAM]\nSigma_s = [1e-2 1e-2 1e-3]\n");
-	const std::string dir = apps_test::freshDir("smoothing");
-	apps_test::writeFile(dir + "/compare.ini", ini);
-	CCompareApp app;
-	TArgs a({"-c", dir + "/compare.ini", "-r", apps_test::dataset("highway.rawlog"), "--gt",
-	         apps_test::dataset("highway"), "--no-figures", "-q"});
-	ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
-	app.run();
-	ASSERT_EQ(app.rows.size(), 2u);
-	EXPECT_EQ(app.rows[0].filter, "dynamic");
-	EXPECT_EQ(app.rows[1].filter, "dynamic_smoothing");
-	const double dy = app.rows[0].metrics.ate, sm = app.rows[1].metrics.ate;
-	std::printf("[ measured ] highway ATE: dynamic %.6f m, dynamic_smoothing %.6f m\n", dy, sm);
-	EXPECT_NEAR(dy, 0.1276, 0.002);  // the README's table
-	EXPECT_NE(sm, dy);
-	EXPECT_NEAR(sm, dy, 0.01 * dy);
 }
 
 TEST(CompareApp, ClassifiedRowHasClassColumns)

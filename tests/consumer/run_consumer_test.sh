@@ -14,6 +14,7 @@ MC="$WORK/prefix/bin/dynslam-montecarlo"
 if [ -x "$MC" ]; then
   CFG="$WORK/prefix/share/dynslam/config"
   sed -e "s#^scenario *= *#scenario = $CFG/#" -e 's/^backend *=.*/backend = static_all/' \
+    -e "s#^@include  *\([^/]\)#@include $CFG/\1#" \
     "$CFG/montecarlo.ini" > "$WORK/mc_static.ini"
   printf '\n[RangeBearingKFSLAM]\nstd_sensor_range = 0.01\nstd_sensor_yaw_deg = 0.0573\n' \
     >> "$WORK/mc_static.ini"

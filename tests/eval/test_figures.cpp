@@ -214,3 +214,79 @@ TEST(Figures, EstimatedObjectTracksMoveTheCentroidByXi)
 	EXPECT_TRUE(std::isnan(t[2].x()));
 	EXPECT_TRUE(t[3].isApprox(Eigen::Vector2d(4, 1.5)));
 }
+
+/** Issue 30 item 6: with the comparison's filters the `dynamic` path was hidden under
+ * `dynamic_classified` (the same path, drawn later with the same width). Three series with the
+ * very same estimates: each colour must still show inside the plot area, in the map, the error
+ * figure and the gap figure; the legend sits outside the plot area. */
+TEST(Figures, EveryFilterStaysVisibleWhenPathsCoincide)
+{
+	const auto gt = highway();
+	const auto a = noisyRun(gt, 4, 0.5);
+	const std::vector<TFigureSeries> s = {{"dynamic", seriesColor(1), &a},
+	                                      {"dynamic_classified", seriesColor(6), &a},
+	                                      {"default", seriesColor(7), &a}};
+	auto insidePlot = [](const mrpt::img::CImage& img, const mrpt::img::TColor& c, int right)
+	{
+		size_t n = 0;
+		for (int y = 45; y < static_cast<int>(img.getHeight()) - 60; ++y)
+			for (int x = 95; x < static_cast<int>(img.getWidth()) - right; ++x)
+			{
+				const uint8_t* p = img(x, y);  // BGR
+				n += p[2] == c.R && p[1] == c.G && p[0] == c.B;
+			}
+		return n;
+	};
+	TMapFigureOptions mo;
+	mo.show_landmarks = mo.show_objects = false;
+	const auto map = drawMapFigure(&gt, s, mo);
+	const auto err = drawEgoErrorFigure(gt, s);
+	for (size_t i = 0; i < s.size(); ++i)
+	{
+		// right: the legend column (its widest label, 18 characters, at 9 px each + 70)
+		const size_t inMap = insidePlot(map, s[i].color, 40 + 9 * 18 + 30);
+		const size_t inErr = insidePlot(err, s[i].color, 40 + 9 * 18 + 30);
+		std::printf("[  info    ] %s: %zu pixels in the map, %zu in the error figure\n",
+		            s[i].name.c_str(), inMap, inErr);
+		EXPECT_GT(inMap, 500u) << s[i].name;
+		EXPECT_GT(inErr, 500u) << s[i].name;
+	}
+	EXPECT_EQ(seriesStyle(2, 3).dash, 0);  // the last drawn: solid and thinnest
+	EXPECT_LT(seriesStyle(2, 3).width, seriesStyle(1, 3).width);
+	EXPECT_GT(seriesStyle(1, 3).dash, 0);
+}
+
+TEST(Figures, DashedPolylineAndGroupedAgentLegend)
+{
+	mrpt::img::CImage img(400, 100, mrpt::img::CH_RGB);
+	img.filledRectangle(0, 0, 399, 99, mrpt::img::TColor(255, 255, 255));
+	CPlotCanvas cv(img, 0, 0, 400, 100, TBox{0, 400, 0, 100}, false);
+	const mrpt::img::TColor red(255, 0, 0);
+	cv.polyline({Eigen::Vector2d(10, 50), Eigen::Vector2d(200, 50), Eigen::Vector2d(310, 50)}, red,
+	            1, 12);
+	size_t on = 0, dashes = 0;
+	bool was = false;
+	for (int x = 10; x < 310; ++x)
+	{
+		const bool red = img(x, 50)[2] == 255 && img(x, 50)[1] == 0;
+		on += red;
+		dashes += red && !was;
+		was = red;
+	}
+	// 12 on (13 pixels with both ends), 6 off, the pattern running on across the segment joint
+	// at x = 200: 300 / 18 = 16.7 dashes, 300 * 13 / 18 = 217 pixels (measured 220).
+	EXPECT_GE(dashes, 16u);
+	EXPECT_LE(dashes, 18u);
+	EXPECT_NEAR(double(on), 217.0, 9.0);
+
+	// 53 agents (KITTI): one legend line for all of them, not 53
+	auto gt = highway();
+	while (gt.objects.size() < 53) gt.objects.push_back(gt.objects[0]);
+	const auto est = noisyRun(highway(), 5, 0.5);
+	const auto map = drawMapFigure(&gt, {{"dynamic", seriesColor(1), &est}});
+	const int legendBottom = 40 + 6 + 16 * 6 + 8;  // at most 6 lines: agents, truth, filter, marks
+	size_t below = 0;
+	for (int y = legendBottom + 2; y < 600; ++y)
+		for (int x = 1365; x < 1600; ++x) below += map(x, y)[0] != 255;  // right of the plot
+	EXPECT_EQ(below, 0u);
+}

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -18,6 +19,12 @@ TColor seriesColor(size_t i)
 	                                 TColor(240, 140, 0), TColor(150, 40, 180), TColor(0, 170, 170),
 	                                 TColor(140, 90, 40), TColor(230, 60, 160)};
 	return palette[i % (sizeof(palette) / sizeof(palette[0]))];
+}
+
+TSeriesStyle seriesStyle(size_t i, size_t n)
+{
+	const int fromLast = n > i ? static_cast<int>(n - 1 - i) : 0;
+	return {std::min(8, 2 + 2 * fromLast), fromLast % 2 == 1 ? 14 : 0};
 }
 
 namespace
@@ -59,6 +66,40 @@ std::vector<Eigen::Vector2d> egoPath(const std::vector<TEgoEstimate>& ego)
 	for (const auto* e : v) p.push_back(e->mean.head<2>());
 	return p;
 }
+/** The map's legend: agents (grouped beyond kMaxAgentLegendEntries), truth, every series in
+ * its line style, and the estimate markers if any are drawn. */
+std::vector<TLegendEntry> mapLegend(const TGroundTruth* gt,
+                                    const std::vector<TFigureSeries>& series,
+                                    const TMapFigureOptions& opt)
+{
+	std::vector<TLegendEntry> legend;
+	if (gt && opt.show_objects && !gt->objects.empty())
+	{
+		if (gt->objects.size() > kMaxAgentLegendEntries)
+			legend.push_back({"agents 1-" + std::to_string(gt->objects.size()) + " (truth)",
+			                  lighter(objectColor(0), 0.35), 0});
+		else
+			for (size_t i = 0; i < gt->objects.size(); ++i)
+				legend.push_back({"agent " + std::to_string(i + 1) + " (object " +
+				                      std::to_string(gt->objects[i].object) + ", truth)",
+				                  lighter(objectColor(i), 0.35), 0});
+	}
+	if (gt && opt.show_landmarks && !gt->landmarks.empty())
+		legend.push_back({"landmarks (truth)", kBlack, 'x'});
+	if (gt) legend.push_back({"ego (truth)", kBlack, 0});
+	bool landmarks = false, tracks = false;
+	for (size_t i = 0; i < series.size(); ++i)
+	{
+		if (!series[i].est) continue;
+		const TSeriesStyle st = seriesStyle(i, series.size());
+		legend.push_back({series[i].name, series[i].color, 0, st.width, st.dash});
+		landmarks = landmarks || !series[i].est->landmarks.empty();
+		tracks = tracks || !series[i].est->object_poses.empty();
+	}
+	if (opt.show_landmarks && landmarks) legend.push_back({"landmark estimates", kGrey, 's'});
+	if (opt.show_objects && tracks) legend.push_back({"object estimates", kGrey, '.'});
+	return legend;
+}
 }  // namespace
 
 mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigureSeries>& series,
@@ -84,14 +125,16 @@ mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigur
 			for (const auto& l : s.est->landmarks) box.expand(l.mean[0], l.mean[1]);
 	}
 	const TBox world = opt.view ? *opt.view : box.withMargin(0.03);
+	const auto legend = mapLegend(gt, series, opt);
 
-	const int left = 80, top = 40, right = 20, bottom = 55;
+	const int left = 80, top = 40, right = legendWidth(legend) + 20, bottom = 55;
+	if (opt.width - left - right < 100)
+		throw std::invalid_argument("map figure: too narrow for its legend");
 	CPlotCanvas cv(img, left, top, opt.width - left - right, opt.height - top - bottom, world,
 	               opt.equal_aspect);
 	cv.axes("x [m]", "y [m]",
 	        opt.title + (opt.equal_aspect ? "" : "  (x and y scaled differently)"));
 
-	std::vector<TLegendEntry> legend;
 	if (gt)
 	{
 		if (opt.show_objects)
@@ -104,22 +147,16 @@ mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigur
 					for (int k = 0; k < o.features[o.first_step].cols(); ++k)
 						cv.mark(o.features[o.first_step](0, k), o.features[o.first_step](1, k),
 						        objectColor(i), '+', 4);
-				legend.push_back({"agent " + std::to_string(i + 1) + " (object " +
-				                      std::to_string(o.object) + ", truth)",
-				                  lighter(objectColor(i), 0.35), 0});
 			}
 		if (opt.show_landmarks)
-		{
 			for (const auto& [id, p] : gt->landmarks) cv.mark(p[0], p[1], kBlack, 'x', 3);
-			if (!gt->landmarks.empty()) legend.push_back({"landmarks (truth)", kBlack, 'x'});
-		}
 		std::vector<Eigen::Vector2d> path;
 		for (const auto& e : gt->ego) path.push_back(e.head<2>());
 		cv.polyline(path, kBlack, 2);
-		legend.push_back({"ego (truth)", kBlack, 0});
 	}
-	for (const auto& s : series)
+	for (size_t si = 0; si < series.size(); ++si)
 	{
+		const auto& s = series[si];
 		if (!s.est) continue;
 		if (opt.show_landmarks)
 			for (const auto& l : s.est->landmarks)
@@ -133,10 +170,10 @@ mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigur
 				cv.polyline(track, s.color, 1);
 				for (const auto& p : track) cv.mark(p[0], p[1], s.color, '.');
 			}
-		cv.polyline(egoPath(s.est->ego), s.color, 2);
-		legend.push_back({s.name, s.color, 0});
+		const TSeriesStyle st = seriesStyle(si, series.size());
+		cv.polyline(egoPath(s.est->ego), s.color, st.width, st.dash);
 	}
-	cv.legend(legend);
+	cv.legend(legend, true);
 	return img;
 }
 
@@ -159,7 +196,18 @@ mrpt::img::CImage drawEgoErrorFigure(const TGroundTruth& gt,
 	for (const auto& v : rows)
 		for (const auto& r : v) xr.expand(xOf(r), 0);
 	static const char* names[3] = {"x error [m]", "y error [m]", "theta error [rad]"};
-	const int left = 90, right = 20, top = 40, gap = 60, bottom = 55;
+	std::vector<TLegendEntry> legend;
+	for (size_t s = 0; s < series.size(); ++s)
+	{
+		const TSeriesStyle st = seriesStyle(s, series.size());
+		legend.push_back({series[s].name, series[s].color, 0, st.width, st.dash});
+	}
+	char sigmaLabel[48];
+	std::snprintf(sigmaLabel, sizeof(sigmaLabel), "+-%g sigma (light)", opt.sigma);
+	legend.push_back({sigmaLabel, lighter(kBlack), 0, 1});
+	const int left = 90, right = legendWidth(legend) + 20, top = 40, gap = 60, bottom = 55;
+	if (opt.width - left - right < 100)
+		throw std::invalid_argument("error figure: too narrow for its legend");
 	const int panelH = (opt.height - top - bottom - 2 * gap) / 3;
 	for (int i = 0; i < 3; ++i)
 	{
@@ -175,7 +223,6 @@ mrpt::img::CImage drawEgoErrorFigure(const TGroundTruth& gt,
 		cv.axes(i == 2 ? (opt.time_axis ? "time since the first step [s]" : "step") : "", names[i],
 		        i == 0 ? opt.title : "");
 		cv.line(w.xmin, 0, w.xmax, 0, kGrey);
-		std::vector<TLegendEntry> legend;
 		for (size_t s = 0; s < rows.size(); ++s)
 		{
 			std::vector<Eigen::Vector2d> e, up, lo;
@@ -189,16 +236,10 @@ mrpt::img::CImage drawEgoErrorFigure(const TGroundTruth& gt,
 			const TColor c = series[s].color;
 			cv.polyline(up, lighter(c), 1);
 			cv.polyline(lo, lighter(c), 1);
-			cv.polyline(e, c, 2);
-			legend.push_back({series[s].name, c, 0});
+			const TSeriesStyle st = seriesStyle(s, series.size());
+			cv.polyline(e, c, st.width, st.dash);
 		}
-		if (i == 0)
-		{
-			char buf[48];
-			std::snprintf(buf, sizeof(buf), "+-%g sigma (light)", opt.sigma);
-			legend.push_back({buf, lighter(kBlack), 0});
-			cv.legend(legend);
-		}
+		if (i == 0) cv.legend(legend, true);
 	}
 	return img;
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 namespace dynslam::eval
 {
@@ -42,12 +43,21 @@ mrpt::img::CImage drawGapErrorFigure(const TGroundTruth& gt,
 	box.expand(box.xmin, 0.0);
 	TBox w = box.withMargin(0.02);
 	w.ymin = 0;
-	w.ymax = 1.35 * box.ymax;  // headroom: the legend (top right) must not hide the lines' ends
+	w.ymax = 1.1 * box.ymax;
 	if (!w.valid()) w = TBox{0, 1, 0, 1};
-	const int left = 80, right = 20, top = 40, bottom = 55;
-	CPlotCanvas cv(img, left, top, width - left - right, height - top - bottom, w, false);
 	const mrpt::img::TColor shade(235, 230, 205);  // not the grid's grey
-	for (const auto& [a, b] : gaps)                // shaded first, under the axes and the lines
+	std::vector<TLegendEntry> legend;
+	for (size_t i = 0; i < series.size(); ++i)
+	{
+		const TSeriesStyle st = seriesStyle(i, series.size());
+		legend.push_back({series[i].name, series[i].color, 0, st.width, st.dash});
+	}
+	if (!gaps.empty()) legend.push_back({"landmark gap", shade, 's'});
+	const int left = 80, right = legendWidth(legend) + 20, top = 40, bottom = 55;
+	if (width - left - right < 100)
+		throw std::invalid_argument("gap figure: too narrow for its legend");
+	CPlotCanvas cv(img, left, top, width - left - right, height - top - bottom, w, false);
+	for (const auto& [a, b] : gaps)  // shaded first, under the axes and the lines
 	{
 		const double x0 = std::max(a, w.xmin), x1 = std::min(b, w.xmax);
 		if (x1 > x0)
@@ -55,14 +65,12 @@ mrpt::img::CImage drawGapErrorFigure(const TGroundTruth& gt,
 	}
 	cv.axes("true ego x along the road [m]", "ego position error [m]",
 	        "Ego position error over the road (landmark gaps shaded)");
-	std::vector<TLegendEntry> legend;
 	for (size_t i = 0; i < series.size(); ++i)
 	{
-		cv.polyline(lines[i], series[i].color, 2);
-		legend.push_back({series[i].name, series[i].color, 0});
+		const TSeriesStyle st = seriesStyle(i, series.size());
+		cv.polyline(lines[i], series[i].color, st.width, st.dash);
 	}
-	if (!gaps.empty()) legend.push_back({"landmark gap", shade, 's'});
-	cv.legend(legend);
+	cv.legend(legend, true);
 	return img;
 }
 }  // namespace dynslam::eval

@@ -129,11 +129,38 @@ void CPlotCanvas::line(double x0, double y0, double x1, double y1, const TColor&
 	           static_cast<unsigned>(width));
 }
 
-void CPlotCanvas::polyline(const std::vector<Eigen::Vector2d>& pts, const TColor& c, int width)
+void CPlotCanvas::polyline(const std::vector<Eigen::Vector2d>& pts, const TColor& c, int width,
+                           int dash)
 {
+	const double on = dash, period = dash + std::max(1, dash / 2);
+	double phase = 0;  // pixels walked along the line, modulo the period
 	for (size_t i = 1; i < pts.size(); ++i)
-		if (pts[i - 1].allFinite() && pts[i].allFinite())
+	{
+		if (!pts[i - 1].allFinite() || !pts[i].allFinite()) continue;
+		if (dash <= 0)
+		{
 			line(pts[i - 1].x(), pts[i - 1].y(), pts[i].x(), pts[i].y(), c, width);
+			continue;
+		}
+		const double len =
+		    std::hypot(px(pts[i].x()) - px(pts[i - 1].x()), py(pts[i].y()) - py(pts[i - 1].y()));
+		if (!std::isfinite(len)) continue;
+		// The "on" pieces [a, b] of this segment, in pixels from its start.
+		for (double a = 0; a < len;)
+		{
+			const double inPeriod = std::fmod(phase + a, period);
+			const double piece = inPeriod < on ? on - inPeriod : period - inPeriod;
+			const double b = std::min(len, a + piece);
+			if (inPeriod < on)
+			{
+				const Eigen::Vector2d p = pts[i - 1] + (pts[i] - pts[i - 1]) * (a / len);
+				const Eigen::Vector2d q = pts[i - 1] + (pts[i] - pts[i - 1]) * (b / len);
+				line(p.x(), p.y(), q.x(), q.y(), c, width);
+			}
+			a = b;
+		}
+		phase = std::fmod(phase + len, period);
+	}
 }
 
 void CPlotCanvas::mark(double x, double y, const TColor& c, char type, int size)
@@ -230,14 +257,19 @@ void CPlotCanvas::axes(const std::string& xlabel, const std::string& ylabel,
 	              black);
 }
 
-void CPlotCanvas::legend(const std::vector<TLegendEntry>& entries)
+int legendWidth(const std::vector<TLegendEntry>& entries)
 {
-	if (entries.empty()) return;
 	size_t longest = 0;
 	for (const auto& e : entries) longest = std::max(longest, e.label.size());
-	const int lineH = 16, w = 40 + 9 * static_cast<int>(longest) + 10;
+	return 40 + 9 * static_cast<int>(longest) + 10;
+}
+
+void CPlotCanvas::legend(const std::vector<TLegendEntry>& entries, bool outside)
+{
+	if (entries.empty()) return;
+	const int lineH = 16, w = legendWidth(entries);
 	const int h = lineH * static_cast<int>(entries.size()) + 8;
-	const int x0 = m_left + m_width - w - 6, y0 = m_top + 6;
+	const int x0 = outside ? m_left + m_width + 10 : m_left + m_width - w - 6, y0 = m_top + 6;
 	m_img.filledRectangle(x0, y0, x0 + w, y0 + h, TColor(255, 255, 255));
 	m_img.rectangle(x0, y0, x0 + w, y0 + h, TColor(120, 120, 120));
 	m_img.selectTextFont("9x15");
@@ -245,10 +277,16 @@ void CPlotCanvas::legend(const std::vector<TLegendEntry>& entries)
 	{
 		const auto& e = entries[i];
 		const int y = y0 + 4 + lineH * static_cast<int>(i) + lineH / 2;
-		if (e.marker)
+		if (e.marker == '.')
+			m_img.filledRectangle(x0 + 17, y - 1, x0 + 19, y + 1, e.color);
+		else if (e.marker)
 			m_img.drawMark(x0 + 18, y, e.color, e.marker, 4);
+		else if (e.dash <= 0)
+			m_img.line(x0 + 6, y, x0 + 30, y, e.color, static_cast<unsigned>(e.width));
 		else
-			m_img.line(x0 + 6, y, x0 + 30, y, e.color, 2);
+			for (int a = 0; a < 24; a += e.dash + std::max(1, e.dash / 2))
+				m_img.line(x0 + 6 + a, y, x0 + 6 + std::min(24, a + e.dash), y, e.color,
+				           static_cast<unsigned>(e.width));
 		m_img.textOut(x0 + 36, y - 7, e.label, TColor(0, 0, 0));
 	}
 }

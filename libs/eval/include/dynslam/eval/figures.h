@@ -8,6 +8,8 @@
  *  - drawEgoErrorFigure: ego x, y, theta errors over time with +-n-sigma bounds;
  *  - drawConsistencyFigure: a NEES/NIS series (average over runs) with its chi-square bounds.
  *
+ * The legends sit right of the plot area (never on the data).
+ *
  * Highway aspect (1 km x ~60 m): by default the map is scaled non-uniformly (x and y fill the
  * image independently; the axis ticks show the true metres), so lateral detail stays visible.
  * Set equal_aspect for a metric-true picture, or `view` to zoom into a window. */
@@ -34,6 +36,20 @@ struct TFigureSeries
 
 /** A distinct colour for series i (red, blue, green, orange, purple, ...). */
 mrpt::img::TColor seriesColor(size_t i);
+
+/** Line width and dash (CPlotCanvas::polyline) of series i of n, drawn in that order: earlier
+ * series wider (2 + 2 (n-1-i) pixels, at most 8) and every other one dashed, the last solid, so
+ * that a series drawn on top of another (e.g. `dynamic_classified` on `dynamic`) leaves it
+ * visible. The legend shows the same style. */
+struct TSeriesStyle
+{
+	int width = 2;
+	int dash = 0;
+};
+TSeriesStyle seriesStyle(size_t i, size_t n);
+
+/** More agents than this: one grouped legend entry for them instead of one each. */
+constexpr size_t kMaxAgentLegendEntries = 6;
 
 struct TMapFigureOptions
 {

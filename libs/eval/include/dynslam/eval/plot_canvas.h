@@ -30,13 +30,19 @@ struct TBox
 	static TBox empty();
 };
 
-/** One legend line: a short line (marker == 0) or a mark ('x', '+', 's'). */
+/** One legend line: a short line (marker == 0, drawn with width and dash) or a mark ('x', '+',
+ * 's', '.'). */
 struct TLegendEntry
 {
 	std::string label;
 	mrpt::img::TColor color;
 	char marker = 0;
+	int width = 2;
+	int dash = 0;  ///< as CPlotCanvas::polyline
 };
+
+/** Pixel width of the legend box of these entries (for a margin that holds it). */
+int legendWidth(const std::vector<TLegendEntry>& entries);
 
 class CPlotCanvas
 {
@@ -52,9 +58,10 @@ public:
 	/** A world-coordinate segment, clipped to the plot area. */
 	void line(double x0, double y0, double x1, double y1, const mrpt::img::TColor& c,
 	          int width = 1);
-	/** Consecutive points joined; non-finite points break the line. */
+	/** Consecutive points joined; non-finite points break the line. dash > 0: dashed, `dash`
+	 * pixels on and dash / 2 off, the pattern running on along the whole polyline. */
 	void polyline(const std::vector<Eigen::Vector2d>& pts, const mrpt::img::TColor& c,
-	              int width = 1);
+	              int width = 1, int dash = 0);
 	/** A mark ('x', '+', 's' square, '.' dot) at a world point, if inside the plot area. */
 	void mark(double x, double y, const mrpt::img::TColor& c, char type, int size = 4);
 	/** The n_sigma ellipse {p : (p-mean)^T cov^-1 (p-mean) = n_sigma^2} (skipped if cov is not
@@ -63,8 +70,9 @@ public:
 	             const mrpt::img::TColor& c, int width = 1);
 	/** Frame, ticks with labels on both axes, axis labels and a title above the area. */
 	void axes(const std::string& xlabel, const std::string& ylabel, const std::string& title);
-	/** Legend box in the top-right corner of the plot area. */
-	void legend(const std::vector<TLegendEntry>& entries);
+	/** Legend box in the top-right corner of the plot area, or (outside) right of the plot
+	 * area, top-aligned: the caller leaves legendWidth() + 10 pixels of margin there. */
+	void legend(const std::vector<TLegendEntry>& entries, bool outside = false);
 
 private:
 	mrpt::img::CImage& m_img;
