@@ -169,6 +169,22 @@ TEST(FullCovariance, CompareWritesOneFilePerFilter)
 	}
 }
 
+namespace
+{
+double gtMinX(const CRunApp& app)
+{
+	double m = 1e300;
+	for (const auto& e : app.gt.ego) m = std::min(m, e.x());
+	return m;
+}
+double gtMaxX(const CRunApp& app)
+{
+	double m = -1e300;
+	for (const auto& e : app.gt.ego) m = std::max(m, e.x());
+	return m;
+}
+}  // namespace
+
 TEST(SceneAndVideo, RunWritesASceneThatLoadsBackAndAVideoWithOneFramePerStep)
 {
 	const std::string out = apps_test::freshDir("scene");
@@ -190,6 +206,12 @@ TEST(SceneAndVideo, RunWritesASceneThatLoadsBackAndAVideoWithOneFramePerStep)
 	ASSERT_TRUE(lms);
 	EXPECT_EQ(lms->size(), app.result.est.landmarks.size());
 	EXPECT_TRUE(scene.getByName(app.result.name + "/object_0_track"));
+	// Framed on the data (issue 30 item 6: it opened at the origin) with a legend.
+	const auto& cam = scene.getViewport()->getCamera();
+	EXPECT_NEAR(cam.getPointingAtX(), 0.5 * (gtMinX(app) + gtMaxX(app)), 1.0);
+	EXPECT_GT(cam.getZoomDistance(), 0.9 * (gtMaxX(app) - gtMinX(app)));
+	EXPECT_TRUE(scene.getByName("legend/ground truth"));
+	EXPECT_TRUE(scene.getByName("legend/" + app.result.name));
 
 	cv::VideoCapture cap(out + "/run.mp4");
 	ASSERT_TRUE(cap.isOpened());

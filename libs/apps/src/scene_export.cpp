@@ -130,6 +130,33 @@ void addRun(mrpt::opengl::COpenGLScene& scene, const TDrawnRun& r, size_t every,
 }
 }  // namespace
 
+/** The main viewport's camera (serialised with the scene) looks down on the centre of the data
+ * from far enough to see all of it; a legend of 3-D texts (objects "legend/<name>") in each
+ * filter's colour sits above the top-left corner of the data. */
+static void frameAndLabel(mrpt::opengl::COpenGLScene& scene, const std::vector<TDrawnRun>& runs,
+                          bool withTruth, double xmin, double xmax, double ymin, double ymax)
+{
+	const double extent = std::max({xmax - xmin, ymax - ymin, 10.0});
+	auto& cam = scene.getViewport()->getCamera();
+	cam.setPointingAt(float(0.5 * (xmin + xmax)), float(0.5 * (ymin + ymax)), 0.0f);
+	cam.setZoomDistance(float(1.2 * extent));
+	cam.setElevationDegrees(70.0f);
+	cam.setAzimuthDegrees(-90.0f);
+	std::vector<std::pair<std::string, mrpt::img::TColor>> entries;
+	if (withTruth) entries.emplace_back("ground truth", mrpt::img::TColor(0, 160, 0));
+	for (const auto& r : runs)
+		entries.emplace_back(r.name, mrpt::img::TColor(r.rgb[0], r.rgb[1], r.rgb[2]));
+	const double line = 0.03 * extent;
+	for (size_t i = 0; i < entries.size(); ++i)
+	{
+		auto t = mrpt::opengl::CText::Create(entries[i].first);
+		t->setName("legend/" + entries[i].first);
+		t->setLocation(xmin, ymax + line * double(entries.size() - i), 0.0);
+		t->setColor_u8(entries[i].second);
+		scene.insert(t);
+	}
+}
+
 void writeScene(const std::string& path, const std::vector<TDrawnRun>& runs, const TGroundTruth* gt,
                 size_t ellipseEvery)
 {
@@ -165,6 +192,7 @@ void writeScene(const std::string& path, const std::vector<TDrawnRun>& runs, con
 	if (gt) addGroundTruth(scene, *gt);
 	for (size_t i = 0; i < runs.size(); ++i)
 		if (runs[i].run) addRun(scene, runs[i], ellipseEvery, 0.02f * float(i + 1));
+	if (xmin <= xmax) frameAndLabel(scene, runs, gt != nullptr, xmin, xmax, ymin, ymax);
 	if (!scene.saveToFile(path))
 		throw std::runtime_error("cannot write the scene file '" + path + "'");
 }

@@ -69,11 +69,15 @@ void writeScene(const std::string& path, const std::vector<TDrawnRun>& runs, con
 
 /** Writes the run drawn step by step, one frame per step (MPEG-4 part 2, fourcc mp4v, in an
  * .mp4 container; OpenCV VideoWriter, no window): top view of the ground truth (green: ego
- * path, landmarks), each filter's ego path so far with its 3-sigma ellipse, and the readings
- * of that step drawn from the first filter's pose (static landmarks grey, object features
- * red). The view is the ground truth's extent, or the first filter's ego path without ground truth.
- * Throws std::runtime_error naming the file if the writer cannot be opened. */
+ * path, landmarks, the objects' tracks so far), each filter's ego path so far with its 3-sigma
+ * ellipse and its objects' tracks (dots, the current pose larger), and the readings of that step
+ * drawn from the first filter's pose (static landmarks grey, object features red), a scale bar.
+ * The view follows the first filter's ego (the truth's where it has none) with a window
+ * `window` metres wide, equal axes, and a small overview of the whole path with the window
+ * marked; window = 0, or a window wider than the whole scene: the whole scene, fixed.
+ * Throws std::runtime_error naming the file if the writer cannot be opened, and
+ * std::invalid_argument on a negative window. */
 void writeVideo(const std::string& path, const std::vector<TDrawnRun>& runs, const TGroundTruth* gt,
                 const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames, double fps = 10.0,
-                int width = 960, int height = 540);
+                int width = 960, int height = 540, double window = 120.0);
 }  // namespace dynslam::apps
