@@ -53,8 +53,12 @@ TEST(RunApp, HighwayDefaultMeetsAccuracyAndWritesEverything)
 	     {"ego.csv", "trajectory.tum", "landmarks.csv", "object_features.csv", "object_poses.csv",
 	      "metrics.csv", "metrics.txt", "nees_ego.csv", "nis.csv", "effective_config.ini"})
 		EXPECT_TRUE(std::filesystem::is_regular_file(out + "/" + f)) << f;
-	for (const char* f : {"map.png", "ego_errors.png", "nees_ego.png", "nis.png"})
+	for (const char* f :
+	     {"map.png", "map_stretched.png", "ego_errors.png", "nees_ego.png", "nis.png"})
 		EXPECT_TRUE(apps_test::isPng(out + "/" + f)) << f;
+	mrpt::img::CImage map;  // equal axes: a 1 km road 60 m wide takes the minimum height
+	ASSERT_TRUE(map.loadFromFile(out + "/map.png"));
+	EXPECT_EQ(map.getHeight(), 400u);
 	const auto ego = apps_test::readLines(out + "/ego.csv");
 	ASSERT_EQ(ego.size(), 122u);
 	EXPECT_EQ(ego[0].rfind("step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta", 0),

@@ -7,6 +7,7 @@
 #include <dynslam/eval/figures.h>
 #include <dynslam/eval/writers.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -244,9 +245,24 @@ void CRunApp::drawFigures(const eval::TConsistencySummary& summary)
 		eval::savePng(img, p);
 		writtenFiles.push_back(p);
 	};
+	// map.png: equal axes (metres are metres), the image as tall as the content needs (400-1200
+	// pixels); a road much longer than wide also gets map_stretched.png (x and y scaled apart).
+	eval::TBox box = eval::TBox::empty();
+	for (const auto& e : result.est.ego) box.expand(e.mean.x(), e.mean.y());
+	if (g)
+		for (const auto& x : gt.ego) box.expand(x.x(), x.y());
+	const double aspect = box.valid() ? (box.ymax - box.ymin) / (box.xmax - box.xmin) : 1.0;
 	eval::TMapFigureOptions mo;
 	mo.title = "dynslam-run: " + result.name + " on " + rawlogFile;
+	mo.equal_aspect = true;
+	mo.height = int(std::clamp(1300.0 * aspect + 100.0, 400.0, 1200.0));
 	png("map.png", eval::drawMapFigure(g, series, mo));
+	if (aspect < 0.2)
+	{
+		mo.equal_aspect = false;
+		mo.height = 700;
+		png("map_stretched.png", eval::drawMapFigure(g, series, mo));
+	}
 	if (hasGroundTruth)
 	{
 		png("ego_errors.png", eval::drawEgoErrorFigure(gt, series));
