@@ -18,6 +18,7 @@
 #include <mrpt/poses/CPosePDFGaussian.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -257,10 +258,36 @@ TEST(MrptSections, UnknownKeysWarnOrFailWithTheFileName)
 		EXPECT_TRUE(contains(e.what(), "std_sensor_rang")) << e.what();
 	}
 	// The shipped INIs are clean.
-	for (const char* f : {"run_highway.ini", "compare_highway.ini"})
+	for (const char* f :
+	     {"run_highway.ini", "compare_highway.ini", "compare_tunnel.ini", "compare_classified.ini",
+	      "compare_turning_braking.ini", "compare_kitti.ini", "mrclam_compare.ini",
+	      "montecarlo.ini", "simul_landmarks.ini", "kf-slam_highway.ini"})
 	{
 		mrpt::config::CConfigFileMemory c;
 		loadIniFile(apps_test::configFile(f), c);
 		EXPECT_TRUE(unknownMrptKeys(c).empty()) << f << ": " << unknownMrptKeys(c).front();
+		EXPECT_TRUE(unknownSections(c).empty()) << f << ": " << unknownSections(c).front();
 	}
+}
+
+// Issue 30 item 9: misspelled section names were silently ignored.
+TEST(MrptSections, UnknownSectionsWarnWithTheNearestNameOrFailWithStrict)
+{
+	mrpt::config::CConfigFileMemory ini(
+	    "[OdometryNoice]\na = 1\n[DynamicKFSLAM_KalmanFiltr]\nmethod = kfEKFNaive\n"
+	    "[dynamickfslam]\nSigma_v = [1 1]\n[Totally]\nx = 1\n");
+	auto u = unknownSections(ini);  // in MRPT's section order (sorted); sorted here too
+	std::sort(u.begin(), u.end());
+	ASSERT_EQ(u.size(), 3u);
+	EXPECT_EQ(u[0],
+	          "section [DynamicKFSLAM_KalmanFiltr] is read by no app (did you mean "
+	          "[DynamicKFSLAM_KalmanFilter]?), ignored");
+	EXPECT_EQ(u[1],
+	          "section [OdometryNoice] is read by no app (did you mean [OdometryNoise]?), "
+	          "ignored");
+	EXPECT_EQ(u[2], "section [Totally] is read by no app, ignored");  // no near name
+	const auto w = checkMrptSections(ini, "my.ini", false);
+	ASSERT_EQ(w.size(), 3u);
+	EXPECT_TRUE(contains(w[0], "config file 'my.ini': section [")) << w[0];
+	EXPECT_THROW(checkMrptSections(ini, "my.ini", true), std::invalid_argument);
 }

@@ -14,6 +14,21 @@ std::string lower(std::string s)
 	               [](unsigned char c) { return char(std::tolower(c)); });
 	return s;
 }
+
+/** Levenshtein distance (insertions, deletions, substitutions). */
+size_t editDistance(const std::string& a, const std::string& b)
+{
+	std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+	for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+	for (size_t i = 1; i <= a.size(); ++i)
+	{
+		cur[0] = i;
+		for (size_t j = 1; j <= b.size(); ++j)
+			cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+		std::swap(prev, cur);
+	}
+	return prev[b.size()];
+}
 }  // namespace
 
 const std::vector<TMrptSection>& mrptOwnedSections()
@@ -58,10 +73,50 @@ std::vector<std::string> unknownMrptKeys(const mrpt::config::CConfigFileBase& in
 	return out;
 }
 
+const std::vector<std::string>& knownAppSections()
+{
+	static const std::vector<std::string> s{"Run",
+	                                        "Compare",
+	                                        "MonteCarlo",
+	                                        "Backend",
+	                                        "OdometryNoise",
+	                                        "DynamicKFSLAM",
+	                                        "DynamicKFSLAM_KalmanFilter",
+	                                        "RangeBearingKFSLAM",
+	                                        "RangeBearingKFSLAM_KalmanFilter",
+	                                        "MappingApplication"};
+	return s;
+}
+
+std::vector<std::string> unknownSections(const mrpt::config::CConfigFileBase& ini)
+{
+	std::vector<std::string> sections, out;
+	ini.getAllSections(sections);
+	for (const auto& s : sections)
+	{
+		if (s.empty()) continue;  // keys before any section header
+		std::string nearest;
+		size_t best = 3;
+		bool known = false;
+		for (const auto& k : knownAppSections())
+		{
+			const size_t d = editDistance(lower(s), lower(k));
+			known = known || d == 0;
+			if (d < best) best = d, nearest = k;
+		}
+		if (known) continue;
+		out.push_back("section [" + s + "] is read by no app" +
+		              (nearest.empty() ? std::string() : " (did you mean [" + nearest + "]?)") +
+		              ", ignored");
+	}
+	return out;
+}
+
 std::vector<std::string> checkMrptSections(const mrpt::config::CConfigFileBase& ini,
                                            const std::string& iniFile, bool strict)
 {
 	std::vector<std::string> msgs = unknownMrptKeys(ini);
+	for (auto& m : unknownSections(ini)) msgs.push_back(std::move(m));
 	for (auto& m : msgs) m = "config file '" + iniFile + "': " + m;
 	if (strict && !msgs.empty()) throw std::invalid_argument(msgs.front() + " (--strict)");
 	return msgs;

@@ -27,8 +27,19 @@ const std::vector<TMrptSection>& mrptOwnedSections();
  * "[RangeBearingKFSLAM] std_sensor_rang: unknown key (misspelled?), ignored by MRPT". */
 std::vector<std::string> unknownMrptKeys(const mrpt::config::CConfigFileBase& ini);
 
-/** With strict, throws std::invalid_argument("config file 'iniFile': <first message>"); else
- * returns the messages prefixed with the file name, for the caller to log as warnings. */
+/** The sections an app INI may hold: those dynslam-run, -compare and -montecarlo read
+ * ([Run], [Compare], [MonteCarlo], [Backend], [OdometryNoise], [DynamicKFSLAM] and the
+ * MRPT-owned ones) and [MappingApplication] (MRPT's kf-slam, whose INI runs as it is). */
+const std::vector<std::string>& knownAppSections();
+
+/** One message per section of `ini` that no app reads (compared case-insensitively), with the
+ * nearest known name if it is a likely misspelling (at most 2 edits):
+ * "section [OdometryNoice] is read by no app (did you mean [OdometryNoise]?), ignored". */
+std::vector<std::string> unknownSections(const mrpt::config::CConfigFileBase& ini);
+
+/** Unknown keys of the MRPT-owned sections, then unknown sections. With strict, throws
+ * std::invalid_argument("config file 'iniFile': <first message>"); else returns the messages
+ * prefixed with the file name, for the caller to log as warnings. */
 std::vector<std::string> checkMrptSections(const mrpt::config::CConfigFileBase& ini,
                                            const std::string& iniFile, bool strict);
 }  // namespace dynslam::apps
