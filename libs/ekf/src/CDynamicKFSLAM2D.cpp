@@ -8,7 +8,6 @@
 #include <dynslam/ekf_odometry_bias.h>
 #include <dynslam/ekf_registries.h>
 #include <dynslam/ekf_steps.h>
-#include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/state_helper.h>
 #include <dynslam/models/se2.h>
 #include <dynslam/seam_options.h>
@@ -104,7 +103,10 @@ void CDynamicKFSLAM2D::makeSeams()
 		m_router->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
 	m_liveMerge.reset();  // classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp)
-	if (dynamic_cast<estimator::CClassifyingRouter*>(m_router.get()))
+	// The live merge belongs to the routers that classify (their registry capability; a user
+	// router outside the registry has none).
+	if (const auto& reg = estimator::routers();
+	    reg.has(m_router->name()) && reg.caps(m_router->name()).classifies)
 		m_liveMerge = estimator::makeLiveMergeDetector(options.classify, objectCentric);
 	m_router->reset();
 	if (!m_userEngine && !options.sparse_static_update)

@@ -6,7 +6,6 @@
  * object-centric model, the velocity residual (models::rigidVelocityResidual); a pair decided rigid
  * is merged by mergeObjects (CDynamicKFSLAM2D_merge.cpp). */
 #include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/estimator/classifying_router.h>
 #include <dynslam/models/live_merge.h>
 #include <dynslam/models/object_merge.h>
 
@@ -151,7 +150,6 @@ void CDynamicKFSLAM2D::mergeLiveObjects()
 	const std::vector<TLive> live =
 	    liveObjects(m_layout, m_router->registry(), x, m_step, m_motion->objectCentric(), seen);
 	const ekf::CSquareBuffer::ConstView P = std::as_const(m_cov).view();
-	const auto* router = dynamic_cast<const estimator::CClassifyingRouter*>(m_router.get());
 	std::vector<std::pair<int32_t, int32_t>> merges;  // (from, into)
 	std::set<int32_t> busy;
 	for (size_t i = 0; i < live.size(); ++i)
@@ -164,7 +162,7 @@ void CDynamicKFSLAM2D::mergeLiveObjects()
 			const TLive& A = iInto ? live[i] : live[j];
 			const TLive& B = iInto ? live[j] : live[i];
 			if ((A.p - B.p).norm() > options.classify.group_max_dist) continue;
-			if (router && !router->hintsAllowMerge(A.obj, B.obj)) continue;  // two boxes
+			if (!m_router->allowsMerge(A.obj, B.obj)) continue;  // e.g. two boxes
 			const estimator::TLiveMergeSample smp = liveSample(m_layout, x, P, A, B, m_step);
 			const estimator::TLiveMergeStats st = m_liveMerge->observe(A.obj, B.obj, smp);
 			if (!st.rigid || busy.count(A.obj) || busy.count(B.obj)) continue;

@@ -161,7 +161,7 @@ void CClassifyingRouter::countGroupHintConflicts(TRoutedStep& out) const
 	for (const auto& [obj, h] : hints)
 		if (h.size() > 1) ++out.hint_group_conflicts;
 }
-bool CClassifyingRouter::hintsAllowMerge(int32_t a, int32_t b) const
+bool CClassifyingRouter::allowsMerge(int32_t a, int32_t b) const
 {
 	if (!m_p.use_hints) return true;
 	const int32_t ha = objectHint(a), hb = objectHint(b);

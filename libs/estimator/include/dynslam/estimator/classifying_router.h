@@ -171,7 +171,7 @@ public:
 	void mergeObjects(int32_t from, int32_t into) override;
 	/** classify_merge_live with use_hints: false if objects a and b carry different hints
 	 * (different boxes are different objects, as in grouping); true without hints. */
-	bool hintsAllowMerge(int32_t a, int32_t b) const;
+	bool allowsMerge(int32_t a, int32_t b) const override;
 
 	const TClassifyParams& params() const { return m_p; }
 	/** With a static association function, ID -1 readings are associated

@@ -175,6 +175,9 @@ public:
 	 * from's features into into's frame): the router routes from's features as into's. Routers
 	 * that never list merges (TRoutedStep::merges) throw std::logic_error. */
 	virtual void mergeObjects(int32_t from, int32_t into);
+	/** Whether the router's evidence allows objects a and b to be one object (a live merge):
+	 * true unless it knows better (CClassifyingRouter with use_hints: different boxes). */
+	virtual bool allowsMerge(int32_t /*a*/, int32_t /*b*/) const { return true; }
 };
 
 /** The ID-range rule (dynslam/landmark_ids.h): 0..99,999 static, 100,000 + 1000 object + k
