@@ -115,9 +115,9 @@ inline std::pair<double, double> compare(const CDynamicKFSLAM2D& f, const CDynam
 	// Dropped landmarks, per ID in the order they were dropped (a landmark read again after its
 	// drop is a new entry and may be dropped again).
 	std::map<int32_t, std::vector<TStaticLandmarkEstimate>> d1, d2;
-	for (const auto& e : f.getStaticLandmarks(true))
+	for (const auto& e : allStaticLandmarks(f))
 		if (!e.in_state) d1[e.id].push_back(e);
-	for (const auto& e : c.getStaticLandmarks(true))
+	for (const auto& e : allStaticLandmarks(c))
 		if (!e.in_state) d2[e.id].push_back(e);
 	EXPECT_EQ(d1.size(), d2.size()) << where;
 	for (const auto& [id, v] : d1)

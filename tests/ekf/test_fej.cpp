@@ -176,7 +176,7 @@ TEST(Fej, JacobiansAreModelDerivativesAtFirstEstimates)
 				    1e-5)
 					++nHdiffer;
 			}
-			for (const auto& lm : f.getStaticLandmarks(false)) initMean.emplace(lm.id, lm.mean);
+			for (const auto& lm : f.getStaticLandmarks()) initMean.emplace(lm.id, lm.mean);
 		}
 		std::cout << (cart ? "cartesian" : "range-bearing") << ": " << nH
 		          << " measurement Jacobians, " << nHdiffer

@@ -94,7 +94,7 @@ TEST(MrptConventions, UnknownIdsEveryReadingMinusOneEqualsMrpt)
 		EXPECT_GT(associated, 100u);
 		EXPECT_LT(worst, 1e-9) << "seed " << seed;
 		// The landmarks started by -1 readings are named from kFirstResolvedId on.
-		for (const auto& l : dyn.getStaticLandmarks()) EXPECT_GE(l.id, estimator::kFirstResolvedId);
+		for (const auto& l : allStaticLandmarks(dyn)) EXPECT_GE(l.id, estimator::kFirstResolvedId);
 	}
 }
 
@@ -119,7 +119,7 @@ TEST(MrptConventions, UnknownIdsMinusOneAfterTheFirstSightingEqualsTheIdRun)
 	EXPECT_GT(associated, 100u);
 	const Eigen::VectorXd dx = withIds.fullMean().asEigen() - withUnknown.fullMean().asEigen();
 	EXPECT_LT(dx.cwiseAbs().maxCoeff(), 1e-12);
-	EXPECT_EQ(withIds.getStaticLandmarks().size(), withUnknown.getStaticLandmarks().size());
+	EXPECT_EQ(allStaticLandmarks(withIds).size(), allStaticLandmarks(withUnknown).size());
 }
 
 TEST(MrptConventions, UnknownIdsOtherInvalidIdsAreStillRejectedWithAClearMessage)

@@ -47,7 +47,7 @@ TRun runFilter(const sim::TScenarioOptions& o)
 		++r.steps;
 	}
 	r.objects = ekf.getObjectTracks().size();
-	r.statics = ekf.getStaticLandmarks().size();
+	r.statics = allStaticLandmarks(ekf).size();
 	return r;
 }
 

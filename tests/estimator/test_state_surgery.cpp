@@ -55,7 +55,7 @@ TEST(StateSurgery, ConvertedLandmarksKeepTheirEntriesAndNothingElseChanges)
 {
 	CSurgeryEkf ekf;
 	runHighway(ekf, 30);
-	const std::vector<TStaticLandmarkEstimate> lms = ekf.getStaticLandmarks(false);
+	const std::vector<TStaticLandmarkEstimate> lms = ekf.getStaticLandmarks();
 	ASSERT_GE(lms.size(), 4u);
 	const int32_t a = lms[1].id, b = lms[3].id;
 	const TSnapshot before = snapshot(ekf);
@@ -95,7 +95,7 @@ TEST(StateSurgery, ConvertedLandmarksKeepTheirEntriesAndNothingElseChanges)
 			    << after.labels[size_t(i)] << ", " << after.labels[size_t(j)];
 	}
 	// The landmarks left the static map; the others stayed.
-	const std::vector<TStaticLandmarkEstimate> now = ekf.getStaticLandmarks(false);
+	const std::vector<TStaticLandmarkEstimate> now = ekf.getStaticLandmarks();
 	EXPECT_EQ(now.size(), lms.size() - 2);
 	for (const auto& l : now) EXPECT_TRUE(l.id != a && l.id != b);
 	EXPECT_EQ(ekf.getLastStepReport().converted_static, 2u);
@@ -105,7 +105,7 @@ TEST(StateSurgery, BadConversionListsChangeNothing)
 {
 	CSurgeryEkf ekf;
 	runHighway(ekf, 20);
-	const std::vector<TStaticLandmarkEstimate> lms = ekf.getStaticLandmarks(false);
+	const std::vector<TStaticLandmarkEstimate> lms = ekf.getStaticLandmarks();
 	ASSERT_GE(lms.size(), 2u);
 	const TSnapshot before = snapshot(ekf);
 	// A landmark not in the state, after a good one; a landmark listed twice.
@@ -116,5 +116,5 @@ TEST(StateSurgery, BadConversionListsChangeNothing)
 	EXPECT_EQ(after.labels, before.labels);
 	EXPECT_EQ(after.x, before.x);
 	EXPECT_EQ(after.P, before.P);
-	EXPECT_EQ(ekf.getStaticLandmarks(false).size(), lms.size());
+	EXPECT_EQ(ekf.getStaticLandmarks().size(), lms.size());
 }

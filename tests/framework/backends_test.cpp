@@ -42,7 +42,7 @@ TErrors run(const std::string& kind, int steps, const std::string& extra = "")
 		e.ego = std::max(e.ego, std::hypot(p.mean.x() - gt.ego[k][0], p.mean.y() - gt.ego[k][1]));
 		EXPECT_TRUE(p.cov.asEigen().allFinite());
 	}
-	for (const auto& l : be->getStaticLandmarks())
+	for (const auto& l : allStaticLandmarks(*be))
 		e.map = std::max(e.map, (l.mean - gt.landmarks.at(l.id)).norm());
 	for (const auto& [obj, tr] : be->getObjectTracks())
 		for (const auto& p : tr.poses)

@@ -76,7 +76,7 @@ TErrors errors(const std::string& kind, const TRun& r,
 	}
 	TErrors e;
 	e.ate = std::sqrt(se / double(r.actions.size()));
-	for (const auto& l : be->getStaticLandmarks())
+	for (const auto& l : allStaticLandmarks(*be))
 		e.map = std::max(e.map, (l.mean - r.gt.landmarks.at(l.id)).norm());
 	for (const auto& [obj, tr] : be->getObjectTracks())
 		for (const auto& p : tr.poses)

@@ -1,8 +1,8 @@
 /** The static drop rule (drop_static_after_unseen_steps = N) in every back-end, to the step:
  * a landmark last seen at step s is dropped at step s + N (not one step earlier or later), is
- * then listed by getStaticLandmarks(true) as not in the state, and the step report counts it.
- * The windowed back-ends do not implement the rule (doc/backends.md, Limitations): there the
- * landmark must stay. */
+ * then listed by getDroppedStaticLandmarks() (allStaticLandmarks) as not in the state, and the step
+ * report counts it. The windowed back-ends do not implement the rule (doc/backends.md,
+ * Limitations): there the landmark must stay. */
 #include <dynslam/ISlamBackend.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
@@ -35,7 +35,7 @@ constexpr int kSteps = 9;
 /** Where landmark `id` is: 1 in the state, 0 recorded as dropped, -1 nowhere. */
 int whereIs(const ISlamBackend& be, int32_t id)
 {
-	for (const auto& l : be.getStaticLandmarks(true))
+	for (const auto& l : allStaticLandmarks(be))
 		if (l.id == id) return l.in_state ? 1 : 0;
 	return -1;
 }
@@ -76,7 +76,7 @@ TEST(StaticDrop, ExactStepInEveryBackend)
 			for (int32_t id = 0; id < 5; ++id) EXPECT_EQ(whereIs(*be, id), 1) << "step " << k;
 		}
 		// The recorded estimate is the landmark's last one, near the truth.
-		for (const auto& l : be->getStaticLandmarks(true))
+		for (const auto& l : allStaticLandmarks(*be))
 		{
 			if (l.id == 7)
 			{

@@ -109,7 +109,7 @@ TEST(Soak, LongRunStaysSymmetricPsdAndBounded)
 	std::cout << "soak: " << steps << " steps, state dim at 1000 " << dimAt1000 << ", max "
 	          << maxDim << ", final " << f.fullMean().size() << "; worst asymmetry " << worstAsym
 	          << ", worst negative eigenvalue / max|P| " << worstNeg << "; dropped static "
-	          << f.getStaticLandmarks(true).size() - f.getStaticLandmarks(false).size() << "\n";
+	          << f.getDroppedStaticLandmarks().size() << "\n";
 	// Bounded state: what is in range (~12 landmarks, 3 objects with 3 poses) plus the drop window.
 	EXPECT_LE(maxDim, 3 + 2 * (40 + 3 * (3 + 2 * 3)));
 }

@@ -46,7 +46,7 @@ TMemoryRun runStraight(bool recordDropped, int steps, int from)
 	r.growthBytes = allocatedBytes() - atFrom;
 	size_t posesKept = 0;
 	for (const auto& [obj, tr] : f.getObjectTracks()) posesKept += tr.poses.size();
-	const size_t staticKept = f.getStaticLandmarks(true).size();
+	const size_t staticKept = allStaticLandmarks(f).size();
 	if (recordDropped)
 	{
 		EXPECT_GE(posesKept, r.droppedPoses);  // every dropped pose is in its track

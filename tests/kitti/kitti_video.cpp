@@ -61,7 +61,7 @@ mrpt::img::CImage drawFrame(const TGroundTruth& gt, const CDynamicKFSLAM2D& f, s
 	c.polyline(truePath, kBlack, 2);
 	c.polyline(estPath, kBlue, 2);
 	for (const auto& [id, p] : gt.landmarks) c.mark(p.x(), p.y(), kGrey, 'x', 3);
-	for (const auto& l : f.getStaticLandmarks(false))
+	for (const auto& l : f.getStaticLandmarks())
 	{
 		c.mark(l.mean.x(), l.mean.y(), kBlue, '+', 3);
 		c.ellipse(l.mean, l.cov, 3, kBlue, 1);

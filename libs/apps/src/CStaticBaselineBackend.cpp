@@ -143,7 +143,7 @@ mrpt::poses::CPosePDFGaussian CStaticBaselineBackend::getEgoPose() const
 	return p;
 }
 
-std::vector<TStaticLandmarkEstimate> CStaticBaselineBackend::getStaticLandmarks(bool) const
+std::vector<TStaticLandmarkEstimate> CStaticBaselineBackend::getStaticLandmarks() const
 {
 	mrpt::poses::CPosePDFGaussian pose;
 	std::vector<mrpt::math::TPoint2D> lms;

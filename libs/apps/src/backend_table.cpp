@@ -35,7 +35,7 @@ eval::TRunEstimates collect(ISlamBackend& be, const std::vector<eval::TEgoEstima
 {
 	eval::TRunEstimates e;
 	e.ego = ego;
-	for (const auto& l : be.getStaticLandmarks(true)) e.landmarks.push_back({l.id, l.mean, l.cov});
+	for (const auto& l : allStaticLandmarks(be)) e.landmarks.push_back({l.id, l.mean, l.cov});
 	for (const auto& f : be.getObjectFeatures())
 		if (f.at_time0) e.object_features.push_back({f.object, f.feature, f.mean, f.cov});
 	for (const auto& [obj, tr] : be.getObjectTracks())

@@ -109,7 +109,7 @@ void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est
 	est.object_features.clear();
 	est.object_poses.clear();
 
-	const auto lms = backend.getStaticLandmarks(true);
+	const auto lms = allStaticLandmarks(backend);
 	bool allInState = true;
 	for (const auto& l : lms)
 	{

@@ -59,6 +59,8 @@ std::map<int32_t, TObjectTrack> tracksFromRegistry(const estimator::CObjectRegis
 		tr.object = obj;
 		tr.first_step = o.first_step;
 		tr.num_features = int(o.feature_ids.size());
+		tr.skipped_late_readings = o.skipped_late_readings;
+		tr.skipped_late_features = int(o.skipped_late_ids.size());
 		tr.poses.reserve(o.dropped_poses.size());
 		for (const auto& r : o.dropped_poses) tr.poses.push_back(toEstimate(r));
 		size_t i = 0;  // both ascending in step: attach each velocity to its pose

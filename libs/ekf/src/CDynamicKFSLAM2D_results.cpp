@@ -29,7 +29,7 @@ mrpt::poses::CPosePDFGaussian CDynamicKFSLAM2D::getEgoPose() const
 	return p;
 }
 
-std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks(bool includeDropped) const
+std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks() const
 {
 	const TStateRef s = wholeState();
 	std::vector<TStaticLandmarkEstimate> out;
@@ -45,7 +45,13 @@ std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks(bool i
 		e.in_state = true;
 		out.push_back(e);
 	}
-	if (!includeDropped) return out;
+	return out;
+}
+
+std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getDroppedStaticLandmarks() const
+{
+	std::vector<TStaticLandmarkEstimate> out;
+	out.reserve(m_droppedStatic.size());
 	const TBlock point;  // a static landmark: a world point
 	for (TStaticLandmarkEstimate e : m_droppedStatic)
 	{

@@ -24,7 +24,12 @@ FeatureRole CObjectRegistry::registerReading(int32_t obj, int32_t id, int32_t fe
 		o.founders = int(o.feature_ids.size());
 		return FeatureRole::FirstSighting;
 	}
-	return it->second.indexOf(id) >= 0 ? FeatureRole::TimeT : FeatureRole::Unknown;
+	TObjectEntry& o = it->second;
+	if (o.indexOf(id) >= 0) return FeatureRole::TimeT;
+	++o.skipped_late_readings;
+	const auto at = std::lower_bound(o.skipped_late_ids.begin(), o.skipped_late_ids.end(), id);
+	if (at == o.skipped_late_ids.end() || *at != id) o.skipped_late_ids.insert(at, id);
+	return FeatureRole::Unknown;
 }
 
 void CObjectRegistry::registerObject(int32_t obj, int first_step, const std::vector<int32_t>& ids,

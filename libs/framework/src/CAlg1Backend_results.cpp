@@ -49,7 +49,7 @@ mrpt::poses::CPosePDFGaussian CAlg1Backend::getEgoPose() const
 	return p;
 }
 
-std::vector<TStaticLandmarkEstimate> CAlg1Backend::getStaticLandmarks(bool includeDropped) const
+std::vector<TStaticLandmarkEstimate> CAlg1Backend::getStaticLandmarks() const
 {
 	std::vector<TStaticLandmarkEstimate> out;
 	for (const auto& k : m_cost.keys())
@@ -61,7 +61,13 @@ std::vector<TStaticLandmarkEstimate> CAlg1Backend::getStaticLandmarks(bool inclu
 			e.cov = marginalCov(k) + gaugeTerm(k.kind, e.mean);
 			out.push_back(e);
 		}
-	if (!includeDropped) return out;
+	return out;
+}
+
+std::vector<TStaticLandmarkEstimate> CAlg1Backend::getDroppedStaticLandmarks() const
+{
+	std::vector<TStaticLandmarkEstimate> out;
+	out.reserve(m_droppedStatic.size());
 	for (TStaticLandmarkEstimate e : m_droppedStatic)
 	{
 		e.cov += gaugeTerm(VarKind::StaticLandmark, e.mean);

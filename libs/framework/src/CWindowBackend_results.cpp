@@ -19,7 +19,7 @@ mrpt::poses::CPosePDFGaussian CWindowBackend::getEgoPose() const
 	return p;
 }
 
-std::vector<TStaticLandmarkEstimate> CWindowBackend::getStaticLandmarks(bool includeDropped) const
+std::vector<TStaticLandmarkEstimate> CWindowBackend::getStaticLandmarks() const
 {
 	std::vector<TStaticLandmarkEstimate> out;
 	std::vector<TVarKey> keys;
@@ -37,8 +37,12 @@ std::vector<TStaticLandmarkEstimate> CWindowBackend::getStaticLandmarks(bool inc
 			out.push_back(e);
 		}
 	}
-	if (includeDropped) out.insert(out.end(), m_droppedStatic.begin(), m_droppedStatic.end());
 	return out;
+}
+
+std::vector<TStaticLandmarkEstimate> CWindowBackend::getDroppedStaticLandmarks() const
+{
+	return m_droppedStatic;
 }
 
 std::vector<TObjectFeatureEstimate> CWindowBackend::getObjectFeatures() const

@@ -52,6 +52,13 @@ struct TObjectTrack
 	int32_t object;
 	int first_step;    ///< the object's time 0
 	int num_features;  ///< features seen at the first sighting (the object's feature set)
+	/** Readings of features first seen after the object's first sighting that are not in its
+	 * feature set (no f_0: skipped, never used; with feature_labels = ids every such feature;
+	 * with classify, late joining gives them an f_0 instead), and how many distinct features
+	 * they came from. Also summed over objects per step in
+	 * TStepReport::skipped_unknown_object_feature. */
+	size_t skipped_late_readings = 0;
+	int skipped_late_features = 0;
 	std::vector<TObjectPoseEstimate> poses;  ///< ascending step: dropped ones, then in-state ones
 };
 
@@ -111,10 +118,23 @@ public:
 	virtual void processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
 	                                      const mrpt::obs::CSensoryFrame::Ptr& SF) = 0;
 	virtual mrpt::poses::CPosePDFGaussian getEgoPose() const = 0;
-	virtual std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
-	    bool includeDropped = true) const = 0;
+	/** The live map: the static landmarks in the state (in_state = true). */
+	virtual std::vector<TStaticLandmarkEstimate> getStaticLandmarks() const = 0;
+	/** The static landmarks dropped from the state (out of range too long), each with its last
+	 * estimate (in_state = false); empty for back-ends that never drop. */
+	virtual std::vector<TStaticLandmarkEstimate> getDroppedStaticLandmarks() const = 0;
 	virtual std::vector<TObjectFeatureEstimate> getObjectFeatures() const = 0;
 	virtual std::map<int32_t, TObjectTrack> getObjectTracks() const = 0;
 	virtual const TStepReport& getLastStepReport() const = 0;
 };
+
+/** Every static landmark estimated so far: the live map, then the dropped ones (what the apps
+ * write to landmarks.csv and evaluate). */
+inline std::vector<TStaticLandmarkEstimate> allStaticLandmarks(const ISlamBackend& b)
+{
+	std::vector<TStaticLandmarkEstimate> out = b.getStaticLandmarks();
+	const std::vector<TStaticLandmarkEstimate> dropped = b.getDroppedStaticLandmarks();
+	out.insert(out.end(), dropped.begin(), dropped.end());
+	return out;
+}
 }  // namespace dynslam

@@ -125,7 +125,7 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	double recovery_inflation = 4.0;
 	int recovery_min_updates = 3;
 	/** record_dropped: keep the last estimate of every dropped object pose and static
-	 * landmark (getObjectTracks, getStaticLandmarks(true)); default true. false: dropped
+	 * landmark (getObjectTracks, getDroppedStaticLandmarks); default true. false: dropped
 	 * entries are forgotten, so memory stays bounded in endless runs. */
 	bool record_dropped = true;
 	/** First-estimate Jacobians (Huang, Mourikis, Roumeliotis, ICRA/ISER 2008), default

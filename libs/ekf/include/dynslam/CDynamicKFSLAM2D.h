@@ -47,6 +47,7 @@
 #include <dynslam/estimator/update_engine.h>
 #include <dynslam/model_options.h>
 #include <dynslam/models/measurement.h>
+#include <dynslam/object_world_estimate.h>
 #include <dynslam/square_buffer.h>
 #include <dynslam/step_input.h>
 #include <mrpt/bayes/CKalmanFilterCapable.h>
@@ -138,13 +139,29 @@ public:
 
 	// --- results --------------------------------------------------------------
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
-	/** Static landmarks in the state, then (if includeDropped) the dropped ones. */
-	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
-	    bool includeDropped = true) const override;
+	/** The live map: the static landmarks in the state. */
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks() const override;
+	/** The static landmarks dropped from the state (drop_static_after), last estimates. */
+	std::vector<TStaticLandmarkEstimate> getDroppedStaticLandmarks() const override;
 	/** Object features in the state (time 0 and, if kept, time t). */
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
-	/** Every object's pose history: dropped poses (recorded) and poses in the state. */
+	/** Every object's pose history: dropped poses (recorded) and poses in the state. A pose is
+	 * xi = (dx, dy, dtheta), the motion since the object's first sighting: a rotation by dtheta
+	 * about c0, the centroid of its features seen then (its founders' f_0), then the
+	 * translation (dx, dy); (dx, dy) for a one-feature object (models/object_pose.h). It is
+	 * not the object's pose in the world: getObjectWorldPose gives that. */
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
+	/** The object's pose in the world (object_world_estimate.h, models/object_world_pose.h) at
+	 * its newest pose in the state, for every object_model; empty if its newest pose is no
+	 * longer in the state (dropped, e.g. by cv_fallback_steps) or a founder's f_0 is missing.
+	 * Throws std::invalid_argument for an object the filter does not know. */
+	std::optional<TObjectWorldPose> getObjectWorldPose(int32_t object) const;
+	/** getObjectWorldPose of every known object that has one. */
+	std::map<int32_t, TObjectWorldPose> getObjectWorldPoses() const;
+	/** The object's velocity (object_model = cv | ctrv); empty without a velocity block (the
+	 * paper's model, or before a cv object's second pose). Throws std::invalid_argument for an
+	 * object the filter does not know. */
+	std::optional<TObjectVelocity> getObjectVelocity(int32_t object) const;
 	/** The typed state after the ego pose (blocks and where they are stored; of the whole
 	 * state, like every getter below: with compressed entries in the working state, of its
 	 * expanded copy, see wholeState()). */

@@ -56,8 +56,9 @@ public:
 	                              const mrpt::obs::CSensoryFrame::Ptr& SF) override;
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
 	/** Every landmark of the filter's map, moving features included (mode AllFeatures). */
-	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
-	    bool includeDropped = true) const override;
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks() const override;
+	/** MRPT's filter never drops a landmark: empty. */
+	std::vector<TStaticLandmarkEstimate> getDroppedStaticLandmarks() const override { return {}; }
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override { return {}; }
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override { return {}; }
 	const TStepReport& getLastStepReport() const override { return m_report; }

@@ -41,6 +41,10 @@ struct TObjectEntry
 	/** The features seen at time 0 (the first `founders` of feature_ids): they define the pose's
 	 * centroid c0 and its dimension. Features that joined later (addFeature) follow them. */
 	int founders = 0;
+	/** Readings of features not in the feature set (FeatureRole::Unknown: first seen after the
+	 * object's first sighting and not joined; skipped), and their distinct IDs, ascending. */
+	size_t skipped_late_readings = 0;
+	std::vector<int32_t> skipped_late_ids;
 	/** Index of feature `id` in feature_ids, or -1 if it is not in the feature set. */
 	int indexOf(int32_t id) const;
 	/** 1 founder: translation-only pose (2 entries); otherwise (dx, dy, dtheta). */

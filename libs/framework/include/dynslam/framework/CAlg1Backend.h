@@ -48,8 +48,8 @@ public:
 	                              const mrpt::obs::CSensoryFrame::Ptr& SF) override;
 	std::string name() const override { return "alg1"; }
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
-	std::vector<TStaticLandmarkEstimate> getStaticLandmarks(
-	    bool includeDropped = true) const override;
+	std::vector<TStaticLandmarkEstimate> getStaticLandmarks() const override;
+	std::vector<TStaticLandmarkEstimate> getDroppedStaticLandmarks() const override;
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
 	const TStepReport& getLastStepReport() const override { return m_report; }
