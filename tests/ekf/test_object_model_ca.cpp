@@ -19,12 +19,12 @@
 #include "tiny_scenario.h"
 
 using namespace dynslam;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
 using estimator::caPredict;
 using estimator::caProcessNoise;
 using estimator::CConstantAcceleration;
 using estimator::TCvParams;
-using Eigen::MatrixXd;
-using Eigen::VectorXd;
 
 namespace
 {
@@ -122,15 +122,16 @@ TEST(ObjectMotionJacobians, CaInitialVelocity)
 			ASSERT_EQ(v.size(), 2 * d);
 			ASSERT_EQ(J.rows(), 2 * d);
 			ASSERT_EQ(J.cols(), d);
-			const MatrixXd Jn = numericJ(
-			    [&](const VectorXd& x) { return m.initialVelocity(x, steps, nullptr, nullptr); },
-			    xi, {});
+			const MatrixXd Jn = numericJ([&](const VectorXd& x)
+			                             { return m.initialVelocity(x, steps, nullptr, nullptr); },
+			                             xi, {});
 			EXPECT_LT(relErr(J, Jn), 1e-8) << "d " << d << " steps " << steps;
 			// v = xi / e (cv's), a = 0; the prior couples v and a by e/2 (constant_acceleration.h).
 			const double e = steps * 0.4;
 			EXPECT_LT((v.head(d) - models::cvInitialVelocity(xi, e)).cwiseAbs().maxCoeff(), 1e-15);
 			EXPECT_TRUE(v.tail(d).isZero(0));
-			const MatrixXd Sa = params(0.4).accel_prior_std.head(d).array().square().matrix().asDiagonal();
+			const MatrixXd Sa =
+			    params(0.4).accel_prior_std.head(d).array().square().matrix().asDiagonal();
 			const MatrixXd Sv =
 			    TCvParams().velocity_prior_std.head(d).array().square().matrix().asDiagonal();
 			EXPECT_LT(relErr(Sigma.bottomRightCorner(d, d), Sa), 1e-15);

@@ -3,9 +3,9 @@
  * true start drawn from the prior (start_from_prior, doc/simulator.md "Model-matched truth") and
  * the cars' motion replaced, in this test, by a draw of the ca filter's model: from the step after
  * its first sighting f (when the filter gives it a velocity) each car's offset from its constant-
- * velocity path starts with the filter's velocity-block prior (constant_acceleration.h: acceleration
- * a ~ N(0, Sa), velocity offset e/2 a + N(0, Sv), e = one step) and then moves with constant
- * acceleration driven by white jerk (the filter's Q, caProcessNoise). Filtered with
+ * velocity path starts with the filter's velocity-block prior (constant_acceleration.h:
+ * acceleration a ~ N(0, Sa), velocity offset e/2 a + N(0, Sv), e = one step) and then moves with
+ * constant acceleration driven by white jerk (the filter's Q, caProcessNoise). Filtered with
  * config/compare_tunnel.ini and object_model = ca with the truth's parameters. Measured: the Monte
  * Carlo mean of the NEES of each car's whole state [xi; v; a] (9 dof) at every step it has one, and
  * of the ego NEES in the gap, must lie inside the 95 % chi-square bounds of the run count. */
@@ -117,8 +117,8 @@ TCaTruth caTruth(const sim::TScenarioOptions& o, uint32_t seed)
 
 struct TRunNees
 {
-	double ego = 0;     ///< ego NEES averaged over the gap's steps
-	double object = 0;  ///< object NEES [xi; v; a] averaged over its samples
+	double ego = 0;                  ///< ego NEES averaged over the gap's steps
+	double object = 0;               ///< object NEES [xi; v; a] averaged over its samples
 	Eigen::Vector3d parts{0, 0, 0};  ///< the same of xi, v, a alone (3 dof each)
 	int objectSamples = 0;
 	int initAtSecondSighting = 0;  ///< objects whose velocity block came at f + 1

@@ -111,8 +111,7 @@ std::map<int32_t, TObjectTrack> CAlg1Backend::getObjectTracks() const
 				// The velocity: the block's first entries (ca: then its acceleration).
 				const Eigen::Index d = e.mean.size();
 				e.velocity = m_cost.value(v).head(d);
-				e.velocity_cov =
-				    marginalCov(v).topLeftCorner(d, d) + gaugeTerm(v.kind, e.velocity);
+				e.velocity_cov = marginalCov(v).topLeftCorner(d, d) + gaugeTerm(v.kind, e.velocity);
 			}
 			e.in_state = true;
 			out[k.id].poses.push_back(e);

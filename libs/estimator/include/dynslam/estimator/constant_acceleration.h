@@ -12,9 +12,10 @@
  * Initial velocity block from the first pose xi, e = steps dt after the first sighting:
  * v = xi / e, a = 0, with the prior of a ~ N(0, Sa) and v = xi / e + (e/2) a + n_v,
  * n_v ~ N(0, Sv) (xi / e is the mean velocity over [0, e], which the acceleration shifts by
- * e/2 a at time e): Sigma = [Sv + e^2/4 Sa, e/2 Sa; e/2 Sa, Sa], Sv = diag(cv_velocity_prior_std^2),
- * Sa = diag(ca_accel_prior_std^2). Everything else (dt, gate, fallback, heading inflation) is
- * CConstantVelocity's (the cv_* keys). The model is linear: its Jacobian is exact. */
+ * e/2 a at time e): Sigma = [Sv + e^2/4 Sa, e/2 Sa; e/2 Sa, Sa], Sv =
+ * diag(cv_velocity_prior_std^2), Sa = diag(ca_accel_prior_std^2). Everything else (dt, gate,
+ * fallback, heading inflation) is CConstantVelocity's (the cv_* keys). The model is linear: its
+ * Jacobian is exact. */
 #include <dynslam/estimator/constant_velocity.h>
 
 namespace dynslam::estimator
