@@ -186,8 +186,17 @@ TEST(EstimatorLayout, TypedBlocksMapToPaddedSlots)
 	EXPECT_EQ(L[1].dim, 2);
 	EXPECT_TRUE(L.padIndices().empty());
 	TBlock bad;
-	bad.dim = 5;
+	bad.dim = 7;  // 1..6: the velocity block of ca, [v; a], has 6 entries (3 slots)
 	EXPECT_THROW(L.append(bad), std::invalid_argument);
+	bad.dim = 0;
+	EXPECT_THROW(L.append(bad), std::invalid_argument);
+	TBlock va;
+	va.kind = BlockKind::ObjectVelocity;
+	va.dim = 6;
+	L.append(va);
+	EXPECT_EQ(L.indices(3).size(), 6u);
+	EXPECT_EQ(L.numSlots(), 6u);  // 2 + 1 + 3, no pad
+	EXPECT_TRUE(L.padIndices().empty());
 	EXPECT_THROW(L.keptStorage({true}), std::invalid_argument);
 }
 

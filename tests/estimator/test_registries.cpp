@@ -27,7 +27,8 @@ std::string errorOf(const std::function<void()>& f)
 TEST(Registries, ObjectMotionModelsAndTheirCapabilities)
 {
 	const auto& r = objectMotionModels();
-	EXPECT_EQ(r.names(), (std::vector<std::string>{"paper", "paper_smoothing", "cv", "ctrv"}));
+	EXPECT_EQ(r.names(),
+	          (std::vector<std::string>{"paper", "paper_smoothing", "cv", "ctrv", "ca"}));
 	TObjectMotionParams p;
 	for (const auto& name : r.names())
 	{
@@ -41,6 +42,9 @@ TEST(Registries, ObjectMotionModelsAndTheirCapabilities)
 	}
 	EXPECT_EQ(r.make("cv", p)->name(), "cv");
 	EXPECT_EQ(r.make("ctrv", p)->name(), "ctrv");
+	EXPECT_EQ(r.make("ca", p)->name(), "ca");
+	EXPECT_EQ(r.make("ca", p)->velocityDim(3), 6);  // [v; a]
+	EXPECT_FALSE(r.caps("ca").window);
 	p.smoothing = true;  // paper with smoothing = true is the paper's smoothing
 	EXPECT_EQ(r.make("paper", p)->name(), "paper_smoothing");
 	EXPECT_TRUE(r.caps("paper_smoothing").smoothing);

@@ -9,7 +9,7 @@ namespace
 {
 constexpr const char* kModel = "Measurement, motion and prior";
 constexpr const char* kObjects = "Objects (the paper's formulation)";
-constexpr const char* kMotion = "Object motion models (object_model = cv, ctrv)";
+constexpr const char* kMotion = "Object motion models (object_model = cv, ctrv, ca)";
 constexpr const char* kUpdate = "Static update and outliers";
 constexpr const char* kBias = "Odometry bias (odometry_bias = rate, rate_scale)";
 constexpr const char* kClassify = "Classification (feature_labels = classify)";
@@ -44,9 +44,9 @@ const std::vector<TKeyInfo> kKeys{
      "drop static landmarks unseen this long (0: never)", kObjects},
     {"skip_prediction_on_empty_map", "bool", "false", "-",
      "no prediction while the map is empty (MRPT's CRangeBearingKFSLAM2D)", kObjects},
-    {"object_model", "paper | paper_smoothing | cv | ctrv", "paper", "-",
+    {"object_model", "paper | paper_smoothing | cv | ctrv | ca", "paper", "-",
      "how objects move: the paper's formulation, or a velocity in the state", kMotion},
-    {"cv_dt", "real > 0", "0.5", "s", "seconds per step; required with cv and ctrv", kMotion},
+    {"cv_dt", "real > 0", "0.5", "s", "seconds per step; required with cv, ctrv and ca", kMotion},
     {"cv_accel_psd", "vector of 3, >= 0", "[0.1 0.1 0.01]", "[m^2/s^3, m^2/s^3, rad^2/s^3]",
      "white-acceleration spectral densities", kMotion},
     {"cv_velocity_prior_std", "vector of 3, > 0", "[1 1 0.1]", "[m/s, m/s, rad/s]",
@@ -59,6 +59,10 @@ const std::vector<TKeyInfo> kKeys{
      kMotion},
     {"cv_heading_inflation", "real >= 0", "0", "-",
      "object readings' noise Sigma_v + c P_thth h h^T (0: off); EKF only", kMotion},
+    {"ca_jerk_psd", "vector of 3, >= 0", "[0.01 0.01 0.001]", "[m^2/s^5, m^2/s^5, rad^2/s^5]",
+     "ca: white-jerk spectral densities (its process noise; > 0 in the framework)", kMotion},
+    {"ca_accel_prior_std", "vector of 3, > 0", "[0.5 0.5 0.05]", "[m/s^2, m/s^2, rad/s^2]",
+     "ca: initialisation noise of an object's acceleration (mean 0)", kMotion},
     {"static_update", "mrpt | sparse | compressed", "sparse", "-",
      "the static update engine (compressed: the exact compressed EKF)", kUpdate},
     {"compressed_passive_after", "int in [1, 1000000]", "3", "steps",

@@ -15,7 +15,7 @@ namespace dynslam
 // ------------------------------------------------------------------------------------------
 namespace
 {
-/** object_model and the cv_* keys (issue 13); paper_smoothing is smoothing = true. */
+/** object_model, the cv_* and ca_* keys (issue 13); paper_smoothing is smoothing = true. */
 void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
@@ -34,6 +34,8 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	o.cv.dt = readPositive(c, s, "cv_dt", o.cv.dt, cvModel);
 	o.cv.accel_psd = readVector(c, s, "cv_accel_psd", o.cv.accel_psd, 3);
 	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
+	o.cv.jerk_psd = readVector(c, s, "ca_jerk_psd", o.cv.jerk_psd, 3);
+	o.cv.accel_prior_std = readVector(c, s, "ca_accel_prior_std", o.cv.accel_prior_std, 3);
 	o.cv_gate = readNonNegative(c, s, "cv_gate", o.cv_gate);
 	o.cv.fallback_steps = int(readInt(c, s, "cv_fallback_steps", o.cv.fallback_steps));
 	o.cv.heading_inflation = readNonNegative(c, s, "cv_heading_inflation", o.cv.heading_inflation);
@@ -237,6 +239,9 @@ void dumpObjectModel(std::ostream& out, const TModelOptions& o)
 	out << "cv_gate                        = " << o.cv_gate << "\n";
 	out << "cv_fallback_steps              = " << o.cv.fallback_steps << "\n";
 	out << "cv_heading_inflation           = " << o.cv.heading_inflation << "\n";
+	out << "ca_jerk_psd                    = " << formatMatrix(o.cv.jerk_psd.transpose()) << "\n";
+	out << "ca_accel_prior_std             = " << formatMatrix(o.cv.accel_prior_std.transpose())
+	    << "\n";
 }
 
 /** The feature_labels = classify keys of the dump. */

@@ -109,11 +109,14 @@ void CDynamicKFSLAM2D::predictObjects()
 		e.cov.topLeftCorner(e.dim, e.dim) = ekf::marginal(P, ip);
 		m_router->registry().recordDroppedPose(obj, e, m_drop.record());
 		const std::vector<int> iv = m_layout.indices(st.velocity);
+		// The velocity: the block's first e.dim entries (further ones are the model's, e.g. ca's
+		// acceleration; doc/state-layout.md).
+		const std::vector<int> ivel(iv.begin(), iv.begin() + e.dim);
 		estimator::TVelocityRecord ev;
 		ev.step = e.step;
-		ev.dim = int(iv.size());
-		ev.velocity.head(ev.dim) = x(iv);
-		ev.cov.topLeftCorner(ev.dim, ev.dim) = ekf::marginal(P, iv);
+		ev.dim = e.dim;
+		ev.velocity.head(ev.dim) = x(ivel);
+		ev.cov.topLeftCorner(ev.dim, ev.dim) = ekf::marginal(P, ivel);
 		m_router->registry().recordDroppedVelocity(obj, ev, m_drop.record());
 
 		const std::vector<int> idx = concat(ip, iv);

@@ -51,9 +51,21 @@ Eigen::MatrixXd CDynamicKFSLAM2D::gaugeJacobian() const
 	N.topRows<3>() = models::J_block_delta(models::GaugeKind::EgoPose, x.head<3>(), m_gaugeOrigin);
 	for (size_t b = 0; b < s.layout.size(); ++b)
 	{
+		const TBlock& t = s.layout[b];
 		const std::vector<int> idx = s.layout.indices(b);
-		N(idx, Eigen::all) =
-		    models::J_block_delta(gaugeKind(s.layout[b]), x(idx).eval(), m_gaugeOrigin);
+		// A velocity block beyond the velocity (ca: [v; a]) is made of parts of the velocity's
+		// shape (pose dim d: velocityDim(d) entries), each a derivative that rotates like it.
+		const int d = t.kind == BlockKind::ObjectVelocity && m_motion->velocityDim(3) == t.dim ? 3
+		              : t.kind == BlockKind::ObjectVelocity && m_motion->velocityDim(2) == t.dim
+		                  ? 2
+		                  : t.dim;
+		TBlock part = t;
+		part.dim = d;
+		for (int i = 0; i + d <= t.dim; i += d)
+		{
+			const std::vector<int> pi(idx.begin() + i, idx.begin() + i + d);
+			N(pi, Eigen::all) = models::J_block_delta(gaugeKind(part), x(pi).eval(), m_gaugeOrigin);
+		}
 	}
 	return N;
 }

@@ -96,10 +96,11 @@ static estimator::TLiveMergeSample liveSample(const estimator::CPaddedLayout& L,
 	for (const size_t b : B.f0) append(in, L.indices(b));
 	const Eigen::Index cvA = Eigen::Index(in.size());
 	const bool vel = A.vel != SIZE_MAX && B.vel != SIZE_MAX;
-	if (vel)
+	if (vel)  // the velocities: the blocks' first entries (ca: then the acceleration)
 	{
-		append(in, L.indices(A.vel));
-		append(in, L.indices(B.vel));
+		const std::vector<int> vA = L.indices(A.vel), vB = L.indices(B.vel);
+		append(in, std::vector<int>(vA.begin(), vA.begin() + 3));
+		append(in, std::vector<int>(vB.begin(), vB.begin() + B.dim));
 	}
 	const Eigen::Index n = Eigen::Index(in.size()), m = Eigen::Index(B.f0.size());
 	Eigen::VectorXd xin(n);

@@ -99,7 +99,7 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 			vel.dim = int(e.velocity.size());
 			e.velocity_cov += gaugeTerm(&vel, e.velocity);
 		}
-	std::map<int32_t, std::vector<int>> velocityIdx;  // object_model = cv | ctrv
+	std::map<int32_t, std::vector<int>> velocityIdx;  // object-centric models (cv, ctrv, ca)
 	for (size_t b = 0; b < m_layout.size(); ++b)
 		if (m_layout[b].kind == BlockKind::ObjectVelocity)
 			velocityIdx[m_layout[b].object] = m_layout.indices(b);
@@ -115,11 +115,13 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 		// The velocity belongs to the newest pose: the only one of a velocity model in state.
 		if (const auto v = velocityIdx.find(t.object); v != velocityIdx.end() && t.step == m_step)
 		{
-			e.velocity = m_xkk.asEigen()(v->second);
+			// The velocity: the block's first t.dim entries (ca: then its acceleration).
+			const std::vector<int> iv(v->second.begin(), v->second.begin() + t.dim);
+			e.velocity = m_xkk.asEigen()(iv);
 			TBlock vel = t;
 			vel.kind = BlockKind::ObjectVelocity;
 			vel.dim = int(e.velocity.size());
-			e.velocity_cov = ekf::marginal(cov(), v->second) + gaugeTerm(&vel, e.velocity);
+			e.velocity_cov = ekf::marginal(cov(), iv) + gaugeTerm(&vel, e.velocity);
 		}
 		e.in_state = true;
 		out[t.object].poses.push_back(e);
@@ -211,9 +213,10 @@ void CDynamicKFSLAM2D::slotsOf(const estimator::CPaddedLayout& layout, std::vect
 			s.kind = SlotKind::ObjectPoseB;  // [dtheta, pad]
 			slots.push_back(s);
 		}
-		if (t.kind == BlockKind::ObjectVelocity && t.dim == 3)
+		// The velocity's further slots: [omega, pad] (cv, ctrv), [omega, ax], [ay, alpha] (ca).
+		for (int i = 1; t.kind == BlockKind::ObjectVelocity && i < t.slots(); ++i)
 		{
-			s.kind = SlotKind::ObjectVelocityB;  // [omega, pad]
+			s.kind = SlotKind::ObjectVelocityB;
 			slots.push_back(s);
 		}
 	}

@@ -1,4 +1,5 @@
 #include <dynslam/estimator/classifying_router.h>
+#include <dynslam/estimator/constant_acceleration.h>
 #include <dynslam/estimator/constant_turn_rate.h>
 #include <dynslam/estimator/seam_registries.h>
 
@@ -50,6 +51,13 @@ const CObjectMotionRegistry& objectMotionModels()
 		    "ctrv",
 		    [](const TObjectMotionParams& p) { return std::make_unique<CConstantTurnRate>(p.cv); },
 		    objectCentric);
+		TObjectMotionCaps ca = objectCentric;
+		ca.noise_key = "ca_jerk_psd";
+		g.add(
+		    "ca",
+		    [](const TObjectMotionParams& p)
+		    { return std::make_unique<CConstantAcceleration>(p.cv); },
+		    ca);
 		return g;
 	}();
 	return r;

@@ -45,8 +45,8 @@ void CPaddedLayout::append(const TBlock& b)
 
 void CPaddedLayout::appendNumbered(const TBlock& b)
 {
-	if (b.dim < 1 || b.dim > 4)
-		throw std::invalid_argument("CPaddedLayout: a block has 1..4 entries, not " +
+	if (b.dim < 1 || b.dim > 6)
+		throw std::invalid_argument("CPaddedLayout: a block has 1..6 entries, not " +
 		                            std::to_string(b.dim));
 	m_first.push_back(storageDim());
 	for (int s = 0; s < b.slots(); ++s) m_blockAtSlot.push_back(m_blocks.size());

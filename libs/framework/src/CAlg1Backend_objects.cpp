@@ -38,11 +38,17 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeMotionMod
 			throw std::invalid_argument(
 			    std::string("[DynamicKFSLAM] ") + what +
 			    " is not implemented in the framework (the dynamic EKF only)");
-	if ((p.accel_psd.array() <= 0).any())
+	auto model = estimator::objectMotionModels().make(o.object_model, params);
+	// The model's process noise for a 3-dof pose (a 2-dof one uses its first two axes).
+	Eigen::MatrixXd F, Q;
+	model->predict(Eigen::VectorXd::Zero(3 + model->velocityDim(3)), &F, &Q);
+	if ((Q.diagonal().array() <= 0).any())
 		throw std::invalid_argument(
-		    "[DynamicKFSLAM] cv_accel_psd: every entry must be > 0 in the framework (its motion "
-		    "term needs an invertible process noise; the dynamic EKF accepts 0)");
-	return estimator::objectMotionModels().make(o.object_model, params);
+		    std::string("[DynamicKFSLAM] ") +
+		    estimator::objectMotionModels().caps(o.object_model).noise_key +
+		    ": every entry must be > 0 in the framework (its motion term needs an invertible "
+		    "process noise; the dynamic EKF accepts 0)");
+	return model;
 }
 
 bool CAlg1Backend::objectCentric() const { return m_motion->objectCentric(); }
@@ -61,15 +67,16 @@ void CAlg1Backend::predictObjects()
 		if (xi.kind != VarKind::ObjectPose || !m_cost.has(v))
 			throw std::logic_error("CAlg1Backend: an object velocity without its pose");
 		// The pose of the previous step is replaced by the prediction: recorded like a drop.
+		const int d = m_cost.dim(xi), dv = m_cost.dim(v);
 		TObjectPoseEstimate e;
 		e.step = xi.step;
 		e.mean = m_cost.value(xi);
 		e.cov = marginalCov(xi);
-		e.velocity = m_cost.value(v);
-		e.velocity_cov = marginalCov(v);
+		// The velocity: the block's first d entries (ca: then its acceleration).
+		e.velocity = m_cost.value(v).head(d);
+		e.velocity_cov = marginalCov(v).topLeftCorner(d, d);
 		m_router->registry().recordDroppedPose(obj, toRecord(e), m_drop.record());
 		m_router->registry().recordDroppedVelocity(obj, toVelocityRecord(e), m_drop.record());
-		const int d = m_cost.dim(xi), dv = m_cost.dim(v);
 		Eigen::VectorXd s(d + dv);
 		s << m_cost.value(xi), m_cost.value(v);
 		const Eigen::VectorXd pred = m_motion->predict(s, nullptr, nullptr);

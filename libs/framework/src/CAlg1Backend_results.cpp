@@ -114,8 +114,10 @@ std::map<int32_t, TObjectTrack> CAlg1Backend::getObjectTracks() const
 			e.cov = marginalCov(k) + gaugeTerm(k.kind, e.mean);
 			if (const TVarKey v = TVarKey::objectVelocity(k.id, k.step); m_cost.has(v))
 			{
-				e.velocity = m_cost.value(v);
-				e.velocity_cov = marginalCov(v) + gaugeTerm(v.kind, e.velocity);
+				// The velocity: the block's first entries (ca: then its acceleration).
+				const Eigen::Index d = e.mean.size();
+				e.velocity = m_cost.value(v).head(d);
+				e.velocity_cov = marginalCov(v).topLeftCorner(d, d) + gaugeTerm(v.kind, e.velocity);
 			}
 			e.in_state = true;
 			out[k.id].poses.push_back(e);

@@ -58,7 +58,9 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * paper_smoothing (= paper with smoothing = true), cv (constant velocity: each object's pose
 	 * and world-frame velocity are predicted every step and its sightings update ego, pose and
 	 * body-frame features together), ctrv (the same with a constant turn rate: the velocity
-	 * turns at omega, models::ctrvPredict; it reads the cv_* keys). */
+	 * turns at omega, models::ctrvPredict; it reads the cv_* keys), ca (constant acceleration:
+	 * the velocity block is [v; a], driven by white jerk; the cv_* keys and ca_jerk_psd,
+	 * ca_accel_prior_std, estimator/constant_acceleration.h). */
 	std::string object_model = "paper";
 	/** An object-centric model (objects have a velocity and update the state: cv, ctrv): the
 	 * capability of object_model in estimator::objectMotionModels(); false if unknown. */

@@ -76,8 +76,8 @@ enum class SlotKind : uint8_t
 	ObjectFeatureT,   ///< feature of a moving object at the current time t
 	ObjectPoseA,      ///< [dx, dy] of an object pose xi_t
 	ObjectPoseB,      ///< [dtheta, pad] of an object pose xi_t
-	ObjectVelocityA,  ///< [vx, vy] of an object velocity (object_model = cv)
-	ObjectVelocityB,  ///< [omega, pad] of an object velocity (object_model = cv)
+	ObjectVelocityA,  ///< [vx, vy] of an object velocity block (object-centric models)
+	ObjectVelocityB,  ///< a further slot: [omega, pad]; ca: [omega, ax], [ay, alpha]
 	OdometryBias,     ///< [b_w, pad] or [b_w, s] (odometry_bias != none; the first slot)
 	Compressed        ///< static_update = compressed: accumulated matrices (compressed_state.h)
 };

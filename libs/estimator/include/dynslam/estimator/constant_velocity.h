@@ -17,6 +17,11 @@ struct TCvParams
 	Eigen::Vector3d accel_psd = Eigen::Vector3d(0.1, 0.1, 0.01);
 	/** Std of the initialisation noise of the velocity (vx, vy, omega) [m/s, m/s, rad/s]. */
 	Eigen::Vector3d velocity_prior_std = Eigen::Vector3d(1.0, 1.0, 0.1);
+	/** ca only (constant_acceleration.h; validated by CConstantAcceleration): white-jerk
+	 * spectral densities (jx, jy, jalpha) [m^2/s^5, m^2/s^5, rad^2/s^5] and the std of the
+	 * acceleration prior (ax, ay, alpha) [m/s^2, m/s^2, rad/s^2]. */
+	Eigen::Vector3d jerk_psd = Eigen::Vector3d(0.01, 0.01, 0.001);
+	Eigen::Vector3d accel_prior_std = Eigen::Vector3d(0.5, 0.5, 0.05);
 	/** Chi-square threshold (2 dof) of the gate on object readings (infinity: no gate). */
 	double gate = std::numeric_limits<double>::infinity();
 	/** Fallback of a lost object (doc/state-layout.md "Fallback of a lost object"): after

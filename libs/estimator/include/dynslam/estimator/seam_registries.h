@@ -34,7 +34,7 @@ struct TObjectMotionParams
 {
 	bool smoothing = false;  ///< paper: the smoothing (Alg. 6) on
 	Eigen::Matrix3d Sigma_s = Eigen::Matrix3d::Identity() * 1e-2;
-	TCvParams cv;  ///< cv, ctrv (cv.gate: the chi-square threshold, not a probability)
+	TCvParams cv;  ///< cv, ctrv, ca (cv.gate: the chi-square threshold, not a probability)
 };
 struct TObjectMotionCaps
 {
@@ -45,10 +45,13 @@ struct TObjectMotionCaps
 	bool smoothing = false;
 	bool framework = true;  ///< implemented by the framework's Alg. 1 back-end
 	bool window = true;     ///< implemented by the framework's windowed back-ends
+	/** The key of its process noise's spectral density (object-centric models; every entry
+	 * must be > 0 in the framework, whose motion term needs an invertible Q). */
+	const char* noise_key = "cv_accel_psd";
 };
 using CObjectMotionRegistry = CRegistry<IObjectMotionModel, TObjectMotionParams, TObjectMotionCaps>;
 /** paper (CNoObjectMotion, or CPaperSmoothing if smoothing), paper_smoothing (CPaperSmoothing),
- * cv (CConstantVelocity), ctrv (CConstantTurnRate). */
+ * cv (CConstantVelocity), ctrv (CConstantTurnRate), ca (CConstantAcceleration). */
 const CObjectMotionRegistry& objectMotionModels();
 
 // --- update (outlier_method) -----------------------------------------------------------------

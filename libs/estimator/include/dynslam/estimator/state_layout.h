@@ -21,8 +21,11 @@ enum class BlockKind : uint8_t
 	ObjectFeature0,  ///< feature of a moving object at its first sighting (time 0)
 	ObjectFeatureT,  ///< feature of a moving object now (time t)
 	ObjectPose,      ///< xi_t = (dx, dy, dtheta), or (dx, dy) for one-feature objects
-	ObjectVelocity,  ///< object velocity of object-centric motion models (vx, vy[, omega])
-	OdometryBias,    ///< (b_w) or (b_w, s): odometry bias (dynslam/models/odometry_bias.h)
+	/** The velocity block of an object-centric motion model: its first entries are the velocity
+	 * (vx, vy[, omega]), as many as the pose has; further ones are the model's (ca: the
+	 * acceleration), read by no one else (doc/state-layout.md). */
+	ObjectVelocity,
+	OdometryBias,  ///< (b_w) or (b_w, s): odometry bias (dynslam/models/odometry_bias.h)
 	/** Compressed EKF only (compressed_state.h): two columns of the accumulated cross-covariance
 	 * of the active state with the passive one (`object` = the level, `feature` = the pair). */
 	Compressed
@@ -53,7 +56,7 @@ public:
 	bool empty() const { return m_blocks.empty(); }
 	const TBlock& operator[](size_t b) const { return m_blocks[b]; }
 	const std::vector<TBlock>& blocks() const { return m_blocks; }
-	/** Appends a block (dim 1..4) at the end of the storage, numbered after every block
+	/** Appends a block (dim 1..6) at the end of the storage, numbered after every block
 	 * appended before (TBlock::seq). */
 	void append(const TBlock& b);
 	/** Appends a block keeping its number (later appends are numbered after it). */
