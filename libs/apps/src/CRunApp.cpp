@@ -2,9 +2,11 @@
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/noise_sources.h>
 #include <dynslam/apps/run_outputs.h>
+#include <dynslam/apps/step_timing.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
+#include <dynslam/eval/peak_memory.h>
 #include <dynslam/eval/writers.h>
 
 #include <algorithm>
@@ -157,22 +159,35 @@ void CRunApp::run()
 	auto filter = makeBackend(backend, params, &dump);
 	const size_t n = data.rawlog.size();
 	const size_t every = progressEvery > 0 ? size_t(progressEvery) : std::max<size_t>(1, n / 10);
-	result = runFilter(*filter, data.rawlog.actions, data.rawlog.frames,
-	                   [&](size_t done, size_t total)
-	                   {
-		                   if (done % every != 0 && done != total) return;
-		                   MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", filter->name().c_str(),
-		                                     done, total, 100.0 * double(done) / double(total));
-	                   });
+	CTimingCsv timing;  // streamed to a temporary file, moved into outDir after the run
+	result = runFilter(
+	    *filter, data.rawlog.actions, data.rawlog.frames,
+	    [&](size_t done, size_t total)
+	    {
+		    if (done % every != 0 && done != total) return;
+		    MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", filter->name().c_str(), done, total,
+		                      100.0 * double(done) / double(total));
+	    },
+	    [&](size_t step, double ms)
+	    {
+		    TStepTiming t;
+		    t.step = step;
+		    t.ms = ms;
+		    fillStateSize(*filter, t);
+		    timing.write(t);
+	    });
 	setEgoTimes(result);
 	if (hasGroundTruth)
 		if (const std::string w = timeBaseWarning(result, gt); !w.empty()) MRPT_LOG_WARN(w);
-	MRPT_LOG_INFO_FMT("%s: %zu steps in %.1f ms (%.3f ms/step)", result.name.c_str(), result.steps,
-	                  result.total_ms, result.est.ms_per_step);
+	MRPT_LOG_INFO_FMT("%s: %zu steps in %.1f ms (%.3f ms/step), peak memory %.1f MiB",
+	                  result.name.c_str(), result.steps, result.total_ms, result.est.ms_per_step,
+	                  eval::peakRssMb());
 
 	makeOutputDir(outDir);
 	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	writeEstimateFiles(outDir, "", result.est, g, writtenFiles);
+	timing.moveTo(joinPath(outDir, "timing.csv"));
+	writtenFiles.push_back(joinPath(outDir, "timing.csv"));
 	writeOptionalOutputs(data.rawlog);
 	writeOutput("effective_config.ini",
 	            [&](std::ostream& os)
@@ -213,6 +228,7 @@ eval::TConsistencySummary CRunApp::evaluateAndReport()
 		std::vector<eval::TMetricsRow> rows{{result.name, evaluation->metrics, summary,
 		                                     std::nullopt, std::nullopt,
 		                                     eval::objectVelocityErrors(gt, result.est)}};
+		rows[0].peak_rss_mb = eval::peakRssMb();  // the peak so far: the run is done
 		writeOutput("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
 		std::ostringstream table;
 		eval::writeMetricsTable(table, rows);

@@ -177,7 +177,8 @@ void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est
 TFilterRun runFilter(ISlamBackend& backend,
                      const std::vector<mrpt::obs::CActionCollection::Ptr>& actions,
                      const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames,
-                     const std::function<void(size_t, size_t)>& progress)
+                     const std::function<void(size_t, size_t)>& progress,
+                     const std::function<void(size_t, double)>& stepTime)
 {
 	if (actions.size() != frames.size())
 		throw std::invalid_argument("runFilter: different numbers of actions and sensory frames");
@@ -202,8 +203,10 @@ TFilterRun runFilter(ISlamBackend& backend,
 			throw std::runtime_error(r.name + ": step " + std::to_string(k) + ": " +
 			                         oneLineReason(e));
 		}
-		ns +=
+		const double stepNs =
 		    double(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());
+		ns += stepNs;
+		if (stepTime) stepTime(k, stepNs * 1e-6);
 
 		const auto pose = backend.getEgoPose();
 		eval::TEgoEstimate e;

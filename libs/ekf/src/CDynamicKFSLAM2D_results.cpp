@@ -48,6 +48,17 @@ std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getStaticLandmarks() cons
 	return out;
 }
 
+size_t CDynamicKFSLAM2D::liveObjectCount() const
+{
+	std::vector<int32_t> objects;
+	for (const TBlock& t : m_layout.blocks())
+		if (t.kind == BlockKind::ObjectFeature0 || t.kind == BlockKind::ObjectFeatureT ||
+		    t.kind == BlockKind::ObjectPose || t.kind == BlockKind::ObjectVelocity)
+			objects.push_back(t.object);  // (a Compressed block's `object` is its level)
+	std::sort(objects.begin(), objects.end());
+	return size_t(std::unique(objects.begin(), objects.end()) - objects.begin());
+}
+
 std::vector<TStaticLandmarkEstimate> CDynamicKFSLAM2D::getDroppedStaticLandmarks() const
 {
 	std::vector<TStaticLandmarkEstimate> out;

@@ -221,6 +221,9 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 	const bool velocities =
 	    std::any_of(rows.begin(), rows.end(), [](const TMetricsRow& r) { return r.velocity; });
 	if (velocities) os << ",obj_speed_rmse,obj_omega_rmse,obj_velocity_anees,obj_velocity_n";
+	const bool memory =
+	    std::any_of(rows.begin(), rows.end(), [](const TMetricsRow& r) { return r.peak_rss_mb; });
+	if (memory) os << ",peak_rss_mb";
 	os << "\n";
 	for (const auto& r : rows)
 	{
@@ -267,6 +270,7 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 			   << num(r.velocity->anees) << "," << r.velocity->n;
 		else if (velocities)
 			os << ",,,,";
+		if (memory) os << "," << (r.peak_rss_mb ? num(*r.peak_rss_mb) : "");
 		os << "\n";
 	}
 }

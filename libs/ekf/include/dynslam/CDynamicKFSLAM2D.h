@@ -204,6 +204,11 @@ public:
 	 * the static landmarks kept out of it (static_update = compressed). */
 	size_t workingDim() const { return m_xkk.size(); }
 	size_t passiveLandmarks() const { return m_lifecycle->passiveCount(); }
+	/** Cheap counts of the state after the last step (no expanded copy; dynslam-run's
+	 * timing.csv): the static landmarks in it (working and passive) and the objects with at
+	 * least one block in it. */
+	size_t staticLandmarkCount() const { return m_staticBlock.size() + passiveLandmarks(); }
+	size_t liveObjectCount() const;
 	/** First-estimate Jacobians only (empty otherwise): the first estimate of static landmark
 	 * `id`, i.e. its mean at the end of the step in which it was initialized. */
 	std::optional<Eigen::Vector2d> firstEstimate(int32_t id) const;

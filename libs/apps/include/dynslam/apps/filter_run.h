@@ -42,12 +42,14 @@ struct TFilterRun
 
 /** Feeds pair k to the back-end for k = 0..n-1, recording the ego estimate after each step,
  * then the final map and object estimates. Only the back-end's own processing is timed.
- * progress(done, total) is called after each step (if set). Errors of the back-end are
- * rethrown as std::runtime_error naming the back-end and the step. */
+ * progress(done, total) is called after each step (if set), and before it stepTime(step, ms)
+ * with the wall time of that step's processActionObservation (if set). Errors of the back-end
+ * are rethrown as std::runtime_error naming the back-end and the step. */
 TFilterRun runFilter(ISlamBackend& backend,
                      const std::vector<mrpt::obs::CActionCollection::Ptr>& actions,
                      const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames,
-                     const std::function<void(size_t, size_t)>& progress = {});
+                     const std::function<void(size_t, size_t)>& progress = {},
+                     const std::function<void(size_t, double)>& stepTime = {});
 
 /** The final map and object estimates of a back-end (landmarks with their joint covariance
  * when the back-end exposes it, time-0 object features, every recorded object pose). */

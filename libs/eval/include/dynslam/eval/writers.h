@@ -65,6 +65,9 @@ struct TMetricsRow
 	/** Object velocities of a model with a velocity state (velocity_metrics.h): if any row has
 	 * it, 4 more columns after the gap columns (see below). */
 	std::optional<TVelocityErrors> velocity;
+	/** The process's peak memory in MiB (peak_memory.h; dynslam-run): if any row has it, one
+	 * more column, the last (see below). */
+	std::optional<double> peak_rss_mb;
 };
 
 /** Metrics CSV: a header row, then one row per filter. Columns:
@@ -80,7 +83,8 @@ struct TMetricsRow
  * (only if a row has TMetricsRow::gap; empty for the other rows) ate_gap,ate_outside_gap,
  * err_gap_end,steps_gap,ego_nees_gap,ego_nees_gap_lower,ego_nees_gap_upper, then (only if a
  * row has TMetricsRow::velocity; empty for the other rows) obj_speed_rmse [m/s],
- * obj_omega_rmse [rad/s],obj_velocity_anees,obj_velocity_n. */
+ * obj_omega_rmse [rad/s],obj_velocity_anees,obj_velocity_n, then (only if a row has
+ * TMetricsRow::peak_rss_mb; empty for the other rows) peak_rss_mb [MiB]. */
 void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows);
 
 /** The same numbers as an aligned plain-text table for the terminal. */
