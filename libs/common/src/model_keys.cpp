@@ -14,6 +14,7 @@ constexpr const char* kUpdate = "Static update and outliers";
 constexpr const char* kBias = "Odometry bias (odometry_bias = rate, rate_scale)";
 constexpr const char* kClassify = "Classification (feature_labels = classify)";
 constexpr const char* kProb = "probability in (0, 1)";
+constexpr const char* kPrune = "Pruning (long runs with clutter)";
 
 /** The table (a variable, not a function: one row per key). */
 const std::vector<TKeyInfo> kKeys{
@@ -156,7 +157,14 @@ const std::vector<TKeyInfo> kKeys{
     {"classify_assoc_moving_gate", kProb, "0.99", "-",
      "ID -1, moving stage: chi-square probability (2 dof)", kClassify},
     {"classify_assoc_max_step", "real >= 0", "0", "m per step",
-     "ID -1, second sightings of candidates (0: off)", kClassify}};
+     "ID -1, second sightings of candidates (0: off)", kClassify},
+    {"prune_min_sightings", "0, or int in [2, prune_window]", "0", "readings",
+     "a static landmark read in fewer of its first prune_window steps is removed (clutter; "
+     "recorded per record_dropped; 0: off); EKF and alg1",
+     kPrune},
+    {"prune_window", "int >= 0; >= 1 with prune_min_sightings", "0", "steps",
+     "the steps from a static landmark's first reading on in which it is counted (0: off)",
+     kPrune}};
 }  // namespace
 
 const std::vector<TKeyInfo>& modelKeys() { return kKeys; }

@@ -114,6 +114,8 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	keep_last_poses = int(readInt(c, s, "keep_last_poses", keep_last_poses));
 	drop_static_after_unseen_steps =
 	    int(readInt(c, s, "drop_static_after_unseen_steps", drop_static_after_unseen_steps));
+	prune_min_sightings = int(readInt(c, s, "prune_min_sightings", prune_min_sightings));
+	prune_window = int(readInt(c, s, "prune_window", prune_window));
 	skip_prediction_on_empty_map =
 	    readBool(c, s, "skip_prediction_on_empty_map", skip_prediction_on_empty_map);
 	{
@@ -157,6 +159,31 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	}
 }
 
+namespace
+{
+/** prune_min_sightings = k, prune_window = W: both 0 (off), or 2 <= k <= W. */
+void validatePruning(int k, int W)
+{
+	const std::string kw =
+	    "prune_min_sightings = " + std::to_string(k) + ", prune_window = " + std::to_string(W);
+	if (k < 0 || W < 0) throw std::invalid_argument(kw + ": both must be >= 0 (0 = off)");
+	if (k == 0 && W == 0) return;
+	if (W == 0)
+		throw std::invalid_argument(kw + ": pruning needs a window of prune_window >= 1 steps");
+	if (k == 0)
+		throw std::invalid_argument(
+		    kw + ": a window without prune_min_sightings prunes nothing (set k >= 2, or both 0)");
+	if (k == 1)
+		throw std::invalid_argument(kw +
+		                            ": k = 1 prunes nothing (a landmark is read when it is "
+		                            "added); use k >= 2, or 0 = off");
+	if (k > W)
+		throw std::invalid_argument(kw +
+		                            ": k > W would prune every landmark (at most one reading "
+		                            "per step); need prune_min_sightings <= prune_window");
+}
+}  // namespace
+
 bool TModelOptions::objectCentric() const
 {
 	const auto& models = estimator::objectMotionModels();
@@ -197,6 +224,7 @@ void TModelOptions::validate() const
 		throw std::invalid_argument(
 		    "drop_static_after_unseen_steps = " + std::to_string(drop_static_after_unseen_steps) +
 		    ": must be >= 0");
+	validatePruning(prune_min_sightings, prune_window);
 	if (!initial_pose.allFinite()) throw std::invalid_argument("initial_pose: not finite");
 	if (!(innovation_gate >= 0 && innovation_gate < 1))
 		throw std::invalid_argument("innovation_gate = " + std::to_string(innovation_gate) +
@@ -307,6 +335,8 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
 	out << "keep_last_poses                = " << keep_last_poses << "\n";
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";
+	out << "prune_min_sightings            = " << prune_min_sightings << "\n";
+	out << "prune_window                   = " << prune_window << "\n";
 	out << "skip_prediction_on_empty_map   = " << (skip_prediction_on_empty_map ? "true" : "false")
 	    << "\n";
 	out << "static_update                  = "
@@ -342,6 +372,8 @@ estimator::TDropOptions TModelOptions::dropOptions() const
 	d.keep_last_poses = keep_last_poses;
 	d.drop_static_after_unseen_steps = drop_static_after_unseen_steps;
 	d.record_dropped = record_dropped;
+	d.prune_min_sightings = prune_min_sightings;
+	d.prune_window = prune_window;
 	return d;
 }
 

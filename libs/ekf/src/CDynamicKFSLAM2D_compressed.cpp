@@ -31,8 +31,8 @@ void CDynamicKFSLAM2D::expandIfNeeded()
 	std::vector<int32_t>& ids = m_idScratch;
 	ids.clear();
 	for (const auto& r : m_in.readings) ids.push_back(r.id);
-	if (m_lifecycle->expansionNeeded(ids, [this](int32_t id, int blockStep)
-	                                 { return m_drop.staticDue(id, m_step, blockStep); }))
+	if (m_lifecycle->expansionNeeded(
+	        ids, [this](int32_t id, int blockStep) { return m_drop.due(id, m_step, blockStep); }))
 		globalUpdate();
 }
 

@@ -365,8 +365,9 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 			++m_report.dropped_poses;
 		}
 	}
-	// Static landmarks unseen for too long (optional; never one added in this step), and those
-	// the router reclassified as moving (feature_labels = classify: not recorded as static).
+	// Static landmarks unseen for too long or pruned (optional; never one added in this step),
+	// and those the router reclassified as moving (feature_labels = classify: not recorded as
+	// static).
 	std::vector<int32_t>& moving = sortedIds(m_routed.reclassified, m_idScratch);
 	std::vector<int32_t>& candidates = sortedIds(m_routed.dropped_candidates, m_idScratch2);
 	for (size_t b = 0; b < m_layout.size(); ++b)
@@ -381,7 +382,8 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 			++(isMoving ? m_report.reclassified_static : m_report.dropped_candidates);
 			continue;
 		}
-		if (!m_drop.staticDue(t.id, m_step, t.step)) continue;
+		const bool unseen = m_drop.staticDue(t.id, m_step, t.step);
+		if (!unseen && !m_drop.pruneDue(t.id, m_step, t.step)) continue;
 		const std::vector<int> idx = m_layout.indices(b);
 		TStaticLandmarkEstimate e;
 		e.id = t.id;
@@ -391,7 +393,7 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 		if (m_drop.record()) m_droppedStatic.push_back(e);
 		m_drop.forget(t.id);  // only landmarks in the state are tracked
 		remove.push_back(b);
-		++m_report.dropped_static;
+		++(unseen ? m_report.dropped_static : m_report.pruned_static);
 	}
 }
 

@@ -356,7 +356,9 @@ void CAlg1Backend::drops()
 	}
 	for (const auto& k : m_cost.keys())
 	{
-		if (k.kind != VarKind::StaticLandmark || !m_drop.staticDue(k.id, m_step, k.step)) continue;
+		if (k.kind != VarKind::StaticLandmark) continue;
+		const bool unseen = m_drop.staticDue(k.id, m_step, k.step);
+		if (!unseen && !m_drop.pruneDue(k.id, m_step, k.step)) continue;
 		TStaticLandmarkEstimate e;
 		e.id = k.id;
 		e.mean = m_cost.value(k);
@@ -365,7 +367,7 @@ void CAlg1Backend::drops()
 		if (m_drop.record()) m_droppedStatic.push_back(e);
 		m_drop.forget(k.id);
 		M.push_back(k);
-		++m_report.dropped_static;
+		++(unseen ? m_report.dropped_static : m_report.pruned_static);
 	}
 	if (!M.empty()) m_cost.marginalize(M);
 }

@@ -118,6 +118,13 @@ void TBackendOptions::validate() const
 		    "only in the reported covariances) is implemented in the dynamic EKF and Alg. 1 "
 		    "(backend = alg1) only; backend = " +
 		    backend + " needs prior_gauge = prior");
+	if (model.prune_min_sightings > 0 && backend != "alg1")
+		throw std::invalid_argument(
+		    "[" + model_section +
+		    "] prune_min_sightings = " + std::to_string(model.prune_min_sightings) +
+		    ": pruning is implemented in the dynamic EKF and Alg. 1 (backend = alg1) only; "
+		    "backend = " +
+		    backend + " needs prune_min_sightings = 0");
 	if (model.odometry_bias.enabled())
 		throw std::invalid_argument(
 		    "[" + model_section + "] odometry_bias = " + model.odometry_bias.mode +

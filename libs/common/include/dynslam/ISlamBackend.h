@@ -73,6 +73,9 @@ struct TStepReport
 	    0;                               ///< feature of a known object not seen at its time 0
 	size_t skipped_pose_degenerate = 0;  ///< gamma undetermined (one feature seen, coinciding)
 	size_t dropped_static = 0, dropped_poses = 0, dropped_time_t = 0;
+	/** Static landmarks pruned (prune_min_sightings / prune_window: read too rarely in their
+	 * first steps; recorded per record_dropped like dropped_static, counted apart). */
+	size_t pruned_static = 0;
 	size_t gated_out = 0;  ///< static measurements rejected by the innovation gate
 	/** object_model = cv: object readings used as updates, rejected by cv_gate. */
 	size_t object_feature_updates = 0, object_gated_out = 0;

@@ -81,6 +81,12 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	/** Drop static landmarks unseen for this many steps (0 = never). Off by default:
 	 * loop closure needs them. */
 	int drop_static_after_unseen_steps = 0;
+	/** Pruning of clutter (issue 29; estimator::TDropOptions): a static landmark read in fewer
+	 * than prune_min_sightings (k >= 2) of the prune_window (W >= k) steps from its first
+	 * reading on is dropped at the end of that window, recorded per record_dropped; both 0
+	 * (default) = off. The EKF and Alg. 1 (the windowed back-ends reject it). */
+	int prune_min_sightings = 0;
+	int prune_window = 0;
 	/** Reproduce CRangeBearingKFSLAM2D, which skips the prediction (mean and covariance)
 	 * while the map is empty. Off by default: it ignores the motion before the first
 	 * landmark. Only for comparisons with MRPT's filter. */

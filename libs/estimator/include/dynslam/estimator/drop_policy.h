@@ -17,6 +17,11 @@ struct TDropOptions
 	int keep_last_poses = 1;                 ///< K >= 1
 	int drop_static_after_unseen_steps = 0;  ///< N; 0 = never
 	bool record_dropped = true;              ///< keep the last estimate of what is dropped
+	/** Pruning (clutter): a static landmark read in fewer than prune_min_sightings (k) of the
+	 * prune_window (W) steps that start with its first reading is dropped at the end of the
+	 * window's last step; 0 = off. */
+	int prune_min_sightings = 0;
+	int prune_window = 0;
 };
 
 class CDropPolicy
@@ -25,20 +30,31 @@ public:
 	CDropPolicy() = default;
 	explicit CDropPolicy(const TDropOptions& o) : m_opts(o) {}
 	const TDropOptions& options() const { return m_opts; }
-	void clear() { m_lastSeen.clear(); }
-	/** Static landmark `id` was read at `step`. */
-	void noteSeen(int32_t id, int step) { m_lastSeen[id] = step; }
-	/** Static landmark `id` left the state: no longer tracked. */
-	void forget(int32_t id) { m_lastSeen.erase(id); }
+	void clear() { m_seen.clear(); }
+	/** Static landmark `id` was read at `step` (at most once per step): its last reading and,
+	 * while its pruning window is open, its count of readings. */
+	void noteSeen(int32_t id, int step);
+	/** Static landmark `id` left the state: no longer tracked (read again, it starts anew). */
+	void forget(int32_t id) { m_seen.erase(id); }
 	/** The step static landmark `id` was last read at, `fallback` if never noted. */
 	int lastSeen(int32_t id, int fallback) const
 	{
-		const auto it = m_lastSeen.find(id);
-		return it == m_lastSeen.end() ? fallback : it->second;
+		const auto it = m_seen.find(id);
+		return it == m_seen.end() ? fallback : it->second.last;
 	}
 	/** Whether static landmark `id` is due to be dropped at the end of `step`: last read at
 	 * least N steps ago (N > 0). `addedStep` stands in for a landmark never noted. */
 	bool staticDue(int32_t id, int step, int addedStep) const;
+	/** Pruning (k = prune_min_sightings > 0, W = prune_window): whether static landmark `id`
+	 * is due to be pruned at the end of `step`: its window (the W steps from its first reading
+	 * on; from `addedStep` for a landmark never noted) ends at or before `step` and it was read
+	 * in fewer than k of them. */
+	bool pruneDue(int32_t id, int step, int addedStep) const;
+	/** Either rule: dropped (unseen) or pruned. */
+	bool due(int32_t id, int step, int addedStep) const
+	{
+		return staticDue(id, step, addedStep) || pruneDue(id, step, addedStep);
+	}
 	/** How many of an object's `numPoses` poses (oldest first) to drop: those beyond K. */
 	size_t posesToDrop(size_t numPoses) const;
 	bool dropTimeT() const { return m_opts.drop_time_t_features; }
@@ -46,6 +62,12 @@ public:
 
 private:
 	TDropOptions m_opts;
-	std::map<int32_t, int> m_lastSeen;
+	struct TSeen
+	{
+		int last = -1;   ///< the last step it was read at
+		int first = -1;  ///< the step of its first reading (its pruning window starts there)
+		int count = 0;   ///< readings inside its pruning window (pruning on only)
+	};
+	std::map<int32_t, TSeen> m_seen;  ///< the static landmarks in the state that were read
 };
 }  // namespace dynslam::estimator
