@@ -43,6 +43,10 @@ const std::vector<TKeyInfo> kKeys{
      "object poses kept per object (>= 3 with smoothing)", kObjects},
     {"drop_static_after_unseen_steps", "int >= 0", "0", "steps",
      "drop static landmarks unseen this long (0: never)", kObjects},
+    {"drop_object_after_unseen_steps", "int >= 0", "0", "steps",
+     "drop an object without readings this long, its track recorded per record_dropped "
+     "(0: never); EKF with feature_labels = ids",
+     kObjects},
     {"skip_prediction_on_empty_map", "bool", "false", "-",
      "no prediction while the map is empty (MRPT's CRangeBearingKFSLAM2D)", kObjects},
     {"object_model", "paper | paper_smoothing | cv | ctrv | ca", "paper", "-",

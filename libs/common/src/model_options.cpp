@@ -116,6 +116,8 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	    int(readInt(c, s, "drop_static_after_unseen_steps", drop_static_after_unseen_steps));
 	prune_min_sightings = int(readInt(c, s, "prune_min_sightings", prune_min_sightings));
 	prune_window = int(readInt(c, s, "prune_window", prune_window));
+	drop_object_after_unseen_steps =
+	    int(readInt(c, s, "drop_object_after_unseen_steps", drop_object_after_unseen_steps));
 	skip_prediction_on_empty_map =
 	    readBool(c, s, "skip_prediction_on_empty_map", skip_prediction_on_empty_map);
 	{
@@ -225,6 +227,15 @@ void TModelOptions::validate() const
 		    "drop_static_after_unseen_steps = " + std::to_string(drop_static_after_unseen_steps) +
 		    ": must be >= 0");
 	validatePruning(prune_min_sightings, prune_window);
+	if (drop_object_after_unseen_steps < 0)
+		throw std::invalid_argument(
+		    "drop_object_after_unseen_steps = " + std::to_string(drop_object_after_unseen_steps) +
+		    ": must be >= 0 (0 = never)");
+	if (drop_object_after_unseen_steps > 0 && feature_labels != "ids")
+		throw std::invalid_argument(
+		    "drop_object_after_unseen_steps = " + std::to_string(drop_object_after_unseen_steps) +
+		    ": implemented for feature_labels = ids only (feature_labels = " + feature_labels +
+		    " links and merges objects across breaks)");
 	if (!initial_pose.allFinite()) throw std::invalid_argument("initial_pose: not finite");
 	if (!(innovation_gate >= 0 && innovation_gate < 1))
 		throw std::invalid_argument("innovation_gate = " + std::to_string(innovation_gate) +
@@ -337,6 +348,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";
 	out << "prune_min_sightings            = " << prune_min_sightings << "\n";
 	out << "prune_window                   = " << prune_window << "\n";
+	out << "drop_object_after_unseen_steps = " << drop_object_after_unseen_steps << "\n";
 	out << "skip_prediction_on_empty_map   = " << (skip_prediction_on_empty_map ? "true" : "false")
 	    << "\n";
 	out << "static_update                  = "
@@ -374,6 +386,7 @@ estimator::TDropOptions TModelOptions::dropOptions() const
 	d.record_dropped = record_dropped;
 	d.prune_min_sightings = prune_min_sightings;
 	d.prune_window = prune_window;
+	d.drop_object_after_unseen_steps = drop_object_after_unseen_steps;
 	return d;
 }
 

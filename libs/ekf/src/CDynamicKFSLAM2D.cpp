@@ -142,6 +142,7 @@ void CDynamicKFSLAM2D::reset()
 	if (options.odometry_bias.enabled()) addOdometryBiasBlock();
 	onLayoutChanged();
 	m_droppedStatic.clear();
+	m_droppedFeatures.clear();
 	m_in = estimator::TStepInput();
 	m_routed = estimator::TRoutedStep();
 	m_step = -1;
@@ -224,6 +225,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		m_routed = m_router->route(m_step, m_in.readings,
 		                           [this](int32_t id) { return m_staticBlock.count(id) != 0; });
 		m_report.skipped_unknown_object_feature = m_routed.skipped_unknown_object_feature;
+		m_report.skipped_dropped_object = m_routed.skipped_dropped_object;
 		m_report.classify_candidates = m_routed.candidates;
 		m_report.classify_held = m_routed.held;
 		m_report.classify_stopped = m_routed.stopped;
@@ -239,6 +241,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		staticUpdate();                              // Alg. 5
 		objectFeatureUpdates();                      // object-centric motion models only (cv)
 		for (const auto& m : m_routed.statics()) m_drop.noteSeen(m.reading.id, m_step);
+		for (const auto& m : m_routed.objects()) m_drop.noteObjectSeen(m.object, m_step);
 
 		// New entries, the object motion model and drops, committed together (one covariance
 		// rewrite; two with a motion model, which needs the new poses in the state first).
@@ -255,7 +258,8 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 			planObjectVelocities(plan);  // object-centric motion models only (cv)
 		}
 		planDrops(plan);
-		planFallbacks(plan);  // object-centric motion models only (cv_fallback_steps)
+		planObjectDrops(plan);  // drop_object_after_unseen_steps
+		planFallbacks(plan);    // object-centric motion models only (cv_fallback_steps)
 		commit(plan);
 		mergeLinkedObjects();    // classify_merge_linked (object-centric models) only
 		mergeLiveObjects();      // classify_merge_live only

@@ -91,6 +91,13 @@ std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 		e.cov += gaugeTerm(&t, e.mean);
 		out.push_back(e);
 	}
+	TBlock f0;  // recorded f_0 of dropped objects: their relative covariance plus the gauge's
+	f0.kind = BlockKind::ObjectFeature0;
+	for (TObjectFeatureEstimate e : m_droppedFeatures)
+	{
+		e.cov += gaugeTerm(&f0, e.mean);
+		out.push_back(e);
+	}
 	return out;
 }
 

@@ -57,6 +57,7 @@ const estimator::TObjectEntry& entryOf(const estimator::CObjectRegistry& reg, in
 std::optional<TObjectWorldPose> CDynamicKFSLAM2D::getObjectWorldPose(int32_t object) const
 {
 	const estimator::TObjectEntry& e = entryOf(m_router->registry(), object, "getObjectWorldPose");
+	if (e.dropped) return std::nullopt;  // drop_object_after_unseen_steps
 	const TStateRef s = wholeState();
 	const TObjectBlocks o = blocksOf(s.layout, object);
 	const int d = e.poseDim();

@@ -31,6 +31,14 @@ bool CDropPolicy::pruneDue(int32_t id, int step, int addedStep) const
 	return count < k && step - first >= m_opts.prune_window - 1;
 }
 
+bool CDropPolicy::objectDue(int32_t obj, int step, int firstStep) const
+{
+	const int N = m_opts.drop_object_after_unseen_steps;
+	if (N <= 0) return false;
+	const auto it = m_objectSeen.find(obj);
+	return step - (it == m_objectSeen.end() ? firstStep : it->second) >= N;
+}
+
 size_t CDropPolicy::posesToDrop(size_t numPoses) const
 {
 	const size_t K = size_t(m_opts.keep_last_poses < 1 ? 1 : m_opts.keep_last_poses);

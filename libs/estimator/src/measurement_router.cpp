@@ -67,6 +67,10 @@ void routeObjectReading(CObjectRegistry& registry, int step, TRoutedReading& m, 
 			m.route = Route::Skip;
 			++out.skipped_unknown_object_feature;
 			break;
+		case FeatureRole::Dropped:
+			m.route = Route::Skip;
+			++out.skipped_dropped_object;
+			break;
 	}
 }
 

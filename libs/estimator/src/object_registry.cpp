@@ -15,6 +15,7 @@ int TObjectEntry::indexOf(int32_t id) const
 FeatureRole CObjectRegistry::registerReading(int32_t obj, int32_t id, int32_t feature, int step)
 {
 	auto it = m_objects.find(obj);
+	if (it != m_objects.end() && it->second.dropped) return FeatureRole::Dropped;
 	if (it == m_objects.end() || it->second.first_step == step)
 	{
 		TObjectEntry& o = m_objects[obj];
@@ -73,5 +74,13 @@ bool CObjectRegistry::isTimeT(int32_t obj, int step) const
 {
 	const auto it = m_objects.find(obj);
 	return it != m_objects.end() && it->second.first_step != step;
+}
+void CObjectRegistry::markDropped(int32_t obj)
+{
+	const auto it = m_objects.find(obj);
+	if (it == m_objects.end())
+		throw std::logic_error("CObjectRegistry::markDropped: unknown object " +
+		                       std::to_string(obj));
+	it->second.dropped = true;
 }
 }  // namespace dynslam::estimator

@@ -125,6 +125,11 @@ void TBackendOptions::validate() const
 		    ": pruning is implemented in the dynamic EKF and Alg. 1 (backend = alg1) only; "
 		    "backend = " +
 		    backend + " needs prune_min_sightings = 0");
+	if (model.drop_object_after_unseen_steps > 0)
+		throw std::invalid_argument("[" + model_section + "] drop_object_after_unseen_steps = " +
+		                            std::to_string(model.drop_object_after_unseen_steps) +
+		                            ": implemented in the dynamic EKF only; the framework "
+		                            "back-ends need 0");
 	if (model.odometry_bias.enabled())
 		throw std::invalid_argument(
 		    "[" + model_section + "] odometry_bias = " + model.odometry_bias.mode +

@@ -76,6 +76,9 @@ struct TStepReport
 	/** Static landmarks pruned (prune_min_sightings / prune_window: read too rarely in their
 	 * first steps; recorded per record_dropped like dropped_static, counted apart). */
 	size_t pruned_static = 0;
+	/** drop_object_after_unseen_steps: objects dropped from the state at this step (their
+	 * tracks recorded per record_dropped), and readings of dropped objects (skipped). */
+	size_t dropped_objects = 0, skipped_dropped_object = 0;
 	size_t gated_out = 0;  ///< static measurements rejected by the innovation gate
 	/** object_model = cv: object readings used as updates, rejected by cv_gate. */
 	size_t object_feature_updates = 0, object_gated_out = 0;

@@ -87,6 +87,11 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * (default) = off. The EKF and Alg. 1 (the windowed back-ends reject it). */
 	int prune_min_sightings = 0;
 	int prune_window = 0;
+	/** An object with no used reading for this many steps is dropped: its blocks leave the
+	 * state, its poses (and velocity) and time-0 features are recorded per record_dropped, its
+	 * later readings are skipped and counted (TStepReport::skipped_dropped_object); 0 = never
+	 * (default). The dynamic EKF with feature_labels = ids only. */
+	int drop_object_after_unseen_steps = 0;
 	/** Reproduce CRangeBearingKFSLAM2D, which skips the prediction (mean and covariance)
 	 * while the map is empty. Off by default: it ignores the motion before the first
 	 * landmark. Only for comparisons with MRPT's filter. */

@@ -143,7 +143,8 @@ public:
 	std::vector<TStaticLandmarkEstimate> getStaticLandmarks() const override;
 	/** The static landmarks dropped from the state (drop_static_after), last estimates. */
 	std::vector<TStaticLandmarkEstimate> getDroppedStaticLandmarks() const override;
-	/** Object features in the state (time 0 and, if kept, time t). */
+	/** Object features in the state (time 0 and, if kept, time t), then the recorded f_0 of
+	 * objects dropped by drop_object_after_unseen_steps (with record_dropped). */
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
 	/** Every object's pose history: dropped poses (recorded) and poses in the state. A pose is
 	 * xi = (dx, dy, dtheta), the motion since the object's first sighting: a rotation by dtheta
@@ -327,6 +328,12 @@ private:
 	void planFeatures(TPending& plan);     // Alg. 3: new static landmarks, objects
 	void planObjectPoses(TPending& plan);  // Alg. 4, on the state extended by plan
 	void planDrops(TPending& plan);        // drop policies, recording what they drop
+	/** drop_object_after_unseen_steps (CDynamicKFSLAM2D_objectdrop.cpp): every block of the
+	 * objects due leaves the state; their poses (with the velocity) and f_0 are recorded per
+	 * record_dropped, the registry marks them dropped. After planDrops (which may have listed
+	 * and recorded some of their blocks already). */
+	void planObjectDrops(TPending& plan);
+	std::vector<TObjectFeatureEstimate> m_droppedFeatures;  ///< f_0 of dropped objects
 	/** Writes plan to the state: x, P (one rewrite; reallocated only if the size changes) and
 	 * the slot tables; clears plan. */
 	void commit(TPending& plan);

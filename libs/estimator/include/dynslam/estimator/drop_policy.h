@@ -22,6 +22,10 @@ struct TDropOptions
 	 * window's last step; 0 = off. */
 	int prune_min_sightings = 0;
 	int prune_window = 0;
+	/** An object with no used reading (first sighting or time t) for this many steps is
+	 * dropped: all its blocks leave the state, its track is recorded per record_dropped;
+	 * 0 = never. */
+	int drop_object_after_unseen_steps = 0;
 };
 
 class CDropPolicy
@@ -30,7 +34,11 @@ public:
 	CDropPolicy() = default;
 	explicit CDropPolicy(const TDropOptions& o) : m_opts(o) {}
 	const TDropOptions& options() const { return m_opts; }
-	void clear() { m_seen.clear(); }
+	void clear()
+	{
+		m_seen.clear();
+		m_objectSeen.clear();
+	}
 	/** Static landmark `id` was read at `step` (at most once per step): its last reading and,
 	 * while its pruning window is open, its count of readings. */
 	void noteSeen(int32_t id, int step);
@@ -55,6 +63,14 @@ public:
 	{
 		return staticDue(id, step, addedStep) || pruneDue(id, step, addedStep);
 	}
+	/** Object `obj` had a used reading at `step`. */
+	void noteObjectSeen(int32_t obj, int step) { m_objectSeen[obj] = step; }
+	/** Object `obj` left the state: no longer tracked. */
+	void forgetObject(int32_t obj) { m_objectSeen.erase(obj); }
+	/** Whether object `obj` is due to be dropped at the end of `step`: its last used reading
+	 * at least N = drop_object_after_unseen_steps steps ago (N > 0); `firstStep` stands in for
+	 * an object never noted. */
+	bool objectDue(int32_t obj, int step, int firstStep) const;
 	/** How many of an object's `numPoses` poses (oldest first) to drop: those beyond K. */
 	size_t posesToDrop(size_t numPoses) const;
 	bool dropTimeT() const { return m_opts.drop_time_t_features; }
@@ -68,6 +84,7 @@ private:
 		int first = -1;  ///< the step of its first reading (its pruning window starts there)
 		int count = 0;   ///< readings inside its pruning window (pruning on only)
 	};
-	std::map<int32_t, TSeen> m_seen;  ///< the static landmarks in the state that were read
+	std::map<int32_t, TSeen> m_seen;      ///< the static landmarks in the state that were read
+	std::map<int32_t, int> m_objectSeen;  ///< object -> the last step with a used reading
 };
 }  // namespace dynslam::estimator

@@ -48,6 +48,7 @@ struct TRoutedStep
 {
 	std::vector<TRoutedReading> readings;
 	size_t skipped_unknown_object_feature = 0;  ///< object feature without an f_0
+	size_t skipped_dropped_object = 0;          ///< reading of an object dropped from the state
 	/** Readings with ID -1 skipped (no association: CIdRangeRouter without an association
 	 * function or context; CClassifyingRouter without a static association). */
 	size_t skipped_unknown_id = 0;
@@ -111,7 +112,8 @@ struct TRoutedStep
 std::vector<TReading> readingsOf(const std::vector<TRoutedReading>& r);
 
 /** Routes object reading `m` (its object and feature set) by registering it in `registry`:
- * ObjectFirstSighting, ObjectTimeT, or Skip counted in out.skipped_unknown_object_feature.
+ * ObjectFirstSighting, ObjectTimeT, or Skip counted in out.skipped_unknown_object_feature (or,
+ * for an object dropped from the state, out.skipped_dropped_object).
  * Shared by every router. */
 void routeObjectReading(CObjectRegistry& registry, int step, TRoutedReading& m, TRoutedStep& out);
 

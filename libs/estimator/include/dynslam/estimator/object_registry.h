@@ -45,6 +45,9 @@ struct TObjectEntry
 	 * object's first sighting and not joined; skipped), and their distinct IDs, ascending. */
 	size_t skipped_late_readings = 0;
 	std::vector<int32_t> skipped_late_ids;
+	/** Dropped from the state (drop_object_after_unseen_steps): its later readings are skipped
+	 * (FeatureRole::Dropped); its recorded poses stay. */
+	bool dropped = false;
 	/** Index of feature `id` in feature_ids, or -1 if it is not in the feature set. */
 	int indexOf(int32_t id) const;
 	/** 1 founder: translation-only pose (2 entries); otherwise (dx, dy, dtheta). */
@@ -56,7 +59,8 @@ enum class FeatureRole
 {
 	FirstSighting,  ///< the object's time 0 is this step: the reading defines f_0
 	TimeT,          ///< a known feature of an object first seen earlier: f_t
-	Unknown         ///< not in the object's feature set: no f_0, skipped
+	Unknown,        ///< not in the object's feature set: no f_0, skipped
+	Dropped         ///< the object was dropped from the state: skipped
 };
 
 class CObjectRegistry
@@ -76,6 +80,9 @@ public:
 	 * `obj` after its time 0; its readings are time t from now on (the filter gives it an f_0 from
 	 * its first one). Throws std::logic_error if obj does not exist or already has id. */
 	void addFeature(int32_t obj, int32_t id, int32_t feature);
+	/** Object obj was dropped from the state (TObjectEntry::dropped). Throws std::logic_error if
+	 * it does not exist. */
+	void markDropped(int32_t obj);
 	/** Removes object obj (merged into another, classify_merge_linked). */
 	void erase(int32_t obj) { m_objects.erase(obj); }
 	bool has(int32_t obj) const { return m_objects.count(obj) != 0; }
