@@ -46,6 +46,7 @@ size_t filterColorIndex(const std::string& n)
 	       : n == "dynamic_ctrv"          ? 5
 	       : n == "dynamic_classified"    ? 6
 	       : n == "default"               ? 7
+	       : n == "dynamic_mm"            ? 8
 	                                      : 1;
 }
 
@@ -54,7 +55,8 @@ size_t filterColorIndex(const std::string& n)
 const std::vector<std::string>& knownFilters()
 {
 	static const std::vector<std::string> f{
-	    "static_all",        "static_landmarks_only", "dynamic", "dynamic_cv", "dynamic_ctrv",
+	    "static_all",        "static_landmarks_only", "dynamic",
+	    "dynamic_cv",        "dynamic_ctrv",          "dynamic_mm",
 	    "dynamic_smoothing", "dynamic_classified",    "default"};
 	return f;
 }
@@ -78,12 +80,11 @@ std::vector<std::string> parseFilterList(const std::string& fl)
 	using dynslam::config::fail;
 	const auto& all = knownFilters();
 	std::vector<std::string> filters = splitList(fl);
+	std::string known;
+	for (const auto& k : all) known += (known.empty() ? "" : ", ") + k;
 	for (const auto& f : filters)
 		if (std::find(all.begin(), all.end(), f) == all.end())
-			fail(kSection, "filters", fl,
-			     "unknown filter '" + f +
-			         "' (known: static_all, static_landmarks_only, dynamic, dynamic_cv, "
-			         "dynamic_ctrv, dynamic_smoothing, dynamic_classified, default)");
+			fail(kSection, "filters", fl, "unknown filter '" + f + "' (known: " + known + ")");
 	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
 	return filters;
 }
