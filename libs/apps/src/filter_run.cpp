@@ -170,8 +170,10 @@ void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est
 			e.cov = p.cov;
 			e.velocity = p.velocity;
 			e.velocity_cov = p.velocity_cov;
+			e.mode_probabilities = p.mode_probabilities;
 			est.object_poses.push_back(e);
 		}
+	est.object_mode_names = backend.objectModeNames();
 }
 
 TFilterRun runFilter(ISlamBackend& backend,

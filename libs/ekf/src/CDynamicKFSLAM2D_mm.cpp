@@ -6,6 +6,7 @@
 #include <dynslam/ekf_steps.h>
 #include <dynslam/models/mode_mixture.h>
 
+#include <algorithm>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,9 @@ void CDynamicKFSLAM2D::predictObjectModes(int32_t obj, const std::vector<int>& i
 		s_j[size_t(j)] = m_motion->predictMode(j, s, &F_j[size_t(j)], &Q_j[size_t(j)]);
 	const Eigen::VectorXd logL = modeLogLikelihoods(obj, idx, s_j, F_j, Q_j);
 	it->second = models::modePosterior(it->second, m_motion->modeTransition(), logL);
+	auto& history = m_modeHistory[obj];
+	if (!m_drop.record()) history.clear();  // record_dropped = false: the newest only
+	history.emplace_back(m_step, it->second);
 	const int d = int(idx.size()) / 2;
 	const models::TModeMixture mix = models::mixModes(
 	    s_j, F_j, Q_j, models::prunedWeights(it->second), ekf::marginal(P, idx), d == 3 ? 2 : -1);
@@ -106,6 +110,21 @@ Eigen::VectorXd CDynamicKFSLAM2D::modeLogLikelihoods(int32_t obj, const std::vec
 		logL[Eigen::Index(j)] = models::gaussianLogLikelihood(nu, H * P_j * H.transpose() + R);
 	}
 	return logL;
+}
+
+void CDynamicKFSLAM2D::attachModeProbabilities(std::map<int32_t, TObjectTrack>& tracks) const
+{
+	for (auto& [obj, track] : tracks)
+	{
+		const auto h = m_modeHistory.find(obj);
+		if (h == m_modeHistory.end()) continue;
+		for (TObjectPoseEstimate& e : track.poses)
+		{
+			const auto it = std::lower_bound(h->second.begin(), h->second.end(), e.step,
+			                                 [](const auto& a, int s) { return a.first < s; });
+			if (it != h->second.end() && it->first == e.step) e.mode_probabilities = it->second;
+		}
+	}
 }
 
 void CDynamicKFSLAM2D::forgetStaleModes()

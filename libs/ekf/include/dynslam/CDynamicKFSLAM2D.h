@@ -169,7 +169,7 @@ public:
 		return m_modeProb;
 	}
 	/** The modes of object_model (mm: stationary, cv, turn, manoeuvre; empty: a single model). */
-	std::vector<std::string> objectModeNames() const;
+	std::vector<std::string> objectModeNames() const override;
 	/** The typed state after the ego pose (blocks and where they are stored; of the whole
 	 * state, like every getter below: with compressed entries in the working state, of its
 	 * expanded copy, see wholeState()). */
@@ -346,9 +346,14 @@ private:
 	                                   const std::vector<Eigen::VectorXd>& s_j,
 	                                   const std::vector<Eigen::MatrixXd>& F_j,
 	                                   const std::vector<Eigen::MatrixXd>& Q_j) const;
+	/** Sets the poses' mode_probabilities from m_modeHistory (getObjectTracks). */
+	void attachModeProbabilities(std::map<int32_t, TObjectTrack>& tracks) const;
 	/** Drops the mode probabilities of objects without a velocity block. */
 	void forgetStaleModes();
 	std::map<int32_t, Eigen::VectorXd> m_modeProb;  ///< object_model = mm: per object
+	/** object_model = mm: per object, (step, mode probabilities) of every step (the newest only
+	 * with record_dropped = false); attached to the poses by getObjectTracks(). */
+	std::map<int32_t, std::vector<std::pair<int, Eigen::VectorXd>>> m_modeHistory;
 	/** Sightings of features of objects with a velocity: measurement updates of ego, pose and
 	 * body-frame features (gated by the model's readingGate()). */
 	void objectFeatureUpdates();
