@@ -6,7 +6,8 @@ selection among a few candidate [DynamicKFSLAM] configurations over the developm
                               [--table-only]
 
 DIR holds MRCLAM_Dataset6/ and KITTI_tracking_birdseye/ (development only: no test reads it).
-Datasets: highway, tunnel, turning (the shipped simulated rawlogs with their compare INIs),
+Datasets: highway, tunnel, turning, manoeuvres (the shipped simulated rawlogs with their compare
+INIs),
 mrclam (MRCLAM Dataset 6, robots 1-5 as ego, config/mrclam_compare.ini), kitti (KITTI tracking
 0000-0010, config/compare_kitti.ini). Every candidate runs as the `dynamic` row of
 dynslam-compare on each run of each dataset (its keys appended to the run's INI: MRPT keeps the
@@ -43,8 +44,11 @@ CANDIDATES = {
     "PA": {"object_model": "paper", "prior_gauge": "anchor"},
     "E": E_KEYS,
     "E3": dict(E_KEYS, cv_fallback_steps="3"),
+    # issue 28: E with multiple-model objects (mm's own keys at their defaults)
+    "EM": dict(E_KEYS, object_model="mm"),
 }
-CV_DT = {"highway": "0.5", "tunnel": "0.5", "turning": "0.5", "mrclam": "0.4", "kitti": "0.1"}
+CV_DT = {"highway": "0.5", "tunnel": "0.5", "turning": "0.5", "manoeuvres": "0.5", "mrclam": "0.4",
+         "kitti": "0.1"}
 KITTI_SEQS = ["%04d" % i for i in range(11)]
 
 
@@ -59,6 +63,9 @@ def absolute_paths(text, folder):
     """The INI text with its [Compare] rawlog / ground_truth / scenario paths made absolute."""
     out = []
     for line in text.splitlines():
+        inc = re.match(r"^(\s*@include\s+)(\S+)(.*)$", line)
+        if inc and not os.path.isabs(inc.group(2)):
+            line = inc.group(1) + os.path.normpath(os.path.join(folder, inc.group(2))) + inc.group(3)
         m = re.match(r"^(\s*(rawlog|ground_truth|scenario)\s*=\s*)(\S+)(.*)$", line)
         if m and m.group(3) not in ("auto", "none", "false") and not os.path.isabs(m.group(3)):
             line = m.group(1) + os.path.normpath(os.path.join(folder, m.group(3))) + m.group(4)
@@ -74,6 +81,8 @@ def runs_of(dataset, out, data, exe):
         return [("tunnel", os.path.join(CONFIG, "compare_tunnel.ini"), None)]
     if dataset == "turning":
         return [("turning", os.path.join(CONFIG, "compare_turning_braking.ini"), None)]
+    if dataset == "manoeuvres":
+        return [("manoeuvres", os.path.join(CONFIG, "compare_tunnel_manoeuvres.ini"), None)]
     runs = []
     if dataset == "mrclam":
         for n in range(1, 6):
@@ -103,7 +112,7 @@ def runs_of(dataset, out, data, exe):
 
 def run_one(exe, dataset, label, base, rawlog, cand, out):
     keys = dict(CANDIDATES[cand])
-    if keys.get("object_model") == "cv":
+    if keys.get("object_model") in ("cv", "mm"):
         keys["cv_dt"] = CV_DT[dataset]
     ini_dir = os.path.join(out, "ini")
     os.makedirs(ini_dir, exist_ok=True)
@@ -143,7 +152,7 @@ def main():
     ap.add_argument("--data", required=True)
     ap.add_argument("--build", default=os.path.join(SRC, "build"))
     ap.add_argument("--out", default=os.path.join(SRC, "out", "profile_campaign"))
-    ap.add_argument("--datasets", default="highway,tunnel,turning,mrclam,kitti")
+    ap.add_argument("--datasets", default="highway,tunnel,turning,manoeuvres,mrclam,kitti")
     ap.add_argument("--candidates", default=",".join(CANDIDATES))
     ap.add_argument("--table-only", action="store_true", help="only rebuild the table from ate.csv")
     a = ap.parse_args()

@@ -96,6 +96,8 @@ THighwayErrors runHighway(const std::string& model)
 				    std::max(err.heading, std::abs(models::wrapToPi(w.mean[2] - g.pose[s][2])));
 			++err.poses;
 			if (!w.velocity || s == 0 || s + 1 >= gt.numSteps()) continue;
+			EXPECT_EQ(w.velocity->mean.size(), e.poseDim()) << model;  // ca: not its [v; a]
+			EXPECT_EQ(w.velocity->cov.rows(), e.poseDim()) << model;
 			const Eigen::Vector2d v =
 			    (trueReference(g, e, s + 1) - trueReference(g, e, s - 1)) / (2 * o.dt);
 			err.speed = std::max(err.speed, (w.velocity->mean.head<2>() - v).norm());
@@ -134,6 +136,16 @@ TEST(ObjectWorldPose, HighwayCvAndCtrvMatchTheTruthWithVelocity)
 		EXPECT_LT(e.heading, 0.05) << model;
 		EXPECT_LT(e.speed, 1.5) << model;
 	}
+}
+
+// ca: the velocity without its acceleration (runHighway checks the sizes). Measured 2026-11-29
+// with ca's default jerk: 3.04 m, 0.53 rad, 2.43 m/s (ca lags the highway's hard brakes more).
+TEST(ObjectWorldPose, HighwayCaReportsTheVelocityWithoutTheAcceleration)
+{
+	const THighwayErrors e = runHighway("ca");
+	EXPECT_GT(e.velocities, 100u);
+	EXPECT_LT(e.point, 9.0);
+	EXPECT_LT(e.speed, 7.5);
 }
 
 TEST(ObjectWorldPose, UnknownObjectIsAClearError)

@@ -12,6 +12,7 @@
 #include <dynslam/eval/figures.h>
 #include <dynslam/eval/gap_figure.h>
 #include <dynslam/eval/gap_metrics.h>
+#include <dynslam/eval/mode_figure.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,7 @@
 #include <sstream>
 
 #include "cmdline.h"
+#include "compare_filters.h"
 
 namespace dynslam::apps
 {
@@ -32,31 +34,6 @@ const char* kDefaultIni = "config/compare_highway.ini";
 std::string backendOf(const std::string& filter)
 {
 	return filter == "dynamic" || filter == "default" ? "ekf" : filter;
-}
-
-/** Fixed colours per filter, whatever the subset: static_all red, static only orange, dynamic
- * blue, dynamic_cv green, dynamic_smoothing purple, dynamic_ctrv and dynamic_classified the
- * sixth and seventh colours (eval::seriesColor). */
-size_t filterColorIndex(const std::string& n)
-{
-	return n == "static_all"              ? 0
-	       : n == "static_landmarks_only" ? 3
-	       : n == "dynamic_cv"            ? 2
-	       : n == "dynamic_smoothing"     ? 4
-	       : n == "dynamic_ctrv"          ? 5
-	       : n == "dynamic_classified"    ? 6
-	       : n == "default"               ? 7
-	                                      : 1;
-}
-
-/** Every filter [Compare] filters may list: the default ones, then the dynamic EKF with the
- * other object models (issue 13; makeBackend). */
-const std::vector<std::string>& knownFilters()
-{
-	static const std::vector<std::string> f{
-	    "static_all",        "static_landmarks_only", "dynamic", "dynamic_cv", "dynamic_ctrv",
-	    "dynamic_smoothing", "dynamic_classified",    "default"};
-	return f;
 }
 
 /** From this many steps on, each filter logs ten progress lines. */
@@ -72,21 +49,6 @@ const std::vector<std::string>& CCompareApp::allFilters()
 
 namespace
 {
-/** The filters of a comma-separated list; throws on an unknown name or an empty list. */
-std::vector<std::string> parseFilterList(const std::string& fl)
-{
-	using dynslam::config::fail;
-	const auto& all = knownFilters();
-	std::vector<std::string> filters = splitList(fl);
-	for (const auto& f : filters)
-		if (std::find(all.begin(), all.end(), f) == all.end())
-			fail(kSection, "filters", fl,
-			     "unknown filter '" + f +
-			         "' (known: static_all, static_landmarks_only, dynamic, dynamic_cv, "
-			         "dynamic_ctrv, dynamic_smoothing, dynamic_classified, default)");
-	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
-	return filters;
-}
 /** The landmark gaps of the data's highway scenario (issue 13); none without a ground truth. */
 std::vector<std::pair<double, double>> dataGaps(const TDataSettings& d, bool hasGt)
 {
@@ -196,7 +158,7 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 			    "dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
 
 		const std::string fl = o.filters ? *o.filters : readString(params, kSection, "filters", "");
-		if (!fl.empty()) filters = parseFilterList(fl);
+		if (!fl.empty()) filters = detail::parseFilterList(fl);
 		figures = readBool(params, kSection, "figures", true) && !o.noFigures;
 		progressEvery = int(readInt(params, kSection, "progress_every", 0));
 		if (progressEvery < 0)
@@ -334,7 +296,7 @@ void CCompareApp::writeVisualOutputs()
 	std::vector<TDrawnRun> drawn;
 	for (const auto& r : runs)
 	{
-		const auto c = eval::seriesColor(filterColorIndex(r.name));
+		const auto c = eval::seriesColor(detail::filterColorIndex(r.name));
 		drawn.push_back({r.name, {c.R, c.G, c.B}, &r});
 	}
 	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
@@ -412,8 +374,8 @@ void CCompareApp::drawFigures()
 	{
 		// fixed colours per filter, whatever the subset: static_all red, static only orange,
 		// dynamic blue
-		series.push_back(
-		    {runs[i].name, eval::seriesColor(filterColorIndex(runs[i].name)), &runs[i].est});
+		series.push_back({runs[i].name, eval::seriesColor(detail::filterColorIndex(runs[i].name)),
+		                  &runs[i].est});
 	}
 	auto png = [&](const std::string& name, const mrpt::img::CImage& img)
 	{
@@ -438,6 +400,9 @@ void CCompareApp::drawFigures()
 			for (const auto& p :
 			     writeClassFigures(outDir, r.name, g, r.est, it->second, classTruth()))
 				writtenFiles.push_back(p);
+	for (const auto& r : runs)  // object_model = mm
+		if (eval::hasModeProbabilities(r.est))
+			png(r.name + "_object_modes.png", eval::drawModeFigure(r.est));
 	if (!hasGroundTruth) return;
 	png("compare_ego_errors.png", eval::drawEgoErrorFigure(gt, series));
 	if (!landmarkGaps.empty())

@@ -6,6 +6,7 @@
 #include <dynslam/config_utils.h>
 #include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
+#include <dynslam/eval/mode_figure.h>
 #include <dynslam/eval/peak_memory.h>
 #include <dynslam/eval/writers.h>
 
@@ -286,6 +287,8 @@ void CRunApp::drawFigures(const eval::TConsistencySummary& summary)
 			png("nees_ego.png", eval::drawConsistencyFigure(summary.ego));
 	}
 	if (!summary.nis.rows.empty()) png("nis.png", eval::drawConsistencyFigure(summary.nis));
+	if (eval::hasModeProbabilities(result.est))  // object_model = mm
+		png("object_modes.png", eval::drawModeFigure(result.est));
 }
 
 void CRunApp::writeOptionalOutputs(const TRawlog& rawlog)

@@ -7,6 +7,7 @@
 #include <dynslam/eval/writers.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -171,5 +172,9 @@ void writeEstimateFiles(const std::string& dir, const std::string& prefix,
 		    [&](std::ostream& os) { eval::writeObjectFeaturesCsv(os, est, gt); });
 	if (!est.object_poses.empty())
 		out("object_poses.csv", [&](std::ostream& os) { eval::writeObjectPosesCsv(os, est, gt); });
+	if (std::any_of(est.object_poses.begin(), est.object_poses.end(),
+	                [](const auto& p) { return p.velocity.size() > 0; }))
+		out("object_motion.csv",
+		    [&](std::ostream& os) { eval::writeObjectMotionCsv(os, est, gt); });
 }
 }  // namespace dynslam::apps

@@ -55,11 +55,11 @@ std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
                                           std::ostream* optionsDump)
 {
 	if (kind == "ekf" || kind == "dynamic" || kind == "dynamic_cv" || kind == "dynamic_ctrv" ||
-	    kind == "dynamic_smoothing" || kind == "dynamic_classified")
+	    kind == "dynamic_mm" || kind == "dynamic_smoothing" || kind == "dynamic_classified")
 	{
 		auto f = std::make_unique<CDynamicKFSLAM2D>();
 		f->loadOptions(ini, "DynamicKFSLAM");
-		if (kind == "dynamic_cv" || kind == "dynamic_ctrv")
+		if (kind == "dynamic_cv" || kind == "dynamic_ctrv" || kind == "dynamic_mm")
 			overrideObjectModel(*f, ini, kind.substr(8));
 		else if (kind == "dynamic_smoothing")
 			overrideObjectModel(*f, ini, "paper_smoothing");
@@ -170,8 +170,10 @@ void collectFinalEstimates(const ISlamBackend& backend, eval::TRunEstimates& est
 			e.cov = p.cov;
 			e.velocity = p.velocity;
 			e.velocity_cov = p.velocity_cov;
+			e.mode_probabilities = p.mode_probabilities;
 			est.object_poses.push_back(e);
 		}
+	est.object_mode_names = backend.objectModeNames();
 }
 
 TFilterRun runFilter(ISlamBackend& backend,

@@ -9,7 +9,7 @@ namespace
 {
 constexpr const char* kModel = "Measurement, motion and prior";
 constexpr const char* kObjects = "Objects (the paper's formulation)";
-constexpr const char* kMotion = "Object motion models (object_model = cv, ctrv, ca)";
+constexpr const char* kMotion = "Object motion models (object_model = cv, ctrv, ca, mm)";
 constexpr const char* kUpdate = "Static update and outliers";
 constexpr const char* kBias = "Odometry bias (odometry_bias = rate, rate_scale)";
 constexpr const char* kClassify = "Classification (feature_labels = classify)";
@@ -49,9 +49,10 @@ const std::vector<TKeyInfo> kKeys{
      kObjects},
     {"skip_prediction_on_empty_map", "bool", "false", "-",
      "no prediction while the map is empty (MRPT's CRangeBearingKFSLAM2D)", kObjects},
-    {"object_model", "paper | paper_smoothing | cv | ctrv | ca", "paper", "-",
+    {"object_model", "paper | paper_smoothing | cv | ctrv | ca | mm", "paper", "-",
      "how objects move: the paper's formulation, or a velocity in the state", kMotion},
-    {"cv_dt", "real > 0", "0.5", "s", "seconds per step; required with cv, ctrv and ca", kMotion},
+    {"cv_dt", "real > 0", "0.5", "s", "seconds per step; required with cv, ctrv, ca and mm",
+     kMotion},
     {"cv_accel_psd", "vector of 3, >= 0", "[0.1 0.1 0.01]", "[m^2/s^3, m^2/s^3, rad^2/s^3]",
      "white-acceleration spectral densities", kMotion},
     {"cv_velocity_prior_std", "vector of 3, > 0", "[1 1 0.1]", "[m/s, m/s, rad/s]",
@@ -68,6 +69,11 @@ const std::vector<TKeyInfo> kKeys{
      "ca: white-jerk spectral densities (its process noise; > 0 in the framework)", kMotion},
     {"ca_accel_prior_std", "vector of 3, > 0", "[0.5 0.5 0.05]", "[m/s^2, m/s^2, rad/s^2]",
      "ca: initialisation noise of an object's acceleration (mean 0)", kMotion},
+    {"mm_switch_prob", "probability in (0, 1)", "0.01", "-",
+     "mm: probability of leaving a mode per step (Markov switching, spread evenly); EKF only",
+     kMotion},
+    {"mm_manoeuvre_psd", "vector of 3, > 0", "[16 16 0.1]", "[m^2/s^3, m^2/s^3, rad^2/s^3]",
+     "mm: white-acceleration spectral densities of the manoeuvre mode", kMotion},
     {"static_update", "mrpt | sparse | compressed", "sparse", "-",
      "the static update engine (compressed: the exact compressed EKF)", kUpdate},
     {"compressed_passive_after", "int in [1, 1000000]", "3", "steps",

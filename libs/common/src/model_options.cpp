@@ -36,6 +36,8 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
 	o.cv.jerk_psd = readVector(c, s, "ca_jerk_psd", o.cv.jerk_psd, 3);
 	o.cv.accel_prior_std = readVector(c, s, "ca_accel_prior_std", o.cv.accel_prior_std, 3);
+	o.cv.mm_switch_prob = readNonNegative(c, s, "mm_switch_prob", o.cv.mm_switch_prob);
+	o.cv.mm_manoeuvre_psd = readVector(c, s, "mm_manoeuvre_psd", o.cv.mm_manoeuvre_psd, 3);
 	o.cv_gate = readNonNegative(c, s, "cv_gate", o.cv_gate);
 	o.cv.fallback_steps = int(readInt(c, s, "cv_fallback_steps", o.cv.fallback_steps));
 	o.cv.heading_inflation = readNonNegative(c, s, "cv_heading_inflation", o.cv.heading_inflation);
@@ -280,6 +282,9 @@ void dumpObjectModel(std::ostream& out, const TModelOptions& o)
 	out << "cv_heading_inflation           = " << o.cv.heading_inflation << "\n";
 	out << "ca_jerk_psd                    = " << formatMatrix(o.cv.jerk_psd.transpose()) << "\n";
 	out << "ca_accel_prior_std             = " << formatMatrix(o.cv.accel_prior_std.transpose())
+	    << "\n";
+	out << "mm_switch_prob                 = " << o.cv.mm_switch_prob << "\n";
+	out << "mm_manoeuvre_psd               = " << formatMatrix(o.cv.mm_manoeuvre_psd.transpose())
 	    << "\n";
 }
 

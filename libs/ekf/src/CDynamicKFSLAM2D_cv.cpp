@@ -14,6 +14,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "object_sighting.h"
+
 namespace dynslam
 {
 using estimator::BlockKind;
@@ -35,20 +37,6 @@ std::map<int32_t, TObjectState> objectStates(const estimator::CPaddedLayout& L)
 		if (L[b].kind == BlockKind::ObjectVelocity) out[L[b].object].velocity = b;
 	}
 	return out;
-}
-
-/** z = h(x (+) s, g(xi, f0)_k); a sensor at the robot origin keeps the code path measured
- * before the sensor offset was supported. */
-Eigen::Vector2d sighting(models::MeasurementModel m, const Eigen::Vector3d& x,
-                         const Eigen::Vector3d& s, const Eigen::VectorXd& xi,
-                         const Eigen::Matrix2Xd& f0, int k, models::Matrix23d* J_z_x,
-                         Eigen::MatrixXd* J_z_xi, Eigen::MatrixXd* J_z_f0, int founders)
-{
-	// The pose's centroid: the founders' (features merged in later follow them, object_merge.h).
-	const int cc = founders < f0.cols() ? founders : 0;
-	return s.isZero(0) ? models::observeObjectFeature(m, x, xi, f0, k, J_z_x, J_z_xi, J_z_f0, cc)
-	                   : models::observeObjectFeatureFromSensor(m, x, s, xi, f0, k, J_z_x, J_z_xi,
-	                                                            J_z_f0, cc);
 }
 
 /** The used readings of an object stacked into one update: H, nu and R = blockdiag(Sigma_v +
@@ -120,11 +108,17 @@ void CDynamicKFSLAM2D::predictObjects()
 		m_router->registry().recordDroppedVelocity(obj, ev, m_drop.record());
 
 		const std::vector<int> idx = concat(ip, iv);
-		Eigen::MatrixXd F, Q;
-		const Eigen::VectorXd s = m_motion->predict(x(idx), &F, &Q);
-		ekf::predictSubset(x, P, idx, s, F, Q);
+		if (m_motion->modeCount() > 0)  // object_model = mm (CDynamicKFSLAM2D_mm.cpp)
+			predictObjectModes(obj, idx);
+		else
+		{
+			Eigen::MatrixXd F, Q;
+			const Eigen::VectorXd s = m_motion->predict(x(idx), &F, &Q);
+			ekf::predictSubset(x, P, idx, s, F, Q);
+		}
 		m_layout.setStep(st.pose, m_step);
 	}
+	forgetStaleModes();
 	onLayoutChanged();
 }
 
@@ -165,9 +159,9 @@ void CDynamicKFSLAM2D::objectFeatureUpdates()
 		{
 			models::Matrix23d J_z_x;
 			Eigen::MatrixXd J_z_xi, J_z_f0;
-			const Eigen::Vector2d zhat =
-			    sighting(options.measurement_model, ego, m_in.sensor_pose, xi, f0,
-			             info.indexOf(m.reading.id), &J_z_x, &J_z_xi, &J_z_f0, info.founders);
+			const Eigen::Vector2d zhat = detail::sighting(
+			    options.measurement_model, ego, m_in.sensor_pose, xi, f0,
+			    info.indexOf(m.reading.id), &J_z_x, &J_z_xi, &J_z_f0, info.founders);
 			Eigen::MatrixXd H(2, idx.size());
 			H << J_z_x, J_z_xi, J_z_f0;
 			const Eigen::Vector2d nu =

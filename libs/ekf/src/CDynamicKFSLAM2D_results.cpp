@@ -145,6 +145,7 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 		out[t.object].poses.push_back(e);
 	}
 	sortTrackPoses(out);
+	attachModeProbabilities(out);  // object_model = mm
 	return out;
 }
 

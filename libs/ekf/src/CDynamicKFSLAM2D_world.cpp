@@ -4,6 +4,7 @@
 #include <dynslam/ekf_steps.h>
 #include <dynslam/models/object_world_pose.h>
 
+#include <algorithm>
 #include <climits>
 #include <stdexcept>
 #include <string>
@@ -112,15 +113,19 @@ std::map<int32_t, TObjectWorldPose> CDynamicKFSLAM2D::getObjectWorldPoses() cons
 
 std::optional<TObjectVelocity> CDynamicKFSLAM2D::getObjectVelocity(int32_t object) const
 {
-	entryOf(m_router->registry(), object, "getObjectVelocity");
+	const estimator::TObjectEntry& e = entryOf(m_router->registry(), object, "getObjectVelocity");
 	const TStateRef s = wholeState();
 	const TObjectBlocks o = blocksOf(s.layout, object);
 	if (o.vel == SIZE_MAX) return std::nullopt;
-	const std::vector<int> idx = s.layout.indices(o.vel);
+	// The velocity: the block's first poseDim entries (ca's block goes on with the acceleration).
+	const std::vector<int> all = s.layout.indices(o.vel);
+	const std::vector<int> idx(all.begin(), all.begin() + std::min<int>(e.poseDim(), all.size()));
+	TBlock vel = s.layout[o.vel];
+	vel.dim = int(idx.size());
 	TObjectVelocity v;
 	v.step = o.pose != SIZE_MAX ? s.layout[o.pose].step : m_step;
 	v.mean = s.x(idx);
-	v.cov = ekf::marginal(s.P, idx) + gaugeTerm(&s.layout[o.vel], v.mean);
+	v.cov = ekf::marginal(s.P, idx) + gaugeTerm(&vel, v.mean);
 	return v;
 }
 }  // namespace dynslam

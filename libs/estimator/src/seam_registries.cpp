@@ -1,6 +1,7 @@
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/constant_acceleration.h>
 #include <dynslam/estimator/constant_turn_rate.h>
+#include <dynslam/estimator/multiple_model.h>
 #include <dynslam/estimator/seam_registries.h>
 
 namespace dynslam::estimator
@@ -58,6 +59,12 @@ const CObjectMotionRegistry& objectMotionModels()
 		    [](const TObjectMotionParams& p)
 		    { return std::make_unique<CConstantAcceleration>(p.cv); },
 		    ca);
+		TObjectMotionCaps mm = objectCentric;
+		mm.framework = false;  // the EKF only (doc/state-layout.md "Multiple-model objects")
+		g.add(
+		    "mm",
+		    [](const TObjectMotionParams& p) { return std::make_unique<CMultipleModel>(p.cv); },
+		    mm);
 		return g;
 	}();
 	return r;

@@ -165,7 +165,7 @@ void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est, const TGrou
 		const auto n = p.mean.size();
 		const double t =
 		    gt && p.step >= 0 && static_cast<size_t>(p.step) < gt->t.size() ? gt->t[p.step] : kNaN;
-		os << p.object << "," << p.step << "," << num(t);
+		os << p.object << "," << p.step << "," << numTime(t);
 		for (int i = 0; i < 3; ++i) os << "," << (i < n ? num(p.mean[i]) : "");
 		for (int i = 0; i < 3; ++i) os << "," << (i < n ? num(sig3(p.cov(i, i))) : "");
 		const auto* o = findObject(gt, p.object);
@@ -183,6 +183,30 @@ void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est, const TGrou
 		else
 			os << ",,,,,,,";
 		os << "," << n << "\n";
+	}
+}
+
+void writeObjectMotionCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt)
+{
+	os << "object,step,t,vx,vy,omega,sigma3_vx,sigma3_vy,sigma3_omega";
+	for (const auto& m : est.object_mode_names) os << ",p_" << m;
+	os << "\n";
+	const size_t nm = est.object_mode_names.size();
+	for (const auto& p : est.object_poses)
+	{
+		const auto n = p.velocity.size();
+		if (n == 0) continue;
+		const double t =
+		    gt && p.step >= 0 && static_cast<size_t>(p.step) < gt->t.size() ? gt->t[p.step] : kNaN;
+		os << p.object << "," << p.step << "," << numTime(t);
+		for (int i = 0; i < 3; ++i) os << "," << (i < n ? num(p.velocity[i]) : "");
+		for (int i = 0; i < 3; ++i) os << "," << (i < n ? num(sig3(p.velocity_cov(i, i))) : "");
+		for (size_t j = 0; j < nm; ++j)
+			os << ","
+			   << (size_t(p.mode_probabilities.size()) == nm
+			           ? num(p.mode_probabilities[Eigen::Index(j)])
+			           : "");
+		os << "\n";
 	}
 }
 

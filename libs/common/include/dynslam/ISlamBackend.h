@@ -43,6 +43,9 @@ struct TObjectPoseEstimate
 	 * models/object_motion.h) and its marginal covariance; empty otherwise. */
 	Eigen::VectorXd velocity;
 	Eigen::MatrixXd velocity_cov;
+	/** Multiple-model objects (object_model = mm): the mode probabilities after that step's
+	 * readings, in the order of ISlamBackend::objectModeNames(); empty otherwise. */
+	Eigen::VectorXd mode_probabilities;
 	bool in_state;  ///< false: dropped, recorded with its marginal covariance at drop time
 };
 
@@ -132,6 +135,9 @@ public:
 	virtual std::vector<TObjectFeatureEstimate> getObjectFeatures() const = 0;
 	virtual std::map<int32_t, TObjectTrack> getObjectTracks() const = 0;
 	virtual const TStepReport& getLastStepReport() const = 0;
+	/** The names of the objects' motion modes (TObjectPoseEstimate::mode_probabilities); empty
+	 * for single-model back-ends. */
+	virtual std::vector<std::string> objectModeNames() const { return {}; }
 };
 
 /** Every static landmark estimated so far: the live map, then the dropped ones (what the apps

@@ -60,7 +60,9 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * body-frame features together), ctrv (the same with a constant turn rate: the velocity
 	 * turns at omega, models::ctrvPredict; it reads the cv_* keys), ca (constant acceleration:
 	 * the velocity block is [v; a], driven by white jerk; the cv_* keys and ca_jerk_psd,
-	 * ca_accel_prior_std, estimator/constant_acceleration.h). */
+	 * ca_accel_prior_std, estimator/constant_acceleration.h), mm (multiple models: stationary,
+	 * cv, turn and manoeuvre modes mixed per object by their probabilities; the cv_* keys and
+	 * mm_switch_prob, mm_manoeuvre_psd, estimator/multiple_model.h; EKF only). */
 	std::string object_model = "paper";
 	/** An object-centric model (objects have a velocity and update the state: cv, ctrv): the
 	 * capability of object_model in estimator::objectMotionModels(); false if unknown. */

@@ -163,6 +163,14 @@ public:
 	 * paper's model, or before a cv object's second pose). Throws std::invalid_argument for an
 	 * object the filter does not know. */
 	std::optional<TObjectVelocity> getObjectVelocity(int32_t object) const;
+	/** object_model = mm: the mode probabilities of every object with a velocity after this
+	 * step's readings, in the order of objectModeNames() (empty for single models). */
+	const std::map<int32_t, Eigen::VectorXd>& getObjectModeProbabilities() const
+	{
+		return m_modeProb;
+	}
+	/** The modes of object_model (mm: stationary, cv, turn, manoeuvre; empty: a single model). */
+	std::vector<std::string> objectModeNames() const override;
 	/** The typed state after the ego pose (blocks and where they are stored; of the whole
 	 * state, like every getter below: with compressed entries in the working state, of its
 	 * expanded copy, see wholeState()). */
@@ -341,6 +349,23 @@ private:
 	// object-centric motion models (velocityDim() > 0, e.g. cv; CDynamicKFSLAM2D_cv.cpp)
 	/** Predicts every object with a velocity over one step (its last pose is recorded first). */
 	void predictObjects();
+	/** object_model = mm (CDynamicKFSLAM2D_mm.cpp): predicts object obj's s = x[idx] ([pose;
+	 * velocity]) by the mixture of the modes, weighted by their probabilities after this step's
+	 * readings of it (models/mode_mixture.h). */
+	void predictObjectModes(int32_t obj, const std::vector<int>& idx);
+	/** log L_j of obj's readings of this step under each mode's prediction (empty: none). */
+	Eigen::VectorXd modeLogLikelihoods(int32_t obj, const std::vector<int>& idx,
+	                                   const std::vector<Eigen::VectorXd>& s_j,
+	                                   const std::vector<Eigen::MatrixXd>& F_j,
+	                                   const std::vector<Eigen::MatrixXd>& Q_j) const;
+	/** Sets the poses' mode_probabilities from m_modeHistory (getObjectTracks). */
+	void attachModeProbabilities(std::map<int32_t, TObjectTrack>& tracks) const;
+	/** Drops the mode probabilities of objects without a velocity block. */
+	void forgetStaleModes();
+	std::map<int32_t, Eigen::VectorXd> m_modeProb;  ///< object_model = mm: per object
+	/** object_model = mm: per object, (step, mode probabilities) of every step (the newest only
+	 * with record_dropped = false); attached to the poses by getObjectTracks(). */
+	std::map<int32_t, std::vector<std::pair<int, Eigen::VectorXd>>> m_modeHistory;
 	/** Sightings of features of objects with a velocity: measurement updates of ego, pose and
 	 * body-frame features (gated by the model's readingGate()). */
 	void objectFeatureUpdates();

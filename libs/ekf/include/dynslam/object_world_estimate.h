@@ -11,7 +11,7 @@
 
 namespace dynslam
 {
-/** An object's velocity (object_model = cv | ctrv): (vx, vy, omega), the world-frame velocity
+/** An object's velocity (object_model = cv | ctrv | ca): (vx, vy, omega), the world-frame velocity
  * of the reference point r and the turn rate, or (vx, vy) for a one-feature object; marginal
  * covariance (with the prior gauge's output term, like every getter). */
 struct TObjectVelocity

@@ -22,6 +22,11 @@ struct TCvParams
 	 * acceleration prior (ax, ay, alpha) [m/s^2, m/s^2, rad/s^2]. */
 	Eigen::Vector3d jerk_psd = Eigen::Vector3d(0.01, 0.01, 0.001);
 	Eigen::Vector3d accel_prior_std = Eigen::Vector3d(0.5, 0.5, 0.05);
+	/** mm only (multiple_model.h; validated by CMultipleModel): the probability of leaving a
+	 * mode per step, in (0, 1), and the manoeuvre mode's white-acceleration spectral densities
+	 * [m^2/s^3, m^2/s^3, rad^2/s^3] (> 0). */
+	double mm_switch_prob = 0.01;
+	Eigen::Vector3d mm_manoeuvre_psd = Eigen::Vector3d(16.0, 16.0, 0.1);
 	/** Chi-square threshold (2 dof) of the gate on object readings (infinity: no gate). */
 	double gate = std::numeric_limits<double>::infinity();
 	/** Fallback of a lost object (doc/state-layout.md "Fallback of a lost object"): after

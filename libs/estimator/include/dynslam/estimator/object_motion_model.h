@@ -71,6 +71,24 @@ public:
 	virtual bool reportGating(int32_t /*object*/, bool /*allGatedOut*/) { return false; }
 	/** Forgets all per-object state (the filter's reset). */
 	virtual void resetObjectState() {}
+
+	// --- Multiple-model objects (issue 28, models/mode_mixture.h). modeCount() > 0: the
+	// object-centric prediction is the moment-matched mixture of the modes' predictions, the
+	// mode probabilities updated by the object's readings (EKF only). All modes share the
+	// velocity block of velocityDim().
+	/** Number of modes (0: a single model, predict()). */
+	virtual int modeCount() const { return 0; }
+	virtual std::string modeName(int /*mode*/) const { return name(); }
+	/** Mode j's transition of s = [pose; velocity]: s', J_out_s and Q (like predict()). */
+	virtual Eigen::VectorXd predictMode(int /*mode*/, const Eigen::VectorXd& s,
+	                                    Eigen::MatrixXd* J_out_s, Eigen::MatrixXd* Q) const
+	{
+		return predict(s, J_out_s, Q);
+	}
+	/** Markov switching Pi (modeCount() x modeCount(), rows: from, columns: to). */
+	virtual Eigen::MatrixXd modeTransition() const { return Eigen::MatrixXd(); }
+	/** Mode probabilities of an object when its velocity enters the state. */
+	virtual Eigen::VectorXd initialModeProbabilities() const { return Eigen::VectorXd(); }
 };
 
 /** No motion model (the paper's default). */

@@ -51,7 +51,8 @@ struct TObjectMotionCaps
 };
 using CObjectMotionRegistry = CRegistry<IObjectMotionModel, TObjectMotionParams, TObjectMotionCaps>;
 /** paper (CNoObjectMotion, or CPaperSmoothing if smoothing), paper_smoothing (CPaperSmoothing),
- * cv (CConstantVelocity), ctrv (CConstantTurnRate), ca (CConstantAcceleration). */
+ * cv (CConstantVelocity), ctrv (CConstantTurnRate), ca (CConstantAcceleration), mm
+ * (CMultipleModel). */
 const CObjectMotionRegistry& objectMotionModels();
 
 // --- update (outlier_method) -----------------------------------------------------------------

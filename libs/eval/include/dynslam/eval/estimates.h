@@ -63,6 +63,8 @@ struct TObjectPoseEstimate
 	 * covariance; empty otherwise (velocity_metrics.h). */
 	Eigen::VectorXd velocity;
 	Eigen::MatrixXd velocity_cov;
+	/** object_model = mm: mode probabilities at that step (TRunEstimates::object_mode_names). */
+	Eigen::VectorXd mode_probabilities;
 };
 
 /** Everything one run produced. */
@@ -76,6 +78,8 @@ struct TRunEstimates
 	Eigen::MatrixXd landmarks_cov;
 	std::vector<TObjectFeatureEstimate> object_features;
 	std::vector<TObjectPoseEstimate> object_poses;
+	/** The modes of TObjectPoseEstimate::mode_probabilities (empty: a single model). */
+	std::vector<std::string> object_mode_names;
 	/** Per step k (index = step): NIS of all measurements used in the update at step k, with
 	 * its degrees of freedom nis_dof[k] (2 x number of associations); 0 dof = no update. */
 	std::vector<double> nis;

@@ -46,6 +46,13 @@ void writeObjectFeaturesCsv(std::ostream& os, const TRunEstimates& est,
 void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est,
                          const TGroundTruth* gt = nullptr);
 
+/** Object motion CSV (models with a velocity state): object,step,t,vx,vy,omega,sigma3_vx,
+ * sigma3_vy,sigma3_omega, then p_<mode> per est.object_mode_names (object_model = mm): the
+ * velocity, the turn rate and the mode probabilities of every object pose that has a velocity
+ * (omega empty for 2-dof poses). */
+void writeObjectMotionCsv(std::ostream& os, const TRunEstimates& est,
+                          const TGroundTruth* gt = nullptr);
+
 /** One filter's row of the metrics CSV / table. */
 struct TMetricsRow
 {

@@ -1,0 +1,137 @@
+/** CDynamicKFSLAM2D: multiple-model objects (object_model = mm, issue 28; doc/state-layout.md
+ * "Multiple-model objects"): per object, the modes' predictions of [pose; velocity] mixed by
+ * their probabilities (models/mode_mixture.h), which this step's readings of the object update
+ * first (a GPB1-style switch). The update that follows is objectFeatureUpdates(), as for cv. */
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf_steps.h>
+#include <dynslam/models/mode_mixture.h>
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "object_sighting.h"
+
+namespace dynslam
+{
+using estimator::BlockKind;
+
+std::vector<std::string> CDynamicKFSLAM2D::objectModeNames() const
+{
+	std::vector<std::string> out;
+	for (int j = 0; j < m_motion->modeCount(); ++j) out.push_back(m_motion->modeName(j));
+	return out;
+}
+
+void CDynamicKFSLAM2D::predictObjectModes(int32_t obj, const std::vector<int>& idx)
+{
+	auto x = m_xkk.asEigen();
+	auto P = cov();
+	const int M = m_motion->modeCount();
+	auto it = m_modeProb.find(obj);
+	if (it == m_modeProb.end())
+		it = m_modeProb.emplace(obj, m_motion->initialModeProbabilities()).first;
+	const Eigen::VectorXd s = x(idx);
+	std::vector<Eigen::VectorXd> s_j(static_cast<size_t>(M));
+	std::vector<Eigen::MatrixXd> F_j(static_cast<size_t>(M)), Q_j(static_cast<size_t>(M));
+	for (int j = 0; j < M; ++j)
+		s_j[size_t(j)] = m_motion->predictMode(j, s, &F_j[size_t(j)], &Q_j[size_t(j)]);
+	const Eigen::VectorXd logL = modeLogLikelihoods(obj, idx, s_j, F_j, Q_j);
+	it->second = models::modePosterior(it->second, m_motion->modeTransition(), logL);
+	auto& history = m_modeHistory[obj];
+	if (!m_drop.record()) history.clear();  // record_dropped = false: the newest only
+	history.emplace_back(m_step, it->second);
+	const int d = int(idx.size()) / 2;
+	const models::TModeMixture mix = models::mixModes(
+	    s_j, F_j, Q_j, models::prunedWeights(it->second), ekf::marginal(P, idx), d == 3 ? 2 : -1);
+	ekf::predictSubset(x, P, idx, mix.s, mix.F, mix.Q_eff);
+}
+
+Eigen::VectorXd CDynamicKFSLAM2D::modeLogLikelihoods(int32_t obj, const std::vector<int>& idx,
+                                                     const std::vector<Eigen::VectorXd>& s_j,
+                                                     const std::vector<Eigen::MatrixXd>& F_j,
+                                                     const std::vector<Eigen::MatrixXd>& Q_j) const
+{
+	std::vector<estimator::TRoutedReading> readings;  // copies: with() returns a temporary
+	for (const auto& m : m_routed.with(estimator::Route::ObjectTimeT))
+		if (m.object == obj) readings.push_back(m);
+	if (readings.empty()) return Eigen::VectorXd();
+	// The entries the readings depend on: ego, [pose; velocity] (idx), the features' f_0.
+	const estimator::TObjectEntry& info = m_router->registry().at(obj);
+	std::vector<int> all = {0, 1, 2};
+	all.insert(all.end(), idx.begin(), idx.end());
+	const Eigen::Index n = Eigen::Index(info.feature_ids.size());
+	std::map<int32_t, size_t> f0Block;  // one scan of the layout
+	for (size_t b = 0; b < m_layout.size(); ++b)
+		if (m_layout[b].kind == BlockKind::ObjectFeature0)  // by ID, as objectFeatureUpdates
+			f0Block[m_layout[b].id] = b;
+	for (const int32_t id : info.feature_ids)
+	{
+		const auto f = f0Block.find(id);
+		if (f == f0Block.end())
+			throw std::logic_error("CDynamicKFSLAM2D (mm): a feature of object " +
+			                       std::to_string(obj) + " has no f_0");
+		const std::vector<int> fi = m_layout.indices(f->second);
+		all.insert(all.end(), fi.begin(), fi.end());
+	}
+	const auto x = m_xkk.asEigen();
+	const Eigen::MatrixXd P_all = ekf::marginal(cov(), all);
+	const Eigen::Index ns = Eigen::Index(idx.size()), d = ns / 2, m = Eigen::Index(readings.size());
+	Eigen::Matrix2Xd f0(2, n);
+	for (Eigen::Index k = 0; k < n; ++k) f0.col(k) = x.segment(all[size_t(3 + ns + 2 * k)], 2);
+	const Eigen::Vector3d ego = x.head<3>();
+	Eigen::VectorXd logL(Eigen::Index(s_j.size()));
+	for (size_t j = 0; j < s_j.size(); ++j)
+	{
+		// Mode j's joint prediction of the entries `all`: T P T^T + Q on the motion state.
+		Eigen::MatrixXd T = Eigen::MatrixXd::Identity(P_all.rows(), P_all.cols());
+		T.block(3, 3, ns, ns) = F_j[j];
+		Eigen::MatrixXd P_j = T * P_all * T.transpose();
+		P_j.block(3, 3, ns, ns) += Q_j[j];
+		const Eigen::VectorXd xi = s_j[j].head(d);
+		Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * m, P_all.cols());
+		Eigen::VectorXd nu(2 * m);
+		Eigen::MatrixXd R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+		for (Eigen::Index r = 0; r < m; ++r)
+		{
+			models::Matrix23d J_z_x;
+			Eigen::MatrixXd J_z_xi, J_z_f0;
+			const auto& z = readings[size_t(r)].reading;
+			const Eigen::Vector2d zhat =
+			    detail::sighting(options.measurement_model, ego, m_in.sensor_pose, xi, f0,
+			                     info.indexOf(z.id), &J_z_x, &J_z_xi, &J_z_f0, info.founders);
+			H.block(2 * r, 0, 2, 3) = J_z_x;
+			H.block(2 * r, 3, 2, d) = J_z_xi;  // the velocity's columns stay 0
+			H.block(2 * r, 3 + ns, 2, 2 * n) = J_z_f0;
+			nu.segment(2 * r, 2) = models::innovation(options.measurement_model, z.z, zhat);
+			R.block(2 * r, 2 * r, 2, 2) = options.Sigma_v;
+		}
+		logL[Eigen::Index(j)] = models::gaussianLogLikelihood(nu, H * P_j * H.transpose() + R);
+	}
+	return logL;
+}
+
+void CDynamicKFSLAM2D::attachModeProbabilities(std::map<int32_t, TObjectTrack>& tracks) const
+{
+	for (auto& [obj, track] : tracks)
+	{
+		const auto h = m_modeHistory.find(obj);
+		if (h == m_modeHistory.end()) continue;
+		for (TObjectPoseEstimate& e : track.poses)
+		{
+			const auto it = std::lower_bound(h->second.begin(), h->second.end(), e.step,
+			                                 [](const auto& a, int s) { return a.first < s; });
+			if (it != h->second.end() && it->first == e.step) e.mode_probabilities = it->second;
+		}
+	}
+}
+
+void CDynamicKFSLAM2D::forgetStaleModes()
+{
+	if (m_modeProb.empty()) return;
+	const std::set<int32_t> live = objectsWithVelocity();
+	for (auto it = m_modeProb.begin(); it != m_modeProb.end();)
+		it = live.count(it->first) ? std::next(it) : m_modeProb.erase(it);
+}
+}  // namespace dynslam
