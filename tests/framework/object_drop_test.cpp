@@ -1,6 +1,6 @@
 /** drop_object_after_unseen_steps = N (issue 29, item 2), to the step, in the dynamic EKF with
- * the paper's object model and with cv: an object without readings for N steps leaves the
- * state at the end of that step (N - 1 steps: it stays), its track (poses, with cv the
+ * the paper's object model, cv and mm: an object without readings for N steps leaves the
+ * state at the end of that step (N - 1 steps: it stays), its track (poses, with cv and mm the
  * velocity) and f_0 are recorded exactly as they were in the state (record_dropped) or
  * forgotten, its later readings are skipped and counted; dropping is a marginalization, so the
  * ego estimate equals the run without it until the object's readings come back. */
@@ -88,7 +88,7 @@ std::unique_ptr<CDynamicKFSLAM2D> filter(const std::string& extra)
 
 TEST(ObjectDrop, UnseenForNStepsDroppedRecordedAndSkippedNMinusOneKept)
 {
-	for (const std::string model : {"paper", "cv"})
+	for (const std::string model : {"paper", "cv", "mm"})
 		for (const bool recorded : {true, false})
 		{
 			SCOPED_TRACE(model + (recorded ? " recorded" : " forgotten"));
@@ -150,13 +150,15 @@ TEST(ObjectDrop, UnseenForNStepsDroppedRecordedAndSkippedNMinusOneKept)
 			for (const auto& p : track.poses) EXPECT_FALSE(p.in_state);
 			const TObjectPoseEstimate &a = track.poses.back(), &b = trackBefore.poses.back();
 			EXPECT_TRUE(b.in_state);
-			EXPECT_EQ(a.step, model == "paper" ? 3 : 6);  // cv: predicted up to the drop
+			EXPECT_EQ(a.step, model == "paper" ? 3 : 6);  // cv, mm: predicted up to the drop
 			EXPECT_EQ(a.step, b.step);
 			EXPECT_EQ(a.mean, b.mean);
 			EXPECT_EQ(a.cov, b.cov);
 			EXPECT_EQ(a.velocity.size(), model == "paper" ? 0 : 3);
 			EXPECT_EQ(a.velocity, b.velocity);
 			EXPECT_EQ(a.velocity_cov, b.velocity_cov);
+			EXPECT_EQ(a.mode_probabilities.size(), model == "mm" ? 4 : 0);
+			EXPECT_EQ(a.mode_probabilities, b.mode_probabilities);
 		}
 }
 
