@@ -47,6 +47,8 @@ CANDIDATES = {
     # issue 28: E with multiple-model objects (mm's own keys at their defaults)
     "EM": dict(E_KEYS, object_model="mm"),
     "EM3": dict(E_KEYS, object_model="mm", cv_fallback_steps="3"),
+    # mm with the library's default cv noise (nothing tuned on a dataset)
+    "M": {"object_model": "mm", "cv_gate": "0.999", "prior_gauge": "anchor"},
 }
 CV_DT = {"highway": "0.5", "tunnel": "0.5", "turning": "0.5", "manoeuvres": "0.5", "mrclam": "0.4",
          "kitti": "0.1"}
