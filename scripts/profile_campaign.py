@@ -46,6 +46,9 @@ CANDIDATES = {
     "E3": dict(E_KEYS, cv_fallback_steps="3"),
     # issue 28: E with multiple-model objects (mm's own keys at their defaults)
     "EM": dict(E_KEYS, object_model="mm"),
+    "EM3": dict(E_KEYS, object_model="mm", cv_fallback_steps="3"),
+    # mm with the library's default cv noise (nothing tuned on a dataset)
+    "M": {"object_model": "mm", "cv_gate": "0.999", "prior_gauge": "anchor"},
 }
 CV_DT = {"highway": "0.5", "tunnel": "0.5", "turning": "0.5", "manoeuvres": "0.5", "mrclam": "0.4",
          "kitti": "0.1"}
@@ -53,6 +56,9 @@ KITTI_SEQS = ["%04d" % i for i in range(11)]
 
 
 def find_exe(build, name):
+    own = os.path.join(build, "apps", name, name)  # not an installed copy (tests/consumer)
+    if os.access(own, os.X_OK):
+        return own
     for root, _, files in os.walk(build):
         if name in files and os.access(os.path.join(root, name), os.X_OK):
             return os.path.join(root, name)

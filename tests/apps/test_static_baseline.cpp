@@ -173,6 +173,9 @@ TEST(StaticBaseline, MixedUnknownAndLabelledIdsRunAsMrptAssociatesThem)
 			}
 		}
 		EXPECT_EQ(fromUnknown, created);
-		if (mode == CStaticBaselineBackend::Mode::StaticOnly) EXPECT_EQ(given, seen.size());
+		if (mode == CStaticBaselineBackend::Mode::StaticOnly)
+		{
+			EXPECT_EQ(given, seen.size());
+		}
 	}
 }

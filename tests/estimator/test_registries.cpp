@@ -28,7 +28,7 @@ TEST(Registries, ObjectMotionModelsAndTheirCapabilities)
 {
 	const auto& r = objectMotionModels();
 	EXPECT_EQ(r.names(),
-	          (std::vector<std::string>{"paper", "paper_smoothing", "cv", "ctrv", "ca"}));
+	          (std::vector<std::string>{"paper", "paper_smoothing", "cv", "ctrv", "ca", "mm"}));
 	TObjectMotionParams p;
 	for (const auto& name : r.names())
 	{
@@ -45,7 +45,10 @@ TEST(Registries, ObjectMotionModelsAndTheirCapabilities)
 	EXPECT_EQ(r.make("ca", p)->name(), "ca");
 	EXPECT_EQ(r.make("ca", p)->velocityDim(3), 6);  // [v; a]
 	EXPECT_FALSE(r.caps("ca").window);
-	p.smoothing = true;  // paper with smoothing = true is the paper's smoothing
+	EXPECT_EQ(r.make("mm", p)->name(), "mm");
+	EXPECT_EQ(r.make("mm", p)->modeCount(), 4);
+	EXPECT_FALSE(r.caps("mm").framework);  // the EKF only
+	p.smoothing = true;                    // paper with smoothing = true is the paper's smoothing
 	EXPECT_EQ(r.make("paper", p)->name(), "paper_smoothing");
 	EXPECT_TRUE(r.caps("paper_smoothing").smoothing);
 	EXPECT_FALSE(r.caps("cv").window);

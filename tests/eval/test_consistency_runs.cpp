@@ -55,7 +55,8 @@ eval::TRunEstimates runOnce(const TGroundTruth& gt, const sim::TScenarioOptions&
 	}
 	for (const auto& [obj, tr] : f.getObjectTracks())
 		for (const auto& p : tr.poses)
-			est.object_poses.push_back({obj, p.step, p.mean, p.cov, p.velocity, p.velocity_cov});
+			est.object_poses.push_back(
+			    {obj, p.step, p.mean, p.cov, p.velocity, p.velocity_cov, p.mode_probabilities});
 	return est;
 }
 

@@ -55,7 +55,7 @@ TRunEstimates perfectEstimates(const TGroundTruth& gt)
 	{
 		est.ego.push_back({int(k), gt.ego[k], Eigen::Matrix3d::Identity() * 1e-4});
 		est.object_poses.push_back(
-		    {0, int(k), gt.objects[0].pose[k], Eigen::Matrix3d::Identity(), {}, {}});
+		    {0, int(k), gt.objects[0].pose[k], Eigen::Matrix3d::Identity(), {}, {}, {}});
 	}
 	for (int j = 0; j < 4; ++j)
 		est.object_features.push_back(

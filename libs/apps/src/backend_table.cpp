@@ -40,7 +40,8 @@ eval::TRunEstimates collect(ISlamBackend& be, const std::vector<eval::TEgoEstima
 		if (f.at_time0) e.object_features.push_back({f.object, f.feature, f.mean, f.cov});
 	for (const auto& [obj, tr] : be.getObjectTracks())
 		for (const auto& p : tr.poses)
-			e.object_poses.push_back({obj, p.step, p.mean, p.cov, p.velocity, p.velocity_cov});
+			e.object_poses.push_back(
+			    {obj, p.step, p.mean, p.cov, p.velocity, p.velocity_cov, p.mode_probabilities});
 	e.ms_per_step = ms;
 	return e;
 }
