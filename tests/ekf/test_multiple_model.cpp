@@ -15,9 +15,12 @@
 #include <random>
 #include <sstream>
 
+#include "model_test_utils.h"
 #include "object_model_setup.h"
 
 using namespace dynslam;
+using dynslam_test::errorOf;
+using dynslam_test::numericJ;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using estimator::CMultipleModel;
@@ -25,36 +28,6 @@ using estimator::TCvParams;
 
 namespace
 {
-MatrixXd numericJ(const std::function<VectorXd(const VectorXd&)>& f, const VectorXd& x,
-                  const std::vector<int>& angles, double h = 1e-6)
-{
-	const VectorXd f0 = f(x);
-	MatrixXd J(f0.size(), x.size());
-	for (Eigen::Index j = 0; j < x.size(); ++j)
-	{
-		VectorXd p = x, m = x;
-		p[j] += h;
-		m[j] -= h;
-		VectorXd d = f(p) - f(m);
-		for (const int a : angles) d[a] = models::wrapToPi(d[a]);
-		J.col(j) = d / (2 * h);
-	}
-	return J;
-}
-
-std::string errorOf(const std::function<void()>& f)
-{
-	try
-	{
-		f();
-	}
-	catch (const std::exception& e)
-	{
-		return e.what();
-	}
-	return "";
-}
-
 TCvParams params()
 {
 	TCvParams p;

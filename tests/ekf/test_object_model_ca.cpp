@@ -15,10 +15,13 @@
 #include <random>
 #include <sstream>
 
+#include "model_test_utils.h"
 #include "object_model_setup.h"
 #include "tiny_scenario.h"
 
 using namespace dynslam;
+using dynslam_test::errorOf;
+using dynslam_test::numericJ;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using estimator::caPredict;
@@ -28,24 +31,6 @@ using estimator::TCvParams;
 
 namespace
 {
-/** Central differences of f at x (step h); output rows in `angles` wrapped. */
-MatrixXd numericJ(const std::function<VectorXd(const VectorXd&)>& f, const VectorXd& x,
-                  const std::vector<int>& angles, double h = 1e-6)
-{
-	const VectorXd f0 = f(x);
-	MatrixXd J(f0.size(), x.size());
-	for (Eigen::Index j = 0; j < x.size(); ++j)
-	{
-		VectorXd p = x, m = x;
-		p[j] += h;
-		m[j] -= h;
-		VectorXd d = f(p) - f(m);
-		for (const int a : angles) d[a] = models::wrapToPi(d[a]);
-		J.col(j) = d / (2 * h);
-	}
-	return J;
-}
-
 double relErr(const MatrixXd& A, const MatrixXd& B)
 {
 	return (A - B).cwiseAbs().maxCoeff() / std::max(1.0, B.cwiseAbs().maxCoeff());
@@ -58,20 +43,6 @@ TCvParams params(double dt)
 	p.jerk_psd = Eigen::Vector3d(0.02, 0.03, 0.004);
 	p.accel_prior_std = Eigen::Vector3d(0.4, 0.6, 0.05);
 	return p;
-}
-
-/** The message of the std::exception f throws ("" if none). */
-std::string errorOf(const std::function<void()>& f)
-{
-	try
-	{
-		f();
-	}
-	catch (const std::exception& e)
-	{
-		return e.what();
-	}
-	return "";
 }
 }  // namespace
 
