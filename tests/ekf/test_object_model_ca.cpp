@@ -69,7 +69,10 @@ TEST(ObjectMotionJacobians, CaPrediction)
 			const double e = relErr(J, Jn);
 			EXPECT_LT(e, 1e-8) << "d " << d << " theta " << th << "\n" << J << "\n\n" << Jn;
 			worst = std::max(worst, e);
-			if (d == 3) EXPECT_LE(std::abs(out[2]), M_PI);
+			if (d == 3)
+			{
+				EXPECT_LE(std::abs(out[2]), M_PI);
+			}
 			// The acceleration is kept; the velocity gains dt a.
 			EXPECT_EQ(out.tail(d), s.tail(d));
 			EXPECT_LT((out.segment(d, d) - s.segment(d, d) - dt * s.tail(d)).cwiseAbs().maxCoeff(),
@@ -148,7 +151,10 @@ TEST(ObjectModelCa, ProcessNoiseIsTheIntegralOfWhiteJerk)
 	// No coupling between axes.
 	for (int r = 0; r < 9; ++r)
 		for (int c = 0; c < 9; ++c)
-			if (r % 3 != c % 3) EXPECT_EQ(Q(r, c), 0.0) << r << "," << c;
+			if (r % 3 != c % 3)
+			{
+				EXPECT_EQ(Q(r, c), 0.0) << r << "," << c;
+			}
 	// A translation-only pose: the first two axes.
 	const MatrixXd Q2 = caProcessNoise(q.head(2), dt);
 	EXPECT_EQ(Q2.rows(), 6);

@@ -234,7 +234,8 @@ void CCompareApp::run()
 		if (hasGroundTruth)
 		{
 			const TEvaluation ev = evaluateRun(gt, r.est);
-			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt});
+			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt,
+			                std::nullopt});
 			if (!landmarkGaps.empty())
 				rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
 			scoreObjects(rows.back(), classifies ? &decisions : nullptr, r.est);
