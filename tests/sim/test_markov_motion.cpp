@@ -88,7 +88,7 @@ TEST(SimMarkovMotion, ModesAreThoseOfTheMultipleModelFilter)
 
 TEST(SimMarkovMotion, SwitchRateIsTheConfiguredProbability)
 {
-	// 2 cars x 4000 steps x 3 seeds = 23994 transitions per probability: the number of switches
+	// 2 cars x 4000 steps x 3 seeds = 24000 transitions per probability: the number of switches
 	// is binomial(n, p); each other mode is the target with probability 1/3.
 	for (const double p : {0.01, 0.05, 0.3})
 	{
