@@ -430,6 +430,7 @@ void TScenarioOptions::loadFromConfigFile(const CConfigFileBase& c, const std::s
 	else
 		readGenerated(c, generated);
 	readEffects(c, effects);
+	detail::readObjectMotion(c, *this);
 	validate();
 }
 
@@ -447,6 +448,14 @@ void TScenarioOptions::validate() const
 		    "[Noise] odometry_rate_bias_deg_s must be finite and odometry_scale_error in (-1, 1)");
 	if (!object_accel_psd.allFinite() || (object_accel_psd.array() < 0).any())
 		throw std::invalid_argument("[Noise] object_accel_psd must be finite and >= 0");
+	const TObjectMotionOptions& m = object_motion;
+	if (m.markov && (!(m.switch_prob >= 0 && m.switch_prob < 1) || !m.accel_psd.allFinite() ||
+	                 !m.manoeuvre_psd.allFinite() || (m.accel_psd.array() < 0).any() ||
+	                 (m.manoeuvre_psd.array() < 0).any() || m.initial_mode < 0 ||
+	                 m.initial_mode > 3 || !object_accel_psd.isZero()))
+		throw std::invalid_argument(
+		    "[ObjectMotion] markov: switch_prob in [0, 1), PSDs finite and >= 0, initial_mode "
+		    "0..3, and no [Noise] object_accel_psd");
 }
 
 TScenarioOptions loadScenario(const std::string& iniPath)

@@ -206,5 +206,6 @@ void TScenarioOptions::dumpToTextStream(std::ostream& o) const
 		detail::dumpGenerated(o, generated);
 	}
 	dumpEffects(o, effects);
+	detail::dumpObjectMotion(o, object_motion);
 }
 }  // namespace dynslam::sim

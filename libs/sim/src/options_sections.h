@@ -20,4 +20,8 @@ long readCount(const mrpt::config::CConfigFileBase& c, const std::string& sec,
 void readGenerated(const mrpt::config::CConfigFileBase& c, TGeneratedOptions& g);
 /** Writes the [Generated] section of the effective configuration. */
 void dumpGenerated(std::ostream& o, const TGeneratedOptions& g);
+/** Reads [ObjectMotion] into o.object_motion (after [Noise]: checks object_accel_psd). */
+void readObjectMotion(const mrpt::config::CConfigFileBase& c, TScenarioOptions& o);
+/** Writes [ObjectMotion] when model = markov (nothing otherwise). */
+void dumpObjectMotion(std::ostream& o, const TObjectMotionOptions& m);
 }  // namespace dynslam::sim::detail

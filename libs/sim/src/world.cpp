@@ -4,6 +4,7 @@
 #include <dynslam/landmark_ids.h>
 #include <dynslam/models/object_pose.h>
 #include <dynslam/models/se2.h>
+#include <dynslam/sim/markov_motion.h>
 #include <dynslam/sim/scenario.h>
 #include <mrpt/random/RandomGenerators.h>
 
@@ -212,6 +213,39 @@ TWorld buildGenerated(const TScenarioOptions& o)
 	}
 	return w;
 }
+/** The Markov-switching truth (markov_motion.h; empty unless [ObjectMotion] model = markov):
+ * per object and step its world features g(xi_k, F_0), xi_k relative to step 0, starting with
+ * the scripted motion's rate at t = 0 (a forward difference over 1e-6 s of the closed form). */
+std::vector<std::vector<Eigen::Matrix2Xd>> markovFeatures(const TWorld& w,
+                                                          const TScenarioOptions& o)
+{
+	if (!o.object_motion.markov) return {};
+	const double eps = 1e-6;
+	std::vector<Eigen::VectorXd> s0;
+	std::vector<Eigen::Matrix2Xd> F0;
+	for (const TWorld::TObject& obj : w.objects)
+	{
+		F0.push_back(bodyToWorld(obj.motion.pose(w.track, 0.0), obj.body));
+		const Eigen::Matrix2Xd F1 = bodyToWorld(obj.motion.pose(w.track, eps), obj.body);
+		const bool translationOnly = obj.body.cols() == 1;
+		Eigen::VectorXd s = Eigen::VectorXd::Zero(translationOnly ? 4 : 6);
+		if (translationOnly)
+			s.tail<2>() = (F1.col(0) - F0.back().col(0)) / eps;
+		else
+			s.tail<3>() = models::objectPoseInverse(F0.back(), F1) / eps;
+		s0.push_back(s);
+	}
+	const std::vector<TMarkovTrack> tracks = markovObjectTracks(o, s0);
+	std::vector<std::vector<Eigen::Matrix2Xd>> out(tracks.size());
+	for (size_t i = 0; i < tracks.size(); ++i)
+		for (const Eigen::VectorXd& s : tracks[i].state)
+		{
+			const Eigen::Index d = s.size() / 2;
+			out[i].push_back(d == 2 ? Eigen::Matrix2Xd(F0[i].colwise() + s.head<2>())
+			                        : detail::offsetFeatures(F0[i], s.head<3>()));
+		}
+	return out;
+}
 }  // namespace
 
 TWorld buildWorld(const TScenarioOptions& o)
@@ -237,6 +271,7 @@ TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
 	const Eigen::Vector3d x0 = detail::trueStartPose(o);
 	const bool moved = !x0.isZero();
 	const auto offsets = detail::objectPoseOffsets(o, w.objects.size());
+	const auto markov = markovFeatures(w, o);
 	gt.landmarks = w.landmarks;
 	if (moved)
 		for (auto& [id, p] : gt.landmarks) p = bodyToWorld(x0, p);
@@ -260,7 +295,9 @@ TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
 		og.visible.assign(n, 0);
 		for (size_t k = 0; k < n; ++k)
 		{
-			Eigen::Matrix2Xd F = bodyToWorld(obj.motion.pose(w.track, o.stepTime(k)), obj.body);
+			Eigen::Matrix2Xd F =
+			    markov.empty() ? bodyToWorld(obj.motion.pose(w.track, o.stepTime(k)), obj.body)
+			                   : markov[i][k];
 			if (!offsets.empty()) F = detail::offsetFeatures(F, offsets[i][k]);
 			if (moved) F = bodyToWorld(x0, F);
 			og.features[k] = F;

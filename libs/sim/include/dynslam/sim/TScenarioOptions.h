@@ -132,6 +132,24 @@ struct TReadingEffects
 	}
 };
 
+/** [ObjectMotion] (issue 28 item 4): the objects' true motion. `model = deterministic` (the
+ * default, and the section may be absent): the scripted closed-form trajectories. `model =
+ * markov`: the model-matched truth of the multiple-model filter (estimator::CMultipleModel):
+ * every object's state s = [xi; v] (object_pose.h's pose since step 0 and its rate) starts at
+ * [0; v0] (v0 the scripted motion's rate at t = 0) in initial_mode and, per step, first
+ * switches mode with probability switch_prob (to each other mode with switch_prob / 3, the
+ * matrix models::uniformSwitching), then moves by that mode's model with its white-acceleration
+ * noise (markov_motion.h). Drawn from a private generator seeded with noise_seed. Written by
+ * dumpToTextStream only when markov. */
+struct TObjectMotionOptions
+{
+	bool markov = false;
+	double switch_prob = 0;                                   ///< in [0, 1]
+	Eigen::Vector3d accel_psd = Eigen::Vector3d::Zero();      ///< stationary, cv, turn modes
+	Eigen::Vector3d manoeuvre_psd = Eigen::Vector3d::Zero();  ///< manoeuvre mode
+	int initial_mode = 1;  ///< 0 stationary, 1 cv (default), 2 turn, 3 manoeuvre
+};
+
 struct TScenarioOptions : public mrpt::config::CLoadableOptions
 {
 	// [Scenario]
@@ -186,6 +204,8 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 	 * generators seeded from noise_seed (truth_noise.h): the noise draws never change. */
 	bool start_from_prior = false;
 	Eigen::Vector3d object_accel_psd = Eigen::Vector3d::Zero();
+
+	TObjectMotionOptions object_motion;  ///< [ObjectMotion] (issue 28)
 
 	THighwayOptions highway;
 	TGeneratedOptions generated;
