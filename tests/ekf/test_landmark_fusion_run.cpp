@@ -210,3 +210,19 @@ TEST(LandmarkFusionRun, HighwayWithTrackBreaksMapWithin1p2xNoWrongFusionSameAte)
 	          << " m (" << ateOn / ateOff << " x)\n";
 	EXPECT_LE(ateOn, 1.1 * ateOff);
 }
+
+TEST(LandmarkFusionRun, WithoutTrackBreaksNothingIsFusedAndTheRunIsUnchanged)
+{
+	// The shipped highway (no re-identified landmark): with the key on, no pair passes the rule,
+	// and the estimate is that of the run without it, bit for bit.
+	for (const char* cfg : {"/highway.ini", "/highway_clutter.ini"})
+	{
+		const sim::TScenarioOptions o = sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + cfg);
+		const TGroundTruth gt = sim::buildGroundTruth(o);
+		const sim::TSimulatedRun s = sim::simulateMeasurements(gt, o, o.noise_seed);
+		const TRun off = run(s, gt, ""), on = run(s, gt, kFuse);
+		EXPECT_EQ(on.fused, 0u) << cfg;
+		EXPECT_EQ(on.live, off.live) << cfg;
+		EXPECT_EQ(on.ate, off.ate) << cfg;
+	}
+}
