@@ -173,7 +173,12 @@ const std::vector<TKeyInfo> kKeys{
      "recorded per record_dropped; 0: off); EKF and alg1",
      kPrune},
     {"prune_window", "int >= 0; >= 1 with prune_min_sightings", "0", "steps",
-     "the steps from a static landmark's first reading on in which it is counted (0: off)",
+     "the steps from a static landmark's first reading on in which it is counted (0: off)", kPrune},
+    {"fuse_landmarks_prob", "0, or probability in (0, 1)", "0", "-",
+     "two static landmarks whose difference passes the chi-square test (2 dof) at this "
+     "probability, each the other's only compatible neighbour and never read in one step, are "
+     "fused, the newer ID read as the older one (re-identified landmarks after track breaks; "
+     "0: off); EKF with feature_labels = ids, not compressed",
      kPrune}};
 }  // namespace
 

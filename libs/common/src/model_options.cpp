@@ -120,6 +120,7 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	prune_window = int(readInt(c, s, "prune_window", prune_window));
 	drop_object_after_unseen_steps =
 	    int(readInt(c, s, "drop_object_after_unseen_steps", drop_object_after_unseen_steps));
+	fuse_landmarks_prob = readDouble(c, s, "fuse_landmarks_prob", fuse_landmarks_prob);
 	skip_prediction_on_empty_map =
 	    readBool(c, s, "skip_prediction_on_empty_map", skip_prediction_on_empty_map);
 	{
@@ -186,6 +187,24 @@ void validatePruning(int k, int W)
 		                            ": k > W would prune every landmark (at most one reading "
 		                            "per step); need prune_min_sightings <= prune_window");
 }
+
+/** fuse_landmarks_prob: 0 (off) or in (0, 1); the EKF's full state with feature_labels = ids. */
+void validateFusion(const TModelOptions& o)
+{
+	const double p = o.fuse_landmarks_prob;
+	if (p == 0) return;
+	const std::string kw = "fuse_landmarks_prob = " + std::to_string(p);
+	if (!(p > 0 && p < 1))
+		throw std::invalid_argument(kw + ": must be a probability in (0, 1) (0 = off)");
+	if (o.feature_labels != "ids")
+		throw std::invalid_argument(
+		    kw + ": implemented for feature_labels = ids only (feature_labels = " +
+		    o.feature_labels + " keeps its own tracks per ID)");
+	if (o.compressed_static_update)
+		throw std::invalid_argument(kw +
+		                            ": not implemented with static_update = compressed (the "
+		                            "landmarks of the fused pair may be out of the working state)");
+}
 }  // namespace
 
 bool TModelOptions::objectCentric() const
@@ -238,6 +257,7 @@ void TModelOptions::validate() const
 		    "drop_object_after_unseen_steps = " + std::to_string(drop_object_after_unseen_steps) +
 		    ": implemented for feature_labels = ids only (feature_labels = " + feature_labels +
 		    " links and merges objects across breaks)");
+	validateFusion(*this);
 	if (!initial_pose.allFinite()) throw std::invalid_argument("initial_pose: not finite");
 	if (!(innovation_gate >= 0 && innovation_gate < 1))
 		throw std::invalid_argument("innovation_gate = " + std::to_string(innovation_gate) +
@@ -354,6 +374,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "prune_min_sightings            = " << prune_min_sightings << "\n";
 	out << "prune_window                   = " << prune_window << "\n";
 	out << "drop_object_after_unseen_steps = " << drop_object_after_unseen_steps << "\n";
+	out << "fuse_landmarks_prob            = " << fuse_landmarks_prob << "\n";
 	out << "skip_prediction_on_empty_map   = " << (skip_prediction_on_empty_map ? "true" : "false")
 	    << "\n";
 	out << "static_update                  = "

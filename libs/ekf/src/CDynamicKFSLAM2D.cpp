@@ -136,6 +136,13 @@ void CDynamicKFSLAM2D::reset()
 	m_gaugeOrigin = options.initial_pose.head<2>();
 	makeSeams();
 	m_drop = estimator::CDropPolicy(options.dropOptions());
+	m_fusion = estimator::CLandmarkFusion(options.fuse_landmarks_prob);
+	m_fusions.clear();
+	if (m_fusion.enabled() && m_lifecycle->rewritesStorage())
+		throw std::invalid_argument(
+		    "CDynamicKFSLAM2D: fuse_landmarks_prob needs the full state "
+		    "(the state lifecycle " +
+		    m_lifecycle->name() + " keeps landmarks out of it)");
 	m_lifecycle->reset();
 	m_whole.valid = false;
 	m_layout.clear();
@@ -213,18 +220,10 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 	try
 	{
 		expandIfNeeded();  // compressed EKF only
-		estimator::TRouterContext ctx;
-		ctx.model = options.measurement_model;
-		ctx.R = options.Sigma_v;
-		ctx.sensor_pose = m_in.sensor_pose;
-		ctx.u = m_in.u;
-		ctx.U = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
-		ctx.static_innovation =
-		    [this](int32_t id, const Eigen::Vector2d& z, estimator::TStaticInnovation& o)
-		{ return staticInnovation(id, z, o); };
-		m_router->setContext(ctx);
+		m_router->setContext(routerContext());
 		m_routed = m_router->route(m_step, m_in.readings,
 		                           [this](int32_t id) { return m_staticBlock.count(id) != 0; });
+		resolveFusedIds();  // fuse_landmarks_prob: fused IDs read as their landmark
 		m_report.skipped_unknown_object_feature = m_routed.skipped_unknown_object_feature;
 		m_report.skipped_dropped_object = m_routed.skipped_dropped_object;
 		m_report.classify_candidates = m_routed.candidates;
@@ -262,6 +261,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		planObjectDrops(plan);  // drop_object_after_unseen_steps
 		planFallbacks(plan);    // object-centric motion models only (cv_fallback_steps)
 		commit(plan);
+		fuseLandmarks();         // fuse_landmarks_prob only
 		mergeLinkedObjects();    // classify_merge_linked (object-centric models) only
 		mergeLiveObjects();      // classify_merge_live only
 		recordFirstEstimates();  // first-estimate Jacobians (optional)
@@ -301,6 +301,20 @@ void CDynamicKFSLAM2D::propagateEgo()
 	}
 	if (options.first_estimate_jacobians)
 		m_predictedEgo = Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]);
+}
+
+estimator::TRouterContext CDynamicKFSLAM2D::routerContext() const
+{
+	estimator::TRouterContext ctx;
+	ctx.model = options.measurement_model;
+	ctx.R = options.Sigma_v;
+	ctx.sensor_pose = m_in.sensor_pose;
+	ctx.u = m_in.u;
+	ctx.U = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
+	ctx.static_innovation =
+	    [this](int32_t id, const Eigen::Vector2d& z, estimator::TStaticInnovation& o)
+	{ return staticInnovation(id, z, o); };
+	return ctx;
 }
 
 estimator::TUpdateContext CDynamicKFSLAM2D::updateContext() const

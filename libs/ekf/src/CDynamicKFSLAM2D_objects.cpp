@@ -171,7 +171,7 @@ void CDynamicKFSLAM2D::convertStaticLandmarks(
 	for (const auto& c : conversions)
 	{
 		m_layout.convertToObjectFeature0(m_staticBlock.at(c.id), c.object, c.feature);
-		m_drop.forget(c.id);
+		forgetStatic(c.id);
 		++m_report.converted_static;
 	}
 	onLayoutChanged();
@@ -377,7 +377,7 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 		const bool isMoving = contains(moving, t.id);
 		if (isMoving || contains(candidates, t.id))
 		{
-			m_drop.forget(t.id);
+			forgetStatic(t.id);
 			remove.push_back(b);
 			++(isMoving ? m_report.reclassified_static : m_report.dropped_candidates);
 			continue;
@@ -391,7 +391,7 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 		e.cov = ekf::marginal(P, idx);
 		e.in_state = false;
 		if (m_drop.record()) m_droppedStatic.push_back(e);
-		m_drop.forget(t.id);  // only landmarks in the state are tracked
+		forgetStatic(t.id);  // only landmarks in the state are tracked
 		remove.push_back(b);
 		++(unseen ? m_report.dropped_static : m_report.pruned_static);
 	}

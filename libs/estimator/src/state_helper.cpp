@@ -1,5 +1,7 @@
 #include <dynslam/estimator/state_helper.h>
 
+#include <Eigen/Cholesky>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -75,5 +77,37 @@ void replace(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
 	P(out, Eigen::all) = B.transpose();
 	P(out, out) = C;
 	x(out) = g;
+}
+
+void condition(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
+               const std::vector<int>& a, const std::vector<int>& b)
+{
+	const Eigen::Index n = x.size(), k = Eigen::Index(a.size());
+	const auto inRange = [n](int i) { return i >= 0 && i < n; };
+	if (k == 0 || b.size() != a.size() || P.rows() != n || P.cols() != n ||
+	    !std::all_of(a.begin(), a.end(), inRange) || !std::all_of(b.begin(), b.end(), inRange))
+		throw std::invalid_argument("state::condition: sizes do not match (" +
+		                            std::to_string(a.size()) + " and " + std::to_string(b.size()) +
+		                            " entries of " + std::to_string(n) + ")");
+	for (const int i : a)
+		if (std::find(b.begin(), b.end(), i) != b.end())
+			throw std::invalid_argument("state::condition: a and b overlap");
+	const Eigen::MatrixXd A = P(Eigen::all, a) - P(Eigen::all, b);  // P H^T, n x k
+	const Eigen::MatrixXd S = A(a, Eigen::all) - A(b, Eigen::all);  // H P H^T
+	const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
+	if (llt.info() != Eigen::Success)
+		throw std::runtime_error(
+		    "state::condition: the covariance of the difference is not positive definite");
+	const Eigen::VectorXd d = x(a) - x(b);
+	x.noalias() -= A * llt.solve(d);
+	const Eigen::MatrixXd Kt = llt.solve(A.transpose());  // (A S^-1)^T, k x n
+	// P - A S^-1 A^T, written symmetric: the upper triangle computed, mirrored.
+	for (Eigen::Index r = 0; r < n; ++r)
+		for (Eigen::Index c = r; c < n; ++c)
+		{
+			const double v = P(r, c) - A.row(r).dot(Kt.col(c));
+			P(r, c) = v;
+			P(c, r) = v;
+		}
 }
 }  // namespace dynslam::estimator::state

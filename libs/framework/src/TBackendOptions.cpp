@@ -130,6 +130,11 @@ void TBackendOptions::validate() const
 		                            std::to_string(model.drop_object_after_unseen_steps) +
 		                            ": implemented in the dynamic EKF only; the framework "
 		                            "back-ends need 0");
+	if (model.fuse_landmarks_prob != 0)
+		throw std::invalid_argument("[" + model_section + "] fuse_landmarks_prob = " +
+		                            std::to_string(model.fuse_landmarks_prob) +
+		                            ": landmark fusion is implemented in the dynamic EKF only; "
+		                            "the framework back-ends need 0");
 	if (model.odometry_bias.enabled())
 		throw std::invalid_argument(
 		    "[" + model_section + "] odometry_bias = " + model.odometry_bias.mode +

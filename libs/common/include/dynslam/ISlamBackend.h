@@ -82,6 +82,10 @@ struct TStepReport
 	/** drop_object_after_unseen_steps: objects dropped from the state at this step (their
 	 * tracks recorded per record_dropped), and readings of dropped objects (skipped). */
 	size_t dropped_objects = 0, skipped_dropped_object = 0;
+	/** fuse_landmarks_prob: static landmarks fused into another one (re-identified; recorded per
+	 * record_dropped like dropped_static), and readings skipped because another reading of
+	 * the step already went to the same fused landmark. */
+	size_t fused_static = 0, skipped_fused_duplicate = 0;
 	size_t gated_out = 0;  ///< static measurements rejected by the innovation gate
 	/** object_model = cv: object readings used as updates, rejected by cv_gate. */
 	size_t object_feature_updates = 0, object_gated_out = 0;

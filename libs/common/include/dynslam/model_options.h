@@ -94,6 +94,12 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * later readings are skipped and counted (TStepReport::skipped_dropped_object); 0 = never
 	 * (default). The dynamic EKF with feature_labels = ids only. */
 	int drop_object_after_unseen_steps = 0;
+	/** Landmark fusion (issue 29; estimator/landmark_fusion.h, doc/robustness.md): two static
+	 * landmarks are one point (a landmark re-identified under a new ID after a track break)
+	 * when their difference passes a chi-square test with this probability (2 dof); the newer
+	 * one is fused into the older one and its ID read as the older one's. 0 = off (default),
+	 * else in (0, 1). The dynamic EKF with feature_labels = ids and a full state only. */
+	double fuse_landmarks_prob = 0;
 	/** Reproduce CRangeBearingKFSLAM2D, which skips the prediction (mean and covariance)
 	 * while the map is empty. Off by default: it ignores the motion before the first
 	 * landmark. Only for comparisons with MRPT's filter. */

@@ -39,6 +39,7 @@
 #include <dynslam/ekf_steps.h>
 #include <dynslam/estimator/compressed_state.h>
 #include <dynslam/estimator/drop_policy.h>
+#include <dynslam/estimator/landmark_fusion.h>
 #include <dynslam/estimator/live_merge.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_modes.h>
@@ -102,23 +103,18 @@ public:
 	/** Options, section [DynamicKFSLAM] (KF_options in [DynamicKFSLAM_KalmanFilter]): the
 	 * model shared with the framework, dynslam/model_options.h. */
 	using TOptions = TModelOptions;
-
 	TOptions options;
-
 	CDynamicKFSLAM2D();
 	~CDynamicKFSLAM2D() override = default;
 	// Not copyable (KF_options holds a reference to the logger's level, see mrpt-notes).
 	CDynamicKFSLAM2D(const CDynamicKFSLAM2D&) = delete;
 	CDynamicKFSLAM2D& operator=(const CDynamicKFSLAM2D&) = delete;
-
 	/** Clears the map and sets the ego pose to options.initial_pose / Sigma_0. */
 	void reset();
-
 	/** Loads `options` from [section] and `KF_options` from [section_KalmanFilter], validates
 	 * and resets. Required keys throw when missing. */
 	void loadOptions(const mrpt::config::CConfigFileBase& ini,
 	                 const std::string& section = "DynamicKFSLAM");
-
 	/** One filter step (see the file comment). Throws std::runtime_error on bad input (wrong
 	 * action type, NaN/Inf, duplicate or invalid IDs), leaving the filter unchanged. */
 	void processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
@@ -190,6 +186,8 @@ public:
 	/** State vector index of the pad entries (for checks). */
 	std::vector<size_t> padIndices() const;
 	const TStepReport& getLastStepReport() const override { return m_report; }
+	/** fuse_landmarks_prob (CDynamicKFSLAM2D_fusion.cpp): every fusion so far (record_dropped). */
+	const std::vector<estimator::TFusionPair>& getFusedLandmarks() const { return m_fusions; }
 	/** The router's decisions about the last step's readings, in observation order. */
 	const estimator::TRoutedStep& lastRoutedStep() const { return m_routed; }
 	int stepCount() const { return m_step + 1; }
@@ -320,6 +318,7 @@ private:
 	/** MRPT's update (CMrptUpdateEngine): runOneKalmanIteration with the prediction skipped. */
 	estimator::TUpdateResult runMrptUpdate(const std::vector<estimator::TStaticObservation>& obs,
 	                                       const estimator::TUpdateContext& ctx);
+	estimator::TRouterContext routerContext() const;  ///< the step's context for the router
 	estimator::TUpdateContext updateContext() const;
 	/** What a step adds and drops, before it is written to the state: the new features as an
 	 * augmentation a of the current state, the object poses as an augmentation b of the state
@@ -451,6 +450,12 @@ private:
 	 */
 	void makeSeams();
 	estimator::CDropPolicy m_drop;
+	// landmark fusion (fuse_landmarks_prob, CDynamicKFSLAM2D_fusion.cpp)
+	void resolveFusedIds();         ///< after routing: fused IDs read as their landmark
+	void fuseLandmarks();           ///< after the commit: the step's fusions
+	void forgetStatic(int32_t id);  ///< a static landmark left the state (drop policy, fusion)
+	estimator::CLandmarkFusion m_fusion;
+	std::vector<estimator::TFusionPair> m_fusions;
 
 	// inputs of the current step
 	estimator::TStepInput m_in;

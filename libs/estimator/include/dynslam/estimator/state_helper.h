@@ -7,7 +7,9 @@
  *  - augment: a new block with mean g(x[in]), Jacobian J on x[in] and noise R;
  *  - marginalize: blocks leave the state (their mean and covariance entries dropped);
  *  - replace: x[out] <- g(x[in]), P <- T P T^T, T the identity but for the rows `out`, which are
- *    J on the columns `in` (state surgery, merges).
+ *    J on the columns `in` (state surgery, merges);
+ *  - condition: the perfect constraint x[a] = x[b] (landmark fusion: a noise-free update on the
+ *    difference; marginalize b afterwards).
  * Pure Eigen; tested against dense computations (tests/estimator/test_state_helper.cpp). */
 #include <dynslam/ekf_steps.h>
 #include <dynslam/estimator/state_layout.h>
@@ -48,4 +50,14 @@ void marginalize(Eigen::VectorXd& x, ekf::RowMatrixXd& P, CPaddedLayout& layout,
 void replace(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
              const std::vector<int>& in, const std::vector<int>& out, const Eigen::VectorXd& g,
              const Eigen::MatrixXd& J);
+
+/** Conditions (x, P) on the perfect constraint x[a] = x[b] (|a| = |b| = k, disjoint): the Kalman
+ * update with H = [.. I_a .. -I_b ..], the reading 0 and no noise. With A = P[:, a] - P[:, b]
+ * (n x k) and S = A[a, :] - A[b, :] = P_aa + P_bb - P_ab - P_ba: x <- x - A S^-1 (x[a] - x[b]),
+ * P <- P - A S^-1 A^T (a rank-k update, O(n^2 k); P stays exactly symmetric). Afterwards x[a] =
+ * x[b] and the rows a and b of P are equal (P is singular): marginalize one of them next (the
+ * landmark fusion, landmark_fusion.h). Throws std::invalid_argument on sizes or overlapping
+ * indices, std::runtime_error if S is not positive definite (nothing changed then). */
+void condition(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<ekf::RowMatrixXd> P,
+               const std::vector<int>& a, const std::vector<int>& b);
 }  // namespace dynslam::estimator::state
