@@ -214,6 +214,7 @@ CClassifyingRouter::Act CClassifyingRouter::classifyOne(
     std::vector<int32_t>& turnedMoving, const std::function<bool(int32_t)>& isKnownStatic)
 {
 	TTrack& t = m_tracks[id];
+	m_live.insert(id);  // read: predictTracks decides from the next step on
 	if (t.first_seen < 0) t.first_seen = step;
 	remember(t, z, step, m_p.max_window + 2);
 	Act act = Act::Skip;
@@ -375,7 +376,6 @@ TRoutedStep CClassifyingRouter::route(int step, const std::vector<TReading>& rea
 		}
 		bool c = false;
 		noteHint(m_tracks[rd[i].id], rd[i].hint, out);
-		m_live.insert(rd[i].id);  // read: predictTracks decides from the next step on
 		act[i] = classifyOne(rd[i].id, pts[i], step, out, c, turnedMoving, isKnownStatic);
 		candidate[i] = c;
 	}
