@@ -6,10 +6,15 @@ function(dynslam_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Winvalid-pch)
 endfunction()
 
-# dynslam_add_library(NAME <name> SOURCES ... [MRPT_PCH] LIBS ...)
+# dynslam_add_library(NAME <name> SOURCES ... [MRPT_PCH] [EXPORT_SET <set>] LIBS ...)
 # Creates dynslam_<name> (alias dynslam::<name>), public headers in libs/<name>/include.
+# EXPORT_SET: the installed export set (default dynslamTargets; dynslam::apps has its own,
+# loaded by dynslamConfig.cmake only with OpenCV's videoio, doc/building.md).
 function(dynslam_add_library)
-  cmake_parse_arguments(A "MRPT_PCH" "NAME" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(A "MRPT_PCH" "NAME;EXPORT_SET" "SOURCES;LIBS" ${ARGN})
+  if(NOT A_EXPORT_SET)
+    set(A_EXPORT_SET dynslamTargets)
+  endif()
   set(t dynslam_${A_NAME})
   add_library(${t} ${A_SOURCES})
   add_library(dynslam::${A_NAME} ALIAS ${t})
@@ -23,7 +28,7 @@ function(dynslam_add_library)
   if(A_MRPT_PCH)
     dynslam_mrpt_pch(${t})
   endif()
-  install(TARGETS ${t} EXPORT dynslamTargets
+  install(TARGETS ${t} EXPORT ${A_EXPORT_SET}
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

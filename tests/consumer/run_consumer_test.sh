@@ -8,6 +8,12 @@ cmake --install "$BUILD" --prefix "$WORK/prefix" >/dev/null
 cmake -S "$SRC" -B "$WORK/build" -DCMAKE_PREFIX_PATH="$WORK/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$WORK/build" -j2 >/dev/null
 "$WORK/build/consumer"
+# The estimator libraries without apps: no OpenCV looked for (project_estimator/CMakeLists.txt).
+cmake -S "$SRC/../project_estimator" -B "$WORK/build_estimator" -DCMAKE_PREFIX_PATH="$WORK/prefix" \
+  -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$WORK/build_estimator" -j2 >/dev/null
+"$WORK/build_estimator/consumer_estimator"
+echo "consumer: find_package(dynslam COMPONENTS <all but apps>) without OpenCV ok"
 # The installed dynslam-montecarlo finds its module libdynslam_slam_services.so (MRPT's static
 # filter; doc/results/performance.md section 14) through its RUNPATH $ORIGIN/../lib: one static run.
 MC="$WORK/prefix/bin/dynslam-montecarlo"

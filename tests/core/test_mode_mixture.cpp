@@ -22,6 +22,15 @@ using Eigen::VectorXd;
 
 namespace
 {
+/** Entries uniform in [-1, 1] from the seeded test engine (not Eigen's Random: std::rand). */
+MatrixXd randomMatrix(int rows, int cols)
+{
+	MatrixXd A(rows, cols);
+	for (int i = 0; i < rows; ++i)
+		for (int j = 0; j < cols; ++j) A(i, j) = uniform(-1, 1);
+	return A;
+}
+
 MatrixXd randomSpd(int n, double scale)
 {
 	MatrixXd A(n, n);
@@ -130,8 +139,8 @@ TEST(ModeMixture, OneModeWithAllTheWeightIsThatModesPrediction)
 {
 	dynslam_test::rng(2802);
 	const MatrixXd P = randomSpd(4, 0.1);
-	std::vector<VectorXd> s_j = {VectorXd::Random(4), VectorXd::Random(4)};
-	std::vector<MatrixXd> F_j = {MatrixXd::Random(4, 4), MatrixXd::Random(4, 4)};
+	std::vector<VectorXd> s_j = {randomMatrix(4, 1), randomMatrix(4, 1)};
+	std::vector<MatrixXd> F_j = {randomMatrix(4, 4), randomMatrix(4, 4)};
 	std::vector<MatrixXd> Q_j = {randomSpd(4, 0.01), randomSpd(4, 0.01)};
 	const TModeMixture mix = mixModes(s_j, F_j, Q_j, Eigen::Vector2d(0, 1), P);
 	EXPECT_LT((mix.s - s_j[1]).norm(), 1e-15);
@@ -160,10 +169,50 @@ TEST(ModeMixture, SwitchingPosteriorAndLikelihoodAgainstHandComputations)
 
 	dynslam_test::rng(2803);
 	const MatrixXd S = randomSpd(4, 1.0);
-	const VectorXd nu = VectorXd::Random(4);
+	const VectorXd nu = randomMatrix(4, 1);
 	const double ref_ll = -0.5 * (nu.dot(S.inverse() * nu) + std::log(S.determinant()));
 	EXPECT_NEAR(gaussianLogLikelihood(nu, S), ref_ll, 1e-12);
 	EXPECT_THROW(gaussianLogLikelihood(nu, -S), std::runtime_error);
+}
+
+TEST(ModeMixture, ReadingsLikelihoodUnderAModesPredictionEqualsSequentialConditioning)
+{
+	// e = [ego (3); s (4); two f_0 (4)], three readings with their own noise. Independent of
+	// the batch formula: the mode's prediction entry by entry, then log p(nu) by the chain rule,
+	// one reading at a time (sequential Kalman conditioning of the prediction's error).
+	dynslam_test::rng(2805);
+	const int n = 11, off = 3, ns = 4, m = 3;
+	const MatrixXd P_e = randomSpd(n, 0.5), Q = randomSpd(ns, 0.1);
+	const MatrixXd F = MatrixXd::Identity(ns, ns) + 0.3 * randomMatrix(ns, ns);
+	const MatrixXd H = randomMatrix(2 * m, n);
+	const VectorXd nu = randomMatrix(2 * m, 1);
+	MatrixXd R = MatrixXd::Zero(2 * m, 2 * m);
+	for (int r = 0; r < m; ++r) R.block(2 * r, 2 * r, 2, 2) = randomSpd(2, 0.2);
+	MatrixXd P = P_e;  // the prediction: rows, then columns of s through F
+	for (int i = 0; i < n; ++i)
+		P.row(i).segment(off, ns) = (F * P_e.row(i).segment(off, ns).transpose()).transpose();
+	const MatrixXd Prow = P;
+	for (int j = 0; j < n; ++j) P.col(j).segment(off, ns) = F * Prow.col(j).segment(off, ns);
+	P.block(off, off, ns, ns) += Q;
+	VectorXd delta = VectorXd::Zero(n);  // the conditional mean of the prediction's error
+	double ll = 0;
+	for (int r = 0; r < m; ++r)
+	{
+		const MatrixXd Hr = H.middleRows(2 * r, 2);
+		const MatrixXd S = Hr * P * Hr.transpose() + R.block(2 * r, 2 * r, 2, 2);
+		const VectorXd y = nu.segment(2 * r, 2) - Hr * delta;
+		ll += -0.5 * (y.dot(S.inverse() * y) + std::log(S.determinant()));
+		const MatrixXd K = P * Hr.transpose() * S.inverse();
+		delta += K * y;
+		P -= K * S * K.transpose();
+	}
+	EXPECT_NEAR(predictedReadingsLogLikelihood(P_e, off, F, Q, H, nu, R), ll, 1e-10);
+	// Sizes: s beyond e, H's columns, R's size.
+	EXPECT_THROW(predictedReadingsLogLikelihood(P_e, n - 2, F, Q, H, nu, R), std::invalid_argument);
+	EXPECT_THROW(predictedReadingsLogLikelihood(P_e, off, F, Q, H.leftCols(n - 1), nu, R),
+	             std::invalid_argument);
+	EXPECT_THROW(predictedReadingsLogLikelihood(P_e, off, F, Q, H, nu, R.topLeftCorner(4, 4)),
+	             std::invalid_argument);
 }
 
 TEST(ModeMixture, BadInputIsAClearError)

@@ -101,10 +101,11 @@ TEST(MultipleModel, ModesAreStationaryCvTurnAndManoeuvre)
 	EXPECT_NEAR(Pi(1, 1), 1 - p.mm_switch_prob, 1e-15);
 	EXPECT_LT((Pi.rowwise().sum() - VectorXd::Ones(4)).norm(), 1e-15);
 	EXPECT_LT((m.initialModeProbabilities() - VectorXd::Constant(4, 0.25)).norm(), 1e-15);
-	// the registry: object-centric, the EKF only
+	// the registry: object-centric, the EKF and Alg. 1 (not the window back-ends)
 	const auto& caps = estimator::objectMotionModels().caps("mm");
 	EXPECT_TRUE(caps.object_centric);
-	EXPECT_FALSE(caps.framework);
+	EXPECT_TRUE(caps.framework);
+	EXPECT_FALSE(caps.window);
 }
 
 TEST(MultipleModel, OptionsAndBadInput)

@@ -47,8 +47,9 @@ TEST(Registries, ObjectMotionModelsAndTheirCapabilities)
 	EXPECT_FALSE(r.caps("ca").window);
 	EXPECT_EQ(r.make("mm", p)->name(), "mm");
 	EXPECT_EQ(r.make("mm", p)->modeCount(), 4);
-	EXPECT_FALSE(r.caps("mm").framework);  // the EKF only
-	p.smoothing = true;                    // paper with smoothing = true is the paper's smoothing
+	EXPECT_TRUE(r.caps("mm").framework);  // the EKF and Alg. 1
+	EXPECT_FALSE(r.caps("mm").window);
+	p.smoothing = true;  // paper with smoothing = true is the paper's smoothing
 	EXPECT_EQ(r.make("paper", p)->name(), "paper_smoothing");
 	EXPECT_TRUE(r.caps("paper_smoothing").smoothing);
 	EXPECT_FALSE(r.caps("cv").window);

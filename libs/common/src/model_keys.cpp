@@ -70,7 +70,7 @@ const std::vector<TKeyInfo> kKeys{
     {"ca_accel_prior_std", "vector of 3, > 0", "[0.5 0.5 0.05]", "[m/s^2, m/s^2, rad/s^2]",
      "ca: initialisation noise of an object's acceleration (mean 0)", kMotion},
     {"mm_switch_prob", "probability in (0, 1)", "0.01", "-",
-     "mm: probability of leaving a mode per step (Markov switching, spread evenly); EKF only",
+     "mm: probability of leaving a mode per step (Markov switching, spread evenly); EKF and alg1",
      kMotion},
     {"mm_manoeuvre_psd", "vector of 3, > 0", "[16 16 0.1]", "[m^2/s^3, m^2/s^3, rad^2/s^3]",
      "mm: white-acceleration spectral densities of the manoeuvre mode", kMotion},

@@ -100,4 +100,21 @@ double gaussianLogLikelihood(const Eigen::VectorXd& nu, const Eigen::MatrixXd& S
 	const double logDet = 2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
 	return -0.5 * (y.squaredNorm() + logDet);
 }
+
+double predictedReadingsLogLikelihood(const Eigen::MatrixXd& P_e, Eigen::Index sOffset,
+                                      const Eigen::MatrixXd& F, const Eigen::MatrixXd& Q,
+                                      const Eigen::MatrixXd& H, const Eigen::VectorXd& nu,
+                                      const Eigen::MatrixXd& R)
+{
+	const Eigen::Index n = P_e.rows(), ns = F.rows();
+	if (P_e.cols() != n || F.cols() != ns || Q.rows() != ns || Q.cols() != ns || sOffset < 0 ||
+	    sOffset + ns > n || H.cols() != n || H.rows() != nu.size() || R.rows() != nu.size() ||
+	    R.cols() != nu.size())
+		throw std::invalid_argument("predictedReadingsLogLikelihood: sizes do not match");
+	Eigen::MatrixXd T = Eigen::MatrixXd::Identity(n, n);
+	T.block(sOffset, sOffset, ns, ns) = F;
+	Eigen::MatrixXd P = T * P_e * T.transpose();
+	P.block(sOffset, sOffset, ns, ns) += Q;
+	return gaussianLogLikelihood(nu, H * P * H.transpose() + R);
+}
 }  // namespace dynslam::models

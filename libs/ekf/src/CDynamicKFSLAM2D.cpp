@@ -150,8 +150,7 @@ void CDynamicKFSLAM2D::reset()
 	m_lostNow.clear();
 	m_awaitingVel.clear();
 	m_reinitNow.clear();
-	m_modeProb.clear();
-	m_modeHistory.clear();
+	m_modes.clear();
 	m_failed = false;
 	m_firstEstimate.clear();
 	m_predictedEgo.reset();

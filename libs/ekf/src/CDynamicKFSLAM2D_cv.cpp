@@ -118,7 +118,7 @@ void CDynamicKFSLAM2D::predictObjects()
 		}
 		m_layout.setStep(st.pose, m_step);
 	}
-	forgetStaleModes();
+	if (!m_modes.probabilities().empty()) m_modes.forget(objectsWithVelocity());
 	onLayoutChanged();
 }
 

@@ -6,7 +6,6 @@
 #include <dynslam/ekf_steps.h>
 #include <dynslam/models/mode_mixture.h>
 
-#include <algorithm>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -19,39 +18,22 @@ using estimator::BlockKind;
 
 std::vector<std::string> CDynamicKFSLAM2D::objectModeNames() const
 {
-	std::vector<std::string> out;
-	for (int j = 0; j < m_motion->modeCount(); ++j) out.push_back(m_motion->modeName(j));
-	return out;
+	return estimator::modeNames(*m_motion);
 }
 
 void CDynamicKFSLAM2D::predictObjectModes(int32_t obj, const std::vector<int>& idx)
 {
 	auto x = m_xkk.asEigen();
 	auto P = cov();
-	const int M = m_motion->modeCount();
-	auto it = m_modeProb.find(obj);
-	if (it == m_modeProb.end())
-		it = m_modeProb.emplace(obj, m_motion->initialModeProbabilities()).first;
-	const Eigen::VectorXd s = x(idx);
-	std::vector<Eigen::VectorXd> s_j(static_cast<size_t>(M));
-	std::vector<Eigen::MatrixXd> F_j(static_cast<size_t>(M)), Q_j(static_cast<size_t>(M));
-	for (int j = 0; j < M; ++j)
-		s_j[size_t(j)] = m_motion->predictMode(j, s, &F_j[size_t(j)], &Q_j[size_t(j)]);
-	const Eigen::VectorXd logL = modeLogLikelihoods(obj, idx, s_j, F_j, Q_j);
-	it->second = models::modePosterior(it->second, m_motion->modeTransition(), logL);
-	auto& history = m_modeHistory[obj];
-	if (!m_drop.record()) history.clear();  // record_dropped = false: the newest only
-	history.emplace_back(m_step, it->second);
-	const int d = int(idx.size()) / 2;
-	const models::TModeMixture mix = models::mixModes(
-	    s_j, F_j, Q_j, models::prunedWeights(it->second), ekf::marginal(P, idx), d == 3 ? 2 : -1);
+	const models::TModeMixture mix = m_modes.predict(
+	    *m_motion, obj, m_step, x(idx), ekf::marginal(P, idx),
+	    [&](const estimator::TModePredictions& pred) { return modeLogLikelihoods(obj, idx, pred); },
+	    m_drop.record());
 	ekf::predictSubset(x, P, idx, mix.s, mix.F, mix.Q_eff);
 }
 
 Eigen::VectorXd CDynamicKFSLAM2D::modeLogLikelihoods(int32_t obj, const std::vector<int>& idx,
-                                                     const std::vector<Eigen::VectorXd>& s_j,
-                                                     const std::vector<Eigen::MatrixXd>& F_j,
-                                                     const std::vector<Eigen::MatrixXd>& Q_j) const
+                                                     const estimator::TModePredictions& pred) const
 {
 	std::vector<estimator::TRoutedReading> readings;  // copies: with() returns a temporary
 	for (const auto& m : m_routed.with(estimator::Route::ObjectTimeT))
@@ -81,18 +63,14 @@ Eigen::VectorXd CDynamicKFSLAM2D::modeLogLikelihoods(int32_t obj, const std::vec
 	Eigen::Matrix2Xd f0(2, n);
 	for (Eigen::Index k = 0; k < n; ++k) f0.col(k) = x.segment(all[size_t(3 + ns + 2 * k)], 2);
 	const Eigen::Vector3d ego = x.head<3>();
-	Eigen::VectorXd logL(Eigen::Index(s_j.size()));
-	for (size_t j = 0; j < s_j.size(); ++j)
+	Eigen::MatrixXd R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+	for (Eigen::Index r = 0; r < m; ++r) R.block(2 * r, 2 * r, 2, 2) = options.Sigma_v;
+	Eigen::VectorXd logL(Eigen::Index(pred.s.size()));
+	for (size_t j = 0; j < pred.s.size(); ++j)
 	{
-		// Mode j's joint prediction of the entries `all`: T P T^T + Q on the motion state.
-		Eigen::MatrixXd T = Eigen::MatrixXd::Identity(P_all.rows(), P_all.cols());
-		T.block(3, 3, ns, ns) = F_j[j];
-		Eigen::MatrixXd P_j = T * P_all * T.transpose();
-		P_j.block(3, 3, ns, ns) += Q_j[j];
-		const Eigen::VectorXd xi = s_j[j].head(d);
+		const Eigen::VectorXd xi = pred.s[j].head(d);
 		Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * m, P_all.cols());
 		Eigen::VectorXd nu(2 * m);
-		Eigen::MatrixXd R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
 		for (Eigen::Index r = 0; r < m; ++r)
 		{
 			models::Matrix23d J_z_x;
@@ -105,9 +83,9 @@ Eigen::VectorXd CDynamicKFSLAM2D::modeLogLikelihoods(int32_t obj, const std::vec
 			H.block(2 * r, 3, 2, d) = J_z_xi;  // the velocity's columns stay 0
 			H.block(2 * r, 3 + ns, 2, 2 * n) = J_z_f0;
 			nu.segment(2 * r, 2) = models::innovation(options.measurement_model, z.z, zhat);
-			R.block(2 * r, 2 * r, 2, 2) = options.Sigma_v;
 		}
-		logL[Eigen::Index(j)] = models::gaussianLogLikelihood(nu, H * P_j * H.transpose() + R);
+		logL[Eigen::Index(j)] =
+		    models::predictedReadingsLogLikelihood(P_all, 3, pred.F[j], pred.Q[j], H, nu, R);
 	}
 	return logL;
 }
@@ -115,23 +93,7 @@ Eigen::VectorXd CDynamicKFSLAM2D::modeLogLikelihoods(int32_t obj, const std::vec
 void CDynamicKFSLAM2D::attachModeProbabilities(std::map<int32_t, TObjectTrack>& tracks) const
 {
 	for (auto& [obj, track] : tracks)
-	{
-		const auto h = m_modeHistory.find(obj);
-		if (h == m_modeHistory.end()) continue;
 		for (TObjectPoseEstimate& e : track.poses)
-		{
-			const auto it = std::lower_bound(h->second.begin(), h->second.end(), e.step,
-			                                 [](const auto& a, int s) { return a.first < s; });
-			if (it != h->second.end() && it->first == e.step) e.mode_probabilities = it->second;
-		}
-	}
-}
-
-void CDynamicKFSLAM2D::forgetStaleModes()
-{
-	if (m_modeProb.empty()) return;
-	const std::set<int32_t> live = objectsWithVelocity();
-	for (auto it = m_modeProb.begin(); it != m_modeProb.end();)
-		it = live.count(it->first) ? std::next(it) : m_modeProb.erase(it);
+			if (const Eigen::VectorXd* mu = m_modes.at(obj, e.step)) e.mode_probabilities = *mu;
 }
 }  // namespace dynslam

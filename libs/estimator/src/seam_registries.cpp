@@ -59,12 +59,10 @@ const CObjectMotionRegistry& objectMotionModels()
 		    [](const TObjectMotionParams& p)
 		    { return std::make_unique<CConstantAcceleration>(p.cv); },
 		    ca);
-		TObjectMotionCaps mm = objectCentric;
-		mm.framework = false;  // the EKF only (doc/state-layout.md "Multiple-model objects")
 		g.add(
 		    "mm",
 		    [](const TObjectMotionParams& p) { return std::make_unique<CMultipleModel>(p.cv); },
-		    mm);
+		    objectCentric);
 		return g;
 	}();
 	return r;

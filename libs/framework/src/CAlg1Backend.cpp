@@ -38,6 +38,7 @@ void CAlg1Backend::reset()
 	m_router->reset();
 	if (!m_userMotion) m_motion = makeMotionModel(m_opts.model);
 	m_velocitySince.clear();
+	m_modes.clear();
 	m_drop = estimator::CDropPolicy(m_opts.model.dropOptions());
 	m_droppedStatic.clear();
 	m_report = TStepReport();
@@ -94,7 +95,7 @@ void CAlg1Backend::processActionObservation(const mrpt::obs::CActionCollection::
 	m_report.skipped_unknown_object_feature = routed.skipped_unknown_object_feature;
 	m_report.skipped_unknown_id = routed.skipped_unknown_id;  // ID -1: no association here
 	propagate(in);                                            // Alg. 7 / Theorem A.5
-	predictObjects();                   // object-centric models only (cv, ctrv)
+	predictObjects(routed);             // object-centric models only (cv, ctrv, ca, mm)
 	staticSteps(routed);                // Alg. 5 / A.3, then Alg. 3 / A.1
 	objectFeatureUpdates(routed);       // object-centric models only
 	objectFeatureAugmentation(routed);  // Alg. 3 / A.1 (objects)

@@ -2,16 +2,20 @@
  * issue 13) as framework operations: the prediction of each object's pose and velocity is a
  * motion term followed by a marginalization (as Alg. 7 for the ego, Theorem A.5), the
  * sightings of an object are measurement terms and one GN step (Theorem A.3), the velocity of
- * a new object is an augmentation (GN step on its initialisation term, Theorem A.1). The EKF's
+ * a new object is an augmentation (GN step on its initialisation term, Theorem A.1); with
+ * object_model = mm the motion term is the modes' mixture (CObjectMixtureMotionTerm). The EKF's
  * counterparts are in libs/ekf/src/CDynamicKFSLAM2D_cv.cpp. */
 #include <dynslam/backend_results.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/framework/object_motion_terms.h>
+#include <dynslam/models/measurement.h>
+#include <dynslam/models/object_motion.h>
 #include <dynslam/seam_options.h>
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -53,7 +57,12 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeMotionMod
 
 bool CAlg1Backend::objectCentric() const { return m_motion->objectCentric(); }
 
-void CAlg1Backend::predictObjects()
+std::vector<std::string> CAlg1Backend::objectModeNames() const
+{
+	return estimator::modeNames(*m_motion);
+}
+
+void CAlg1Backend::predictObjects(const estimator::TRoutedStep& in)
 {
 	if (!objectCentric()) return;
 	for (auto& [obj, since] : m_velocitySince)
@@ -79,14 +88,83 @@ void CAlg1Backend::predictObjects()
 		m_router->registry().recordDroppedVelocity(obj, toVelocityRecord(e), m_drop.record());
 		Eigen::VectorXd s(d + dv);
 		s << m_cost.value(xi), m_cost.value(v);
-		const Eigen::VectorXd pred = m_motion->predict(s, nullptr, nullptr);
 		const TVarKey xiNext = TVarKey::objectPose(obj, m_step);
 		const TVarKey vNext = TVarKey::objectVelocity(obj, m_step);
-		m_cost.addVariable(xiNext, pred.head(d));
-		m_cost.addVariable(vNext, pred.tail(dv));
-		m_cost.addTerm(std::make_shared<CObjectMotionTerm>(m_motion, xi, v, xiNext, vNext));
+		if (m_motion->modeCount() > 0)  // object_model = mm
+		{
+			const models::TModeMixture mix = m_modes.predict(
+			    *m_motion, obj, m_step, s, m_cost.covariance({xi, v}),
+			    [&](const estimator::TModePredictions& p)
+			    { return modeLogLikelihoods(obj, xi, v, in, p); },
+			    m_drop.record());
+			m_cost.addVariable(xiNext, mix.s.head(d));
+			m_cost.addVariable(vNext, mix.s.tail(dv));
+			m_cost.addTerm(
+			    std::make_shared<CObjectMixtureMotionTerm>(xi, v, xiNext, vNext, s, mix));
+		}
+		else
+		{
+			const Eigen::VectorXd pred = m_motion->predict(s, nullptr, nullptr);
+			m_cost.addVariable(xiNext, pred.head(d));
+			m_cost.addVariable(vNext, pred.tail(dv));
+			m_cost.addTerm(std::make_shared<CObjectMotionTerm>(m_motion, xi, v, xiNext, vNext));
+		}
 		m_cost.marginalize({xi, v});
 	}
+	if (!m_modes.probabilities().empty())
+	{
+		std::set<int32_t> live;
+		for (const auto& [obj, since] : m_velocitySince) live.insert(obj);
+		m_modes.forget(live);
+	}
+}
+
+Eigen::VectorXd CAlg1Backend::modeLogLikelihoods(int32_t obj, const TVarKey& xi, const TVarKey& v,
+                                                 const estimator::TRoutedStep& in,
+                                                 const estimator::TModePredictions& pred) const
+{
+	std::vector<estimator::TRoutedReading> readings;
+	for (const auto& m : in.with(estimator::Route::ObjectTimeT))
+		if (m.object == obj) readings.push_back(m);
+	if (readings.empty()) return Eigen::VectorXd();
+	if (m_anchorPending)
+		throw std::logic_error("CAlg1Backend: object readings while the anchored ego is exact");
+	// The entries the readings depend on: ego, [pose; velocity], the features' f_0.
+	const estimator::TObjectEntry& info = m_router->registry().at(obj);
+	std::vector<TVarKey> blocks{m_ego, xi, v};
+	for (size_t j = 0; j < info.feature_ids.size(); ++j)
+		blocks.push_back(TVarKey::objectFeature(obj, info.feature_index[j], info.first_step));
+	const Eigen::MatrixXd P_e = m_cost.covariance(blocks);
+	const Eigen::Index n = Eigen::Index(info.feature_ids.size()), m = Eigen::Index(readings.size());
+	const Eigen::Index d = m_cost.dim(xi), ns = d + m_cost.dim(v);
+	Eigen::Matrix2Xd f0(2, n);
+	for (Eigen::Index k = 0; k < n; ++k) f0.col(k) = m_cost.value(blocks[size_t(3 + k)]);
+	const Eigen::Vector3d ego = m_cost.value(m_ego);
+	const auto& mo = m_opts.model;
+	Eigen::MatrixXd R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+	for (Eigen::Index r = 0; r < m; ++r) R.block(2 * r, 2 * r, 2, 2) = mo.Sigma_v;
+	Eigen::VectorXd logL(Eigen::Index(pred.s.size()));
+	for (size_t j = 0; j < pred.s.size(); ++j)
+	{
+		Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * m, P_e.cols());
+		Eigen::VectorXd nu(2 * m);
+		for (Eigen::Index r = 0; r < m; ++r)
+		{
+			models::Matrix23d Hx;
+			Eigen::MatrixXd H_xi, H_f0;
+			const auto& z = readings[size_t(r)].reading;
+			const Eigen::Vector2d zhat = models::observeObjectFeatureFromSensor(
+			    mo.measurement_model, ego, m_sensor, pred.s[j].head(d), f0, info.indexOf(z.id), &Hx,
+			    &H_xi, &H_f0);
+			H.block(2 * r, 0, 2, 3) = Hx;
+			H.block(2 * r, 3, 2, d) = H_xi;  // the velocity's columns stay 0
+			H.block(2 * r, 3 + ns, 2, 2 * n) = H_f0;
+			nu.segment(2 * r, 2) = models::innovation(mo.measurement_model, z.z, zhat);
+		}
+		logL[Eigen::Index(j)] =
+		    models::predictedReadingsLogLikelihood(P_e, 3, pred.F[j], pred.Q[j], H, nu, R);
+	}
+	return logL;
 }
 
 void CAlg1Backend::objectFeatureUpdates(const estimator::TRoutedStep& in)

@@ -123,6 +123,9 @@ std::map<int32_t, TObjectTrack> CAlg1Backend::getObjectTracks() const
 			out[k.id].poses.push_back(e);
 		}
 	sortTrackPoses(out);
+	for (auto& [obj, track] : out)  // object_model = mm
+		for (TObjectPoseEstimate& e : track.poses)
+			if (const Eigen::VectorXd* mu = m_modes.at(obj, e.step)) e.mode_probabilities = *mu;
 	return out;
 }
 

@@ -32,6 +32,37 @@ TLinearization CObjectMotionTerm::linearize(const std::vector<Eigen::VectorXd>& 
 	return L;
 }
 
+CObjectMixtureMotionTerm::CObjectMixtureMotionTerm(const TVarKey& xiPrev, const TVarKey& vPrev,
+                                                   const TVarKey& xi, const TVarKey& v,
+                                                   const Eigen::VectorXd& s_lin,
+                                                   const models::TModeMixture& mix)
+    : CTerm({xiPrev, vPrev, xi, v}),
+      m_sLin(s_lin),
+      m_mix(mix),
+      m_info(spdInverse(mix.Q_eff, "CObjectMixtureMotionTerm: the mixture's process noise"))
+{
+	if (mix.s.size() != s_lin.size() || mix.F.rows() != s_lin.size() ||
+	    mix.F.cols() != s_lin.size())
+		throw std::invalid_argument("CObjectMixtureMotionTerm: sizes do not match");
+}
+
+TLinearization CObjectMixtureMotionTerm::linearize(const std::vector<Eigen::VectorXd>& x) const
+{
+	const Eigen::Index d = x[0].size(), dv = x[1].size();
+	if (x[2].size() != d || x[3].size() != dv || d + dv != m_sLin.size())
+		throw std::invalid_argument("CObjectMixtureMotionTerm: block sizes do not match");
+	Eigen::VectorXd ds(d + dv);
+	ds << blockMinus(VarKind::ObjectPose, x[0], m_sLin.head(d)), x[1] - m_sLin.tail(dv);
+	const Eigen::VectorXd f = m_mix.s + m_mix.F * ds;
+	TLinearization L;
+	L.r.resize(d + dv);
+	L.r << blockMinus(VarKind::ObjectPose, x[2], f.head(d)), x[3] - f.tail(dv);
+	L.W = m_info;
+	const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(d + dv, d + dv);
+	L.J = {-m_mix.F.leftCols(d), -m_mix.F.rightCols(dv), I.leftCols(d), I.rightCols(dv)};
+	return L;
+}
+
 CObjectSightingTerm::CObjectSightingTerm(int t, const TVarKey& xi, const std::vector<TVarKey>& f0,
                                          int k, const Eigen::Vector2d& z,
                                          models::MeasurementModel model,

@@ -41,6 +41,7 @@
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/live_merge.h>
 #include <dynslam/estimator/measurement_router.h>
+#include <dynslam/estimator/object_modes.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/estimator/state_layout.h>
 #include <dynslam/estimator/state_lifecycle.h>
@@ -167,7 +168,7 @@ public:
 	 * step's readings, in the order of objectModeNames() (empty for single models). */
 	const std::map<int32_t, Eigen::VectorXd>& getObjectModeProbabilities() const
 	{
-		return m_modeProb;
+		return m_modes.probabilities();
 	}
 	/** The modes of object_model (mm: stationary, cv, turn, manoeuvre; empty: a single model). */
 	std::vector<std::string> objectModeNames() const override;
@@ -355,17 +356,10 @@ private:
 	void predictObjectModes(int32_t obj, const std::vector<int>& idx);
 	/** log L_j of obj's readings of this step under each mode's prediction (empty: none). */
 	Eigen::VectorXd modeLogLikelihoods(int32_t obj, const std::vector<int>& idx,
-	                                   const std::vector<Eigen::VectorXd>& s_j,
-	                                   const std::vector<Eigen::MatrixXd>& F_j,
-	                                   const std::vector<Eigen::MatrixXd>& Q_j) const;
-	/** Sets the poses' mode_probabilities from m_modeHistory (getObjectTracks). */
+	                                   const estimator::TModePredictions& pred) const;
+	/** Sets the poses' mode_probabilities from m_modes' history (getObjectTracks). */
 	void attachModeProbabilities(std::map<int32_t, TObjectTrack>& tracks) const;
-	/** Drops the mode probabilities of objects without a velocity block. */
-	void forgetStaleModes();
-	std::map<int32_t, Eigen::VectorXd> m_modeProb;  ///< object_model = mm: per object
-	/** object_model = mm: per object, (step, mode probabilities) of every step (the newest only
-	 * with record_dropped = false); attached to the poses by getObjectTracks(). */
-	std::map<int32_t, std::vector<std::pair<int, Eigen::VectorXd>>> m_modeHistory;
+	estimator::CObjectModes m_modes;  ///< object_model = mm: per object
 	/** Sightings of features of objects with a velocity: measurement updates of ego, pose and
 	 * body-frame features (gated by the model's readingGate()). */
 	void objectFeatureUpdates();

@@ -66,4 +66,16 @@ Eigen::VectorXd prunedWeights(const Eigen::VectorXd& mu);
  * -dim/2 log(2 pi) (equal for every mode): -0.5 (nu^T S^-1 nu + log det S). S must be
  * positive definite (else std::runtime_error). */
 double gaussianLogLikelihood(const Eigen::VectorXd& nu, const Eigen::MatrixXd& S);
+
+/** The log-likelihood (gaussianLogLikelihood) of readings under one mode's joint prediction.
+ * P_e: the prior covariance of the entries e the readings depend on, with the object's motion
+ * state s at rows [sOffset, sOffset + F.rows()); the mode predicts s' = f(s) with Jacobian F and
+ * noise Q, so P'_e = T P_e T^T + Q on s' (T: the identity with F on s). nu: the stacked
+ * innovations of the readings under the mode's predicted mean, H their Jacobian on the
+ * predicted e, R their noise: log N(nu; 0, H P'_e H^T + R). Used by the dynamic EKF and by
+ * Alg. 1 (object_model = mm). Throws std::invalid_argument on sizes. */
+double predictedReadingsLogLikelihood(const Eigen::MatrixXd& P_e, Eigen::Index sOffset,
+                                      const Eigen::MatrixXd& F, const Eigen::MatrixXd& Q,
+                                      const Eigen::MatrixXd& H, const Eigen::VectorXd& nu,
+                                      const Eigen::MatrixXd& R);
 }  // namespace dynslam::models

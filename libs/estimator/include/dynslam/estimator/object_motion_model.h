@@ -74,8 +74,8 @@ public:
 
 	// --- Multiple-model objects (issue 28, models/mode_mixture.h). modeCount() > 0: the
 	// object-centric prediction is the moment-matched mixture of the modes' predictions, the
-	// mode probabilities updated by the object's readings (EKF only). All modes share the
-	// velocity block of velocityDim().
+	// mode probabilities updated by the object's readings (the EKF and Alg. 1,
+	// estimator::CObjectModes). All modes share the velocity block of velocityDim().
 	/** Number of modes (0: a single model, predict()). */
 	virtual int modeCount() const { return 0; }
 	virtual std::string modeName(int /*mode*/) const { return name(); }

@@ -21,12 +21,15 @@
  * from (xi, v) at t-1 to t, then (xi, v) at t-1 marginalized); after 2, its sightings are
  * measurement terms of ego, pose and body-frame features, one GN step per object (with the
  * model's gate); after 6, a new object's velocity is added with its initialisation term (GN).
+ * With object_model = mm the motion term is the modes' moment-matched mixture, weighted by
+ * the mode probabilities after the step's readings (estimator::CObjectModes), as in the EKF.
  * The same steps as the EKF's, so Alg. 1 equals it (tests/framework/alg1_equivalence_test.cpp).
  * After every GN step the cost is replaced by ||x - mu||^2_{J^T J} (Alg. 1: "cost <- ...").
  * The state is kept in information form; covariances are computed when asked for. */
 #include <dynslam/ISlamBackend.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
+#include <dynslam/estimator/object_modes.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/framework/TBackendOptions.h>
 #include <dynslam/framework/running_cost.h>
@@ -53,6 +56,8 @@ public:
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
 	const TStepReport& getLastStepReport() const override { return m_report; }
+	/** The modes of object_model (mm: stationary, cv, turn, manoeuvre; empty: a single model). */
+	std::vector<std::string> objectModeNames() const override;
 
 	/** Mean, covariance and labels of the whole state in storage order; the labels are those
 	 * of CDynamicKFSLAM2D::getStateWithoutPads (e.g. "ego.x", "lm3.y", "obj1.f2.t0.x",
@@ -83,7 +88,15 @@ private:
 	 * implement. */
 	static std::shared_ptr<const estimator::IObjectMotionModel> makeMotionModel(
 	    const TModelOptions& o);
-	void predictObjects();
+	/** With a multiple-model object_model, the mixture's prediction (CObjectMixtureMotionTerm)
+	 * weighted by the mode probabilities after the step's readings of the object. */
+	void predictObjects(const estimator::TRoutedStep& in);
+	/** object_model = mm: log L_j of obj's readings in `in` under each mode's prediction of its
+	 * [pose; velocity] (xi, v); empty without readings (the EKF's modeLogLikelihoods). */
+	Eigen::VectorXd modeLogLikelihoods(int32_t obj, const TVarKey& xi, const TVarKey& v,
+	                                   const estimator::TRoutedStep& in,
+	                                   const estimator::TModePredictions& pred) const;
+	estimator::CObjectModes m_modes;  ///< object_model = mm: per object
 	void objectFeatureUpdates(const estimator::TRoutedStep& in);
 	void initObjectVelocities();
 	bool hasVelocity(int32_t obj) const { return m_velocitySince.count(obj) > 0; }

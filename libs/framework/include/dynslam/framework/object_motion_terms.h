@@ -6,6 +6,7 @@
  * | term                    | residual                                         | information     |
  * |-------------------------|--------------------------------------------------|-----------------|
  * | CObjectMotionTerm       | [xi_t; v_t] (-) f([xi_{t-1}; v_{t-1}])            | (a Q)^-1        |
+ * | CObjectMixtureMotionTerm | [xi_t; v_t] (-) (s_bar + F_bar ds) (mm)          | Q_eff^-1        |
  * | CObjectSightingTerm     | z - h(x_t (+) s, g(xi_t, f_0)_k) (bearing wrapped) | Sigma_v^-1     |
  * | CObjectVelocityInitTerm | v - v0(xi) (the model's initial velocity)          | Sigma_v0^-1    |
  *
@@ -15,6 +16,7 @@
  * on the initialisation term is the EKF's velocity augmentation. */
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/framework/terms.h>
+#include <dynslam/models/mode_mixture.h>
 
 namespace dynslam::framework
 {
@@ -31,6 +33,27 @@ public:
 
 private:
 	std::shared_ptr<const estimator::IObjectMotionModel> m_model;
+};
+
+/** object_model = mm (issue 28): the moment-matched mixture of the modes' motion
+ * (models/mode_mixture.h, estimator::CObjectModes) as a term linear about the estimate s_lin of
+ * [xi_{t-1}; v_{t-1}] at which the mixture was made: residual [xi_t; v_t] (-) (s_bar + F_bar
+ * (s_{t-1} (-) s_lin)), information Q_eff^-1. It is marginalized as soon as it is added (the
+ * prediction), so it is linearized at s_lin only: the EKF's mixed prediction. Keys as
+ * CObjectMotionTerm; throws std::invalid_argument if Q_eff is not positive definite. */
+class CObjectMixtureMotionTerm : public CTerm
+{
+public:
+	CObjectMixtureMotionTerm(const TVarKey& xiPrev, const TVarKey& vPrev, const TVarKey& xi,
+	                         const TVarKey& v, const Eigen::VectorXd& s_lin,
+	                         const models::TModeMixture& mix);
+	std::string name() const override { return "object_motion:mm"; }
+	TLinearization linearize(const std::vector<Eigen::VectorXd>& x) const override;
+
+private:
+	Eigen::VectorXd m_sLin;
+	models::TModeMixture m_mix;
+	Eigen::MatrixXd m_info;
 };
 
 /** A sighting of feature k of an object with pose xi_t and time-0 (body-frame) features f0

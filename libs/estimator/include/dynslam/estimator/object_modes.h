@@ -1,0 +1,62 @@
+#pragma once
+/** @file object_modes.h
+ * The mode probabilities of multiple-model objects (object_model = mm, issue 28;
+ * models/mode_mixture.h, doc/state-layout.md "Multiple-model objects"): per object, the
+ * probabilities of the model's modes, updated each step by the object's readings (a GPB1-style
+ * switch), their history for the outputs, and the moment-matched prediction they weight. One
+ * module for both back-ends: the dynamic EKF (CDynamicKFSLAM2D_mm.cpp) and Alg. 1
+ * (CAlg1Backend_objects.cpp) call predict() with their own likelihood of the readings. Pure
+ * Eigen. */
+#include <dynslam/estimator/object_motion_model.h>
+#include <dynslam/models/mode_mixture.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace dynslam::estimator
+{
+/** Every mode's prediction of an object's motion state s = [pose; velocity]. */
+struct TModePredictions
+{
+	std::vector<Eigen::VectorXd> s;  ///< s_j = f_j(s)
+	std::vector<Eigen::MatrixXd> F;  ///< J_out_s of mode j
+	std::vector<Eigen::MatrixXd> Q;  ///< process noise of mode j
+};
+
+/** The names of the model's modes (empty for a single model). */
+std::vector<std::string> modeNames(const IObjectMotionModel& model);
+
+class CObjectModes
+{
+public:
+	/** log L_j of the object's readings of this step under each mode's prediction; an empty
+	 * vector: no readings (the probabilities then follow the switching only). */
+	using TLogLikelihoods = std::function<Eigen::VectorXd(const TModePredictions&)>;
+
+	/** One object's step: its probabilities (the model's initial ones for a new object) updated
+	 * by the switching and the readings (models::modePosterior), recorded at `step` (all steps,
+	 * or the newest only with record = false), and the moment-matched prediction of s with
+	 * prior covariance P_ss by the modes above models::kModePruneProbability. */
+	models::TModeMixture predict(const IObjectMotionModel& model, int32_t obj, int step,
+	                             const Eigen::VectorXd& s, const Eigen::MatrixXd& P_ss,
+	                             const TLogLikelihoods& logLikelihoods, bool record);
+
+	/** The current probabilities of every object predicted and not forgotten. */
+	const std::map<int32_t, Eigen::VectorXd>& probabilities() const { return m_prob; }
+	/** obj's probabilities recorded at `step`; nullptr if none. */
+	const Eigen::VectorXd* at(int32_t obj, int step) const;
+	/** Forgets the current probabilities of the objects not in `live` (their history stays). */
+	void forget(const std::set<int32_t>& live);
+	void clear();
+
+private:
+	std::map<int32_t, Eigen::VectorXd> m_prob;
+	std::map<int32_t, std::vector<std::pair<int, Eigen::VectorXd>>> m_history;
+};
+}  // namespace dynslam::estimator
