@@ -79,10 +79,10 @@ void BM_Soak(benchmark::State& state)
 	state.counters["map_landmarks"] = double(landmarks);
 	state.counters["live_objects"] = double(objects);
 	state.counters["true_objects"] = double(o.objects);
-	state.SetLabel("ring " + std::to_string(o.landmarks) + " landmarks, k=3 W=5, N=20/10");
+	state.SetLabel("ring " + std::to_string(o.landmarks) + " landmarks k=3 W=5 N=20/10");
 }
-// 20,000 steps: about 20 s on one core of the shared 2-core machine (doc/results/performance.md,
-// section 18); 2,000 for a quick look.
+// 20,000 steps: 1.4-2.9 s per run on one core of the shared 2-core machine
+// (doc/results/performance.md, section 18); 2,000 for a quick look.
 BENCHMARK(BM_Soak)
     ->ArgsProduct({{2000, 20000}, {0, 1}})
     ->Iterations(1)
