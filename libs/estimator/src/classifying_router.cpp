@@ -63,6 +63,7 @@ double CClassifyingRouter::lowerThreshold() const { return std::log(m_p.beta / (
 void CClassifyingRouter::reset()
 {
 	m_tracks.clear();
+	m_live.clear();
 	m_registry.clear();
 	m_objectTracks.clear();
 	m_alias.clear();
@@ -107,24 +108,40 @@ void CClassifyingRouter::predictTracks(int step, TRoutedStep& out,
 	const int steps = m_lastStep < 0 ? 0 : step - m_lastStep;
 	m_lastStep = step;
 	const TStaticMotion motion(m_ctx->u, m_ctx->U);  // rotations once per step, not per track
-	for (auto it = m_tracks.begin(); it != m_tracks.end();)
+	// Only the live tracks (m_live, in ID order as m_tracks): a track without a valid filter,
+	// or moving without stop_count, has nothing to do here until it is read again.
+	for (auto live = m_live.begin(); live != m_live.end();)
 	{
+		const auto it = m_tracks.find(*live);
+		if (it == m_tracks.end() || !needsPrediction(it->second))
+		{
+			live = m_live.erase(live);
+			continue;
+		}
 		TTrack& t = it->second;
-		if (t.cls != TrackClass::Moving && t.q_valid && step - t.last_seen > m_p.forget_steps)
+		if (t.cls != TrackClass::Moving && step - t.last_seen > m_p.forget_steps)
 		{
 			if (t.cls == TrackClass::Candidate)
 			{
 				if (m_p.candidate_landmarks && isKnownStatic(it->first))
 					out.dropped_candidates.push_back(it->first);
-				it = m_tracks.erase(it);
+				m_unknown.forget(it->first);  // its motion goes with it (as restartTrack's)
+				m_tracks.erase(it);
+				live = m_live.erase(live);
 				continue;
 			}
 			t.q_valid = false;  // a static track seen again restarts its filter
+			live = m_live.erase(live);
+			continue;
 		}
-		const bool filter = t.cls != TrackClass::Moving || m_p.stop_count > 0;
-		if (filter && t.q_valid && steps > 0) t.q = predictStatic(t.q, motion);
-		++it;
+		if (steps > 0) t.q = predictStatic(t.q, motion);
+		++live;
 	}
+}
+
+bool CClassifyingRouter::needsPrediction(const TTrack& t) const
+{
+	return t.q_valid && (t.cls != TrackClass::Moving || m_p.stop_count > 0);
 }
 
 std::optional<TrackClass> CClassifyingRouter::addEvidence(TTrack& t, const TPoint2& z, int step)
@@ -197,6 +214,7 @@ CClassifyingRouter::Act CClassifyingRouter::classifyOne(
     std::vector<int32_t>& turnedMoving, const std::function<bool(int32_t)>& isKnownStatic)
 {
 	TTrack& t = m_tracks[id];
+	m_live.insert(id);  // read: predictTracks decides from the next step on
 	if (t.first_seen < 0) t.first_seen = step;
 	remember(t, z, step, m_p.max_window + 2);
 	Act act = Act::Skip;

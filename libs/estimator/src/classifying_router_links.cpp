@@ -76,9 +76,12 @@ void CClassifyingRouter::linkNewObjects(int step, const std::vector<int32_t>& ne
 {
 	if (!links() || newObjects.empty()) return;
 	const bool hintsOnly = m_p.link == TClassifyParams::Link::Hints;
-	std::map<int32_t, TTrackPrediction> pred;  // each track's constant-velocity prediction
-	for (const TTrackPrediction& p : m_unknown.predictions(step, m_p.motion_std))
-		pred[p.target.id] = p;
+	// Each object track's constant-velocity prediction (only those: the predictions of every
+	// track ever read would cost the length of the run at every step with a new object).
+	std::map<int32_t, TTrackPrediction> pred;
+	for (const auto& [obj, members] : m_objectTracks)
+		for (const int32_t id : members)
+			if (const auto p = m_unknown.prediction(id, step, m_p.motion_std)) pred[id] = *p;
 	std::vector<TObjMotion> lost;
 	for (const auto& [obj, members] : m_objectTracks)
 	{

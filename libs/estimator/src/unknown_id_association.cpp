@@ -43,6 +43,7 @@ void CUnknownIdResolver::reset()
 	m_movers.clear();
 	m_increments.clear();
 	m_firstIncrement = m_predicts = 0;
+	m_compactAt = 256;
 	m_next = kFirstResolvedId;
 }
 
@@ -63,29 +64,45 @@ void CUnknownIdResolver::predict(const Eigen::Vector3d& u, const Eigen::Matrix3d
 {
 	m_increments.emplace_back(u, U);
 	++m_predicts;
-	if (m_increments.size() < 256) return;
-	// Bounded memory: carry every track and forget the increments.
-	for (auto& [id, m] : m_movers) carry(m);
-	m_increments.clear();
-	m_firstIncrement = m_predicts;
+	if (m_increments.size() < m_compactAt) return;
+	// Forget the increments every track has had. Not by carrying every track here (that costs
+	// the number of tracks ever read, per step on average: issue 29); the check itself visits
+	// every track, so it runs when the list has doubled since the last one.
+	size_t oldest = m_predicts;
+	for (const auto& [id, m] : m_movers) oldest = std::min(oldest, m.carried);
+	m_increments.erase(m_increments.begin(),
+	                   m_increments.begin() + std::ptrdiff_t(oldest - m_firstIncrement));
+	m_firstIncrement = oldest;
+	m_compactAt = std::max<size_t>(256, 2 * m_increments.size());
+}
+
+TTrackPrediction CUnknownIdResolver::predictionOf(int32_t id, TMover& m, int step,
+                                                  double motion_std) const
+{
+	carry(m);
+	TTrackPrediction t;
+	t.target.id = id;
+	t.target.pred = m.last;
+	t.gap = std::max(1, step - m.last_step);
+	t.target.pred.C += Eigen::Matrix2d::Identity() * motion_std * motion_std * t.gap;
+	t.has_vel = m.has_vel;
+	t.vel = m.vel;
+	return t;
 }
 
 std::vector<TTrackPrediction> CUnknownIdResolver::predictions(int step, double motion_std) const
 {
 	std::vector<TTrackPrediction> out;
-	for (auto& [id, m] : m_movers)
-	{
-		carry(m);
-		TTrackPrediction t;
-		t.target.id = id;
-		t.target.pred = m.last;
-		t.gap = std::max(1, step - m.last_step);
-		t.target.pred.C += Eigen::Matrix2d::Identity() * motion_std * motion_std * t.gap;
-		t.has_vel = m.has_vel;
-		t.vel = m.vel;
-		out.push_back(t);
-	}
+	for (auto& [id, m] : m_movers) out.push_back(predictionOf(id, m, step, motion_std));
 	return out;
+}
+
+std::optional<TTrackPrediction> CUnknownIdResolver::prediction(int32_t id, int step,
+                                                               double motion_std) const
+{
+	const auto it = m_movers.find(id);
+	if (it == m_movers.end()) return std::nullopt;
+	return predictionOf(id, it->second, step, motion_std);
 }
 
 bool CUnknownIdResolver::velocityWith(int32_t id, const TPoint2& z, int step,

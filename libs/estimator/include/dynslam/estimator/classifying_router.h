@@ -181,6 +181,11 @@ public:
 		m_unknown.setStaticAssociation(std::move(f));
 	}
 	const std::map<int32_t, TTrack>& tracks() const { return m_tracks; }
+	/** How many tracks the per-step prediction visits (m_live; bounded by the tracks read in
+	 * the last forget_steps + 1 steps, whatever the length of the run). */
+	size_t liveTrackCount() const { return m_live.size(); }
+	/** How many tracks the -1 association carries (CUnknownIdResolver::moverCount). */
+	size_t carriedTrackCount() const { return m_unknown.moverCount(); }
 	double upperThreshold() const;  ///< log((1 - beta) / alpha): decide moving
 	double lowerThreshold() const;  ///< log(beta / (1 - alpha)): decide static
 
@@ -188,6 +193,8 @@ private:
 	/** Carries every live track through the step's odometry; forgets stale candidates. */
 	void predictTracks(int step, TRoutedStep& out,
 	                   const std::function<bool(int32_t)>& isKnownStatic);
+	/** Whether track t has a static filter that predictTracks carries. */
+	bool needsPrediction(const TTrack& t) const;
 	/** A moving track's reading: true once stop_count consecutive readings were consistent with
 	 * a static point (a static filter restarted at every inconsistent reading). */
 	bool stoppedEvidence(TTrack& t, const TPoint2& z);
@@ -272,6 +279,11 @@ private:
 	TClassifyParams m_p;
 	std::optional<TRouterContext> m_ctx;
 	std::map<int32_t, TTrack> m_tracks;
+	/** The tracks predictTracks has work for (bounded bookkeeping, issue 29): a superset of
+	 * those with a valid static filter that is carried (not moving, or moving with stop_count);
+	 * a track enters when it is read, leaves at the first step it has nothing to do. The others
+	 * (static tracks out of view, moving tracks) cost nothing per step. */
+	std::set<int32_t> m_live;
 	CObjectRegistry m_registry;
 	std::map<int32_t, std::vector<int32_t>> m_objectTracks;  ///< object -> track IDs
 	int32_t m_nextObject = 0;

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,10 +87,16 @@ public:
 	 * per step, before resolve). Lazily: the increment is recorded, and a track is carried
 	 * through the increments it missed when it is read (observe, velocityWith, predictions);
 	 * each track gets the same operations in the same order as an eager carry, so the results
-	 * are bit-identical, while the tracks not seen for a while cost nothing per step. */
+	 * are bit-identical, while the tracks not seen for a while cost nothing per step. The
+	 * increments are kept until every track has had them (looked for when their number has
+	 * doubled): memory of one increment per step while a track read long ago is never read
+	 * again, no per-step cost (issue 29: carrying every track every 256 steps cost the number
+	 * of tracks ever read, per step). */
 	void predict(const Eigen::Vector3d& u, const Eigen::Matrix3d& U);
 	/** The predicted points of all tracks at `step` (covariance + motion_std^2 per step). */
 	std::vector<TTrackPrediction> predictions(int step, double motion_std) const;
+	/** The prediction of track id alone (as in predictions), none if it has no reading. */
+	std::optional<TTrackPrediction> prediction(int32_t id, int step, double motion_std) const;
 	/** Resolves the -1 entries of ids (points z: the readings in the robot frame): statics by
 	 * the static association, moving (constant-velocity predictions, with the reading noise) by
 	 * the gate, then once (candidates seen once, covariance unused) within max_step * gap. */
@@ -100,6 +107,8 @@ public:
 	/** A reading of a track (every reading with an ID, after resolve). */
 	void observe(int32_t id, const TPoint2& z, int step);
 	void forget(int32_t id) { m_movers.erase(id); }
+	/** The tracks carried (every track read and not forgotten). */
+	size_t moverCount() const { return m_movers.size(); }
 	/** The displacement per step (current robot frame) that observe(id, z, step) would set;
 	 * false if track id has no earlier reading. */
 	bool velocityWith(int32_t id, const TPoint2& z, int step, Eigen::Vector2d& vel) const;
@@ -121,11 +130,13 @@ private:
 	};
 	/** Carries m through the increments it has not had yet. */
 	void carry(TMover& m) const;
+	TTrackPrediction predictionOf(int32_t id, TMover& m, int step, double motion_std) const;
 	TUnknownIdParams m_p;
 	StaticAssociationFn m_static;
 	mutable std::map<int32_t, TMover> m_movers;  ///< carried lazily (predict)
 	std::vector<TStaticMotion> m_increments;     ///< the increments from number m_firstIncrement on
 	size_t m_firstIncrement = 0, m_predicts = 0;
+	size_t m_compactAt = 256;  ///< the list's length at which predict looks for what to forget
 	int32_t m_next = kFirstResolvedId;
 };
 }  // namespace dynslam::estimator
