@@ -57,7 +57,10 @@ TEST(SimFamilies, EveryFamilyLoadsDumpsAndTakesOtherSeeds)
 		other.world_seed = 3001;
 		other.noise_seed = 3001;
 		const TGroundTruth g2 = sim::buildGroundTruth(other);
-		if (!gt.landmarks.empty()) EXPECT_NE(g2.landmarks, gt.landmarks);
+		if (!gt.landmarks.empty())
+		{
+			EXPECT_NE(g2.landmarks, gt.landmarks);
+		}
 		const auto r1 = sim::simulateMeasurements(gt, o, o.noise_seed);
 		const auto r2 = sim::simulateMeasurements(g2, other, other.noise_seed);
 		const auto z1 = r1.frames[5]->getObservationByClass<mrpt::obs::CObservationBearingRange>();
