@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace dynslam::estimator
@@ -23,6 +24,21 @@ struct TReading
 	int32_t hint = -1;
 };
 
+/** One box of a 3-D detector in the bird's-eye view (issue 31; the rawlog's DETECTION_BOXES
+ * comment, dynslam/detection_boxes.h): no track ID. Its four footprint corners are also readings
+ * of the step (ID -1, hint = group), in the order front-left, front-right, rear-right, rear-left
+ * of the box frame (x along the heading, y to its left). */
+struct TBoxDetection
+{
+	int32_t group = -1;  ///< the detection group of its four corner readings (TReading::hint)
+	std::string cls;     ///< the detector's class, e.g. "Car"
+	double score = 0;    ///< the detector's confidence (no range imposed)
+	/** Centre (x, y) [m] and heading yaw [rad] of the length axis, in the sensor frame; a
+	 * detector cannot tell the front from the back (yaw and yaw + pi: the same footprint). */
+	Eigen::Vector3d pose = Eigen::Vector3d::Zero();
+	Eigen::Vector2d extent = Eigen::Vector2d::Zero();  ///< (length, width) [m], > 0
+};
+
 struct TStepInput
 {
 	Eigen::Vector3d u = Eigen::Vector3d::Zero();  ///< odometry increment (robot frame)
@@ -35,5 +51,7 @@ struct TStepInput
 	 * sensorLocationOnRobot): every reading of the step is z = h(x (+) s, f)
 	 * (dynslam/models/measurement.h, observeFromSensor). Zero: the sensor at the origin. */
 	Eigen::Vector3d sensor_pose = Eigen::Vector3d::Zero();
+	/** The step's detector boxes (DETECTION_BOXES comment; empty without one). */
+	std::vector<TBoxDetection> boxes;
 };
 }  // namespace dynslam::estimator
