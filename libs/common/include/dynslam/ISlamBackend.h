@@ -120,6 +120,19 @@ struct TStepReport
 	size_t objects_merged_live = 0;
 };
 
+/** A tracked box of the last step (issue 31; the multi-object tracking metrics): one track's
+ * footprint in the robot frame of that step, as the back-end estimates it (its own ego
+ * estimate places it; the truth is compared in the true robot frame, as KITTI scores in the
+ * camera frame). */
+struct TTrackedBox
+{
+	int32_t track = -1;  ///< the back-end's track ID (persistent over the run)
+	std::string cls;     ///< class, e.g. "Car"
+	double score = 0;    ///< confidence (sAMOTA's thresholds): the score of its last box
+	Eigen::Vector3d pose = Eigen::Vector3d::Zero();    ///< centre x, y [m], heading [rad]
+	Eigen::Vector2d extent = Eigen::Vector2d::Zero();  ///< length, width [m]
+};
+
 /** Common interface of the back-ends. */
 class ISlamBackend
 {
@@ -142,6 +155,10 @@ public:
 	/** The names of the objects' motion modes (TObjectPoseEstimate::mode_probabilities); empty
 	 * for single-model back-ends. */
 	virtual std::vector<std::string> objectModeNames() const { return {}; }
+	/** The confirmed box tracks the back-end reports for the last step (issue 31: the
+	 * `tracker_baseline` row, and the filters with feature_labels = boxes); empty for back-ends
+	 * that track no boxes. */
+	virtual std::vector<TTrackedBox> trackedBoxes() const { return {}; }
 };
 
 /** Every static landmark estimated so far: the live map, then the dropped ones (what the apps
