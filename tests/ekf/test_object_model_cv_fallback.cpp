@@ -218,8 +218,7 @@ TEST(ObjectModelCvFallback, CounterAndIniKey)
 	EXPECT_EQ(f.options.cv.fallback_steps, 3);
 	std::ostringstream dump;
 	f.options.dumpToTextStream(dump);
-	EXPECT_NE(dump.str().find("[ObjectModel]\ncv_fallback_steps              = 3"),
-	          std::string::npos);
+	EXPECT_NE(dump.str().find("cv_fallback_steps              = 3"), std::string::npos);
 	ini.setContent(
 	    "[DynamicKFSLAM]\nmeasurement_model = cartesian\nSigma_v = [1e-4 1e-4]\n"
 	    "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_fallback_steps = -2\n");

@@ -224,9 +224,9 @@ TEST(ClassifyHints, BadKeysAreClearErrors)
 	EXPECT_THROW(load("[Classify]\nclassify_link = sometimes\n"), std::exception);
 	EXPECT_THROW(load("[Classify]\nclassify_use_hints = maybe\n"), std::exception);
 	const std::string d = load("");
-	EXPECT_NE(d.find("[Classify]\nclassify_use_hints             = false"), std::string::npos) << d;
-	EXPECT_NE(d.find("[Classify]\nclassify_link                  = hints"), std::string::npos);
-	EXPECT_NE(d.find("[Classify]\nclassify_link_gap              = 80"), std::string::npos);
+	EXPECT_NE(d.find("classify_use_hints             = false"), std::string::npos) << d;
+	EXPECT_NE(d.find("classify_link                  = hints"), std::string::npos);
+	EXPECT_NE(d.find("classify_link_gap              = 80"), std::string::npos);
 }
 
 namespace

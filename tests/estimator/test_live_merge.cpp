@@ -345,8 +345,8 @@ TEST(LiveMerge, BadKeysAreClearErrorsAndTheKeysAreDumped)
 	ekf.loadOptions(cfg, "DynamicKFSLAM");
 	std::ostringstream d;
 	ekf.options.dumpToTextStream(d);
-	EXPECT_NE(d.str().find("[Classify]\nclassify_merge_live            = true"), std::string::npos);
-	EXPECT_NE(d.str().find("[Classify]\nclassify_merge_live_window     = 7"), std::string::npos);
+	EXPECT_NE(d.str().find("classify_merge_live            = true"), std::string::npos);
+	EXPECT_NE(d.str().find("classify_merge_live_window     = 7"), std::string::npos);
 }
 
 TEST(LiveMerge, HintsKeepCarsMovingTogetherApart)

@@ -70,7 +70,7 @@ TOutcome runOnce(const std::string& scenario, const std::string& keys)
 	sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
 	delayHalfOfObject(sim, gt.objects.front().object, 6);
 	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(
-	    "feature_labels = classify\n[Classify]\nclassify_merge_live = true\n" + keys));
+	    "feature_labels = classify\n" + keys + "[Classify]\nclassify_merge_live = true\n"));
 	CDynamicKFSLAM2D ekf;
 	ekf.loadOptions(cfg, "DynamicKFSLAM");
 	const auto& reg = ekf.router().registry();

@@ -113,7 +113,7 @@ TEST(ObjectMergeTurning, MergedFeaturesFollowTheFoundersCentroid)
 	for (const char* model : {"cv", "ctrv"})
 	{
 		SCOPED_TRACE(model);
-		const TTurnRun r = runTurning(common + "object_model = " + model + "\n");
+		const TTurnRun r = runTurning("object_model = " + std::string(model) + "\n" + common);
 		std::cout << model << ": linked " << r.linked << ", merged " << r.merged << " at step "
 		          << r.merge_step << ", merged features' RMSE " << r.feat_rmse << " m (" << r.feat_n
 		          << " readings)\n";

@@ -204,7 +204,7 @@ TEST(Alg1, WholeRunEquivalenceObjectModels)
 		EXPECT_GT(g.velocities, 10u) << model;  // one per object and step since its 2nd sighting
 		const TWorst k =
 		    report(("generated, " + model + ", keep time-t features, K = 3").c_str(),
-		           runBoth(so, 7, m + "drop_time_t_features = false\nkeep_last_poses = 3\n"));
+		           runBoth(so, 7, "drop_time_t_features = false\nkeep_last_poses = 3\n" + m));
 		EXPECT_GT(k.object_updates, 20u) << model;
 		// 60 highway steps, a gate that rejects readings: measured 5.4e-9 (cv) and 3.3e-9
 		// (ctrv) on the covariance, 1e-9 on the mean (conditioning: see below).
@@ -218,9 +218,9 @@ TEST(Alg1, WholeRunEquivalenceObjectModels)
 	off.sensor_pose = Eigen::Vector3d(0.3, -0.1, 0.2);
 	const TWorst rb = report("generated, ctrv, range-bearing, sensor at (0.3, -0.1, 0.2)",
 	                         runBoth(off, 8,
-	                                 "object_model = ctrv\n" + cv +
-	                                     "measurement_model = range_bearing\n"
-	                                     "Sigma_v = [1e-4 1e-6]\n"),
+	                                 "object_model = ctrv\nmeasurement_model = range_bearing\n"
+	                                 "Sigma_v = [1e-4 1e-6]\n" +
+	                                     cv),
 	                         1e-8);  // measured 2.3e-9 (covariance)
 	EXPECT_GT(rb.object_updates, 20u);
 }
@@ -242,7 +242,7 @@ TEST(Alg1, WholeRunEquivalenceCa)
 	EXPECT_GT(g.velocities, 10u);
 	const TWorst k =
 	    report("generated, ca, objects in view, keep time-t features, K = 3",
-	           runBoth(inView, 7, m + q + "drop_time_t_features = false\nkeep_last_poses = 3\n"));
+	           runBoth(inView, 7, "drop_time_t_features = false\nkeep_last_poses = 3\n" + m + q));
 	EXPECT_GT(k.object_updates, 20u);
 	// The 50 m range, where an object leaves the view after its second sighting and coasts
 	// (pose variance 3 m^2 at step 4, 471 m^2 at step 18 with the ca_* defaults): the means agree
@@ -259,9 +259,10 @@ TEST(Alg1, WholeRunEquivalenceCa)
 	off.sensor_pose = Eigen::Vector3d(0.3, -0.1, 0.2);
 	const TWorst rb = report("generated, ca, range-bearing, sensor at (0.3, -0.1, 0.2), own keys",
 	                         runBoth(off, 8,
-	                                 m + "measurement_model = range_bearing\n"
-	                                     "Sigma_v = [1e-4 1e-6]\n"
-	                                     "[ObjectModel]\nca_jerk_psd = [0.05 0.02 0.003]\n"
+	                                 "measurement_model = range_bearing\n"
+	                                 "Sigma_v = [1e-4 1e-6]\n" +
+	                                     m +
+	                                     "ca_jerk_psd = [0.05 0.02 0.003]\n"
 	                                     "ca_accel_prior_std = [0.3 0.2 0.02]\n"),
 	                         1e-7);  // measured 3.8e-8 (covariance), 2.9e-9 (mean)
 	EXPECT_GT(rb.object_updates, 20u);
