@@ -50,7 +50,8 @@ std::string filterIni(const std::string& bias, const Eigen::Vector3d& x0)
 	s += "odometry_bias = " + bias + "\n";
 	if (bias != "none")
 		s += "[OdometryBias]\nodometry_dt = 0.5\nbias_rate_std0 = 0.05\nbias_rate_rw = 1e-4\n"
-		     "bias_scale_std0 = 0.05\nbias_scale_rw = 1e-4\n";
+		     "bias_scale_std0 = 0.05\nbias_scale_rw = 1e-4\n"
+		     "[DynamicKFSLAM]\n";  // callers may add core keys
 	return s;
 }
 

@@ -95,7 +95,9 @@ TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& ex
 	std::string ini = kIni;
 	ini.replace(ini.find("1e-5 1e-5"), 9, sigmaV + " " + sigmaV);
 	ini.insert(ini.find("[DynamicKFSLAM_"), common);
-	if (classify) ini.insert(ini.find("[DynamicKFSLAM_"), "feature_labels = classify\n" + extra);
+	if (classify)  // after `common`, which may end in a module's section
+		ini.insert(ini.find("[DynamicKFSLAM_"),
+		           "[DynamicKFSLAM]\nfeature_labels = classify\n" + extra);
 	mrpt::config::CConfigFileMemory cfg(ini);
 	CDynamicKFSLAM2D ekf;
 	ekf.loadOptions(cfg, "DynamicKFSLAM");

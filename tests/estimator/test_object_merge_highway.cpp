@@ -192,7 +192,7 @@ TEST(ObjectMergeHighway, LinkedCarsMergeIntoTheirLostObjects)
 	for (const TSetting& st : settings)
 	{
 		SCOPED_TRACE(st.keys);
-		const std::string cv = std::string(kCv) + st.keys;
+		const std::string cv = std::string(kCv) + "[DynamicKFSLAM]\n" + st.keys;
 		const TMergeRun off = runMerge(cv);
 		const TMergeRun def = runMerge(cv + "[Classify]\nclassify_merge_linked = false\n");
 		const TMergeRun on = runMerge(cv + "[Classify]\nclassify_merge_linked = true\n");
