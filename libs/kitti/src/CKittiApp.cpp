@@ -1,5 +1,6 @@
 #include <dynslam/app_support.h>
 #include <dynslam/kitti/CKittiApp.h>
+#include <dynslam/kitti/detection_import.h>
 #include <dynslam/kitti/kitti_files.h>
 #include <dynslam/kitti/rawlog_writer.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
@@ -54,8 +55,9 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	    "", "base", "base name of the output files (default kitti_SSSS)", false, "", "B", cmd);
 	TCLAP::ValueArg<std::string> aDet(
 	    "", "detections",
-	    "folder of 3-D detections DIR/CLASS/SSSS.txt (read and checked; needs --calib)", false, "",
-	    "DIR", cmd);
+	    "folder of 3-D detections DIR/CLASS/SSSS.txt: the rawlog's readings are then the "
+	    "detector's boxes (needs --calib)",
+	    false, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> aCalib("", "calib", "folder of calibration files DIR/SSSS.txt",
 	                                    false, "", "DIR", cmd);
 	TCLAP::SwitchArg aAnon("", "anonymous",
@@ -85,9 +87,11 @@ void CKittiApp::run()
 	TImportResult res = importFromFiles(labels_dir, poses_dir, sequence, options.import);
 	if (!detections_dir.empty())
 	{
+		std::vector<std::vector<TKittiDetection>> kept;
 		detection_summary =
 		    readDetectionSet(detections_dir, calib_dir, sequence, options.detections,
-		                     res.steps.size(), sequenceFile(poses_dir, sequence));
+		                     res.steps.size(), sequenceFile(poses_dir, sequence), &kept);
+		applyDetections(kept, options.import.max_range, res, detection_summary);
 		res.summary.detections_text = detection_summary.toText();
 	}
 	summary = res.summary;
@@ -96,6 +100,8 @@ void CKittiApp::run()
 	if (!quiet) std::cout << summary.toText();
 	logFmt(mrpt::system::LVL_INFO, "wrote %s/%s.rawlog (%zu steps, %s) and ground truth",
 	       out_dir.c_str(), b.c_str(), summary.steps,
-	       options.import.anonymous ? "anonymous" : "labelled");
+	       res.detections             ? "detections"
+	       : options.import.anonymous ? "anonymous"
+	                                  : "labelled");
 }
 }  // namespace dynslam::kitti

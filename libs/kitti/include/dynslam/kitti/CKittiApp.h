@@ -10,8 +10,9 @@
  * kitti_SSSS. Everything is read and checked before anything is written.
  * --detections DIR --calib DIR (both or neither): the detector's boxes DIR/CLASS/SSSS.txt for
  * the classes of detection_classes and the calibration DIR/SSSS.txt are read and checked
- * (detection_files.h) and counted per class and frame in the summary; they are not written to
- * the rawlog yet (that needs the box measurement design of issue 31). */
+ * (detection_files.h), counted per class and frame in the summary, and written to the rawlog
+ * as the steps' only readings (detection_import.h: DETECTION_BOXES, dynslam/detection_boxes.h);
+ * the ground truth is still the labels'. */
 #include <dynslam/kitti/CKittiOptions.h>
 #include <dynslam/kitti/import.h>
 #include <mrpt/system/COutputLogger.h>

@@ -32,6 +32,7 @@
  *   elsewhere. Extra files: the track list, the per-step class truth, the ID table
  *   (rawlog_writer.h). */
 #include <dynslam/class_ground_truth.h>
+#include <dynslam/estimator/readings.h>
 #include <dynslam/ground_truth.h>
 #include <dynslam/kitti/kitti_files.h>
 
@@ -110,7 +111,10 @@ struct TStep
 	double t = 0;
 	Eigen::Vector3d increment = Eigen::Vector3d::Zero();  ///< noisy (dx, dy, dphi)
 	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-	std::vector<TReading> readings;
+	std::vector<TReading> readings;  ///< the annotated boxes' corners (empty in detection mode)
+	/** Detection mode (detection_import.h): the detector's boxes of the frame, ego frame; the
+	 * rawlog then holds their corners (ID -1) as the step's only readings. */
+	std::vector<estimator::TBoxDetection> boxes;
 };
 
 /** One row of the ID table: what a reading ID is. */
@@ -127,6 +131,7 @@ struct TTrackStepRow
 	int step = 0, track = -1;
 	bool moving = false, read = false;
 	Eigen::Vector3d pose = Eigen::Vector3d::Zero();  ///< footprint centre and yaw, world
+	double length = 0, width = 0;                    ///< the box's size at this frame [m]
 };
 
 struct TImportSummary
@@ -166,6 +171,9 @@ struct TImportResult
 	std::vector<TIdRow> ids;  ///< sorted by ID
 	std::vector<TTrackStepRow> track_steps;
 	TImportSummary summary;
+	/** Detection mode (detection_import.h): the steps' readings are the detector's boxes
+	 * (TStep::boxes), not the annotations; the ground truth is still the labels'. */
+	bool detections = false;
 };
 
 /** Runs the conversion. Throws std::runtime_error / std::invalid_argument on inconsistent
