@@ -3,6 +3,7 @@
  * (ID -1), read back through the one step parser; the max_range filter on both sides of its
  * boundary; the labels' ground truth is still written (with the new _gt_boxes.csv), the
  * per-reading class truth is not. */
+#include <dynslam/app_support.h>
 #include <dynslam/detection_boxes.h>
 #include <dynslam/kitti/detection_import.h>
 #include <dynslam/models/se2.h>
@@ -125,4 +126,26 @@ TEST(KittiDetectionRawlog, WithoutDetectionsTheRawlogIsUnchanged)
 	EXPECT_GE(in[0].readings[0].id, 0);
 	EXPECT_TRUE(fs::exists(d + "/out/kitti_0007_gt_classes.csv"));
 	EXPECT_TRUE(fs::exists(d + "/out/kitti_0007_gt_boxes.csv"));
+}
+
+TEST(KittiDetectionRawlog, ShippedDetectionIni)
+{
+	TKittiOptions det, ann;
+	loadSectionOfFile(std::string(DYNSLAM_CONFIG_DIR) + "/kitti_detections.ini", "KITTI_Import",
+	                  det);
+	loadSectionOfFile(std::string(DYNSLAM_CONFIG_DIR) + "/kitti.ini", "KITTI_Import", ann);
+	EXPECT_TRUE(det.import.pose_scale_auto);
+	EXPECT_FALSE(ann.import.pose_scale_auto);
+	EXPECT_EQ(det.detections.classes, std::vector<std::string>{"Car"});
+	EXPECT_EQ(det.detections.min_score, -std::numeric_limits<double>::infinity());
+	// the same steps and odometry as the annotation protocol
+	EXPECT_EQ(det.import.dt, ann.import.dt);
+	EXPECT_EQ(det.import.max_range, ann.import.max_range);
+	EXPECT_EQ(det.import.odometry_noise, ann.import.odometry_noise);
+	EXPECT_EQ(det.import.odo_std_xy, ann.import.odo_std_xy);
+	EXPECT_EQ(det.import.odo_std_xy_per_m, ann.import.odo_std_xy_per_m);
+	EXPECT_EQ(det.import.odo_std_phi, ann.import.odo_std_phi);
+	EXPECT_EQ(det.import.odo_std_phi_per_m, ann.import.odo_std_phi_per_m);
+	EXPECT_EQ(det.import.seed, ann.import.seed);
+	EXPECT_EQ(det.import.static_radius, ann.import.static_radius);
 }
