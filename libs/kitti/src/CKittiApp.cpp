@@ -33,6 +33,23 @@ TImportResult importFromFiles(const std::string& labelsDir, const std::string& p
 
 CKittiApp::CKittiApp() : mrpt::system::COutputLogger("dynslam-kitti") {}
 
+void CKittiApp::simulateDetectionFiles()
+{
+	checkSequenceName(sequence);
+	const std::string pp = sequenceFile(poses_dir, sequence),
+	                  lp = sequenceFile(labels_dir, sequence);
+	for (const auto& f : {pp, lp})
+		if (!std::filesystem::is_regular_file(f)) throw std::runtime_error(f + ": file not found");
+	const auto poses = readPoses(pp);
+	const auto labels = readLabels(lp);
+	checkLabelsAgainstPoses(labels, poses.size(), pp);
+	const auto dets = simulateDetections(labels, poses.size(), simulate_options.sim);
+	writeDetectionFiles(dets, simulate_dir, sequence);
+	writeNominalCalib((std::filesystem::path(simulate_dir) / "calib").string(), sequence);
+	logFmt(mrpt::system::LVL_INFO, "simulated %zu detections into %s", dets.size(),
+	       simulate_dir.c_str());
+}
+
 bool CKittiApp::initialize(int argc, const char** argv)
 {
 	TCLAP::CmdLine cmd(
@@ -60,6 +77,11 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	    false, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> aCalib("", "calib", "folder of calibration files DIR/SSSS.txt",
 	                                    false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> aSim(
+	    "", "simulate-detections",
+	    "write synthetic detections made from the labels (INI section [KITTI_SimulateDetections]) "
+	    "into DIR, then import them as with --detections DIR --calib DIR/calib",
+	    false, "", "DIR", cmd);
 	TCLAP::SwitchArg aAnon("", "anonymous",
 	                       "every track anonymous: IDs that say nothing about track or class", cmd);
 	TCLAP::SwitchArg aQuiet("q", "quiet", "Only warnings and errors (no summary)", cmd);
@@ -74,7 +96,12 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	base = aBase.getValue();
 	detections_dir = aDet.getValue();
 	calib_dir = aCalib.getValue();
-	if (!config_file.empty()) loadSectionOfFile(config_file, "KITTI_Import", options);
+	simulate_dir = aSim.getValue();
+	if (!config_file.empty())
+	{
+		loadSectionOfFile(config_file, "KITTI_Import", options);
+		loadSectionOfFile(config_file, "KITTI_SimulateDetections", simulate_options);
+	}
 	options.import.anonymous = aAnon.getValue();
 	return true;
 }
@@ -84,13 +111,22 @@ void CKittiApp::run()
 	if (out_dir.empty()) throw std::invalid_argument("--out is required");
 	if (detections_dir.empty() != calib_dir.empty())
 		throw std::invalid_argument("--detections and --calib go together");
+	std::string detDir = detections_dir, calDir = calib_dir;
+	if (!simulate_dir.empty())
+	{
+		if (!detDir.empty())
+			throw std::invalid_argument("--simulate-detections replaces --detections and --calib");
+		simulateDetectionFiles();
+		detDir = simulate_dir;
+		calDir = (std::filesystem::path(simulate_dir) / "calib").string();
+	}
 	TImportResult res = importFromFiles(labels_dir, poses_dir, sequence, options.import);
-	if (!detections_dir.empty())
+	if (!detDir.empty())
 	{
 		std::vector<std::vector<TKittiDetection>> kept;
 		detection_summary =
-		    readDetectionSet(detections_dir, calib_dir, sequence, options.detections,
-		                     res.steps.size(), sequenceFile(poses_dir, sequence), &kept);
+		    readDetectionSet(detDir, calDir, sequence, options.detections, res.steps.size(),
+		                     sequenceFile(poses_dir, sequence), &kept);
 		applyDetections(kept, options.import.max_range, res, detection_summary);
 		res.summary.detections_text = detection_summary.toText();
 	}
