@@ -11,9 +11,9 @@
  *   point (z, -x), the yaw -rot_y - pi/2 (wrapped to (-pi, pi]); extent = (l, w); class = the
  *   detector's class (Car, Pedestrian, Cyclist); score as in the file.
  * - Filter: a box is written when its footprint centre is within max_range of the sensor (the
- *   range the observation declares); no field-of-view filter (a detector sees what it sees;
- *   PointRCNN's boxes on KITTI lie in the camera's view, narrower than fov_deg = 90). Boxes
- *   beyond are counted (TDetectionSummary::beyond_range).
+ *   range the observation declares); no field-of-view filter (a detector sees what it sees:
+ *   PointRCNN's Car boxes reach bearings of 57.6 deg on 0001, cars at the image edge). Boxes
+ *   beyond max_range are counted (TDetectionSummary::beyond_range).
  * - Groups: the running index of the written box in the sequence (0, 1, ... by frame, then class
  *   in the order of detection_classes, then file order): unique in the rawlog, so a group never
  *   suggests that two boxes are one object.
