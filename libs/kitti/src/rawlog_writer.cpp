@@ -55,8 +55,12 @@ void addBoxes(const TStep& s, mrpt::obs::CObservationBearingRange& obs,
 			ids.push_back(-1);
 			groups.push_back(b.group);
 		}
-	sf.insert(makeDetectionGroups(ids, groups));
-	sf.insert(makeDetectionBoxes(s.boxes));
+	// the step's time stamp (a comment's default is "now"; MRPT's tools report it)
+	auto g = makeDetectionGroups(ids, groups);
+	auto c = makeDetectionBoxes(s.boxes);
+	g->timestamp = c->timestamp = obs.timestamp;
+	sf.insert(g);
+	sf.insert(c);
 }
 
 mrpt::obs::CSensoryFrame makeFrame(const TStep& s, const TImportOptions& o, bool detections)
@@ -88,7 +92,9 @@ mrpt::obs::CSensoryFrame makeFrame(const TStep& s, const TImportOptions& o, bool
 			ids.push_back(r.id);
 			groups.push_back(r.track);
 		}
-		sf.insert(makeDetectionGroups(ids, groups));
+		auto g = makeDetectionGroups(ids, groups);
+		g->timestamp = obs->timestamp;
+		sf.insert(g);
 	}
 	return sf;
 }

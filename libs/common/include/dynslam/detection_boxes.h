@@ -16,8 +16,9 @@
  *    (e.g. Car); score: the detector's confidence; (x, y) [m] the footprint centre and yaw [rad]
  *    the heading of the length axis, in the sensor frame; length, width [m] > 0. Numbers are
  *    written with 17 significant digits (a round trip is exact). The comment's text starts with
- *    the line DETECTION_BOXES (how readers find it, as for DETECTION_GROUPS); empty lines and
- *    lines starting with '#' are ignored.
+ *    the line DETECTION_BOXES: that line is how readers find it, as for DETECTION_GROUPS (MRPT's
+ *    CObservationComment does not serialize sensorLabel: read back, it is empty); empty lines
+ *    and lines starting with '#' are ignored.
  * MRPT's CRangeBearingKFSLAM2D sees only the corners (with unknown IDs); the project's box
  * front-end (estimator/box_tracker.h) reads the boxes. */
 #include <dynslam/estimator/readings.h>
