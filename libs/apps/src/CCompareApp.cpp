@@ -22,6 +22,7 @@
 
 #include "cmdline.h"
 #include "compare_filters.h"
+#include "compare_mot.h"
 
 namespace dynslam::apps
 {
@@ -200,49 +201,11 @@ void CCompareApp::run()
 	const size_t every = progressEvery > 0 ? size_t(progressEvery)
 	                     : n >= kLongRun   ? std::max<size_t>(1, n / 10)
 	                                       : 0;
-	for (size_t i = 0; i < filters.size(); ++i)
-	{
-		const std::string& f = filters[i];
-		dump << "\n# ======== filter " << f << " ========\n";
-		auto backend = makeBackend(backendOf(f), paramsFor(f, params), &dump);
-		MRPT_LOG_INFO_FMT("filter %zu/%zu: %s on %zu steps", i + 1, filters.size(), f.c_str(), n);
-		// feature_labels = classify: the decision about every reading, for the class metrics.
-		const auto* ekf = dynamic_cast<const CDynamicKFSLAM2D*>(backend.get());
-		const bool classifies =
-		    ekf && estimator::routers().caps(ekf->options.feature_labels).classifies;
-		TClassDecisions decisions;
-		TFilterRun r =
-		    runFilter(*backend, d.rawlog.actions, d.rawlog.frames,
-		              [&](size_t done, size_t total)
-		              {
-			              if (classifies) decisions.add(ekf->lastRoutedStep());
-			              if (every == 0 || (done % every != 0 && done != total)) return;
-			              MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", f.c_str(), done, total,
-			                                100.0 * double(done) / double(total));
-		              });
-		r.name = f;
-		if (const std::string bad = eval::divergedEstimate(r.est); !bad.empty())
-		{
-			failedFilters.push_back(f + ": diverged (" + bad + " non-finite or beyond 1e9)");
-			MRPT_LOG_ERROR_FMT("%s: left out of the table", failedFilters.back().c_str());
-			continue;
-		}
-		setEgoTimes(r);
-		if (hasGroundTruth && runs.empty())
-			if (const std::string w = timeBaseWarning(r, gt); !w.empty()) MRPT_LOG_WARN(w);
-		MRPT_LOG_INFO_FMT("%s: %zu steps, %.3f ms/step", f.c_str(), r.steps, r.est.ms_per_step);
-		if (hasGroundTruth)
-		{
-			const TEvaluation ev = evaluateRun(gt, r.est);
-			rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt,
-			                std::nullopt});
-			if (!landmarkGaps.empty())
-				rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
-			scoreObjects(rows.back(), classifies ? &decisions : nullptr, r.est);
-		}
-		if (classifies) classDecisions[f] = decisions;
-		runs.push_back(std::move(r));
-	}
+	m_motTruth.reset();
+	if (hasGroundTruth && !isMrptGroundTruthSpec(groundTruthUsed))
+		m_motTruth = std::make_shared<const detail::TMotTruth>(
+		    detail::loadMotTruth(groundTruthUsed, gt));
+	for (size_t i = 0; i < filters.size(); ++i) runRow(filters[i], i, d, dump, every);
 	if (runs.empty())
 		throw std::runtime_error("dynslam-compare: every filter diverged (" +
 		                         failedFilters.front() + ", ...)");
@@ -255,6 +218,57 @@ void CCompareApp::run()
 	else if (!quiet)
 		std::cout << "(add --out DIR to write metrics.csv, per-filter estimates and figures)\n";
 	writeVisualOutputs();
+}
+
+void CCompareApp::runRow(const std::string& f, size_t i, const TLoadedData& d, std::ostream& dump,
+                         size_t every)
+{
+	const size_t n = d.rawlog.size();
+	dump << "\n# ======== filter " << f << " ========\n";
+	auto backend = makeBackend(backendOf(f), paramsFor(f, params), &dump);
+	MRPT_LOG_INFO_FMT("filter %zu/%zu: %s on %zu steps", i + 1, filters.size(), f.c_str(), n);
+	// feature_labels = classify: the decision about every reading, for the class metrics.
+	const auto* ekf = dynamic_cast<const CDynamicKFSLAM2D*>(backend.get());
+	const bool classifies =
+	    ekf && estimator::routers().caps(ekf->options.feature_labels).classifies;
+	TClassDecisions decisions;
+	std::vector<std::vector<TTrackedBox>> boxes;  // the tracking metrics (issue 31)
+	bool tracks = false;
+	TFilterRun r =
+	    runFilter(*backend, d.rawlog.actions, d.rawlog.frames,
+	              [&](size_t done, size_t total)
+	              {
+		              if (classifies) decisions.add(ekf->lastRoutedStep());
+		              boxes.push_back(backend->trackedBoxes());
+		              tracks = tracks || !boxes.back().empty();
+		              if (every == 0 || (done % every != 0 && done != total)) return;
+		              MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", f.c_str(), done, total,
+		                                100.0 * double(done) / double(total));
+	              });
+	r.name = f;
+	if (const std::string bad = eval::divergedEstimate(r.est); !bad.empty())
+	{
+		failedFilters.push_back(f + ": diverged (" + bad + " non-finite or beyond 1e9)");
+		MRPT_LOG_ERROR_FMT("%s: left out of the table", failedFilters.back().c_str());
+		return;
+	}
+	setEgoTimes(r);
+	if (hasGroundTruth && runs.empty())
+		if (const std::string w = timeBaseWarning(r, gt); !w.empty()) MRPT_LOG_WARN(w);
+	MRPT_LOG_INFO_FMT("%s: %zu steps, %.3f ms/step", f.c_str(), r.steps, r.est.ms_per_step);
+	if (hasGroundTruth)
+	{
+		const TEvaluation ev = evaluateRun(gt, r.est);
+		rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt,
+		                std::nullopt});
+		if (!landmarkGaps.empty())
+			rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
+		scoreObjects(rows.back(), classifies ? &decisions : nullptr, r.est);
+		if (tracks && m_motTruth && m_motTruth->valid)
+			rows.back().mot = detail::scoreMot(*m_motTruth, boxes);
+	}
+	if (classifies) classDecisions[f] = decisions;
+	runs.push_back(std::move(r));
 }
 
 void CCompareApp::buildTable()
@@ -270,6 +284,9 @@ void CCompareApp::buildTable()
 		         "ATE column: RMS ego position distance); ms/step: wall time of one filter step "
 		         "on this machine.\n";
 	for (const auto& [f, d] : classDecisions) table << d.countsLine(f);
+	for (const auto& r : rows)
+		if (r.mot)
+			table << detail::motLine(r.filter, *r.mot) << "\n";
 	for (const auto& n : objectNotes) table << n << "\n";
 	for (const auto& fail : failedFilters) table << "NOT IN THE TABLE: " << fail << "\n";
 	tableText = table.str();

@@ -108,9 +108,10 @@ const std::vector<TKeyInfo> kKeys{
      kBias},
     {"bias_scale_rw", "real >= 0", "required", "1/sqrt(s)",
      "rate_scale: random walk of the scale error", kBias},
-    {"feature_labels", "ids | classify", "ids", "-",
+    {"feature_labels", "ids | classify | boxes", "ids", "-",
      "ids: the ID ranges say what a reading is; classify: anonymous tracks classified "
-     "online (EKF only)",
+     "online; boxes: detector boxes without IDs, tracked ([BoxTracker]) then classified "
+     "(EKF only)",
      kClassify},
     {"classify_alpha", kProb, "0.01", "-", "P(decide moving | static) of the SPRT", kClassify},
     {"classify_beta", kProb, "0.01", "-", "P(decide static | moving); alpha + beta < 1", kClassify},

@@ -50,7 +50,7 @@ namespace
 void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
-	const std::vector<std::string> labels{"ids", "classify"};
+	const std::vector<std::string> labels{"ids", "classify", "boxes"};
 	o.feature_labels = labels[size_t(readChoice(c, s, "feature_labels", labels, 0))];
 	estimator::TClassifyParams& p = o.classify;
 	p.alpha = readDouble(c, s, "classify_alpha", p.alpha);
@@ -272,10 +272,15 @@ void TModelOptions::validate() const
 		throw std::invalid_argument(
 		    "outlier_method = jcbb: needs the confidence of its individual "
 		    "and joint chi-square tests (innovation_gate in (0, 1))");
-	if (feature_labels != "ids" && feature_labels != "classify")
+	if (feature_labels != "ids" && feature_labels != "classify" && feature_labels != "boxes")
 		throw std::invalid_argument("feature_labels = " + feature_labels +
-		                            ": must be ids or classify");
+		                            ": must be ids, classify or boxes");
 	classify.validate();
+	if (feature_labels == "boxes") boxes.validate();
+	if (feature_labels == "boxes" && compressed_static_update)
+		throw std::invalid_argument(
+		    "feature_labels = boxes: not implemented with static_update = compressed (the box "
+		    "corners' IDs are given after the compressed state decides what to expand)");
 	if (!(robust_kernel_c > 0) || robust_iterations < 1)
 		throw std::invalid_argument("robust_kernel_c must be > 0 and robust_iterations >= 1");
 	if (recovery_count < 1 || !(recovery_inflation > 1) || recovery_min_updates < 0)

@@ -98,7 +98,7 @@ void CDynamicKFSLAM2D::makeSeams()
 		// A merge needs the lost object predicted across the gap (doc/results/classification.md
 		// "Merging a linked object"): object-centric models only.
 		classify.merge_linked = classify.merge_linked && objectCentric;
-		m_router = estimator::routers().make(options.feature_labels, {&classify});
+		m_router = estimator::routers().make(options.feature_labels, {&classify, &options.boxes});
 		// ID -1 readings associated with MRPT's data association (as CRangeBearingKFSLAM2D).
 		m_router->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
@@ -230,6 +230,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		m_report.classify_held = m_routed.held;
 		m_report.classify_stopped = m_routed.stopped;
 		m_report.skipped_unknown_id = m_routed.skipped_unknown_id;
+		m_report.skipped_box_corners = m_routed.skipped_box_corners;
 		m_report.unknown_id_associated = m_routed.unknown_id_static;
 		m_report.unknown_id_new = m_routed.unknown_id_new;
 		m_report.classify_restarted = m_routed.restarted;
@@ -314,6 +315,11 @@ estimator::TRouterContext CDynamicKFSLAM2D::routerContext() const
 	ctx.static_innovation =
 	    [this](int32_t id, const Eigen::Vector2d& z, estimator::TStaticInnovation& o)
 	{ return staticInnovation(id, z, o); };
+	ctx.boxes = &m_in.boxes;  // feature_labels = boxes (CDynamicKFSLAM2D_boxes.cpp)
+	ctx.ego = Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]);
+	ctx.stamp = m_in.stamp;
+	ctx.box_prediction = [this](const std::array<int32_t, 4>& ids, Eigen::Vector2d& c,
+	                            Eigen::Matrix2d& C) { return boxPrediction(ids, c, C); };
 	return ctx;
 }
 

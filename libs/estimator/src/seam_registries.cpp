@@ -1,3 +1,4 @@
+#include <dynslam/estimator/box_router.h>
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/constant_acceleration.h>
 #include <dynslam/estimator/constant_turn_rate.h>
@@ -16,6 +17,13 @@ const CRouterRegistry& routers()
 		      [](const TRouterParams& p) {
 			      return std::make_unique<CClassifyingRouter>(p.classify ? *p.classify
 			                                                             : TClassifyParams());
+		      },
+		      {true});
+		g.add("boxes",
+		      [](const TRouterParams& p)
+		      {
+			      return std::make_unique<CBoxRouter>(p.boxes ? *p.boxes : TBoxTrackerParams(),
+			                                          p.classify ? *p.classify : TClassifyParams());
 		      },
 		      {true});
 		return g;

@@ -102,6 +102,9 @@ struct TStepReport
 	 * state, and those that started a new static landmark (CRangeBearingKFSLAM2D's rule; the
 	 * ones that could not be associated at all are in skipped_unknown_id). */
 	size_t unknown_id_associated = 0, unknown_id_new = 0;
+	/** feature_labels = boxes: corner readings of boxes whose track is not confirmed (or that
+	 * the tracker ignored), not used. */
+	size_t skipped_box_corners = 0;
 	size_t reclassified_static = 0;
 	/** Static landmarks reclassified moving and turned into object f_0 by state surgery
 	 * (classify_reclassify = surgery; reclassified_static counts the dropped ones, restart). */

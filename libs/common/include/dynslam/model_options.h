@@ -5,6 +5,7 @@
  * [DynamicKFSLAM] of the INI files. Shared by every back-end: the dynamic EKF
  * (CDynamicKFSLAM2D::TOptions is this struct) and the framework's configurations
  * (framework::TBackendOptions::model), so it lives below both, in dynslam::common. */
+#include <dynslam/estimator/box_tracker.h>
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/drop_policy.h>
@@ -165,8 +166,11 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	/** feature_labels (issue 12, doc/results/classification.md): ids (default: the ID ranges of
 	 * dynslam/landmark_ids.h say what each reading is) or classify (every ID >= 0 is an
 	 * anonymous track, classified online by estimator::CClassifyingRouter with the
-	 * classify_* keys; EKF only). */
+	 * classify_* keys; EKF only) or boxes (detector boxes without IDs: estimator::CBoxRouter,
+	 * the tracker of [BoxTracker] then classify; EKF only). */
 	std::string feature_labels = "ids";
 	estimator::TClassifyParams classify;
+	/** feature_labels = boxes (issue 31, doc/boxes.md): the box tracker, section [BoxTracker]. */
+	estimator::TBoxTrackerParams boxes;
 };
 }  // namespace dynslam

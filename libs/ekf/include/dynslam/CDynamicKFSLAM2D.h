@@ -168,6 +168,8 @@ public:
 	}
 	/** The modes of object_model (mm: stationary, cv, turn, manoeuvre; empty: a single model). */
 	std::vector<std::string> objectModeNames() const override;
+	/** feature_labels = boxes: the confirmed tracks updated at the last step (robot frame). */
+	std::vector<TTrackedBox> trackedBoxes() const override;
 	/** The typed state after the ego pose (blocks and where they are stored; of the whole
 	 * state, like every getter below: with compressed entries in the working state, of its
 	 * expanded copy, see wholeState()). */
@@ -315,6 +317,9 @@ private:
 	 * (before propagateEgo); false if id is not a landmark of the state. */
 	bool staticInnovation(int32_t id, const Eigen::Vector2d& z,
 	                      estimator::TStaticInnovation& out) const;
+	/** TRouterContext::box_prediction: a box whose corners are static landmarks of the state. */
+	bool boxPrediction(const std::array<int32_t, 4>& ids, Eigen::Vector2d& c,
+	                   Eigen::Matrix2d& C) const;
 	/** MRPT's update (CMrptUpdateEngine): runOneKalmanIteration with the prediction skipped. */
 	estimator::TUpdateResult runMrptUpdate(const std::vector<estimator::TStaticObservation>& obs,
 	                                       const estimator::TUpdateContext& ctx);

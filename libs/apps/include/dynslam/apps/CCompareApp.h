@@ -41,6 +41,10 @@
 
 namespace dynslam::apps
 {
+namespace detail
+{
+struct TMotTruth;  // compare_mot.h (internal)
+}
 /** The decision about every reading of a run (feature_labels = classify), in rawlog order. */
 struct TClassDecisions
 {
@@ -163,6 +167,12 @@ private:
 	/** The class ground truth of this run's data, read once (nullptr: no file). */
 	const std::vector<TReadingClass>* classTruth();
 	void clearResults();  ///< the results of a previous run(), the class truth read
+	/** One filter row of run(): its run, its table row (with ground truth) and its run record;
+	 * progress lines every `every` steps (0: start and end only). */
+	void runRow(const std::string& f, size_t i, const TLoadedData& d, std::ostream& dump,
+	            size_t every);
+	/** The box truth for the tracking metrics (compare_mot.h), loaded by run(). */
+	std::shared_ptr<const detail::TMotTruth> m_motTruth;
 	void writeOutputs(const std::string& optionsDump);
 	void drawFigures();
 	/** compare_map_start.png: every filter re-run on the first 4 s (ground truth needed). */

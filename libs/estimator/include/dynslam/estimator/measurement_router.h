@@ -10,8 +10,10 @@
 #include <dynslam/models/measurement.h>
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,6 +54,9 @@ struct TRoutedStep
 	/** Readings with ID -1 skipped (no association: CIdRangeRouter without an association
 	 * function or context; CClassifyingRouter without a static association). */
 	size_t skipped_unknown_id = 0;
+	/** feature_labels = boxes (box_router.h): corner readings of boxes whose track is not
+	 * Confirmed (or that the tracker ignored), dropped before classification. */
+	size_t skipped_box_corners = 0;
 	/** ID -1 readings associated (unknown_id_association.h): with a static or candidate track,
 	 * with a moving track, or started as a new track. */
 	size_t unknown_id_static = 0, unknown_id_moving = 0, unknown_id_new = 0;
@@ -141,9 +146,22 @@ struct TRouterContext
 	 * false if id has no landmark there. */
 	std::function<bool(int32_t id, const Eigen::Vector2d& z, TStaticInnovation& out)>
 	    static_innovation;
+	/** For routers that place detector boxes in the world (feature_labels = boxes,
+	 * box_router.h): the step's boxes (null: none), the filter's ego pose at the start of the
+	 * step (before this step's odometry u) and the step's time stamp [s] (NaN: none). */
+	const std::vector<TBoxDetection>* boxes = nullptr;
+	Eigen::Vector3d ego = Eigen::Vector3d::Zero();
+	double stamp = std::numeric_limits<double>::quiet_NaN();
+	/** Optional (the joint association, set by the EKF): the filter's predicted footprint
+	 * centre (world) of the box track whose corner readings have IDs ids[0..3], with its
+	 * covariance; false if the filter does not hold that track (yet). */
+	std::function<bool(const std::array<int32_t, 4>& ids, Eigen::Vector2d& centre,
+	                   Eigen::Matrix2d& cov)>
+	    box_prediction;
 };
 
 struct TAssocTarget;  // unknown_id_association.h
+class CBoxTracker;   // box_tracker.h
 /** Static association of ID -1 readings: for every observed point the index of its
  * prediction, or -1 (unassociated). Points and predictions are in one 2-D space (the classifying
  * router: the robot frame; CIdRangeRouter: the measurement space); TAssocTarget in
@@ -180,6 +198,8 @@ public:
 	/** Whether the router's evidence allows objects a and b to be one object (a live merge):
 	 * true unless it knows better (CClassifyingRouter with use_hints: different boxes). */
 	virtual bool allowsMerge(int32_t /*a*/, int32_t /*b*/) const { return true; }
+	/** The box tracker of routers that track detector boxes (CBoxRouter), else null. */
+	virtual const CBoxTracker* boxTracker() const { return nullptr; }
 };
 
 /** The ID-range rule (dynslam/landmark_ids.h): 0..99,999 static, 100,000 + 1000 object + k

@@ -15,18 +15,21 @@
 namespace dynslam::estimator
 {
 struct TClassifyParams;
+struct TBoxTrackerParams;
 
 // --- route (feature_labels) ------------------------------------------------------------------
 struct TRouterParams
 {
 	const TClassifyParams* classify = nullptr;  ///< classify: its parameters (defaults if null)
+	const TBoxTrackerParams* boxes = nullptr;   ///< boxes: the tracker's (defaults if null)
 };
 struct TRouterCaps
 {
 	bool classifies = false;  ///< decides static / moving itself (IDs need not tell)
 };
 using CRouterRegistry = CRegistry<IMeasurementRouter, TRouterParams, TRouterCaps>;
-/** ids (CIdRangeRouter), classify (CClassifyingRouter). */
+/** ids (CIdRangeRouter), classify (CClassifyingRouter), boxes (CBoxRouter: the tracker and
+ * classify). */
 const CRouterRegistry& routers();
 
 // --- object motion model (object_model) ------------------------------------------------------

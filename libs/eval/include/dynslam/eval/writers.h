@@ -8,6 +8,7 @@
 #include <dynslam/eval/estimates.h>
 #include <dynslam/eval/gap_metrics.h>
 #include <dynslam/eval/metrics.h>
+#include <dynslam/eval/mot_metrics.h>
 #include <dynslam/eval/velocity_metrics.h>
 
 #include <functional>
@@ -75,6 +76,17 @@ struct TMetricsRow
 	/** The process's peak memory in MiB (peak_memory.h; dynslam-run): if any row has it, one
 	 * more column, the last (see below). */
 	std::optional<double> peak_rss_mb;
+	/** Multi-object tracking of the row's box tracks (issue 31; mot_metrics.h; dynslam-compare
+	 * on a KITTI import with detections): CLEAR MOT with pairs matched by BEV IoU >= 0.25 and
+	 * by centre distance <= 2 m, sAMOTA by BEV IoU, one class. If any row has it, 12 more
+	 * columns, the last (see below). */
+	struct TMotScores
+	{
+		std::string cls;
+		TMotCounts iou, dist;
+		double samota = kNaN;
+	};
+	std::optional<TMotScores> mot;
 };
 
 /** Metrics CSV: a header row, then one row per filter. Columns:
@@ -91,7 +103,10 @@ struct TMetricsRow
  * err_gap_end,steps_gap,ego_nees_gap,ego_nees_gap_lower,ego_nees_gap_upper, then (only if a
  * row has TMetricsRow::velocity; empty for the other rows) obj_speed_rmse [m/s],
  * obj_omega_rmse [rad/s],obj_velocity_anees,obj_velocity_n, then (only if a row has
- * TMetricsRow::peak_rss_mb; empty for the other rows) peak_rss_mb [MiB]. */
+ * TMetricsRow::peak_rss_mb; empty for the other rows) peak_rss_mb [MiB], then (only if a row
+ * has TMetricsRow::mot; empty for the other rows) mot_class,mota,motp,ids,frag,fp,fn,gt,samota
+ * (BEV IoU >= 0.25; motp: the mean IoU), mota_d2,motp_d2,ids_d2 (centre distance <= 2 m; motp_d2:
+ * the mean distance [m]). */
 void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows);
 
 /** The same numbers as an aligned plain-text table for the terminal. */
