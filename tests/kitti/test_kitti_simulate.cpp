@@ -247,4 +247,26 @@ TEST(KittiSimulatedDetections, BadOptionsAndCommandLines)
 	app.detections_dir = "x";
 	app.calib_dir = "y";
 	EXPECT_THROW(simulateAndImport("sim_both", "[KITTI_Import]\n", app), std::invalid_argument);
+	// a malformed label line: the error names the file and line, nothing is written
+	auto labels = kitti_test::miniLabels();
+	labels[4] = "1 0 Car 0 0 -1.5 100 150 300 250 1.5 1.8 4 nan 1.6 9 0";  // NaN x
+	const std::string d = kitti_test::writeMiniSequence("sim_badlabel", 12, labels);
+	CKittiApp bad;
+	bad.labels_dir = d + "/label_02";
+	bad.poses_dir = d + "/poses";
+	bad.sequence = "0007";
+	bad.out_dir = d + "/out";
+	bad.simulate_dir = d + "/det";
+	try
+	{
+		bad.run();
+		ADD_FAILURE() << "accepted";
+	}
+	catch (const std::runtime_error& e)
+	{
+		EXPECT_NE(std::string(e.what()).find("label_02/0007.txt:5:"), std::string::npos)
+		    << e.what();
+	}
+	EXPECT_FALSE(fs::exists(d + "/det"));
+	EXPECT_FALSE(fs::exists(d + "/out"));
 }
