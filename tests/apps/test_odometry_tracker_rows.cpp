@@ -11,6 +11,7 @@
 #include <dynslam/apps/CTrackerBaselineBackend.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/detection_boxes.h>
+#include <dynslam/detection_groups.h>
 #include <dynslam/odometry_action.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -27,14 +28,30 @@ namespace
 {
 mrpt::Clock::time_point stampOf(int k) { return mrpt::Clock::fromDouble(1000.0 + 0.1 * k); }
 
-/** A step's sensory frame: an empty range-bearing observation and the boxes' comment. */
+/** A step's sensory frame as doc/formats.md writes boxes: the range-bearing observation with
+ * each box's four corners (ID -1), the DETECTION_GROUPS and the DETECTION_BOXES comments. */
 mrpt::obs::CSensoryFrame::Ptr frame(const std::vector<estimator::TBoxDetection>& boxes)
 {
 	auto SF = mrpt::obs::CSensoryFrame::Create();
 	auto obs = mrpt::obs::CObservationBearingRange::Create();
 	obs->maxSensorDistance = 50;
+	std::vector<int32_t> ids, groups;
+	for (const estimator::TBoxDetection& b : boxes)
+		for (const Eigen::Vector2d& c : boxCorners(b))
+		{
+			mrpt::obs::CObservationBearingRange::TMeasurement m;
+			m.range = float(c.norm());
+			m.yaw = float(std::atan2(c.y(), c.x()));
+			m.pitch = 0;
+			m.landmarkID = -1;
+			obs->sensedData.push_back(m);
+			ids.push_back(-1);
+			groups.push_back(b.group);
+		}
 	SF->insert(obs);
-	if (!boxes.empty()) SF->insert(makeDetectionBoxes(boxes));
+	if (boxes.empty()) return SF;
+	SF->insert(makeDetectionGroups(ids, groups));
+	SF->insert(makeDetectionBoxes(boxes));
 	return SF;
 }
 
@@ -86,8 +103,8 @@ TEST(TrackerBaselineRow, TwoCarsIdsOutputRuleAndPoses)
 {
 	for (const bool reportLost : {true, false})
 	{
-		auto b = backend("tracker_baseline",
-		                 std::string("[BoxTracker]\nreport_lost = ") + (reportLost ? "true" : "false"));
+		auto b = backend("tracker_baseline", std::string("[BoxTracker]\nreport_lost = ") +
+		                                         (reportLost ? "true" : "false"));
 		// A seen in steps 0-4, missed in 5 and 6 (deleted at the 2nd miss), back in step 7
 		for (int k = 0; k < 8; ++k)
 		{
@@ -154,13 +171,14 @@ TEST(TrackerBaselineRow, FirstFramesRuleOnBothSides)
 TEST(TrackerBaselineRow, BadInput)
 {
 	auto b = backend("tracker_baseline");
-	EXPECT_THROW(b->processActionObservation(
-	                 makeOdometryAction(Eigen::Vector3d::Zero(), 1e-4 * Eigen::Matrix3d::Identity()),
-	                 frame({det(0, 8, 0, 0)})),
+	EXPECT_THROW(b->processActionObservation(makeOdometryAction(Eigen::Vector3d::Zero(),
+	                                                            1e-4 * Eigen::Matrix3d::Identity()),
+	                                         frame({det(0, 8, 0, 0)})),
 	             std::runtime_error);  // boxes but no time stamp
 	EXPECT_THROW(backend("tracker_baseline", "[BoxTracker]\nmin_hit = 3"), std::invalid_argument);
 	EXPECT_THROW(backend("tracker_baseline", "[BoxTracker]\nmin_hits = 0"), std::invalid_argument);
-	EXPECT_THROW(backend("tracker_baseline", "[BoxTracker]\nmetric = iou3d"), std::invalid_argument);
+	EXPECT_THROW(backend("tracker_baseline", "[BoxTracker]\nmetric = iou3d"),
+	             std::invalid_argument);
 	EXPECT_THROW(backend("tracker_baseline", "[BoxTracker]\nmeas_std = [1 2 3]"),
 	             std::invalid_argument);
 	try
