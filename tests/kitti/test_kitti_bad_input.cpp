@@ -67,11 +67,11 @@ TEST(KittiBadInput, ValidSequenceWritesEverythingAndReadsBack)
 	for (const char* f :
 	     {".rawlog", "_gt_ego.csv", "_gt_ego.tum", "_gt_landmarks.csv", "_gt_objects.csv",
 	      "_gt_object_features.csv", "_gt_tracks.csv", "_gt_track_list.csv", "_gt_ids.csv",
-	      "_gt_classes.csv", "_summary.txt", "_scenario.ini"})
+	      "_gt_classes.csv", "_gt_boxes.csv", "_summary.txt", "_scenario.ini"})
 		EXPECT_TRUE(fs::exists(out + "/kitti_0007" + f)) << f;
 	size_t entries = 0;
 	for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++entries;
-	EXPECT_EQ(entries, 12u);  // no temporary folder left
+	EXPECT_EQ(entries, 13u);  // no temporary folder left
 	// the scenario file records the options, i.e. the noise used
 	std::ifstream sc(out + "/kitti_0007_scenario.ini");
 	const std::string text((std::istreambuf_iterator<char>(sc)), std::istreambuf_iterator<char>());

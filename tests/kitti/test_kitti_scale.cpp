@@ -1,7 +1,7 @@
 /** pose_scale (issue 31, item 3): a synthetic sequence whose camera trajectory is 3 % longer
  * than the boxes' geometry. pose_scale = 1 keeps the trajectory (the diagnostic reads 1.03);
- * pose_scale = auto rescales the positions by 1 / 1.03 (the diagnostic then reads 1, and the
- * parked cars stand still in the world); a number scales by that number. */
+ * pose_scale = auto (the default) rescales the positions by 1 / 1.03 (the diagnostic then reads 1,
+ * and the parked cars stand still in the world); a number scales by that number. */
 #include <dynslam/kitti/CKittiApp.h>
 #include <dynslam/kitti/CKittiOptions.h>
 #include <gtest/gtest.h>
@@ -52,12 +52,11 @@ TImportResult importWith(const std::string& d, const std::string& poseScale)
 TEST(KittiScale, AutoRescalesTheTrajectoryToTheLabels)
 {
 	const std::string d = writeScaled("scale", 1.03);
-	// default (pose_scale = 1): as today; the diagnostic finds the 3 %
-	const TImportResult keep = importWith(d, "");
+	// pose_scale = 1 (config/kitti.ini): the trajectory as given; the diagnostic finds the 3 %
+	const TImportResult keep = importWith(d, "1");
 	EXPECT_NEAR(keep.summary.trajectory_scale, 1.03, 1e-12);
 	EXPECT_EQ(keep.summary.pose_scale, 1);
 	EXPECT_NEAR(keep.gt.ego[19].x(), 1.03 * 19, 1e-12);
-	EXPECT_EQ(importWith(d, "1").gt.ego[19].x(), keep.gt.ego[19].x());
 	// the parked cars seem to move backwards by 3 % of the path: corner scatter > 0
 	EXPECT_GT(keep.summary.static_corner_rms, 0.1);
 
@@ -76,6 +75,10 @@ TEST(KittiScale, AutoRescalesTheTrajectoryToTheLabels)
 	for (size_t i = 0; i < aut.steps[7].readings.size(); ++i)
 		EXPECT_EQ(aut.steps[7].readings[i].range, keep.steps[7].readings[i].range);
 	EXPECT_NE(aut.summary.toText().find("pose_scale = auto"), std::string::npos);
+	// auto is the default (issue 31: the ground truth consistent unless an INI says otherwise)
+	const TImportResult dflt = importWith(d, "");
+	EXPECT_TRUE(dflt.summary.pose_scale_auto);
+	EXPECT_EQ(dflt.gt.ego[19].x(), aut.gt.ego[19].x());
 
 	// a number scales by it (1.05: the parked cars then drift 1.5 m, still static)
 	const TImportResult more = importWith(d, "1.05");

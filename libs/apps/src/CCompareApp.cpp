@@ -203,8 +203,8 @@ void CCompareApp::run()
 	                                       : 0;
 	m_motTruth.reset();
 	if (hasGroundTruth && !isMrptGroundTruthSpec(groundTruthUsed))
-		m_motTruth = std::make_shared<const detail::TMotTruth>(
-		    detail::loadMotTruth(groundTruthUsed, gt));
+		m_motTruth =
+		    std::make_shared<const detail::TMotTruth>(detail::loadMotTruth(groundTruthUsed, gt));
 	for (size_t i = 0; i < filters.size(); ++i) runRow(filters[i], i, d, dump, every);
 	if (runs.empty())
 		throw std::runtime_error("dynslam-compare: every filter diverged (" +
@@ -234,17 +234,16 @@ void CCompareApp::runRow(const std::string& f, size_t i, const TLoadedData& d, s
 	TClassDecisions decisions;
 	std::vector<std::vector<TTrackedBox>> boxes;  // the tracking metrics (issue 31)
 	bool tracks = false;
-	TFilterRun r =
-	    runFilter(*backend, d.rawlog.actions, d.rawlog.frames,
-	              [&](size_t done, size_t total)
-	              {
-		              if (classifies) decisions.add(ekf->lastRoutedStep());
-		              boxes.push_back(backend->trackedBoxes());
-		              tracks = tracks || !boxes.back().empty();
-		              if (every == 0 || (done % every != 0 && done != total)) return;
-		              MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", f.c_str(), done, total,
-		                                100.0 * double(done) / double(total));
-	              });
+	TFilterRun r = runFilter(*backend, d.rawlog.actions, d.rawlog.frames,
+	                         [&](size_t done, size_t total)
+	                         {
+		                         if (classifies) decisions.add(ekf->lastRoutedStep());
+		                         boxes.push_back(backend->trackedBoxes());
+		                         tracks = tracks || !boxes.back().empty();
+		                         if (every == 0 || (done % every != 0 && done != total)) return;
+		                         MRPT_LOG_INFO_FMT("%s: step %zu/%zu (%3.0f%%)", f.c_str(), done,
+		                                           total, 100.0 * double(done) / double(total));
+	                         });
 	r.name = f;
 	if (const std::string bad = eval::divergedEstimate(r.est); !bad.empty())
 	{
@@ -259,10 +258,9 @@ void CCompareApp::runRow(const std::string& f, size_t i, const TLoadedData& d, s
 	if (hasGroundTruth)
 	{
 		const TEvaluation ev = evaluateRun(gt, r.est);
-		rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt,
-		                std::nullopt});
-		if (!landmarkGaps.empty())
-			rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
+		rows.push_back(
+		    {f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt, std::nullopt});
+		if (!landmarkGaps.empty()) rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
 		scoreObjects(rows.back(), classifies ? &decisions : nullptr, r.est);
 		if (tracks && m_motTruth && m_motTruth->valid)
 			rows.back().mot = detail::scoreMot(*m_motTruth, boxes);
@@ -285,8 +283,7 @@ void CCompareApp::buildTable()
 		         "on this machine.\n";
 	for (const auto& [f, d] : classDecisions) table << d.countsLine(f);
 	for (const auto& r : rows)
-		if (r.mot)
-			table << detail::motLine(r.filter, *r.mot) << "\n";
+		if (r.mot) table << detail::motLine(r.filter, *r.mot) << "\n";
 	for (const auto& n : objectNotes) table << n << "\n";
 	for (const auto& fail : failedFilters) table << "NOT IN THE TABLE: " << fail << "\n";
 	tableText = table.str();

@@ -18,14 +18,16 @@ const std::vector<std::string>& knownFilters()
 	static const std::vector<std::string> f{
 	    "static_all",        "static_landmarks_only", "dynamic",
 	    "dynamic_cv",        "dynamic_ctrv",          "dynamic_mm",
-	    "dynamic_smoothing", "dynamic_classified",    "default"};
+	    "dynamic_smoothing", "dynamic_classified",    "default",
+	    "odometry",          "tracker_baseline"};
 	return f;
 }
 }  // namespace
 
 /** Fixed colours per filter, whatever the subset: static_all red, static only orange, dynamic
  * blue, dynamic_cv green, dynamic_smoothing purple, dynamic_ctrv and dynamic_classified the
- * sixth and seventh colours (eval::seriesColor). */
+ * sixth and seventh colours, odometry and tracker_baseline 9 and 10 (the palette of 8 wraps:
+ * the colours of dynamic and dynamic_cv; eval::seriesColor). */
 size_t filterColorIndex(const std::string& n)
 {
 	return n == "static_all"              ? 0
@@ -36,6 +38,8 @@ size_t filterColorIndex(const std::string& n)
 	       : n == "dynamic_classified"    ? 6
 	       : n == "default"               ? 7
 	       : n == "dynamic_mm"            ? 8
+	       : n == "odometry"              ? 9
+	       : n == "tracker_baseline"      ? 10
 	                                      : 1;
 }
 

@@ -43,8 +43,9 @@ eval::TBevBox bev(const Eigen::Vector3d& p, const Eigen::Vector2d& e)
 
 bool matches(const eval::TBevBox& a, const eval::TBevBox& b, const eval::TMotOptions& o)
 {
-	return o.criterion == eval::EMotCriterion::BevIoU ? eval::bevIoU(a, b) >= o.min_iou
-	                                                  : eval::bevCentreDistance(a, b) <= o.max_distance;
+	return o.criterion == eval::EMotCriterion::BevIoU
+	           ? eval::bevIoU(a, b) >= o.min_iou
+	           : eval::bevCentreDistance(a, b) <= o.max_distance;
 }
 
 /** The frames of one criterion: hypotheses that match a neighbour and no truth left out. */
@@ -83,15 +84,16 @@ TMotTruth loadMotTruth(const std::string& base, const TGroundTruth& gt)
 	{
 		if (size_t(b.step) >= gt.numSteps())
 			throw std::runtime_error(base + "_gt_tracks.csv: step " + std::to_string(b.step) +
-			                         " beyond the ground truth's " +
-			                         std::to_string(gt.numSteps()) + " steps");
+			                         " beyond the ground truth's " + std::to_string(gt.numSteps()) +
+			                         " steps");
 		const bool own = b.type == t.cls;
 		const bool neighbour =
 		    std::find(t.neighbours.begin(), t.neighbours.end(), b.type) != t.neighbours.end();
 		if (!own && !neighbour) continue;
 		const Eigen::Vector3d p = models::poseDifference(b.world, gt.ego[size_t(b.step)]);
 		if (!inRegion(p, t.max_range, t.fov)) continue;
-		(own ? t.truth : t.ignored)[size_t(b.step)].push_back({b.track, t.cls, bev(p, b.extent), 0});
+		(own ? t.truth : t.ignored)[size_t(b.step)].push_back(
+		    {b.track, t.cls, bev(p, b.extent), 0});
 	}
 	t.valid = true;
 	return t;

@@ -1,4 +1,5 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/apps/CTrackerBaselineBackend.h>
 #include <dynslam/apps/app_main.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/slam_services.h>
@@ -44,7 +45,8 @@ const std::vector<std::string>& backendKinds()
 {
 	static const std::vector<std::string> k = []
 	{
-		std::vector<std::string> v{"ekf", "static_all", "static_landmarks_only"};
+		std::vector<std::string> v{"ekf", "static_all", "static_landmarks_only", "odometry",
+		                           "tracker_baseline"};
 		for (const auto& f : framework::backendKinds()) v.push_back(f);
 		return v;
 	}();
@@ -82,6 +84,17 @@ std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
 	}
 	if (kind == "static_all" || kind == "static_landmarks_only")
 		return slamStaticBaseline(kind, ini, optionsDump);
+	if (kind == "odometry" || kind == "tracker_baseline")  // issue 31: dead reckoning, the peer
+	{
+		std::unique_ptr<CDeadReckoningBackend> b;
+		if (kind == "odometry")
+			b = std::make_unique<CDeadReckoningBackend>();
+		else
+			b = std::make_unique<CTrackerBaselineBackend>();
+		b->loadOptions(ini);
+		if (optionsDump) b->dumpOptions(*optionsDump);
+		return b;
+	}
 	const auto& fk = framework::backendKinds();
 	if (std::find(fk.begin(), fk.end(), kind) != fk.end())
 	{

@@ -1,3 +1,4 @@
+#include <dynslam/detection_boxes.h>
 #include <dynslam/detection_groups.h>
 #include <dynslam/step_input.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -70,7 +71,12 @@ estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& ac
 	if (opts.odometry_cov_used) checkOdometryCov(in.U, who);
 	if (!SF) throw std::runtime_error(who + ": null sensory frame");
 	const auto obs = SF->getObservationByClass<mrpt::obs::CObservationBearingRange>();
-	if (!obs) return in;
+	if (!obs)
+	{
+		in.boxes = readDetectionBoxes(*SF, who);
+		checkBoxCorners(in.boxes, in.readings, who);  // boxes without readings: an error
+		return in;
+	}
 	in.sensor_pose = sensorPoseOnRobot(obs->sensorLocationOnRobot, who);
 	in.max_range = obs->maxSensorDistance;
 	in.readings.reserve(obs->sensedData.size());
@@ -93,6 +99,8 @@ estimator::TStepInput parseStepInput(const mrpt::obs::CActionCollection::Ptr& ac
 		in.readings.push_back({m.landmarkID, models::fromRangeBearing(opts.model, m.range, m.yaw)});
 	}
 	readDetectionGroups(*SF, in.readings, who);  // optional hints (detection_groups.h)
+	in.boxes = readDetectionBoxes(*SF, who);     // optional boxes (detection_boxes.h)
+	checkBoxCorners(in.boxes, in.readings, who);
 	return in;
 }
 }  // namespace dynslam

@@ -1,5 +1,5 @@
-#include <dynslam/eval/hungarian.h>
 #include <dynslam/eval/mot_metrics.h>
+#include <dynslam/models/assignment.h>
 
 #include <algorithm>
 #include <cmath>
@@ -91,7 +91,7 @@ std::vector<std::pair<size_t, size_t>> matchFrame(const TMotFrame& f, const std:
 	for (size_t a = 0; a < ti.size(); ++a)
 		for (size_t b = 0; b < hj.size(); ++b)
 			cost(long(a), long(b)) = pairCost(f.truth[ti[a]], f.hyp[hj[b]], o, nullptr);
-	const std::vector<int> col = solveAssignment(cost);
+	const std::vector<int> col = models::solveAssignment(cost);
 	for (size_t a = 0; a < ti.size(); ++a)
 		if (col[a] >= 0) pairs.emplace_back(ti[a], hj[size_t(col[a])]);
 	return pairs;

@@ -1,5 +1,6 @@
 #include <dynslam/app_support.h>
 #include <dynslam/kitti/CKittiApp.h>
+#include <dynslam/kitti/detection_import.h>
 #include <dynslam/kitti/kitti_files.h>
 #include <dynslam/kitti/rawlog_writer.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
@@ -32,6 +33,23 @@ TImportResult importFromFiles(const std::string& labelsDir, const std::string& p
 
 CKittiApp::CKittiApp() : mrpt::system::COutputLogger("dynslam-kitti") {}
 
+void CKittiApp::simulateDetectionFiles()
+{
+	checkSequenceName(sequence);
+	const std::string pp = sequenceFile(poses_dir, sequence),
+	                  lp = sequenceFile(labels_dir, sequence);
+	for (const auto& f : {pp, lp})
+		if (!std::filesystem::is_regular_file(f)) throw std::runtime_error(f + ": file not found");
+	const auto poses = readPoses(pp);
+	const auto labels = readLabels(lp);
+	checkLabelsAgainstPoses(labels, poses.size(), pp);
+	const auto dets = simulateDetections(labels, poses.size(), simulate_options.sim);
+	writeDetectionFiles(dets, simulate_dir, sequence);
+	writeNominalCalib((std::filesystem::path(simulate_dir) / "calib").string(), sequence);
+	logFmt(mrpt::system::LVL_INFO, "simulated %zu detections into %s", dets.size(),
+	       simulate_dir.c_str());
+}
+
 bool CKittiApp::initialize(int argc, const char** argv)
 {
 	TCLAP::CmdLine cmd(
@@ -54,10 +72,16 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	    "", "base", "base name of the output files (default kitti_SSSS)", false, "", "B", cmd);
 	TCLAP::ValueArg<std::string> aDet(
 	    "", "detections",
-	    "folder of 3-D detections DIR/CLASS/SSSS.txt (read and checked; needs --calib)", false, "",
-	    "DIR", cmd);
+	    "folder of 3-D detections DIR/CLASS/SSSS.txt: the rawlog's readings are then the "
+	    "detector's boxes (needs --calib)",
+	    false, "", "DIR", cmd);
 	TCLAP::ValueArg<std::string> aCalib("", "calib", "folder of calibration files DIR/SSSS.txt",
 	                                    false, "", "DIR", cmd);
+	TCLAP::ValueArg<std::string> aSim(
+	    "", "simulate-detections",
+	    "write synthetic detections made from the labels (INI section [KITTI_SimulateDetections]) "
+	    "into DIR, then import them as with --detections DIR --calib DIR/calib",
+	    false, "", "DIR", cmd);
 	TCLAP::SwitchArg aAnon("", "anonymous",
 	                       "every track anonymous: IDs that say nothing about track or class", cmd);
 	TCLAP::SwitchArg aQuiet("q", "quiet", "Only warnings and errors (no summary)", cmd);
@@ -72,7 +96,12 @@ bool CKittiApp::initialize(int argc, const char** argv)
 	base = aBase.getValue();
 	detections_dir = aDet.getValue();
 	calib_dir = aCalib.getValue();
-	if (!config_file.empty()) loadSectionOfFile(config_file, "KITTI_Import", options);
+	simulate_dir = aSim.getValue();
+	if (!config_file.empty())
+	{
+		loadSectionOfFile(config_file, "KITTI_Import", options);
+		loadSectionOfFile(config_file, "KITTI_SimulateDetections", simulate_options);
+	}
 	options.import.anonymous = aAnon.getValue();
 	return true;
 }
@@ -82,12 +111,23 @@ void CKittiApp::run()
 	if (out_dir.empty()) throw std::invalid_argument("--out is required");
 	if (detections_dir.empty() != calib_dir.empty())
 		throw std::invalid_argument("--detections and --calib go together");
-	TImportResult res = importFromFiles(labels_dir, poses_dir, sequence, options.import);
-	if (!detections_dir.empty())
+	std::string detDir = detections_dir, calDir = calib_dir;
+	if (!simulate_dir.empty())
 	{
+		if (!detDir.empty())
+			throw std::invalid_argument("--simulate-detections replaces --detections and --calib");
+		simulateDetectionFiles();
+		detDir = simulate_dir;
+		calDir = (std::filesystem::path(simulate_dir) / "calib").string();
+	}
+	TImportResult res = importFromFiles(labels_dir, poses_dir, sequence, options.import);
+	if (!detDir.empty())
+	{
+		std::vector<std::vector<TKittiDetection>> kept;
 		detection_summary =
-		    readDetectionSet(detections_dir, calib_dir, sequence, options.detections,
-		                     res.steps.size(), sequenceFile(poses_dir, sequence));
+		    readDetectionSet(detDir, calDir, sequence, options.detections, res.steps.size(),
+		                     sequenceFile(poses_dir, sequence), &kept);
+		applyDetections(kept, options.import.max_range, res, detection_summary);
 		res.summary.detections_text = detection_summary.toText();
 	}
 	summary = res.summary;
@@ -96,6 +136,8 @@ void CKittiApp::run()
 	if (!quiet) std::cout << summary.toText();
 	logFmt(mrpt::system::LVL_INFO, "wrote %s/%s.rawlog (%zu steps, %s) and ground truth",
 	       out_dir.c_str(), b.c_str(), summary.steps,
-	       options.import.anonymous ? "anonymous" : "labelled");
+	       res.detections             ? "detections"
+	       : options.import.anonymous ? "anonymous"
+	                                  : "labelled");
 }
 }  // namespace dynslam::kitti

@@ -117,4 +117,56 @@ void TKittiOptions::dumpToTextStream(std::ostream& out) const
 	else
 		out << "none\n";
 }
+
+void TKittiSimOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                          const std::string& sec)
+{
+	using namespace dynslam::config;
+	rejectUnknownKeys(c, sec,
+	                  {"seed", "miss_probability", "false_positives_per_frame", "fp_min_range",
+	                   "fp_max_range", "fp_fov_deg", "fp_score_min", "fp_score_max", "score_min",
+	                   "score_max", "std_xy", "std_yaw", "std_size", "flip_probability"});
+	auto& o = sim;
+	const long seed = readInt(c, sec, "seed", long(o.seed));
+	if (seed < 0 || seed > 4294967295L)
+		fail(sec, "seed", std::to_string(seed), "must be in 0..2^32-1");
+	o.seed = uint32_t(seed);
+	o.miss_probability = readNonNegative(c, sec, "miss_probability", o.miss_probability);
+	o.false_positives_per_frame =
+	    readNonNegative(c, sec, "false_positives_per_frame", o.false_positives_per_frame);
+	o.fp_min_range = readNonNegative(c, sec, "fp_min_range", o.fp_min_range);
+	o.fp_max_range = readNonNegative(c, sec, "fp_max_range", o.fp_max_range);
+	o.fp_fov_deg = readPositive(c, sec, "fp_fov_deg", o.fp_fov_deg);
+	o.fp_score_min = readDouble(c, sec, "fp_score_min", o.fp_score_min);
+	o.fp_score_max = readDouble(c, sec, "fp_score_max", o.fp_score_max);
+	o.score_min = readDouble(c, sec, "score_min", o.score_min);
+	o.score_max = readDouble(c, sec, "score_max", o.score_max);
+	o.std_xy = readNonNegative(c, sec, "std_xy", o.std_xy);
+	o.std_yaw = readNonNegative(c, sec, "std_yaw", o.std_yaw);
+	o.std_size = readNonNegative(c, sec, "std_size", o.std_size);
+	o.flip_probability = readNonNegative(c, sec, "flip_probability", o.flip_probability);
+	try
+	{
+		checkDetectionSimOptions(o);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		throw std::invalid_argument("[" + sec + "] " + e.what());
+	}
+}
+
+void TKittiSimOptions::dumpToTextStream(std::ostream& out) const
+{
+	const auto& o = sim;
+	out.precision(17);
+	out << "[KITTI_SimulateDetections]\nseed = " << o.seed
+	    << "\nmiss_probability = " << o.miss_probability
+	    << "\nfalse_positives_per_frame = " << o.false_positives_per_frame
+	    << "\nfp_min_range = " << o.fp_min_range << "\nfp_max_range = " << o.fp_max_range
+	    << "\nfp_fov_deg = " << o.fp_fov_deg << "\nfp_score_min = " << o.fp_score_min
+	    << "\nfp_score_max = " << o.fp_score_max << "\nscore_min = " << o.score_min
+	    << "\nscore_max = " << o.score_max << "\nstd_xy = " << o.std_xy
+	    << "\nstd_yaw = " << o.std_yaw << "\nstd_size = " << o.std_size
+	    << "\nflip_probability = " << o.flip_probability << "\n";
+}
 }  // namespace dynslam::kitti

@@ -57,13 +57,15 @@ TDetectionSummary::TClass countClass(const TKittiDetectionFile& d, double minSco
 
 TDetectionSummary readDetectionSet(const std::string& detectionsDir, const std::string& calibDir,
                                    const std::string& sequence, const TDetectionOptions& opts,
-                                   size_t numFrames, const std::string& posesPath)
+                                   size_t numFrames, const std::string& posesPath,
+                                   std::vector<std::vector<TKittiDetection>>* kept)
 {
 	checkOptions(opts);
 	checkSequenceName(sequence);
 	for (const auto& d : {detectionsDir, calibDir})
 		if (!std::filesystem::is_directory(d)) throw std::runtime_error(d + ": folder not found");
-	readCalib(sequenceFile(calibDir, sequence));  // read and checked; not used yet
+	// read and checked; not used (the detections are in the labels' camera frame already)
+	readCalib(sequenceFile(calibDir, sequence));
 	TDetectionSummary s;
 	s.min_score = opts.min_score;
 	std::vector<TKittiDetectionFile> files;
@@ -77,14 +79,22 @@ TDetectionSummary readDetectionSet(const std::string& detectionsDir, const std::
 		checkDetectionsAgainstFrames(files.back(), numFrames, posesPath);
 	}
 	for (const auto& f : files) s.classes[f.type] = countClass(f, opts.min_score, numFrames);
+	if (kept)
+	{
+		kept->assign(numFrames, {});
+		for (const auto& f : files)
+			for (const auto& d : f.detections)
+				if (d.score >= opts.min_score) (*kept)[size_t(d.frame)].push_back(d);
+	}
 	return s;
 }
 
 std::string TDetectionSummary::toText() const
 {
 	std::ostringstream o;
-	o << "  detections (score >= " << min_score << "; read and checked, not written: the box "
-	  << "observations of the rawlog are future work):\n";
+	o << "  detections (score >= " << min_score << "): written to the rawlog " << written
+	  << " boxes in " << frames_written << " frames (" << beyond_range
+	  << " beyond max_range not written)\n";
 	for (const auto& [cls, c] : classes)
 	{
 		o << "    " << cls << ": " << c.lines << " lines, kept " << c.kept << ", below threshold "

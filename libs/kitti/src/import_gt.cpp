@@ -124,8 +124,8 @@ void fillGroundTruth(const TKittiLabels& L, const std::vector<Eigen::Vector3d>& 
 		for (size_t i : t.boxes)
 		{
 			const TKittiBox& b = L.boxes[i];
-			res.track_steps.push_back(
-			    {b.frame, t.track, t.moving, read[i] != 0, worldBoxPose(b, ego[size_t(b.frame)])});
+			res.track_steps.push_back({b.frame, t.track, t.moving, read[i] != 0,
+			                           worldBoxPose(b, ego[size_t(b.frame)]), b.l, b.w});
 		}
 		if (t.first_read < 0) continue;
 		if (t.moving)

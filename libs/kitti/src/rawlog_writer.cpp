@@ -1,3 +1,4 @@
+#include <dynslam/detection_boxes.h>
 #include <dynslam/detection_groups.h>
 #include <dynslam/kitti/rawlog_writer.h>
 #include <dynslam/odometry_action.h>
@@ -29,7 +30,40 @@ mrpt::obs::CActionCollection makeAction(const TStep& s)
 	return acts;
 }
 
-mrpt::obs::CSensoryFrame makeFrame(const TStep& s, const TImportOptions& o)
+mrpt::obs::CObservationBearingRange::TMeasurement measurement(double range, double bearing,
+                                                              int32_t id)
+{
+	mrpt::obs::CObservationBearingRange::TMeasurement z;
+	z.range = float(range);
+	z.yaw = float(bearing);
+	z.pitch = 0;
+	z.landmarkID = id;
+	z.covariance.setZero();
+	return z;
+}
+
+/** Detection mode: every box's corners (ID -1) and the DETECTION_GROUPS / DETECTION_BOXES
+ * comments (dynslam/detection_boxes.h). */
+void addBoxes(const TStep& s, mrpt::obs::CObservationBearingRange& obs,
+              mrpt::obs::CSensoryFrame& sf)
+{
+	std::vector<int32_t> ids, groups;
+	for (const auto& b : s.boxes)
+		for (const auto& c : boxCorners(b))
+		{
+			obs.sensedData.push_back(measurement(c.norm(), std::atan2(c.y(), c.x()), -1));
+			ids.push_back(-1);
+			groups.push_back(b.group);
+		}
+	// the step's time stamp (a comment's default is "now"; MRPT's tools report it)
+	auto g = makeDetectionGroups(ids, groups);
+	auto c = makeDetectionBoxes(s.boxes);
+	g->timestamp = c->timestamp = obs.timestamp;
+	sf.insert(g);
+	sf.insert(c);
+}
+
+mrpt::obs::CSensoryFrame makeFrame(const TStep& s, const TImportOptions& o, bool detections)
 {
 	auto obs = mrpt::obs::CObservationBearingRange::Create();
 	obs->sensorLabel = "RB";
@@ -44,18 +78,12 @@ mrpt::obs::CSensoryFrame makeFrame(const TStep& s, const TImportOptions& o)
 	obs->sensor_std_yaw = float(o.std_bearing);
 	obs->sensor_std_pitch = 0;
 	for (const auto& r : s.readings)
-	{
-		mrpt::obs::CObservationBearingRange::TMeasurement z;
-		z.range = float(r.range);
-		z.yaw = float(r.bearing);
-		z.pitch = 0;
-		z.landmarkID = r.id;
-		z.covariance.setZero();
-		obs->sensedData.push_back(z);
-	}
+		obs->sensedData.push_back(measurement(r.range, r.bearing, r.id));
 	mrpt::obs::CSensoryFrame sf;
 	sf.insert(obs);
-	if (o.detection_groups)
+	if (detections)
+		addBoxes(s, *obs, sf);
+	else if (o.detection_groups)
 	{
 		// The hint of every corner: its box, the KITTI track ID (detection_groups.h).
 		std::vector<int32_t> ids, groups;
@@ -64,7 +92,9 @@ mrpt::obs::CSensoryFrame makeFrame(const TStep& s, const TImportOptions& o)
 			ids.push_back(r.id);
 			groups.push_back(r.track);
 		}
-		sf.insert(makeDetectionGroups(ids, groups));
+		auto g = makeDetectionGroups(ids, groups);
+		g->timestamp = obs->timestamp;
+		sf.insert(g);
 	}
 	return sf;
 }
@@ -77,6 +107,13 @@ void writeText(const std::string& path, const std::function<void(std::ostream&)>
 	w(f);
 	f.flush();
 	if (!f) throw std::runtime_error(path + ": write error");
+}
+
+size_t boxesWritten(const TImportResult& res)
+{
+	size_t n = 0;
+	for (const auto& s : res.steps) n += s.boxes.size();
+	return n;
 }
 
 void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std::string& dir,
@@ -112,7 +149,20 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 			          f << r.id << ',' << r.track << ',' << r.corner << ',' << int(r.moving) << ','
 			            << tracks.at(r.track).object << '\n';
 	          });
-	writeClassGroundTruth(readingClasses(res), file("_gt_classes.csv"));
+	writeText(file("_gt_boxes.csv"),
+	          [&](std::ostream& f)
+	          {
+		          f.precision(17);
+		          f << "step,t,track,type,moving,read,x,y,yaw,length,width\n";
+		          for (const auto& r : res.track_steps)
+			          f << r.step << ',' << res.gt.t[size_t(r.step)] << ',' << r.track << ','
+			            << tracks.at(r.track).type << ',' << int(r.moving) << ',' << int(r.read)
+			            << ',' << r.pose.x() << ',' << r.pose.y() << ',' << r.pose.z() << ','
+			            << r.length << ',' << r.width << '\n';
+	          });
+	// the class of every rawlog reading: the annotated corners' (detection mode: no truth per
+	// reading, the detections are not matched to tracks; not written)
+	if (!res.detections) writeClassGroundTruth(readingClasses(res), file("_gt_classes.csv"));
 	writeText(file("_summary.txt"), [&](std::ostream& f) { f << res.summary.toText(); });
 	writeText(file("_scenario.ini"),
 	          [&](std::ostream& f)
@@ -121,9 +171,13 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 		          f << "; Written by dynslam-kitti: the import's effective options (the noise\n"
 		            << "; used) and counts. World frame = the ego frame of frame 0, so the\n"
 		            << "; filters start at the origin with zero covariance.\n"
-		            << "[KITTI_ImportResult]\nsequence = " << s.sequence
-		            << "\nmode = " << (opts.import.anonymous ? "anonymous" : "labelled")
-		            << "\nsteps = " << s.steps << "\nreadings = " << s.readings
+		            << "[KITTI_ImportResult]\nsequence = " << s.sequence << "\nmode = "
+		            << (res.detections          ? "detections"
+		                : opts.import.anonymous ? "anonymous"
+		                                        : "labelled")
+		            << "\nsteps = " << s.steps
+		            << "\nreadings = " << (res.detections ? 4 * boxesWritten(res) : s.readings)
+		            << "\ndetection_boxes = " << boxesWritten(res)
 		            << "\nstatic_tracks = " << s.static_tracks
 		            << "\nmoving_tracks = " << s.moving_tracks
 		            << "\npath_length = " << s.path_length << "\nfloor_n = " << s.floor_n
@@ -142,7 +196,8 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 void writeRawlog(const TImportResult& res, const TImportOptions& opts, const std::string& path)
 {
 	CRawlogFileWriter out(path, "writeRawlog");
-	for (const auto& s : res.steps) out.writeStep(makeAction(s), makeFrame(s, opts));
+	for (const auto& s : res.steps)
+		out.writeStep(makeAction(s), makeFrame(s, opts, res.detections));
 	out.close();
 }
 

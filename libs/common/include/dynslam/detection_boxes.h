@@ -15,8 +15,10 @@
  *    group: the detection group of its corners (>= 0, unique in the step); class: one word
  *    (e.g. Car); score: the detector's confidence; (x, y) [m] the footprint centre and yaw [rad]
  *    the heading of the length axis, in the sensor frame; length, width [m] > 0. Numbers are
- *    written with 17 significant digits (a round trip is exact). Empty lines and lines starting
- *    with '#' are ignored.
+ *    written with 17 significant digits (a round trip is exact). The comment's text starts with
+ *    the line DETECTION_BOXES: that line is how readers find it, as for DETECTION_GROUPS (MRPT's
+ *    CObservationComment does not serialize sensorLabel: read back, it is empty); empty lines
+ *    and lines starting with '#' are ignored.
  * MRPT's CRangeBearingKFSLAM2D sees only the corners (with unknown IDs); the project's box
  * front-end (estimator/box_tracker.h) reads the boxes. */
 #include <dynslam/estimator/readings.h>
@@ -43,4 +45,13 @@ std::vector<Eigen::Vector2d> boxCorners(const estimator::TBoxDetection& box);
  * number, NaN/Inf, a length or width <= 0, a group < 0 or repeated). */
 std::vector<estimator::TBoxDetection> readDetectionBoxes(const mrpt::obs::CSensoryFrame& SF,
                                                          const std::string& who);
+
+/** The consistency of a step's boxes with its readings (parseStepInput calls it): every box's
+ * group must be the hint of exactly four readings, each with landmark ID -1 (its corners, in
+ * observation order FL, FR, RR, RL: the order is not checked). Throws std::runtime_error,
+ * prefixed by `who` and naming the box (index in the comment, group, class), otherwise.
+ * Readings with ID -1 whose hint is no box's group are allowed (the existing unknown-ID
+ * readings); steps without boxes are not checked. */
+void checkBoxCorners(const std::vector<estimator::TBoxDetection>& boxes,
+                     const std::vector<estimator::TReading>& readings, const std::string& who);
 }  // namespace dynslam

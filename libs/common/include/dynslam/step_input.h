@@ -7,7 +7,11 @@
  * (dynslam/estimator/measurement_router.h), which validates the IDs. Throws
  * std::runtime_error, prefixed by `who`, before anything is changed. The sensor's pose on the
  * robot (sensorLocationOnRobot, see sensorPoseOnRobot) goes to TStepInput::sensor_pose. A step
- * without odometry is taken as MRPT takes it (TParseOptions::stds_Q_no_odo). */
+ * without odometry is taken as MRPT takes it (TParseOptions::stds_Q_no_odo). Optional:
+ * the readings' detection groups (DETECTION_GROUPS comment, detection_groups.h) and the
+ * detector boxes (DETECTION_BOXES comment, detection_boxes.h: TStepInput::boxes, each box's
+ * group checked to be the hint of exactly its four ID -1 corner readings). Readings with ID -1
+ * are passed on as they are (the router decides what they are). */
 #include <dynslam/estimator/readings.h>
 #include <dynslam/models/measurement.h>
 #include <mrpt/obs/CActionCollection.h>

@@ -18,7 +18,9 @@ namespace dynslam::apps
 /** Back-end kinds the apps can build: "ekf" (the dynamic EKF, CDynamicKFSLAM2D, sections
  * [DynamicKFSLAM] and [DynamicKFSLAM_KalmanFilter]), "static_all" and "static_landmarks_only"
  * (MRPT's CRangeBearingKFSLAM2D, CStaticBaselineBackend, sections [RangeBearingKFSLAM] and
- * [RangeBearingKFSLAM_KalmanFilter]), and the optimization framework's back-ends
+ * [RangeBearingKFSLAM_KalmanFilter]), "odometry" (dead reckoning, CDeadReckoningBackend) and
+ * "tracker_baseline" (AB3DMOT's method on the detector boxes, CTrackerBaselineBackend, section
+ * [BoxTracker]; both take [DynamicKFSLAM] if present), and the optimization framework's back-ends
  * (dynslam/framework/backend_factory.h: alg1, vdo, dynaslam2, cubeslam, clusterslam_*; section
  * [Backend] plus the model section, default [DynamicKFSLAM]). */
 const std::vector<std::string>& backendKinds();

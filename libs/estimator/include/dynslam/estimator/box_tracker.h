@@ -13,19 +13,48 @@
  * the SLAM filter's own (overridePrediction: the joint part).
  *
  * Per track, the state in the world frame is s = (x, y, yaw, length, width, vx, vy): the centre
- * moves with constant velocity (white acceleration accel_std), the heading and the extent are
- * random walks (yaw_std, extent_std per frame); a box measures (x, y, yaw, length, width) with
- * meas_std. The detector's front/back ambiguity: a box whose heading differs from its track's by
- * more than pi/2 is turned by pi before the update (AB3DMOT's orientation correction) and
- * reported as flipped.
+ * moves with constant velocity (white acceleration accel_std: Q = accel_std^2 [dt^4/4, dt^3/2;
+ * dt^3/2, dt^2] per axis), the heading and the extent are random walks (yaw_std, extent_std per
+ * frame); a box measures (x, y, yaw, length, width) with meas_std (plus the box's centre_cov on
+ * the centre). A new track starts at its box with that covariance and velocity (0, 0) with
+ * velocity_std. The yaw innovation is wrapped to (-pi, pi]. The detector's front/back
+ * ambiguity: a box whose heading differs from its track's (wrapped) by more than pi/2 is turned
+ * by pi before the update and reported as flipped: the track keeps its heading.
+ *
+ * Cost of a pair (same class only): "mahalanobis": d^2 = (c_box - c_trk)' S^-1 (c_box - c_trk)
+ * with S the centre block of the innovation covariance, allowed if d^2 <= the chi-square
+ * 2-dof quantile of gate_prob; "bev_iou": 1 - IoU of the box's footprint and the predicted
+ * footprint (models/bev_box.h), allowed if IoU >= min_iou. Forbidden pairs are removed before
+ * the assignment (models/assignment.h: first the most allowed pairs, then the least cost).
  *
  * Life of a track: a box that no track takes starts a Tentative track (if score >= min_score);
  * a Tentative track with min_hits hits within its first birth_window frames becomes Confirmed,
- * one that cannot reach that any more is deleted; a Confirmed track without a hit is Lost, and is
- * deleted after max_age consecutive frames without one; a hit makes a Lost track Confirmed again.
- * Deleted tracks leave tracks(). Track IDs are 0, 1, 2, ... in order of birth, never reused. */
+ * one that cannot reach that any more is deleted; a Confirmed track without a hit is Lost; a
+ * track (of any state) is deleted in the frame of its max_age-th consecutive frame without a
+ * hit; a hit makes a Lost track Confirmed again. Deleted tracks leave tracks(). Track IDs are
+ * 0, 1, 2, ... in order of birth, never reused. A frame is one update() call (age counts them).
+ *
+ * AB3DMOT (github.com/xinshuoweng/AB3DMOT, read for this class): AB3DMOT_libs/model.py
+ * get_param(), KITTI with PointRCNN boxes: Car 'hungar' (Hungarian), metric 'giou_3d' with
+ * threshold -0.2, min_hits 3, max_age 2; Pedestrian 'greedy', giou_3d -0.4, min_hits 1,
+ * max_age 4; Cyclist 'hungar', 'dist_3d' 2 m, min_hits 3, max_age 4 (the 2020 version of
+ * model.py: 3-D IoU with threshold 0.01, min_hits 3, max_age 2 for every class; configs/KITTI.yml:
+ * max_age 2, min_hits 3, score_threshold -10000). AB3DMOT_libs/kalman_filter.py: a 10-state
+ * (x, y, z, theta, l, w, h, vx, vy, vz) constant-velocity filter per frame, P0 = 10 I with 10^4
+ * on the velocities, Q = I with 0.01 on the velocities, R = I (filterpy's defaults), no dt.
+ * model.py orientation_correction(): when the predicted and the observed heading differ by more
+ * than pi/2 (and less than 3 pi/2) the *track's* heading is turned by pi. model.py output():
+ * a track is reported if time_since_update < max_age and (hits >= min_hits or frame_count <=
+ * min_hits), and deleted when time_since_update >= max_age; hits count all hits (no window).
+ * Ours differ: in the bird's-eye view (no z, no height; BEV IoU instead of 3-D IoU / GIoU);
+ * the Mahalanobis gate as an option; physical noise per second (accel_std) and dt from the
+ * stamps; the *box* is turned by pi, not the track; gated pairs are forbidden before the
+ * assignment (AB3DMOT assigns on all pairs, then drops those under the threshold); the M-of-N
+ * window (AB3DMOT's rule is birth_window >= min_hits + (min_hits - 1)(max_age - 1): 5 for 3
+ * and 2, where a tentative track dies of max_age before the window ends); reporting (which
+ * tracks a row outputs) is the caller's (the tracker_baseline row reproduces model.py
+ * output()). */
 #include <Eigen/Core>
-
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -88,7 +117,7 @@ struct TBoxTrack
 	Vector7d x = Vector7d::Zero();  ///< (x, y, yaw, length, width, vx, vy), world frame
 	Matrix7d P = Matrix7d::Zero();
 	int hits = 0;          ///< frames with a box
-	int age = 0;           ///< frames since birth (0 in its first frame)
+	int age = 0;           ///< update() frames since birth (0 in its first frame)
 	int misses = 0;        ///< consecutive frames without a box
 	bool updated = false;  ///< a box this frame
 	double score = 0;      ///< the score of its last box
@@ -108,16 +137,21 @@ public:
 	/** Throws std::invalid_argument on invalid params. */
 	explicit CBoxTracker(const TBoxTrackerParams& params);
 
-	/** Predicts every track by dt [s] (> 0, finite; else std::invalid_argument). */
+	/** Predicts every track by dt [s] (> 0, finite; else std::invalid_argument) and clears the
+	 * previous frame's overrides. */
 	void predict(double dt);
 	/** After predict(), for this frame only: the predicted centre and its covariance of track
 	 * id come from the caller (the SLAM filter's estimate of that object or static box) for
-	 * the association and the update. Throws std::invalid_argument for an unknown id or a
-	 * covariance that is not symmetric positive definite. */
+	 * the association and the update. The rest of the track's state follows by Jeffrey's rule
+	 * (its distribution given the centre is kept: mean r + P_rc P_cc^-1 (c' - c), cross-covariance
+	 * P_rc P_cc^-1 C', so the result stays positive definite). Throws std::invalid_argument for
+	 * an unknown id, a non-finite centre or a covariance that is not symmetric positive
+	 * definite. */
 	void overridePrediction(int32_t id, const Eigen::Vector2d& centre, const Eigen::Matrix2d& cov);
 	/** Associates the frame's boxes with the predicted tracks, updates, starts, confirms and
-	 * deletes tracks. Throws std::invalid_argument for a box with a non-finite number or a
-	 * length or width <= 0. */
+	 * deletes tracks (one frame). Throws std::invalid_argument, before any change, for a box with
+	 * a non-finite pose, extent or centre_cov, a NaN score, a length or width <= 0, or a
+	 * centre_cov that is not symmetric positive semi-definite. */
 	TBoxAssignment update(const std::vector<TWorldBox>& boxes);
 
 	/** The live tracks (not deleted), in order of birth. */
@@ -125,9 +159,14 @@ public:
 	const TBoxTrackerParams& params() const { return m_params; }
 
 private:
+	/** The cost matrix (tracks x boxes; +inf: forbidden pairs). */
+	Eigen::MatrixXd costs(const std::vector<TWorldBox>& boxes) const;
+	void updateTrack(TBoxTrack& t, const TWorldBox& box, bool flip) const;
+	/** Hit / miss bookkeeping of one track after this frame's assignment; true: delete it. */
+	bool manage(TBoxTrack& t, bool hit, TBoxAssignment& out) const;
+
 	TBoxTrackerParams m_params;
 	std::vector<TBoxTrack> m_tracks;
-	std::vector<char> m_overridden;  ///< per track: overridePrediction this frame
 	int32_t m_nextId = 0;
 };
 }  // namespace dynslam::estimator

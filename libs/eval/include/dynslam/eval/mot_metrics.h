@@ -8,8 +8,8 @@
  *   1. every truth object o whose last correspondence (o, h) (the mapping M; kept across frames
  *      where o or h is missing) is still valid in this frame (h present, not yet taken, the
  *      pair matches) keeps it;
- *   2. the remaining truths and hypotheses are assigned by the Hungarian method (hungarian.h:
- *      most pairs that match, then least total distance);
+ *   2. the remaining truths and hypotheses are assigned by the Hungarian method
+ * (models/assignment.h: most pairs that match, then least total distance);
  *   3. a new correspondence (o, h') with o's last correspondence h != h' is a mismatch (ids);
  *   truths left unmatched are misses (fn), hypotheses left unmatched false positives (fp).
  *   mota = 1 - (fn + fp + ids) / gt; motp = the mean over the matched pairs of the centre
@@ -19,7 +19,7 @@
  *   a truth object that has been matched before is matched again after one or more of its own
  *   frames unmatched (frames where it is not annotated do not count).
  * - A pair matches when the classes are equal and, by criterion, the centre distance is
- *   <= max_distance or the BEV IoU of the oriented footprints (bev_box.h) is >= min_iou.
+ *   <= max_distance or the BEV IoU of the oriented footprints (models/bev_box.h) is >= min_iou.
  * - sAMOTA (X. Weng, J. Wang, D. Held, K. Kitani, "3D Multi-Object Tracking: A Baseline and
  *   New Evaluation Metrics", IROS 2020): for the recall levels r = 1/L, 2/L, ..., 1, the
  *   hypotheses are thresholded on their score so that the recall reaches r, CLEAR MOT is run on
@@ -31,7 +31,7 @@
  *   most one match per level.)
  * Not modelled: KITTI's DontCare regions and its ignored classes (Van for Car, ...); the
  * caller selects what to score (selectClass). */
-#include <dynslam/eval/bev_box.h>
+#include <dynslam/models/bev_box.h>
 
 #include <cstddef>
 #include <limits>
@@ -40,6 +40,12 @@
 
 namespace dynslam::eval
 {
+/** The footprint and its overlap live in libs/core (models/bev_box.h), shared with the box
+ * tracker; named here as before. */
+using models::bevCentreDistance;
+using models::bevIoU;
+using models::TBevBox;
+
 enum class EMotCriterion
 {
 	CentreDistance,

@@ -7,6 +7,7 @@
  * detection_classes (a list of Car, Pedestrian, Cyclist) and detection_min_score (a number, or
  * none: every detection kept). */
 #include <dynslam/kitti/detection_files.h>
+#include <dynslam/kitti/detection_simulator.h>
 #include <dynslam/kitti/import.h>
 #include <mrpt/config/CLoadableOptions.h>
 
@@ -20,5 +21,19 @@ struct TKittiOptions : public mrpt::config::CLoadableOptions
 
 	TImportOptions import;
 	TDetectionOptions detections;
+};
+
+/** Section [KITTI_SimulateDetections] (dynslam-kitti --simulate-detections; every key optional,
+ * defaults of TDetectionSimOptions; unknown keys and invalid values rejected): seed,
+ * miss_probability, false_positives_per_frame, fp_min_range, fp_max_range, fp_fov_deg,
+ * fp_score_min, fp_score_max, score_min, score_max, std_xy, std_yaw, std_size,
+ * flip_probability (detection_simulator.h). */
+struct TKittiSimOptions : public mrpt::config::CLoadableOptions
+{
+	void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+	                        const std::string& section) override;
+	void dumpToTextStream(std::ostream& out) const override;
+
+	TDetectionSimOptions sim;
 };
 }  // namespace dynslam::kitti

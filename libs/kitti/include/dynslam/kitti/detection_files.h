@@ -98,14 +98,20 @@ struct TDetectionSummary
 	};
 	std::map<std::string, TClass> classes;
 	double min_score = -std::numeric_limits<double>::infinity();
+	/** Written to the rawlog (detection_import.h, applyDetections): boxes, boxes dropped
+	 * beyond max_range, frames with >= 1 box written. */
+	size_t written = 0, beyond_range = 0, frames_written = 0;
 	std::string toText() const;
 };
 
 /** Reads and checks the detections of `sequence` (DIR/CLASS/SSSS.txt for every class of the
  * options) and the calibration calibDir/SSSS.txt against a sequence of numFrames frames
- * (posesPath: named in the error). Throws std::runtime_error (a missing folder or file, bad
- * lines: file and line named) or std::invalid_argument (bad options). */
+ * (posesPath: named in the error). With `kept`: (*kept)[k] = the kept detections of frame k
+ * (numFrames entries; classes in the order of the options, then file order). Throws
+ * std::runtime_error (a missing folder or file, bad lines: file and line named) or
+ * std::invalid_argument (bad options). */
 TDetectionSummary readDetectionSet(const std::string& detectionsDir, const std::string& calibDir,
                                    const std::string& sequence, const TDetectionOptions& opts,
-                                   size_t numFrames, const std::string& posesPath);
+                                   size_t numFrames, const std::string& posesPath,
+                                   std::vector<std::vector<TKittiDetection>>* kept = nullptr);
 }  // namespace dynslam::kitti

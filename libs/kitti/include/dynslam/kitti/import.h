@@ -32,6 +32,7 @@
  *   elsewhere. Extra files: the track list, the per-step class truth, the ID table
  *   (rawlog_writer.h). */
 #include <dynslam/class_ground_truth.h>
+#include <dynslam/estimator/readings.h>
 #include <dynslam/ground_truth.h>
 #include <dynslam/kitti/kitti_files.h>
 
@@ -50,7 +51,10 @@ enum class ENoise
 	None
 };
 
-/** Defaults: the values of config/kitti.ini (a test checks that both agree). */
+/** Defaults: the values of config/kitti.ini (a test checks that both agree), except
+ * pose_scale: the default is auto (issue 31: the ground truth consistent by default), while
+ * config/kitti.ini pins pose_scale = 1 (the annotation protocol whose tables in doc/kitti.md
+ * section 5 were measured at scale 1). */
 struct TImportOptions
 {
 	double dt = 0.1;                  ///< [s] frame period (KITTI: 10 Hz)
@@ -77,9 +81,9 @@ struct TImportOptions
 	 * import at scale 1 (TImportSummary: the least-squares fit of the trajectory to the static
 	 * boxes' geometry), so that the ground truth, the odometry and the box readings agree;
 	 * without a static track of >= 10 frames the factor stays 1 (reported). INI: pose_scale =
-	 * auto or a number > 0. */
+	 * auto (the default) or a number > 0. */
 	double pose_scale = 1.0;
-	bool pose_scale_auto = false;
+	bool pose_scale_auto = true;
 };
 
 /** One track (persistent KITTI track ID). */
@@ -110,7 +114,10 @@ struct TStep
 	double t = 0;
 	Eigen::Vector3d increment = Eigen::Vector3d::Zero();  ///< noisy (dx, dy, dphi)
 	Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-	std::vector<TReading> readings;
+	std::vector<TReading> readings;  ///< the annotated boxes' corners (empty in detection mode)
+	/** Detection mode (detection_import.h): the detector's boxes of the frame, ego frame; the
+	 * rawlog then holds their corners (ID -1) as the step's only readings. */
+	std::vector<estimator::TBoxDetection> boxes;
 };
 
 /** One row of the ID table: what a reading ID is. */
@@ -127,6 +134,7 @@ struct TTrackStepRow
 	int step = 0, track = -1;
 	bool moving = false, read = false;
 	Eigen::Vector3d pose = Eigen::Vector3d::Zero();  ///< footprint centre and yaw, world
+	double length = 0, width = 0;                    ///< the box's size at this frame [m]
 };
 
 struct TImportSummary
@@ -166,6 +174,9 @@ struct TImportResult
 	std::vector<TIdRow> ids;  ///< sorted by ID
 	std::vector<TTrackStepRow> track_steps;
 	TImportSummary summary;
+	/** Detection mode (detection_import.h): the steps' readings are the detector's boxes
+	 * (TStep::boxes), not the annotations; the ground truth is still the labels'. */
+	bool detections = false;
 };
 
 /** Runs the conversion. Throws std::runtime_error / std::invalid_argument on inconsistent

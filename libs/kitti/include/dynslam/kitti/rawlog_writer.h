@@ -10,15 +10,23 @@
  *    CObservationBearingRange (label "RB", sensor at the robot origin, maxSensorDistance =
  *    max_range, fieldOfView_yaw = fov, sensor_std_range / sensor_std_yaw = std_range /
  *    std_bearing, one TMeasurement per reading: range, yaw = bearing, pitch 0, landmarkID);
+ *    detection mode (TImportResult::detections, detection_import.h): the readings are the
+ *    corners of the step's boxes (boxCorners order, landmarkID -1), followed by a
+ *    DETECTION_GROUPS and a DETECTION_BOXES comment (dynslam/detection_boxes.h) in every step;
  *  - `<base>_gt_*` (dynslam::writeGroundTruth) and the KITTI extras:
  *      `<base>_gt_tracks.csv`      step,t,track,type,moving,read,x,y,yaw (per annotated frame
  *                                  of every track: its class, whether it is read, footprint
  *                                  centre and yaw in the world frame)
  *      `<base>_gt_track_list.csv`  track,type,moving,radius,first_frame,last_frame,frames,
  *                                  read_frames,first_read,object,length,width
- *      `<base>_gt_ids.csv`         id,track,corner,moving,object (every reading ID)
+ *      `<base>_gt_boxes.csv`       step,t,track,type,moving,read,x,y,yaw,length,width (per
+ *                                  annotated frame of every track: its box in the world frame,
+ *                                  17 digits; the multi-object tracking truth)
+ *      `<base>_gt_ids.csv`         id,track,corner,moving,object (every reading ID of the
+ *                                  labelled/anonymous import)
  *      `<base>_gt_classes.csv`     the class truth of every reading (class_ground_truth.h,
- *                                  readingClasses in import.h): scores feature_labels = classify
+ *                                  readingClasses in import.h): scores feature_labels = classify;
+ *                                  not written in detection mode (no truth per detection)
  *  - `<base>_summary.txt` and `<base>_scenario.ini` (the effective [KITTI_Import] options, i.e.
  *    the noise used, the mode, the counts and the filter start).
  * Everything is written into a temporary folder inside `dir` and moved into place at the end:

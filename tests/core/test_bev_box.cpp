@@ -1,14 +1,14 @@
-/** eval::bevIoU (bev_box.h) against closed forms of the intersection of oriented boxes. */
-#include <dynslam/eval/bev_box.h>
+/** models::bevIoU (bev_box.h) against closed forms of the intersection of oriented boxes. */
+#include <dynslam/models/bev_box.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 
-using dynslam::eval::bevCentreDistance;
-using dynslam::eval::bevCorners;
-using dynslam::eval::bevIoU;
-using dynslam::eval::TBevBox;
+using dynslam::models::bevCentreDistance;
+using dynslam::models::bevCorners;
+using dynslam::models::bevIoU;
+using dynslam::models::TBevBox;
 
 TEST(BevBox, CornersCounterClockwise)
 {

@@ -1,11 +1,11 @@
-#include <dynslam/eval/bev_box.h>
+#include <dynslam/models/bev_box.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
-namespace dynslam::eval
+namespace dynslam::models
 {
 namespace
 {
@@ -79,4 +79,4 @@ double bevCentreDistance(const TBevBox& a, const TBevBox& b)
 {
 	return std::hypot(a.x - b.x, a.y - b.y);
 }
-}  // namespace dynslam::eval
+}  // namespace dynslam::models

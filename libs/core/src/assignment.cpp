@@ -1,10 +1,10 @@
-#include <dynslam/eval/hungarian.h>
+#include <dynslam/models/assignment.h>
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-namespace dynslam::eval
+namespace dynslam::models
 {
 namespace
 {
@@ -97,4 +97,4 @@ std::vector<int> solveAssignment(const Eigen::MatrixXd& cost)
 	}
 	return out;
 }
-}  // namespace dynslam::eval
+}  // namespace dynslam::models

@@ -1,6 +1,6 @@
-/** eval::solveAssignment (hungarian.h): hand-checked optima, rectangular shapes, forbidden
+/** models::solveAssignment (assignment.h): hand-checked optima, rectangular shapes, forbidden
  * pairs (most pairs first, then least cost) and a brute-force comparison on random matrices. */
-#include <dynslam/eval/hungarian.h>
+#include <dynslam/models/assignment.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <random>
 #include <stdexcept>
 
-using dynslam::eval::solveAssignment;
+using dynslam::models::solveAssignment;
 
 namespace
 {

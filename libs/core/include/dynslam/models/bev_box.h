@@ -1,16 +1,17 @@
 #pragma once
 /** @file bev_box.h
  * Oriented boxes in the bird's-eye view and their overlap (pure Eigen): the match criteria of
- * the multi-object tracking metrics (mot_metrics.h; doc/metrics.md "Multi-object tracking").
+ * the multi-object tracking metrics (eval/mot_metrics.h; doc/metrics.md "Multi-object
+ * tracking") and the BEV IoU cost of the box tracker (estimator/box_tracker.h).
  *
  * The intersection area is computed by clipping one footprint by the other (Sutherland-Hodgman:
  * both are convex) in double precision. OpenCV's cv::rotatedRectangleIntersection does the same
  * job but on cv::RotatedRect (float centre, size and angle in degrees) and is not linked by
- * libs/eval (only libs/apps links OpenCV); at 1e-7 relative precision, boxes that share an edge
+ * libs/core (only libs/apps links OpenCV); at 1e-7 relative precision, boxes that share an edge
  * (adjacent parked cars) are where float clipping is fragile, so the project clips itself. */
 #include <Eigen/Core>
 
-namespace dynslam::eval
+namespace dynslam::models
 {
 /** A box footprint: centre (x, y) [m], heading yaw [rad] of the length axis, length along it
  * and width across it [m]. A heading and heading + pi describe the same footprint. */
@@ -32,4 +33,4 @@ double bevIoU(const TBevBox& a, const TBevBox& b);
 
 /** Distance of the two centres [m]. */
 double bevCentreDistance(const TBevBox& a, const TBevBox& b);
-}  // namespace dynslam::eval
+}  // namespace dynslam::models
