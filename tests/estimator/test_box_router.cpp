@@ -19,8 +19,8 @@ const auto kNone = [](int32_t) { return false; };
 /** The corners FL, FR, RR, RL of a box (x, y, yaw, length, width) in its parent frame. */
 std::vector<Eigen::Vector2d> corners(const Eigen::Vector3d& b, double l, double w)
 {
-	const Eigen::Vector2d local[] = {{l / 2, w / 2}, {l / 2, -w / 2}, {-l / 2, -w / 2},
-	                                 {-l / 2, w / 2}};
+	const Eigen::Vector2d local[] = {
+	    {l / 2, w / 2}, {l / 2, -w / 2}, {-l / 2, -w / 2}, {-l / 2, w / 2}};
 	std::vector<Eigen::Vector2d> out;
 	for (const auto& c : local) out.push_back(b.head<2>() + models::rot2(b.z()) * c);
 	return out;

@@ -21,6 +21,26 @@ std::array<int32_t, 4> CBoxRouter::cornerIds(int32_t track)
 	return {cornerId(track, 0), cornerId(track, 1), cornerId(track, 2), cornerId(track, 3)};
 }
 
+std::vector<TWorldBox> CBoxRouter::placeBoxes(const std::vector<TBoxDetection>& boxes,
+                                              std::map<int32_t, size_t>& boxOfGroup, int step) const
+{
+	// The ego predicted by this step's odometry, then the sensor.
+	const Eigen::Vector3d sensor =
+	    models::composePose(models::composePose(m_ctx.ego, m_ctx.u), m_ctx.sensor_pose);
+	std::vector<TWorldBox> world(boxes.size());
+	for (size_t b = 0; b < boxes.size(); ++b)
+	{
+		world[b].pose = models::composePose(sensor, boxes[b].pose);
+		world[b].extent = boxes[b].extent;
+		world[b].cls = boxes[b].cls;
+		world[b].score = boxes[b].score;
+		if (!boxOfGroup.emplace(boxes[b].group, b).second)
+			throw std::runtime_error("feature_labels = boxes: step " + std::to_string(step) +
+			                         ": box group " + std::to_string(boxes[b].group) + " twice");
+	}
+	return world;
+}
+
 namespace
 {
 TClassifyParams withHints(TClassifyParams p)
@@ -77,21 +97,8 @@ TRoutedStep CBoxRouter::route(int step, const std::vector<TReading>& readings,
 		m_tracker.predict(m_ctx.stamp - m_lastStamp);
 	if (std::isfinite(m_ctx.stamp)) m_lastStamp = m_ctx.stamp;
 
-	// The boxes in the world: the ego predicted by this step's odometry, then the sensor.
-	const Eigen::Vector3d sensor =
-	    models::composePose(models::composePose(m_ctx.ego, m_ctx.u), m_ctx.sensor_pose);
-	std::vector<TWorldBox> world(boxes.size());
 	std::map<int32_t, size_t> boxOfGroup;
-	for (size_t b = 0; b < boxes.size(); ++b)
-	{
-		world[b].pose = models::composePose(sensor, boxes[b].pose);
-		world[b].extent = boxes[b].extent;
-		world[b].cls = boxes[b].cls;
-		world[b].score = boxes[b].score;
-		if (!boxOfGroup.emplace(boxes[b].group, b).second)
-			throw std::runtime_error(who + ": step " + std::to_string(step) + ": box group " +
-			                         std::to_string(boxes[b].group) + " twice");
-	}
+	const std::vector<TWorldBox> world = placeBoxes(boxes, boxOfGroup, step);
 	// The joint part: tracks the filter holds are predicted by the filter.
 	if (m_ctx.box_prediction)
 		for (const TBoxTrack& t : m_tracker.tracks())

@@ -220,6 +220,20 @@ size_t maxObjects(const std::vector<TMetricsRow>& rows)
 }
 }  // namespace
 
+/** The 12 tracking cells of a row (empty without scores). */
+static void writeMotCells(std::ostream& os, const std::optional<TMetricsRow::TMotScores>& s)
+{
+	if (!s)
+	{
+		os << ",,,,,,,,,,,,";
+		return;
+	}
+	const auto& m = *s;
+	os << "," << m.cls << "," << num(m.iou.mota) << "," << num(m.iou.motp) << "," << m.iou.ids
+	   << "," << m.iou.frag << "," << m.iou.fp << "," << m.iou.fn << "," << m.iou.gt << ","
+	   << num(m.samota) << "," << num(m.dist.mota) << "," << num(m.dist.motp) << "," << m.dist.ids;
+}
+
 void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 {
 	const size_t K = maxObjects(rows);
@@ -248,8 +262,7 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 	const bool memory =
 	    std::any_of(rows.begin(), rows.end(), [](const TMetricsRow& r) { return r.peak_rss_mb; });
 	if (memory) os << ",peak_rss_mb";
-	const bool mot =
-	    std::any_of(rows.begin(), rows.end(), [](const TMetricsRow& r) { return r.mot; });
+	const bool mot = std::any_of(rows.begin(), rows.end(), [](const auto& r) { return r.mot; });
 	if (mot) os << ",mot_class,mota,motp,ids,frag,fp,fn,gt,samota,mota_d2,motp_d2,ids_d2";
 	os << "\n";
 	for (const auto& r : rows)
@@ -298,16 +311,7 @@ void writeMetricsCsv(std::ostream& os, const std::vector<TMetricsRow>& rows)
 		else if (velocities)
 			os << ",,,,";
 		if (memory) os << "," << (r.peak_rss_mb ? num(*r.peak_rss_mb) : "");
-		if (mot && r.mot)
-		{
-			const auto& m = *r.mot;
-			os << "," << m.cls << "," << num(m.iou.mota) << "," << num(m.iou.motp) << ","
-			   << m.iou.ids << "," << m.iou.frag << "," << m.iou.fp << "," << m.iou.fn << ","
-			   << m.iou.gt << "," << num(m.samota) << "," << num(m.dist.mota) << ","
-			   << num(m.dist.motp) << "," << m.dist.ids;
-		}
-		else if (mot)
-			os << ",,,,,,,,,,,,";
+		if (mot) writeMotCells(os, r.mot);
 		os << "\n";
 	}
 }

@@ -20,10 +20,7 @@ struct TCsv
 	std::map<std::string, size_t> col;
 	std::vector<std::vector<std::string>> rows;
 	std::vector<int> lines;
-	const std::string& at(size_t r, const std::string& name) const
-	{
-		return rows[r][col.at(name)];
-	}
+	const std::string& at(size_t r, const std::string& name) const { return rows[r][col.at(name)]; }
 	double num(size_t r, const std::string& name) const
 	{
 		return parseFiniteField(at(r, name), path, lines[r], col.at(name));

@@ -6,7 +6,6 @@
  * ground truth) and `<base>_gt_track_list.csv` (per track: ...,length,width; header names the
  * columns), both written by dynslam-kitti (libs/kitti rawlog_writer.h). */
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <limits>
+#include <map>
 
 namespace dynslam::estimator
 {
@@ -57,6 +58,10 @@ public:
 	const CClassifyingRouter& inner() const { return m_inner; }
 
 private:
+	/** The step's boxes in the world (the ego predicted by the step's odometry, then the
+	 * sensor); boxOfGroup: group -> box index. Throws std::runtime_error for a repeated group. */
+	std::vector<TWorldBox> placeBoxes(const std::vector<TBoxDetection>& boxes,
+	                                  std::map<int32_t, size_t>& boxOfGroup, int step) const;
 	TBoxTrackerParams m_trackerParams;
 	CBoxTracker m_tracker;
 	CClassifyingRouter m_inner;

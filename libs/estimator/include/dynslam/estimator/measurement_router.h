@@ -161,7 +161,7 @@ struct TRouterContext
 };
 
 struct TAssocTarget;  // unknown_id_association.h
-class CBoxTracker;   // box_tracker.h
+class CBoxTracker;    // box_tracker.h
 /** Static association of ID -1 readings: for every observed point the index of its
  * prediction, or -1 (unassociated). Points and predictions are in one 2-D space (the classifying
  * router: the robot frame; CIdRangeRouter: the measurement space); TAssocTarget in
