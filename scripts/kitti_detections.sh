@@ -12,12 +12,13 @@
 #   BUILD_DIR  a build with dynslam-kitti and dynslam-compare (default build)
 #   SEQUENCES  default "0000 ... 0010"
 # KITTI_INI=FILE replaces config/compare_kitti_detections.ini, KITTI_IMPORT_INI=FILE
-# config/kitti_detections.ini; KITTI_VIDEO=1 also writes OUT_DIR/S/compare/video.mp4.
-# Writes OUT_DIR/S/ (import), OUT_DIR/S/compare/, OUT_DIR/summary.csv (one row per sequence and
-# filter: the metrics.csv columns) and OUT_DIR/table.md. Development only: no test needs it.
+# config/kitti_detections.ini; KITTI_FILTERS=a,b,... is dynslam-compare's --filters;
+# KITTI_VIDEO=1 also writes OUT_DIR/S/compare/video.mp4.
+# Writes OUT_DIR/S/ (import), OUT_DIR/S/compare/, OUT_DIR/import_times.csv, OUT_DIR/summary.csv
+# (one row per sequence and filter, the columns the table uses) and OUT_DIR/table.md. Development only: no test needs it.
 set -euo pipefail
 if [[ $# -lt 2 ]]; then
-	sed -n '2,17p' "$0"
+	sed -n '2,18p' "$0"
 	exit 1
 fi
 DATA=$1
@@ -29,7 +30,8 @@ SEQS=${5:-"0000 0001 0002 0003 0004 0005 0006 0007 0008 0009 0010"}
 CALIB=${KITTI_CALIB:-$DET/../calib}
 [[ -d "$CALIB" ]] || CALIB=$DET/calib
 find_exe() {
-	local p
+	local p=$BUILD/apps/$1/$1
+	[[ -x "$p" ]] && { echo "$p"; return; }
 	p=$(find "$BUILD" -type f -perm -u+x -name "$1" 2>/dev/null | head -n 1)
 	[[ -n "$p" ]] || { echo "kitti_detections.sh: $1 not found under $BUILD" >&2; exit 1; }
 	echo "$p"
@@ -39,7 +41,7 @@ COMPARE=$(find_exe dynslam-compare)
 INI=${KITTI_INI:-$SRC/config/compare_kitti_detections.ini}
 IMPORT_INI=${KITTI_IMPORT_INI:-$SRC/config/kitti_detections.ini}
 mkdir -p "$OUT"
-: > "$OUT/summary.csv"
+: > "$OUT/import_times.csv"
 for S in $SEQS; do
 	D="$OUT/$S"
 	echo "== sequence $S"
@@ -49,13 +51,10 @@ for S in $SEQS; do
 	end=$(date +%s.%N)
 	echo "import_seconds,$S,$(echo "$end - $start" | bc)" >> "$OUT/import_times.csv"
 	VIDEO=()
-	if [[ -n "${KITTI_VIDEO:-}" ]]; then VIDEO=(--video "$D/compare/video.mp4"); fi
+	if [[ -n "${KITTI_FILTERS:-}" ]]; then VIDEO+=(--filters "$KITTI_FILTERS"); fi
+	if [[ -n "${KITTI_VIDEO:-}" ]]; then VIDEO+=(--video "$D/compare/video.mp4"); fi
 	"$COMPARE" -c "$INI" -r "$D/kitti_$S.rawlog" --out "$D/compare" -q "${VIDEO[@]}" \
 		> "$OUT/$S.compare.log" 2>&1 || { echo "compare failed on $S (see $OUT/$S.compare.log)"; continue; }
-	if [[ ! -s "$OUT/summary.csv" ]]; then
-		echo "sequence,$(head -n 1 "$D/compare/metrics.csv")" > "$OUT/summary.csv"
-	fi
-	tail -n +2 "$D/compare/metrics.csv" | sed "s/^/$S,/" >> "$OUT/summary.csv"
 done
-python3 "$SRC/scripts/kitti_detections_table.py" "$OUT/summary.csv" > "$OUT/table.md"
+python3 "$SRC/scripts/kitti_detections_table.py" "$OUT" $SEQS > "$OUT/table.md"
 cat "$OUT/table.md"

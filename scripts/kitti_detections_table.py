@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""The table of doc/boxes.md from scripts/kitti_detections.sh's summary.csv: per sequence and
+"""The table of doc/boxes.md from scripts/kitti_detections.sh's output folder: per sequence and
 row, ego ATE and ANEES, and MOTA / IDS / FP / FN (Car, BEV IoU 0.25), sAMOTA, and the checks of
-issue 31's targets (default vs tracker_baseline, static_all and odometry)."""
+issue 31's targets (default vs tracker_baseline, static_all and odometry). Also writes
+OUT/summary.csv. Usage: kitti_detections_table.py OUT SEQ [SEQ ...]"""
 import csv
 import sys
 
@@ -13,7 +14,20 @@ def f(x, d=3):
         return "-"
 
 
-rows = list(csv.DictReader(open(sys.argv[1])))
+COLS = ["sequence", "filter", "ate", "ate_aligned", "ego_anees", "mota", "motp", "ids", "frag",
+        "fp", "fn", "gt", "samota", "mota_d2", "motp_d2", "ids_d2", "ms_per_step"]
+rows = []
+for s in sys.argv[2:]:
+    try:
+        for r in csv.DictReader(open("%s/%s/compare/metrics.csv" % (sys.argv[1], s))):
+            r["sequence"] = s
+            rows.append(r)
+    except FileNotFoundError:
+        pass
+with open(sys.argv[1] + "/summary.csv", "w") as out:
+    out.write(",".join(COLS) + "\n")
+    for r in rows:
+        out.write(",".join(r.get(c) or "" for c in COLS) + "\n")
 seqs = sorted({r["sequence"] for r in rows})
 by = {(r["sequence"], r["filter"]): r for r in rows}
 print("| seq | row | ATE [m] | ego ANEES | MOTA | MOTP (IoU) | IDS | FRAG | FP | FN | sAMOTA | MOTA (2 m) | ms/step |")

@@ -1,5 +1,6 @@
 /** TModelOptions: reading, validation and dump of section [DynamicKFSLAM] and the module
  * sections [ObjectModel], [OdometryBias], [Classify] (model_keys.h). */
+#include <dynslam/box_tracker_options.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/model_keys.h>
@@ -76,6 +77,15 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 
 namespace
 {
+/** feature_labels = boxes: the box front-end's tracker, section [BoxTracker] (the same keys and
+ * defaults as dynslam-compare's tracker_baseline row: box_tracker_options.h). */
+estimator::TBoxTrackerParams loadBoxTracker(const mrpt::config::CConfigFileBase& c)
+{
+	TBoxTrackerOptions b;
+	b.loadFromConfigFile(c, "BoxTracker");
+	return b.params;
+}
+
 /** feature_labels ([core]) and the classify_* keys ([Classify]; issue 12). */
 void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& core)
 {
@@ -185,6 +195,7 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	recovery_min_updates = int(readInt(c, s, "recovery_min_updates", recovery_min_updates));
 	odometry_bias.load(c, s);
 	loadClassify(*this, c, s);
+	if (feature_labels == "boxes") boxes = loadBoxTracker(c);
 	try
 	{
 		validate();
@@ -441,6 +452,13 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	odometry_bias.dump(out);
 	if (feature_labels == "ids") return;  // the classify_* keys only matter with classify
 	dumpClassify(out, classify);
+	if (feature_labels == "boxes")
+	{
+		TBoxTrackerOptions b;
+		b.params = boxes;
+		out << "\n[BoxTracker]";  // its own section, as the modules' (the dump reads back)
+		b.dumpToTextStream(out);
+	}
 }
 TParseOptions TModelOptions::parseOptions() const
 {

@@ -1,13 +1,12 @@
 /** feature_labels = boxes (issue 31, doc/boxes.md): what the EKF gives the box router (the
  * joint prediction of a box whose corners are static landmarks of the state) and the tracks it
- * reports (trackedBoxes: where the filter holds the box, as a parked car's four landmarks or
- * as a moving object whose pose is of this step, its centre is the filter's; else the
- * tracker's). */
+ * reports (trackedBoxes: a parked car held as four landmarks at the map's centre, every other
+ * box as the tracker has it, relative to the pose that placed it). A moving object's pose in
+ * the filter is that of its founders' centroid, the box centre only when all four corners
+ * founded it: measured worse on 0000-0010 (doc/boxes.md), so it is not used. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/box_router.h>
 #include <dynslam/models/se2.h>
-
-#include <map>
 
 namespace dynslam
 {
@@ -39,29 +38,23 @@ std::vector<TTrackedBox> CDynamicKFSLAM2D::trackedBoxes() const
 	const estimator::CBoxTracker* tracker = m_router ? m_router->boxTracker() : nullptr;
 	if (!tracker) return {};
 	const Eigen::Vector3d ego(m_xkk[0], m_xkk[1], m_xkk[2]);
-	// The object of each box track read as a moving object in the step (its corners' hint).
-	std::map<int32_t, int32_t> objectOf;
-	for (const estimator::TRoutedReading& m : m_routed.readings)
-		if (m.object >= 0 && m.reading.hint >= 0) objectOf[m.reading.hint] = m.object;
+	const Eigen::Vector3d placed = m_router->boxPlacementPose();
 	std::vector<TTrackedBox> out;
 	for (const estimator::TBoxTrack& t : tracker->tracks())
 	{
 		if (t.state != estimator::ETrackState::Confirmed || !t.updated) continue;
-		Eigen::Vector3d world = t.x.head<3>();
-		// A box mapped as four static landmarks: the map's centre (after this step's update).
-		Eigen::Vector2d c;
-		Eigen::Matrix2d C;
-		if (boxPrediction(estimator::CBoxRouter::cornerIds(t.id), c, C)) world.head<2>() = c;
-		// A moving object: the filter's pose of its founders' centroid (the box centre when
-		// the four corners founded it), if it has one of this step.
-		if (const auto o = objectOf.find(t.id); o != objectOf.end())
-			if (const auto p = getObjectWorldPose(o->second); p && p->step == m_step)
-				world.head<2>() = p->mean.head<2>();
 		TTrackedBox b;
 		b.track = t.id;
 		b.cls = t.cls;
 		b.score = t.score;
-		b.pose = models::poseDifference(world, ego);
+		// The tracker's box, relative to the pose that placed this step's boxes.
+		b.pose = models::poseDifference(t.x.head<3>(), placed);
+		// A box mapped as four static landmarks: the map's centre (after this step's update),
+		// relative to the ego updated with it.
+		Eigen::Vector2d c;
+		Eigen::Matrix2d C;
+		if (boxPrediction(estimator::CBoxRouter::cornerIds(t.id), c, C))
+			b.pose = models::poseDifference(Eigen::Vector3d(c.x(), c.y(), t.x(2)), ego);
 		b.extent = t.x.segment<2>(3);
 		out.push_back(b);
 	}

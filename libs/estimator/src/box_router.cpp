@@ -22,11 +22,11 @@ std::array<int32_t, 4> CBoxRouter::cornerIds(int32_t track)
 }
 
 std::vector<TWorldBox> CBoxRouter::placeBoxes(const std::vector<TBoxDetection>& boxes,
-                                              std::map<int32_t, size_t>& boxOfGroup, int step) const
+                                              std::map<int32_t, size_t>& boxOfGroup, int step)
 {
 	// The ego predicted by this step's odometry, then the sensor.
-	const Eigen::Vector3d sensor =
-	    models::composePose(models::composePose(m_ctx.ego, m_ctx.u), m_ctx.sensor_pose);
+	m_placed = models::composePose(m_ctx.ego, m_ctx.u);
+	const Eigen::Vector3d sensor = models::composePose(m_placed, m_ctx.sensor_pose);
 	std::vector<TWorldBox> world(boxes.size());
 	for (size_t b = 0; b < boxes.size(); ++b)
 	{
@@ -165,6 +165,7 @@ void CBoxRouter::reset()
 	m_tracker = CBoxTracker(m_trackerParams);
 	m_inner.reset();
 	m_lastStamp = std::numeric_limits<double>::quiet_NaN();
+	m_placed.setZero();
 }
 
 void CBoxRouter::mergeObjects(int32_t from, int32_t into) { m_inner.mergeObjects(from, into); }

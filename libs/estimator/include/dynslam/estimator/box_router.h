@@ -55,17 +55,19 @@ public:
 
 	/** The tracker after the last step (its tracks in the world frame). */
 	const CBoxTracker* boxTracker() const override { return &m_tracker; }
+	Eigen::Vector3d boxPlacementPose() const override { return m_placed; }
 	const CClassifyingRouter& inner() const { return m_inner; }
 
 private:
 	/** The step's boxes in the world (the ego predicted by the step's odometry, then the
 	 * sensor); boxOfGroup: group -> box index. Throws std::runtime_error for a repeated group. */
 	std::vector<TWorldBox> placeBoxes(const std::vector<TBoxDetection>& boxes,
-	                                  std::map<int32_t, size_t>& boxOfGroup, int step) const;
+	                                  std::map<int32_t, size_t>& boxOfGroup, int step);
 	TBoxTrackerParams m_trackerParams;
 	CBoxTracker m_tracker;
 	CClassifyingRouter m_inner;
 	TRouterContext m_ctx;
 	double m_lastStamp = std::numeric_limits<double>::quiet_NaN();
+	Eigen::Vector3d m_placed = Eigen::Vector3d::Zero();  ///< boxPlacementPose()
 };
 }  // namespace dynslam::estimator

@@ -200,6 +200,9 @@ public:
 	virtual bool allowsMerge(int32_t /*a*/, int32_t /*b*/) const { return true; }
 	/** The box tracker of routers that track detector boxes (CBoxRouter), else null. */
 	virtual const CBoxTracker* boxTracker() const { return nullptr; }
+	/** Routers that track boxes: the robot pose the last step's boxes were placed with (the
+	 * filter's ego predicted by the step's odometry); the tracker's tracks are relative to it. */
+	virtual Eigen::Vector3d boxPlacementPose() const { return Eigen::Vector3d::Zero(); }
 };
 
 /** The ID-range rule (dynslam/landmark_ids.h): 0..99,999 static, 100,000 + 1000 object + k
