@@ -261,7 +261,8 @@ TEST(MrptSections, UnknownKeysWarnOrFailWithTheFileName)
 	for (const char* f :
 	     {"run_highway.ini", "compare_highway.ini", "compare_tunnel.ini", "compare_classified.ini",
 	      "compare_turning_braking.ini", "compare_kitti.ini", "mrclam_compare.ini",
-	      "montecarlo.ini", "simul_landmarks.ini", "kf-slam_highway.ini"})
+	      "montecarlo.ini", "simul_landmarks.ini", "kf-slam_highway.ini",
+	      "compare_kitti_detections.ini", "compare_tunnel_markov.ini", "run_longrun.ini"})
 	{
 		mrpt::config::CConfigFileMemory c;
 		loadIniFile(apps_test::configFile(f), c);

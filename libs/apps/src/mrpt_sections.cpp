@@ -85,6 +85,7 @@ const std::vector<std::string>& knownAppSections()
 	                                        "ObjectModel",
 	                                        "OdometryBias",
 	                                        "Classify",
+	                                        "BoxTracker",
 	                                        "RangeBearingKFSLAM",
 	                                        "RangeBearingKFSLAM_KalmanFilter",
 	                                        "MappingApplication"};
