@@ -1,7 +1,7 @@
 /** TModelOptions: reading, validation and dump of section [DynamicKFSLAM]. */
+#include <dynslam/box_tracker_options.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/estimator/seam_registries.h>
-#include <dynslam/box_tracker_options.h>
 #include <dynslam/model_keys.h>
 #include <dynslam/model_options.h>
 
@@ -49,11 +49,11 @@ namespace
 {
 /** feature_labels = boxes: the box front-end's tracker, section [BoxTracker] (the same keys and
  * defaults as dynslam-compare's tracker_baseline row: box_tracker_options.h). */
-estimator::TBoxTrackerParams loadBoxTracker(const mrpt::config::CConfigFileBase& c)
+TBoxTrackerOptions loadBoxTracker(const mrpt::config::CConfigFileBase& c)
 {
 	TBoxTrackerOptions b;
 	b.loadFromConfigFile(c, "BoxTracker");
-	return b.params;
+	return b;
 }
 
 /** feature_labels and the classify_* keys (issue 12). */
@@ -287,7 +287,7 @@ void TModelOptions::validate() const
 		throw std::invalid_argument("feature_labels = " + feature_labels +
 		                            ": must be ids, classify or boxes");
 	classify.validate();
-	if (feature_labels == "boxes") boxes.validate();
+	if (feature_labels == "boxes") boxes.params.validate();
 	if (feature_labels == "boxes" && compressed_static_update)
 		throw std::invalid_argument(
 		    "feature_labels = boxes: not implemented with static_update = compressed (the box "
@@ -413,12 +413,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	odometry_bias.dump(out);
 	if (feature_labels == "ids") return;  // the classify_* keys only matter with classify
 	dumpClassify(out, feature_labels, classify);
-	if (feature_labels == "boxes")
-	{
-		TBoxTrackerOptions b;
-		b.params = boxes;
-		b.dumpToTextStream(out);
-	}
+	if (feature_labels == "boxes") boxes.dumpToTextStream(out);
 }
 TParseOptions TModelOptions::parseOptions() const
 {
