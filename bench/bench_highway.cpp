@@ -84,9 +84,9 @@ void BM_ClutterMerge(benchmark::State& state)
 	mrpt::config::CConfigFileMemory cfg(
 	    "[DynamicKFSLAM]\nmeasurement_model = cartesian\nSigma_v = [1e-5 1e-5]\n"
 	    "motion_noise = action\nSigma_0 = [1e-5 1e-5 1e-7]\nSigma_xi = [0.1 0.1]\n"
-	    "feature_labels = classify\nobject_model = cv\ncv_dt = 0.5\n"
+	    "feature_labels = classify\nobject_model = cv\n[ObjectModel]\ncv_dt = 0.5\n"
 	    "cv_accel_psd = [0.1 0.1 1e-3]\ncv_velocity_prior_std = [0.5 0.5 0.05]\n"
-	    "classify_merge_live = " +
+	    "[Classify]\nclassify_merge_live = " +
 	    std::string(state.range(0) ? "true" : "false") +
 	    "\n[DynamicKFSLAM_KalmanFilter]\nmethod = kfEKFNaive\n");
 	size_t objects = 0;

@@ -18,11 +18,15 @@ import os
 import subprocess
 import sys
 
+from ini_sections import split_keys
+
 LEVELS = ["w1v1", "w1v2", "w1v3", "w2v1", "w2v2", "w2v3", "w3v1", "w3v2", "w3v3"]
 
 
 def write_ini(base, keys, path):
-    """base INI with keys added at the top of [DynamicKFSLAM]; the scenario path made absolute."""
+    """base INI with keys added at the top of [DynamicKFSLAM] (a module's keys in its own section
+    at the end, ini_sections.py); the scenario path made absolute."""
+    core, modules = split_keys(keys)
     here = os.path.dirname(os.path.abspath(base))
     out = []
     for line in open(base):
@@ -35,7 +39,8 @@ def write_ini(base, keys, path):
             continue  # replaced below
         out.append(line)
         if s == "[DynamicKFSLAM]":
-            out.extend("%s = %s\n" % kv for kv in keys.items())
+            out.extend("%s = %s\n" % kv for kv in core.items())
+    out.append(modules)
     with open(path, "w") as f:
         f.writelines(out)
 

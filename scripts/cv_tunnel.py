@@ -15,11 +15,14 @@ import subprocess
 import sys
 
 from cv_grid import parse_setting
+from ini_sections import section_of, split_keys
 
 
 def write_ini(base, keys, path):
-    """base with keys written over [DynamicKFSLAM]'s, paths made absolute, dynamic_cv only."""
+    """base with keys written over [DynamicKFSLAM]'s and its modules' sections (ini_sections.py),
+    paths made absolute, dynamic_cv only."""
     here = os.path.dirname(os.path.abspath(base))
+    core, modules = split_keys({k: v for k, v in keys.items() if k != "object_model"})
     out, section = [], None
     for line in open(base):
         s = line.split("#")[0].strip()
@@ -32,11 +35,12 @@ def write_ini(base, keys, path):
             line = "filters = dynamic_cv\n"
         elif key == "figures" and section == "[Compare]":
             line = "figures = false\n"
-        elif key and section == "[DynamicKFSLAM]" and key in keys:
+        elif key and section == "[%s]" % section_of(key) and key in keys:
             continue  # replaced below
         out.append(line)
         if s == "[DynamicKFSLAM]":
-            out.extend("%s = %s\n" % kv for kv in keys.items() if kv[0] != "object_model")
+            out.extend("%s = %s\n" % kv for kv in core.items())
+    out.append(modules)
     with open(path, "w") as f:
         f.writelines(out)
 

@@ -36,6 +36,8 @@ import subprocess
 import sys
 import time
 
+from ini_sections import split_keys
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CONFIG = os.path.join(ROOT, "config")
 LEVELS = ["w%dv%d" % (w, v) for w in (1, 2, 3) for v in (1, 2, 3)]
@@ -78,7 +80,9 @@ def ini_value(path, section, key):
 
 
 def write_ini(src, keys, dst):
-    """src with its @include made absolute and [DynamicKFSLAM] keys replaced by `keys`."""
+    """src with its @include made absolute and [DynamicKFSLAM] keys (a module's in its own
+    section, ini_sections.py) replaced by `keys`."""
+    core, modules = split_keys(keys)
     out = []
     for line in open(src):
         s = line.split("#")[0].strip()
@@ -90,7 +94,8 @@ def write_ini(src, keys, dst):
             continue
         out.append(line)
         if s == "[DynamicKFSLAM]":
-            out.extend("%s = %s\n" % kv for kv in keys.items())
+            out.extend("%s = %s\n" % kv for kv in core.items())
+    out.append(modules)
     open(dst, "w").writelines(out)
 
 

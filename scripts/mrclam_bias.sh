@@ -24,24 +24,33 @@ BUILD=${3:-$SRC/build}
 # The bias parameters (fixed before the runs, doc/results/real-data.md 5.10): prior std 1 deg/s,
 # random walk 0.17 deg/s per sqrt(s) (the bias may change by ~0.5 deg/s within 10 s),
 # odometry_dt = 0.4 s (only for the first step: the actions carry timestamps).
+# The bias block's keys are in their own section [OdometryBias] (doc/configuration.md): the
+# variant's lines go to the top of [DynamicKFSLAM] (mrclam_variants.sh), so they open
+# [OdometryBias] after the core keys and end by reopening [DynamicKFSLAM] for the lines after them.
 BIAS_KEYS="odometry_bias = rate
+[OdometryBias]
 odometry_dt = 0.4
 bias_rate_std0 = 0.0175
 bias_rate_rw = ${RATE_RW:-0.003}"
 TAG=variant
 variant_keys() {
-	local keys=""
-	[[ $1 == *rate* ]] && keys="$BIAS_KEYS"
-	[[ $1 == *rate_scale* ]] && keys="${BIAS_KEYS/odometry_bias = rate/odometry_bias = rate_scale}
-bias_scale_std0 = 0.05
-bias_scale_rw = 0.001"
+	local keys
 	# the outlier method explicitly (config/mrclam_compare.ini ships huber since 5.13)
 	if [[ $1 == huber* ]]; then
-		keys="$keys
-outlier_method = huber"
+		keys="outlier_method = huber"
 	else
+		keys="outlier_method = gate"
+	fi
+	if [[ $1 == *rate_scale* ]]; then
 		keys="$keys
-outlier_method = gate"
+${BIAS_KEYS/odometry_bias = rate/odometry_bias = rate_scale}
+bias_scale_std0 = 0.05
+bias_scale_rw = 0.001
+[DynamicKFSLAM]"
+	elif [[ $1 == *rate* ]]; then
+		keys="$keys
+$BIAS_KEYS
+[DynamicKFSLAM]"
 	fi
 	echo "$keys"
 }

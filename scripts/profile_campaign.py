@@ -26,6 +26,8 @@ import subprocess
 import sys
 import time
 
+from ini_sections import split_keys
+
 SRC = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CONFIG = os.path.join(SRC, "config")
 
@@ -125,7 +127,8 @@ def run_one(exe, dataset, label, base, rawlog, cand, out):
     ini = os.path.join(ini_dir, "%s_%s.ini" % (label, cand))
     with open(base) as f:
         text = absolute_paths(f.read(), os.path.dirname(base))
-    text += "\n[DynamicKFSLAM]\n" + "".join("%s = %s\n" % kv for kv in keys.items())
+    core, modules = split_keys(keys)  # a module's keys in its own section (ini_sections.py)
+    text += "\n[DynamicKFSLAM]\n" + "".join("%s = %s\n" % kv for kv in core.items()) + modules
     with open(ini, "w") as f:
         f.write(text)
     od = os.path.join(out, "runs", label, cand)

@@ -28,6 +28,8 @@ import os
 import statistics as st
 import subprocess
 
+from ini_sections import split_keys
+
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 
 
@@ -37,6 +39,7 @@ def chi2_bounds(k, z=1.959963985):
 
 
 def write_ini(src, keys, ckeys, dst):
+    core, modules = split_keys(keys)  # a module's keys in its own section (ini_sections.py)
     out = []
     for line in open(src):
         s = line.split("#")[0].strip()
@@ -45,9 +48,10 @@ def write_ini(src, keys, ckeys, dst):
             continue
         out.append(line)
         if s == "[DynamicKFSLAM]":
-            out.extend("%s = %s\n" % kv for kv in keys.items())
+            out.extend("%s = %s\n" % kv for kv in core.items())
         if s == "[Compare]":
             out.extend("%s = %s\n" % kv for kv in ckeys.items())
+    out.append(modules)
     open(dst, "w").writelines(out)
 
 
@@ -97,7 +101,7 @@ def main():
     write_ini(a.ini, keys, ckeys, ini)
     scenario = os.path.join(ROOT, "config", "tunnel.ini")
     if a.matched:
-        psd = a.matched_psd or keys.get("cv_accel_psd") or ini_value(a.ini, "DynamicKFSLAM",
+        psd = a.matched_psd or keys.get("cv_accel_psd") or ini_value(a.ini, "ObjectModel",
                                                                      "cv_accel_psd")
         scenario = write_scenario(a.out, psd)
         print("model-matched truth: start_from_prior = true, object_accel_psd = %s" % psd)

@@ -275,19 +275,23 @@ TEST(MrptSections, UnknownSectionsWarnWithTheNearestNameOrFailWithStrict)
 {
 	mrpt::config::CConfigFileMemory ini(
 	    "[OdometryNoice]\na = 1\n[DynamicKFSLAM_KalmanFiltr]\nmethod = kfEKFNaive\n"
-	    "[dynamickfslam]\nSigma_v = [1 1]\n[Totally]\nx = 1\n");
+	    "[dynamickfslam]\nSigma_v = [1 1]\n[Totally]\nx = 1\n"
+	    // the model's module sections are known; a misspelled one is named
+	    "[ObjectModel]\ncv_dt = 0.5\n[OdometryBias]\nodometry_dt = 0.1\n[Classify]\n"
+	    "classify_alpha = 0.1\n[Clasify]\nclassify_beta = 0.1\n");
 	auto u = unknownSections(ini);  // in MRPT's section order (sorted); sorted here too
 	std::sort(u.begin(), u.end());
-	ASSERT_EQ(u.size(), 3u);
-	EXPECT_EQ(u[0],
+	ASSERT_EQ(u.size(), 4u);
+	EXPECT_EQ(u[0], "section [Clasify] is read by no app (did you mean [Classify]?), ignored");
+	EXPECT_EQ(u[1],
 	          "section [DynamicKFSLAM_KalmanFiltr] is read by no app (did you mean "
 	          "[DynamicKFSLAM_KalmanFilter]?), ignored");
-	EXPECT_EQ(u[1],
+	EXPECT_EQ(u[2],
 	          "section [OdometryNoice] is read by no app (did you mean [OdometryNoise]?), "
 	          "ignored");
-	EXPECT_EQ(u[2], "section [Totally] is read by no app, ignored");  // no near name
+	EXPECT_EQ(u[3], "section [Totally] is read by no app, ignored");  // no near name
 	const auto w = checkMrptSections(ini, "my.ini", false);
-	ASSERT_EQ(w.size(), 3u);
+	ASSERT_EQ(w.size(), 4u);
 	EXPECT_TRUE(contains(w[0], "config file 'my.ini': section [")) << w[0];
 	EXPECT_THROW(checkMrptSections(ini, "my.ini", true), std::invalid_argument);
 }

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using dynslam::config::loadIniWithIncludes;
@@ -54,26 +55,26 @@ TEST(ConfigInclude, RelativeIncludeAndLaterKeysOverride)
 {
 	TTempDir t("override");
 	t.write("profiles/base.ini",
-	        "@define NOISE 0.25\n[DynamicKFSLAM]\ncv_gate = 0.5\nobject_model = cv\n"
+	        "@define NOISE 0.25\n[ObjectModel]\ncv_gate = 0.5\n[DynamicKFSLAM]\nobject_model = cv\n"
 	        "[Other]\nx = 1\n");
-	t.write("profiles/mid.ini", "@include base.ini  # a comment\n[DynamicKFSLAM]\ncv_gate = 0.9\n");
+	t.write("profiles/mid.ini", "@include base.ini  # a comment\n[ObjectModel]\ncv_gate = 0.9\n");
 	const std::string app =
 	    t.write("app.ini",
-	            "; a comment\n@include profiles/mid.ini\n\n[DynamicKFSLAM]\ncv_gate = 0.999\n"
-	            "Sigma_v = [${NOISE} 1]\n");
+	            "; a comment\n@include profiles/mid.ini\n\n[ObjectModel]\ncv_gate = 0.999\n"
+	            "[DynamicKFSLAM]\nSigma_v = [${NOISE} 1]\n");
 	mrpt::config::CConfigFileMemory c;
 	std::vector<std::string> files;
 	loadIniWithIncludes(app, c, &files);
 	ASSERT_EQ(files.size(), 3u);
 	EXPECT_EQ(files[0], app);
-	EXPECT_EQ(c.read_string("DynamicKFSLAM", "cv_gate", ""), "0.999");    // the app's, last
+	EXPECT_EQ(c.read_string("ObjectModel", "cv_gate", ""), "0.999");      // the app's, last
 	EXPECT_EQ(c.read_string("DynamicKFSLAM", "object_model", ""), "cv");  // from base.ini
 	EXPECT_EQ(c.read_string("Other", "x", ""), "1");
 	EXPECT_EQ(c.read_string("DynamicKFSLAM", "Sigma_v", ""), "[0.25 1]");  // @define of base
 	// Without the app's own value the nearer include wins over the farther one.
 	const std::string app2 = t.write("app2.ini", "@include profiles/mid.ini\n");
 	loadIniWithIncludes(app2, c);
-	EXPECT_EQ(c.read_string("DynamicKFSLAM", "cv_gate", ""), "0.9");
+	EXPECT_EQ(c.read_string("ObjectModel", "cv_gate", ""), "0.9");
 }
 
 TEST(ConfigInclude, MissingFileNamesTheIncludingFileAndLine)
@@ -151,4 +152,37 @@ TEST(ConfigInclude, MisplacedIncludesAndKeysAreErrors)
 	// "@included" is not the directive.
 	const std::string word = t.write("word.ini", "[A]\n@included = 1\n");
 	EXPECT_EQ(errorOf([&] { readIniText(word); }), "");
+}
+
+TEST(ConfigInclude, ProfileOverlayCarriesTheModuleSections)
+{
+	// dynslam-compare's row `default` (CCompareApp::paramsFor): the profile's keys of
+	// [DynamicKFSLAM] and of the module sections replace the app's; the app's other keys stay.
+	TTempDir t("overlay");
+	const std::string profile =
+	    t.write("profiles/p.ini",
+	            "[DynamicKFSLAM]\nprior_gauge = anchor\n[ObjectModel]\ncv_gate = 0.5\n"
+	            "[Classify]\nclassify_alpha = 0.02\n[Elsewhere]\nx = 2\n");
+	mrpt::config::CConfigFileMemory base(
+	    "[DynamicKFSLAM]\nSigma_v = [1 1]\nprior_gauge = prior\n[ObjectModel]\ncv_dt = 0.1\n"
+	    "cv_gate = 0.9\n[Elsewhere]\nx = 1\n");
+	mrpt::config::CConfigFileMemory out;
+	const std::vector<std::string> written = dynslam::config::overlayProfile(
+	    base, profile, {"DynamicKFSLAM", "ObjectModel", "OdometryBias", "Classify"}, out);
+	EXPECT_EQ(written,
+	          (std::vector<std::string>{"[DynamicKFSLAM] prior_gauge", "[ObjectModel] cv_gate",
+	                                    "[Classify] classify_alpha"}));
+	EXPECT_EQ(out.read_string("DynamicKFSLAM", "prior_gauge", ""), "anchor");
+	EXPECT_EQ(out.read_string("DynamicKFSLAM", "Sigma_v", ""), "[1 1]");
+	EXPECT_EQ(out.read_string("ObjectModel", "cv_gate", ""), "0.5");
+	EXPECT_EQ(out.read_string("ObjectModel", "cv_dt", ""), "0.1");
+	EXPECT_EQ(out.read_string("Classify", "classify_alpha", ""), "0.02");
+	EXPECT_EQ(out.read_string("Elsewhere", "x", ""), "1");  // not a section of the overlay
+	// A profile without the first section is not a profile of it.
+	const std::string none = t.write("profiles/none.ini", "[ObjectModel]\ncv_gate = 0.5\n");
+	const std::string e = errorOf(
+	    [&] {
+		    dynslam::config::overlayProfile(base, none, {"DynamicKFSLAM", "ObjectModel"}, out);
+	    });
+	EXPECT_NE(e.find("no section [DynamicKFSLAM]"), std::string::npos) << e;
 }

@@ -45,7 +45,7 @@ inline std::unique_ptr<dynslam::CDynamicKFSLAM2D> loadCartesianFilter(const std:
 }
 
 /** The cv keys every cv option test starts from. */
-inline const std::string kCvKeys = "object_model = cv\ncv_dt = 0.5\n";
+inline const std::string kCvKeys = "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\n";
 /** The checks of a scalar cv key that is off (0) by default: read from the INI as `text`
  * (= value), negative values rejected at load, infinite and NaN values by validate(), and
  * dumped aligned as "key<spaces>= text". */

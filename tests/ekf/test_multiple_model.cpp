@@ -112,21 +112,23 @@ TEST(MultipleModel, OptionsAndBadInput)
 {
 	const auto load = [](const std::string& extra)
 	{ return dynslam_test::loadCartesianFilter(extra)->objectMotionModel().name(); };
-	const std::string mm = "object_model = mm\ncv_dt = 0.5\n";
+	const std::string mm = "object_model = mm\n[ObjectModel]\ncv_dt = 0.5\n";
 	EXPECT_EQ(load(mm), "mm");
 	EXPECT_NE(errorOf([&] { load("object_model = mm\n"); }).find("cv_dt"), std::string::npos);
 	for (const char* bad : {"0", "1", "1.5", "-0.1"})
 	{
-		const std::string e = errorOf([&] { load(mm + "mm_switch_prob = " + bad + "\n"); });
+		const std::string e =
+		    errorOf([&] { load(mm + "[ObjectModel]\nmm_switch_prob = " + bad + "\n"); });
 		EXPECT_NE(e.find("mm_switch_prob"), std::string::npos) << bad << ": '" << e << "'";
 	}
 	for (const char* bad : {"[0 1 1]", "[1 -1 1]", "[1 1]"})
 	{
-		const std::string e = errorOf([&] { load(mm + "mm_manoeuvre_psd = " + bad + "\n"); });
+		const std::string e =
+		    errorOf([&] { load(mm + "[ObjectModel]\nmm_manoeuvre_psd = " + bad + "\n"); });
 		EXPECT_NE(e.find("mm_manoeuvre_psd"), std::string::npos) << bad << ": '" << e << "'";
 	}
 	const auto f = dynslam_test::loadCartesianFilter(
-	    mm + "mm_switch_prob = 0.1\nmm_manoeuvre_psd = [1 2 0.3]\n");
+	    mm + "[ObjectModel]\nmm_switch_prob = 0.1\nmm_manoeuvre_psd = [1 2 0.3]\n");
 	EXPECT_EQ(f->options.cv.mm_switch_prob, 0.1);
 	EXPECT_EQ(f->options.cv.mm_manoeuvre_psd, Eigen::Vector3d(1, 2, 0.3));
 	EXPECT_EQ(f->objectModeNames(),
@@ -135,7 +137,7 @@ TEST(MultipleModel, OptionsAndBadInput)
 	f->options.dumpToTextStream(dump);
 	EXPECT_NE(dump.str().find("mm_switch_prob                 = 0.1"), std::string::npos);
 	EXPECT_NE(dump.str().find("mm_manoeuvre_psd               = [1 2 0.3]"), std::string::npos);
-	EXPECT_TRUE(dynslam_test::loadCartesianFilter("object_model = cv\ncv_dt = 0.5\n")
+	EXPECT_TRUE(dynslam_test::loadCartesianFilter("object_model = cv\n[ObjectModel]\ncv_dt = 0.5\n")
 	                ->objectModeNames()
 	                .empty());
 }

@@ -191,20 +191,23 @@ TEST(ObjectModelCa, OptionsAndBadInput)
 {
 	const auto load = [](const std::string& extra)
 	{ return dynslam_test::loadCartesianFilter(extra)->objectMotionModel().name(); };
-	const std::string ca = "object_model = ca\ncv_dt = 0.5\n";
+	const std::string ca = "object_model = ca\n[ObjectModel]\ncv_dt = 0.5\n";
 	EXPECT_EQ(load(ca), "ca");
 	// Missing cv_dt: the error names it.
 	EXPECT_NE(errorOf([&] { load("object_model = ca\n"); }).find("cv_dt"), std::string::npos);
 	// Negative / non-finite spectral densities, non-positive prior stds, wrong lengths.
 	for (const char* bad : {"[0.1 -1 0.1]", "[-1e-9 0 0]", "[0.1 0.1]", "[0.1 0.1 0.1 0.1]"})
 	{
-		const std::string e = errorOf([&] { load(ca + "ca_jerk_psd = " + bad + "\n"); });
+		const std::string e =
+		    errorOf([&] { load(ca + "[ObjectModel]\nca_jerk_psd = " + bad + "\n"); });
 		EXPECT_NE(e.find("ca_jerk_psd"), std::string::npos) << bad << ": '" << e << "'";
 	}
-	EXPECT_EQ(load(ca + "ca_jerk_psd = [0 0 0]\n"), "ca");  // the EKF accepts 0 (no noise)
+	EXPECT_EQ(load(ca + "[ObjectModel]\nca_jerk_psd = [0 0 0]\n"),
+	          "ca");  // the EKF accepts 0 (no noise)
 	for (const char* bad : {"[0.5 0 0.1]", "[0.5 -1 0.1]", "[1 1]"})
 	{
-		const std::string e = errorOf([&] { load(ca + "ca_accel_prior_std = " + bad + "\n"); });
+		const std::string e =
+		    errorOf([&] { load(ca + "[ObjectModel]\nca_accel_prior_std = " + bad + "\n"); });
 		EXPECT_NE(e.find("ca_accel_prior_std"), std::string::npos) << bad << ": '" << e << "'";
 	}
 	TCvParams p;
@@ -215,13 +218,13 @@ TEST(ObjectModelCa, OptionsAndBadInput)
 	EXPECT_NE(errorOf([&] { CConstantAcceleration m(p); }).find("ca_accel_prior_std"),
 	          std::string::npos);
 	// The cv keys still apply (the velocity prior, the smoothing conflict).
-	EXPECT_NE(errorOf([&] { load(ca + "cv_velocity_prior_std = [1 0 1]\n"); })
+	EXPECT_NE(errorOf([&] { load(ca + "[ObjectModel]\ncv_velocity_prior_std = [1 0 1]\n"); })
 	              .find("cv_velocity_prior_std"),
 	          std::string::npos);
-	EXPECT_THROW(load(ca + "smoothing = true\nkeep_last_poses = 3\n"), std::invalid_argument);
+	EXPECT_THROW(load("smoothing = true\nkeep_last_poses = 3\n" + ca), std::invalid_argument);
 	// Read and dumped.
 	const auto f = dynslam_test::loadCartesianFilter(
-	    ca + "ca_jerk_psd = [0.2 0.3 0.004]\nca_accel_prior_std = [1 2 0.3]\n");
+	    ca + "[ObjectModel]\nca_jerk_psd = [0.2 0.3 0.004]\nca_accel_prior_std = [1 2 0.3]\n");
 	EXPECT_EQ(f->options.cv.jerk_psd, Eigen::Vector3d(0.2, 0.3, 0.004));
 	EXPECT_EQ(f->options.cv.accel_prior_std, Eigen::Vector3d(1, 2, 0.3));
 	std::ostringstream dump;

@@ -129,16 +129,18 @@ TEST(ObjectModelCtrv, OptionsAndBadInput)
 {
 	const auto load = [](const std::string& extra)
 	{ return dynslam_test::loadCartesianFilter(extra)->objectMotionModel().name(); };
-	EXPECT_EQ(load("object_model = ctrv\ncv_dt = 0.5\n"), "ctrv");
+	EXPECT_EQ(load("object_model = ctrv\n[ObjectModel]\ncv_dt = 0.5\n"), "ctrv");
 	EXPECT_THROW(load("object_model = ctrv\n"), std::exception);  // cv_dt is required
-	EXPECT_THROW(load("object_model = ctrv\ncv_dt = 0.5\nsmoothing = true\nkeep_last_poses = 3\n"),
+	EXPECT_THROW(load("object_model = ctrv\n[ObjectModel]\ncv_dt = 0.5\n[DynamicKFSLAM]\nsmoothing "
+	                  "= true\nkeep_last_poses = 3\n"),
 	             std::invalid_argument);
 	for (const char* bad : {"[0.5 0.5 0]", "[0.5 -1 0.1]"})
 	{
 		try
 		{
-			load(std::string("object_model = ctrv\ncv_dt = 0.5\ncv_velocity_prior_std = ") + bad +
-			     "\n");
+			load(std::string(
+			         "object_model = ctrv\n[ObjectModel]\ncv_dt = 0.5\ncv_velocity_prior_std = ") +
+			     bad + "\n");
 			ADD_FAILURE() << "no error for a prior std " << bad;
 		}
 		catch (const std::invalid_argument& e)

@@ -252,16 +252,20 @@ TEST(ObjectModelCv, OptionsAndBadInput)
 	EXPECT_EQ(load("object_model = paper\n"), "none");
 	EXPECT_EQ(load("object_model = paper_smoothing\nkeep_last_poses = 3\nSigma_s = [1 1 1]\n"),
 	          "paper_smoothing");
-	EXPECT_EQ(load("object_model = cv\ncv_dt = 0.5\n"), "cv");
+	EXPECT_EQ(load("object_model = cv\n[ObjectModel]\ncv_dt = 0.5\n"), "cv");
 	EXPECT_THROW(load("object_model = cv\n"), std::exception);  // cv_dt is required
-	EXPECT_THROW(load("object_model = ctra\ncv_dt = 0.5\n"), std::invalid_argument);  // unknown
-	EXPECT_THROW(load("object_model = cv\ncv_dt = 0.5\nsmoothing = true\nkeep_last_poses = 3\n"),
+	EXPECT_THROW(load("object_model = ctra\n[ObjectModel]\ncv_dt = 0.5\n"),
+	             std::invalid_argument);  // unknown
+	EXPECT_THROW(load("object_model = cv\n[ObjectModel]\ncv_dt = 0.5\n[DynamicKFSLAM]\nsmoothing = "
+	                  "true\nkeep_last_poses = 3\n"),
 	             std::invalid_argument);
-	EXPECT_THROW(load("object_model = cv\ncv_dt = 0.5\ncv_velocity_prior_std = [1 0 1]\n"),
+	EXPECT_THROW(
+	    load("object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_velocity_prior_std = [1 0 1]\n"),
+	    std::invalid_argument);
+	EXPECT_THROW(load("object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_accel_psd = [1 -1 1]\n"),
 	             std::invalid_argument);
-	EXPECT_THROW(load("object_model = cv\ncv_dt = 0.5\ncv_accel_psd = [1 -1 1]\n"),
+	EXPECT_THROW(load("object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_gate = 1\n"),
 	             std::invalid_argument);
-	EXPECT_THROW(load("object_model = cv\ncv_dt = 0.5\ncv_gate = 1\n"), std::invalid_argument);
 	EXPECT_THROW(load("object_model = paper_smoothing\nsmoothing = false\nSigma_s = [1 1 1]\n"),
 	             std::invalid_argument);
 }

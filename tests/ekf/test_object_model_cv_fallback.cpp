@@ -212,7 +212,7 @@ TEST(ObjectModelCvFallback, CounterAndIniKey)
 	mrpt::config::CConfigFileMemory ini;
 	ini.setContent(
 	    "[DynamicKFSLAM]\nmeasurement_model = cartesian\nSigma_v = [1e-4 1e-4]\n"
-	    "object_model = cv\ncv_dt = 0.5\ncv_fallback_steps = 3\n");
+	    "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_fallback_steps = 3\n");
 	CDynamicKFSLAM2D f;
 	f.loadOptions(ini);
 	EXPECT_EQ(f.options.cv.fallback_steps, 3);
@@ -221,6 +221,6 @@ TEST(ObjectModelCvFallback, CounterAndIniKey)
 	EXPECT_NE(dump.str().find("cv_fallback_steps              = 3"), std::string::npos);
 	ini.setContent(
 	    "[DynamicKFSLAM]\nmeasurement_model = cartesian\nSigma_v = [1e-4 1e-4]\n"
-	    "object_model = cv\ncv_dt = 0.5\ncv_fallback_steps = -2\n");
+	    "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_fallback_steps = -2\n");
 	EXPECT_THROW(f.loadOptions(ini), std::invalid_argument);
 }

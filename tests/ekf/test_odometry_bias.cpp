@@ -49,8 +49,9 @@ std::string filterIni(const std::string& bias, const Eigen::Vector3d& x0)
 	     std::to_string(x0[2]) + "]\n";
 	s += "odometry_bias = " + bias + "\n";
 	if (bias != "none")
-		s += "odometry_dt = 0.5\nbias_rate_std0 = 0.05\nbias_rate_rw = 1e-4\n"
-		     "bias_scale_std0 = 0.05\nbias_scale_rw = 1e-4\n";
+		s += "[OdometryBias]\nodometry_dt = 0.5\nbias_rate_std0 = 0.05\nbias_rate_rw = 1e-4\n"
+		     "bias_scale_std0 = 0.05\nbias_scale_rw = 1e-4\n"
+		     "[DynamicKFSLAM]\n";  // callers may add core keys
 	return s;
 }
 
@@ -187,22 +188,27 @@ TEST(OdometryBias, Options)
 	};
 	const std::string base = filterIni("none", x0);
 	expectThrowNaming(base + "odometry_bias = gyro\n", "odometry_bias");
-	expectThrowNaming(base + "odometry_bias = rate\nodometry_dt = 0.5\nbias_rate_rw = 0\n",
-	                  "bias_rate_std0");
-	expectThrowNaming(base + "odometry_bias = rate\nbias_rate_std0 = 0.1\nbias_rate_rw = 0\n",
-	                  "odometry_dt");
-	expectThrowNaming(base +
-	                      "odometry_bias = rate\nodometry_dt = 0.5\nbias_rate_std0 = 0\n"
-	                      "bias_rate_rw = 0\n",
-	                  "bias_rate_std0");
-	expectThrowNaming(base +
-	                      "odometry_bias = rate_scale\nodometry_dt = 0.5\nbias_rate_std0 = 0.1\n"
-	                      "bias_rate_rw = 0\n",
-	                  "bias_scale_std0");
-	expectThrowNaming(base +
-	                      "odometry_bias = rate\nodometry_dt = 0.5\nbias_rate_std0 = 0.1\n"
-	                      "bias_rate_rw = -1\n",
-	                  "bias_rate_rw");
+	expectThrowNaming(
+	    base + "odometry_bias = rate\n[OdometryBias]\nodometry_dt = 0.5\nbias_rate_rw = 0\n",
+	    "bias_rate_std0");
+	expectThrowNaming(
+	    base + "odometry_bias = rate\n[OdometryBias]\nbias_rate_std0 = 0.1\nbias_rate_rw = 0\n",
+	    "odometry_dt");
+	expectThrowNaming(
+	    base +
+	        "odometry_bias = rate\n[OdometryBias]\nodometry_dt = 0.5\nbias_rate_std0 = 0\n"
+	        "bias_rate_rw = 0\n",
+	    "bias_rate_std0");
+	expectThrowNaming(
+	    base +
+	        "odometry_bias = rate_scale\n[OdometryBias]\nodometry_dt = 0.5\nbias_rate_std0 = 0.1\n"
+	        "bias_rate_rw = 0\n",
+	    "bias_scale_std0");
+	expectThrowNaming(
+	    base +
+	        "odometry_bias = rate\n[OdometryBias]\nodometry_dt = 0.5\nbias_rate_std0 = 0.1\n"
+	        "bias_rate_rw = -1\n",
+	    "bias_rate_rw");
 	CDynamicKFSLAM2D f;
 	f.loadOptions(mrpt::config::CConfigFileMemory(filterIni("rate_scale", x0)));
 	std::ostringstream dump;

@@ -95,7 +95,9 @@ TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& ex
 	std::string ini = kIni;
 	ini.replace(ini.find("1e-5 1e-5"), 9, sigmaV + " " + sigmaV);
 	ini.insert(ini.find("[DynamicKFSLAM_"), common);
-	if (classify) ini.insert(ini.find("[DynamicKFSLAM_"), "feature_labels = classify\n" + extra);
+	if (classify)  // after `common`, which may end in a module's section
+		ini.insert(ini.find("[DynamicKFSLAM_"),
+		           "[DynamicKFSLAM]\nfeature_labels = classify\n" + extra);
 	mrpt::config::CConfigFileMemory cfg(ini);
 	CDynamicKFSLAM2D ekf;
 	ekf.loadOptions(cfg, "DynamicKFSLAM");
@@ -217,7 +219,7 @@ TDriveOff driveOff(const std::string& cfg, const std::string& common = "")
 	d.labelled = run(o, false, "", "1e-5", false, common);
 	d.onsets = run(o, false, "", "1e-5", true, common);
 	d.surgery = run(o, true, "", "1e-5", false, common);
-	d.restart = run(o, true, "classify_reclassify = restart\n", "1e-5", false, common);
+	d.restart = run(o, true, "[Classify]\nclassify_reclassify = restart\n", "1e-5", false, common);
 	const std::string w = cfg + (common.empty() ? "" : " (" + common.substr(0, 15) + ")");
 	print(w + " labelled", d.labelled);
 	print(w + " labelled, knows the onset", d.onsets);
@@ -271,7 +273,7 @@ TEST(ClassifyHighway, ParkedCarInViewDrivingOffSurgeryAgainstRestart)
 // that drives off converted at the same step.
 TEST(ClassifyHighway, MapStaticTestKeepsTheHighwayDecisions)
 {
-	const std::string map = "classify_static_test = map\n";
+	const std::string map = "[Classify]\nclassify_static_test = map\n";
 	const TResult robot = run(scenario("highway_anonymous.ini"), true);
 	const TResult cls = run(scenario("highway_anonymous.ini"), true, map);
 	print("classify, static test map", cls);
@@ -290,9 +292,10 @@ TEST(ClassifyHighway, MapStaticTestKeepsTheHighwayDecisions)
 
 TEST(ClassifyHighway, ParkedCarInViewDrivingOffWithConstantVelocityObjects)
 {
-	const TDriveOff d = driveOff("highway_driveoff_in_view.ini",
-	                             "object_model = cv\ncv_dt = 0.5\ncv_accel_psd = [0.01 0.01 1e-4]\n"
-	                             "cv_velocity_prior_std = [0.5 0.5 0.05]\n");
+	const TDriveOff d =
+	    driveOff("highway_driveoff_in_view.ini",
+	             "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_accel_psd = [0.01 0.01 1e-4]\n"
+	             "cv_velocity_prior_std = [0.5 0.5 0.05]\n");
 	EXPECT_EQ(d.surgery.converted, 4u);
 }
 
@@ -307,7 +310,7 @@ TEST(ClassifyHighway, StoppingCarBecomesStatic)
 	std::map<int, TResult> on;
 	for (const int n : {2, 3, 5})
 	{
-		on[n] = run(o, true, "classify_stop_count = " + std::to_string(n) + "\n");
+		on[n] = run(o, true, "[Classify]\nclassify_stop_count = " + std::to_string(n) + "\n");
 		print("stopping: classify, stop_count " + std::to_string(n), on[n]);
 	}
 	// Measured: with 2 or 3 the 4 features of Agent 6 become static landmarks (8 / 4 more
@@ -365,15 +368,17 @@ TEST(ClassifyHighway, BadOptionsAreClearErrors)
 		}
 	};
 	expectError("feature_labels = anonymous\n", "feature_labels");
-	expectError("feature_labels = classify\nclassify_alpha = 1.5\n", "classify_alpha");
-	expectError("feature_labels = classify\nclassify_beta = 0\n", "classify_beta");
-	expectError("feature_labels = classify\nclassify_max_window = 1\n", "classify_max_window");
-	expectError("classify_typo = 1\n", "classify_typo");
-	expectError("feature_labels = classify\nclassify_static_test = world\n",
+	expectError("feature_labels = classify\n[Classify]\nclassify_alpha = 1.5\n", "classify_alpha");
+	expectError("feature_labels = classify\n[Classify]\nclassify_beta = 0\n", "classify_beta");
+	expectError("feature_labels = classify\n[Classify]\nclassify_max_window = 1\n",
+	            "classify_max_window");
+	expectError("[Classify]\nclassify_typo = 1\n", "classify_typo");
+	expectError("feature_labels = classify\n[Classify]\nclassify_static_test = world\n",
 	            "classify_static_test");
 	// Removed keys (the drift test, 2026-11-28) are unknown keys now: an error, never ignored.
-	expectError("feature_labels = classify\nclassify_drift_window = 40\n", "classify_drift_window");
-	EXPECT_NO_THROW(load("feature_labels = classify\nclassify_alpha = 0.05\n"));
+	expectError("feature_labels = classify\n[Classify]\nclassify_drift_window = 40\n",
+	            "classify_drift_window");
+	EXPECT_NO_THROW(load("feature_labels = classify\n[Classify]\nclassify_alpha = 0.05\n"));
 	// The default is the ID-range router, unchanged.
 	mrpt::config::CConfigFileMemory cfg(kIni);
 	CDynamicKFSLAM2D ekf;

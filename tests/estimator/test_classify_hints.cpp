@@ -221,8 +221,8 @@ TEST(ClassifyHints, BadKeysAreClearErrors)
 		ekf.options.dumpToTextStream(dump);
 		return dump.str();
 	};
-	EXPECT_THROW(load("classify_link = sometimes\n"), std::exception);
-	EXPECT_THROW(load("classify_use_hints = maybe\n"), std::exception);
+	EXPECT_THROW(load("[Classify]\nclassify_link = sometimes\n"), std::exception);
+	EXPECT_THROW(load("[Classify]\nclassify_use_hints = maybe\n"), std::exception);
 	const std::string d = load("");
 	EXPECT_NE(d.find("classify_use_hints             = false"), std::string::npos) << d;
 	EXPECT_NE(d.find("classify_link                  = hints"), std::string::npos);
@@ -351,8 +351,8 @@ THighwayRun highwayWithHints(const std::string& keys)
 TEST(ClassifyHints, AnonymousHighwayCarsLinkedAcrossTrackBreaks)
 {
 	const THighwayRun off = highwayWithHints("");
-	const THighwayRun hints = highwayWithHints("classify_use_hints = true\n");
-	const THighwayRun all = highwayWithHints("classify_link = all\n");
+	const THighwayRun hints = highwayWithHints("[Classify]\nclassify_use_hints = true\n");
+	const THighwayRun all = highwayWithHints("[Classify]\nclassify_link = all\n");
 	std::cout << "ARI without hints " << off.ari << ", with hints " << hints.ari
 	          << ", classify_link = all " << all.ari << "; linked " << hints.linked << " / "
 	          << all.linked << "; ATE " << off.ate << " / " << hints.ate << " / " << all.ate

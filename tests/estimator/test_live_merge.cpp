@@ -242,14 +242,14 @@ TEST(LiveMerge, SplitCarIsMergedCarsSideBySideAreNot)
 	const sim::TScenarioOptions o = sim::loadScenarioFromText(kTwoLanes);
 	const int32_t car = sim::buildGroundTruth(o).objects.front().object;
 	const std::string cv =
-	    "object_model = cv\ncv_dt = 0.5\ncv_accel_psd = [0.1 0.1 1e-3]\n"
+	    "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_accel_psd = [0.1 0.1 1e-3]\n"
 	    "cv_velocity_prior_std = [0.5 0.5 0.05]\n";
-	const std::string paper = "classify_join = false\n";
+	const std::string paper = "[Classify]\nclassify_join = false\n";
 	for (const std::string& model : {cv, paper})
 	{
 		SCOPED_TRACE(model);
 		const TRun off = runScenario(o, model, car);
-		const TRun on = runScenario(o, model + "classify_merge_live = true\n", car);
+		const TRun on = runScenario(o, model + "[Classify]\nclassify_merge_live = true\n", car);
 		print("split car, off", off);
 		print("split car, on", on);
 		// Off: the car's late half is an object of its own (4 objects for 3 cars).
@@ -265,7 +265,7 @@ TEST(LiveMerge, SplitCarIsMergedCarsSideBySideAreNot)
 		EXPECT_LE(on.firstMerge, 6 + (model == cv ? 5 : 20) + 12);
 		EXPECT_LT(on.ate, 1.1 * off.ate + 0.01);
 		// Without the split: the side-by-side cars (0.3 m/s apart) are never merged.
-		const TRun whole = runScenario(o, model + "classify_merge_live = true\n");
+		const TRun whole = runScenario(o, model + "[Classify]\nclassify_merge_live = true\n");
 		print("side by side, on", whole);
 		EXPECT_EQ(whole.merged, 0u);
 		EXPECT_EQ(whole.objects, 3u);
@@ -277,7 +277,7 @@ TEST(LiveMerge, OffIsTodaysFilter)
 	const sim::TScenarioOptions o = sim::loadScenarioFromText(kTwoLanes);
 	const int32_t car = sim::buildGroundTruth(o).objects.front().object;
 	const TRun def = runScenario(o, "", car);
-	const TRun off = runScenario(o, "classify_merge_live = false\n", car);
+	const TRun off = runScenario(o, "[Classify]\nclassify_merge_live = false\n", car);
 	EXPECT_EQ(def.ate, off.ate);
 	EXPECT_EQ(def.ari, off.ari);
 	EXPECT_EQ(def.objects, off.objects);
@@ -290,16 +290,16 @@ TEST(LiveMerge, ClutterHighway)
 	const sim::TScenarioOptions o = sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/" +
 	                                                  (scen ? scen : "highway_clutter.ini"));
 	const std::string cv =
-	    "object_model = cv\ncv_dt = 0.5\ncv_accel_psd = [0.1 0.1 1e-3]\n"
+	    "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_accel_psd = [0.1 0.1 1e-3]\n"
 	    "cv_velocity_prior_std = [0.5 0.5 0.05]\n";
 	const char* sweep = std::getenv("LM_SWEEP");  // measuring other keys by hand
 	for (const std::string& model :
 	     sweep ? std::vector<std::string>{std::string(sweep)}
-	           : std::vector<std::string>{cv, "classify_join = false\n", ""})
+	           : std::vector<std::string>{cv, "[Classify]\nclassify_join = false\n", ""})
 	{
 		SCOPED_TRACE(model);
 		const TRun off = runScenario(o, model);
-		const TRun on = runScenario(o, model + "classify_merge_live = true\n");
+		const TRun on = runScenario(o, model + "[Classify]\nclassify_merge_live = true\n");
 		print("clutter " + model + " off", off);
 		print("clutter " + model + " on", on);
 		EXPECT_EQ(on.wrong, 0u);
@@ -320,7 +320,8 @@ TEST(LiveMerge, ClutterHighway)
 
 TEST(LiveMerge, BadKeysAreClearErrorsAndTheKeysAreDumped)
 {
-	for (const char* bad : {"classify_merge_live = maybe\n", "classify_merge_live_window = -1\n"})
+	for (const char* bad : {"[Classify]\nclassify_merge_live = maybe\n",
+	                        "[Classify]\nclassify_merge_live_window = -1\n"})
 	{
 		SCOPED_TRACE(bad);
 		mrpt::config::CConfigFileMemory cfg(
@@ -333,12 +334,15 @@ TEST(LiveMerge, BadKeysAreClearErrorsAndTheKeysAreDumped)
 		}
 		catch (const std::exception& e)
 		{
-			const std::string key(bad, std::string(bad).find(' '));
-			EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+			// "[Classify] <key> ...": the message names the key's section and the key.
+			const std::string b(bad), line = b.substr(b.find('\n') + 1);
+			const std::string key = "[Classify] " + line.substr(0, line.find(' '));
+			EXPECT_EQ(std::string(e.what()).rfind(key, 0), 0u) << e.what();
 		}
 	}
-	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(
-	    "feature_labels = classify\nclassify_merge_live = true\nclassify_merge_live_window = 7\n"));
+	mrpt::config::CConfigFileMemory cfg(
+	    dynslam_test::highwayFilterIni("feature_labels = classify\n[Classify]\nclassify_merge_live "
+	                                   "= true\nclassify_merge_live_window = 7\n"));
 	CDynamicKFSLAM2D ekf;
 	ekf.loadOptions(cfg, "DynamicKFSLAM");
 	std::ostringstream d;
@@ -356,10 +360,10 @@ TEST(LiveMerge, HintsKeepCarsMovingTogetherApart)
 	text += "[Effects]\ndetection_groups = true\n";
 	const sim::TScenarioOptions o = sim::loadScenarioFromText(text);
 	const std::string cv =
-	    "object_model = cv\ncv_dt = 0.5\ncv_accel_psd = [0.1 0.1 1e-3]\n"
-	    "cv_velocity_prior_std = [0.5 0.5 0.05]\nclassify_merge_live = true\n";
+	    "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_accel_psd = [0.1 0.1 1e-3]\n"
+	    "cv_velocity_prior_std = [0.5 0.5 0.05]\n[Classify]\nclassify_merge_live = true\n";
 	const TRun plain = runScenario(o, cv);
-	const TRun hints = runScenario(o, cv + "classify_use_hints = true\n");
+	const TRun hints = runScenario(o, cv + "[Classify]\nclassify_use_hints = true\n");
 	print("same speed, no hints", plain);
 	print("same speed, hints", hints);
 	EXPECT_GE(plain.merged, 1u);

@@ -70,7 +70,7 @@ TOutcome runOnce(const std::string& scenario, const std::string& keys)
 	sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
 	delayHalfOfObject(sim, gt.objects.front().object, 6);
 	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(
-	    "feature_labels = classify\nclassify_merge_live = true\n" + keys));
+	    "feature_labels = classify\n" + keys + "[Classify]\nclassify_merge_live = true\n"));
 	CDynamicKFSLAM2D ekf;
 	ekf.loadOptions(cfg, "DynamicKFSLAM");
 	const auto& reg = ekf.router().registry();
@@ -144,9 +144,9 @@ const TCase kCases[] = {{"side by side dv 0", 20, 17.5},
                         {"same speed, accel psd 0.001", 20, 17.5, 0.001}};
 
 const std::string kCv =
-    "object_model = cv\ncv_dt = 0.5\ncv_accel_psd = [0.1 0.1 1e-3]\n"
+    "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_accel_psd = [0.1 0.1 1e-3]\n"
     "cv_velocity_prior_std = [0.5 0.5 0.05]\n";
-const std::string kPaper = "classify_join = false\n";
+const std::string kPaper = "[Classify]\nclassify_join = false\n";
 
 int seeds(int n)
 {

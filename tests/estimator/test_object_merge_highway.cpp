@@ -29,7 +29,7 @@ namespace
 using dynslam_test::featureWorld;
 
 const char* kCv =
-    "feature_labels = classify\nclassify_use_hints = true\ncv_dt = 0.5\n"
+    "feature_labels = classify\n[Classify]\nclassify_use_hints = true\n[ObjectModel]\ncv_dt = 0.5\n"
     "cv_velocity_prior_std = [0.5 0.5 0.05]\n";
 
 struct TMergeRun
@@ -182,19 +182,20 @@ TEST(ObjectMergeHighway, LinkedCarsMergeIntoTheirLostObjects)
 	// of config/compare_tunnel.ini with its gate (setting E without the anchor), which cannot
 	// follow them (documented), and the same with the fallback of a lost object.
 	const TSetting settings[] = {
-	    {"object_model = cv\ncv_accel_psd = [0.1 0.1 1e-3]\n", true},
-	    {"object_model = ctrv\ncv_accel_psd = [0.1 0.1 1e-3]\n", true},
-	    {"object_model = cv\ncv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\n", false},
-	    {"object_model = cv\ncv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\n"
+	    {"object_model = cv\n[ObjectModel]\ncv_accel_psd = [0.1 0.1 1e-3]\n", true},
+	    {"object_model = ctrv\n[ObjectModel]\ncv_accel_psd = [0.1 0.1 1e-3]\n", true},
+	    {"object_model = cv\n[ObjectModel]\ncv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\n",
+	     false},
+	    {"object_model = cv\n[ObjectModel]\ncv_accel_psd = [1e-7 1e-7 1e-9]\ncv_gate = 0.999\n"
 	     "cv_fallback_steps = 3\n",
 	     false}};
 	for (const TSetting& st : settings)
 	{
 		SCOPED_TRACE(st.keys);
-		const std::string cv = std::string(kCv) + st.keys;
+		const std::string cv = std::string(kCv) + "[DynamicKFSLAM]\n" + st.keys;
 		const TMergeRun off = runMerge(cv);
-		const TMergeRun def = runMerge(cv + "classify_merge_linked = false\n");
-		const TMergeRun on = runMerge(cv + "classify_merge_linked = true\n");
+		const TMergeRun def = runMerge(cv + "[Classify]\nclassify_merge_linked = false\n");
+		const TMergeRun on = runMerge(cv + "[Classify]\nclassify_merge_linked = true\n");
 		std::cout << st.keys;
 		print("merge off", off);
 		print("merge on", on);
@@ -220,9 +221,9 @@ TEST(ObjectMergeHighway, LinkedCarsMergeIntoTheirLostObjects)
 TEST(ObjectMergeHighway, PaperModelIgnoresTheKey)
 {
 	// The paper's model has no prediction across a gap: the key is documented to change nothing.
-	const std::string paper = "feature_labels = classify\nclassify_use_hints = true\n";
+	const std::string paper = "feature_labels = classify\n[Classify]\nclassify_use_hints = true\n";
 	const TMergeRun off = runMerge(paper);
-	const TMergeRun on = runMerge(paper + "classify_merge_linked = true\n");
+	const TMergeRun on = runMerge(paper + "[Classify]\nclassify_merge_linked = true\n");
 	EXPECT_EQ(on.linked, 2u);
 	EXPECT_EQ(on.merged + on.skipped, 0u);
 	ASSERT_EQ(on.x.size(), off.x.size());
@@ -234,11 +235,11 @@ TEST(ObjectMergeHighway, BadValueIsAnErrorAndTheKeyIsDumped)
 {
 	CDynamicKFSLAM2D ekf;
 	mrpt::config::CConfigFileMemory bad(dynslam_test::highwayFilterIni(
-	    "feature_labels = classify\nclassify_merge_linked = maybe\n"));
+	    "feature_labels = classify\n[Classify]\nclassify_merge_linked = maybe\n"));
 	try
 	{
 		ekf.loadOptions(bad, "DynamicKFSLAM");
-		ADD_FAILURE() << "classify_merge_linked = maybe accepted";
+		ADD_FAILURE() << "[Classify]\nclassify_merge_linked = maybe accepted";
 	}
 	catch (const std::exception& e)
 	{
@@ -246,7 +247,7 @@ TEST(ObjectMergeHighway, BadValueIsAnErrorAndTheKeyIsDumped)
 		    << e.what();
 	}
 	mrpt::config::CConfigFileMemory good(dynslam_test::highwayFilterIni(
-	    "feature_labels = classify\nclassify_merge_linked = true\n"));
+	    "feature_labels = classify\n[Classify]\nclassify_merge_linked = true\n"));
 	ekf.loadOptions(good, "DynamicKFSLAM");
 	std::ostringstream d;
 	ekf.options.dumpToTextStream(d);

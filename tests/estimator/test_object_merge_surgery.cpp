@@ -37,7 +37,7 @@ void runHighwayCv(CDynamicKFSLAM2D& ekf, size_t steps, const std::string& labels
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, o.noise_seed);
 	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(
 	    "feature_labels = " + labels + "\nobject_model = " + model +
-	    "\ncv_dt = 0.5\n"
+	    "\n[ObjectModel]\ncv_dt = 0.5\n"
 	    "cv_accel_psd = [1e-3 1e-3 1e-5]\ncv_velocity_prior_std = [0.5 0.5 0.05]\n"));
 	ekf.loadOptions(cfg, "DynamicKFSLAM");
 	for (size_t k = 0; k < steps; ++k) ekf.processActionObservation(run.actions[k], run.frames[k]);

@@ -106,13 +106,14 @@ TEST(ObjectMergeTurning, MergedFeaturesFollowTheFoundersCentroid)
 	// turned by 0.67 rad in the gap (5.4 m/s, 2.7 m per step; with 1 m per step a gap of 8 or 10
 	// steps is not linked).
 	const std::string common =
-	    "feature_labels = classify\nclassify_use_hints = true\nclassify_merge_linked = true\n"
-	    "classify_motion_std = 2.0\ncv_dt = 0.5\ncv_velocity_prior_std = [0.5 0.5 "
+	    "feature_labels = classify\n[Classify]\nclassify_use_hints = true\nclassify_merge_linked = "
+	    "true\n"
+	    "classify_motion_std = 2.0\n[ObjectModel]\ncv_dt = 0.5\ncv_velocity_prior_std = [0.5 0.5 "
 	    "0.05]\ncv_accel_psd = [0.1 0.1 1e-3]\n";
 	for (const char* model : {"cv", "ctrv"})
 	{
 		SCOPED_TRACE(model);
-		const TTurnRun r = runTurning(common + "object_model = " + model + "\n");
+		const TTurnRun r = runTurning("object_model = " + std::string(model) + "\n" + common);
 		std::cout << model << ": linked " << r.linked << ", merged " << r.merged << " at step "
 		          << r.merge_step << ", merged features' RMSE " << r.feat_rmse << " m (" << r.feat_n
 		          << " readings)\n";

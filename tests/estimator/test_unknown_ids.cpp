@@ -161,7 +161,7 @@ namespace
 const std::string kIni = dynslam_test::highwayFilterIni(
     "feature_labels = classify\n"
     // the fastest car of the highway drives 19.5 m/s: 9.75 m per 0.5 s step, + 20 %
-    "classify_assoc_max_step = 12\n");
+    "[Classify]\nclassify_assoc_max_step = 12\n");
 
 struct TRun
 {

@@ -194,7 +194,7 @@ TEST(Alg1, WholeRunEquivalenceObjectModels)
 	// generated scenario (measured <= 4.8e-11); longer runs lose more digits, as the velocity
 	// blocks make the information worse conditioned than with the paper's model (highway
 	// 4.7e-12 there over 121 steps).
-	const std::string cv = "cv_dt = 0.5\n";
+	const std::string cv = "[ObjectModel]\ncv_dt = 0.5\n";
 	const auto so = scenario("generated_small_scenario.ini", 18);
 	for (const std::string model : {"cv", "ctrv"})
 	{
@@ -204,13 +204,13 @@ TEST(Alg1, WholeRunEquivalenceObjectModels)
 		EXPECT_GT(g.velocities, 10u) << model;  // one per object and step since its 2nd sighting
 		const TWorst k =
 		    report(("generated, " + model + ", keep time-t features, K = 3").c_str(),
-		           runBoth(so, 7, m + "drop_time_t_features = false\nkeep_last_poses = 3\n"));
+		           runBoth(so, 7, "drop_time_t_features = false\nkeep_last_poses = 3\n" + m));
 		EXPECT_GT(k.object_updates, 20u) << model;
 		// 60 highway steps, a gate that rejects readings: measured 5.4e-9 (cv) and 3.3e-9
 		// (ctrv) on the covariance, 1e-9 on the mean (conditioning: see below).
-		const TWorst h =
-		    report(("highway, " + model + ", gate 0.5").c_str(),
-		           runBoth(scenario("highway.ini", 60), 1, m + "cv_gate = 0.5\n"), 1e-7);
+		const TWorst h = report(
+		    ("highway, " + model + ", gate 0.5").c_str(),
+		    runBoth(scenario("highway.ini", 60), 1, m + "[ObjectModel]\ncv_gate = 0.5\n"), 1e-7);
 		EXPECT_GT(h.object_updates, 100u) << model;
 		EXPECT_GT(h.gated, 0u) << model;
 	}
@@ -218,9 +218,9 @@ TEST(Alg1, WholeRunEquivalenceObjectModels)
 	off.sensor_pose = Eigen::Vector3d(0.3, -0.1, 0.2);
 	const TWorst rb = report("generated, ctrv, range-bearing, sensor at (0.3, -0.1, 0.2)",
 	                         runBoth(off, 8,
-	                                 "object_model = ctrv\n" + cv +
-	                                     "measurement_model = range_bearing\n"
-	                                     "Sigma_v = [1e-4 1e-6]\n"),
+	                                 "object_model = ctrv\nmeasurement_model = range_bearing\n"
+	                                 "Sigma_v = [1e-4 1e-6]\n" +
+	                                     cv),
 	                         1e-8);  // measured 2.3e-9 (covariance)
 	EXPECT_GT(rb.object_updates, 20u);
 }
@@ -230,19 +230,19 @@ TEST(Alg1, WholeRunEquivalenceObjectModels)
  * motion and initialisation terms of the ca model equals the EKF at every step. */
 TEST(Alg1, WholeRunEquivalenceCa)
 {
-	const std::string m = "object_model = ca\ncv_dt = 0.5\n";
+	const std::string m = "object_model = ca\n[ObjectModel]\ncv_dt = 0.5\n";
 	// The generated scenario with a sensor range of 100 m (every object stays in view) and a
 	// jerk PSD of [1 1 0.1]: 1e-9 (measured 3.7e-10 and 8.6e-10 on the covariance, 4.4e-11 on the
 	// mean).
 	auto inView = scenario("generated_small_scenario.ini", 18);
 	inView.sensor_range = 100;
-	const std::string q = "ca_jerk_psd = [1 1 0.1]\n";
+	const std::string q = "[ObjectModel]\nca_jerk_psd = [1 1 0.1]\n";
 	const TWorst g = report("generated, ca, objects in view", runBoth(inView, 6, m + q));
 	EXPECT_GT(g.object_updates, 20u);
 	EXPECT_GT(g.velocities, 10u);
 	const TWorst k =
 	    report("generated, ca, objects in view, keep time-t features, K = 3",
-	           runBoth(inView, 7, m + q + "drop_time_t_features = false\nkeep_last_poses = 3\n"));
+	           runBoth(inView, 7, "drop_time_t_features = false\nkeep_last_poses = 3\n" + m + q));
 	EXPECT_GT(k.object_updates, 20u);
 	// The 50 m range, where an object leaves the view after its second sighting and coasts
 	// (pose variance 3 m^2 at step 4, 471 m^2 at step 18 with the ca_* defaults): the means agree
@@ -259,8 +259,9 @@ TEST(Alg1, WholeRunEquivalenceCa)
 	off.sensor_pose = Eigen::Vector3d(0.3, -0.1, 0.2);
 	const TWorst rb = report("generated, ca, range-bearing, sensor at (0.3, -0.1, 0.2), own keys",
 	                         runBoth(off, 8,
-	                                 m + "measurement_model = range_bearing\n"
-	                                     "Sigma_v = [1e-4 1e-6]\n"
+	                                 "measurement_model = range_bearing\n"
+	                                 "Sigma_v = [1e-4 1e-6]\n" +
+	                                     m +
 	                                     "ca_jerk_psd = [0.05 0.02 0.003]\n"
 	                                     "ca_accel_prior_std = [0.3 0.2 0.02]\n"),
 	                         1e-7);  // measured 3.8e-8 (covariance), 2.9e-9 (mean)
@@ -273,7 +274,7 @@ TEST(Alg1, WholeRunEquivalenceCa)
  * covariance and every recorded pose's mode probabilities (compareTracks). */
 TEST(Alg1, WholeRunEquivalenceMultipleModel)
 {
-	const std::string m = "object_model = mm\ncv_dt = 0.5\n";
+	const std::string m = "object_model = mm\n[ObjectModel]\ncv_dt = 0.5\n";
 	const TWorst g =
 	    report("generated, mm", runBoth(scenario("generated_small_scenario.ini", 18), 6, m));
 	EXPECT_GT(g.object_updates, 20u);
@@ -284,11 +285,12 @@ TEST(Alg1, WholeRunEquivalenceMultipleModel)
 	// as the objects coast through the 250 m gap (doc/framework.md, conditioning). So: mm within
 	// 5e-7 and no worse than twice cv on the same run.
 	const auto tunnel = scenario("tunnel_manoeuvres.ini", -1);
-	const TWorst c =
-	    report("tunnel manoeuvres, cv, gate 0.999",
-	           runBoth(tunnel, 2, "object_model = cv\ncv_dt = 0.5\ncv_gate = 0.999\n"), 5e-7);
+	const TWorst c = report(
+	    "tunnel manoeuvres, cv, gate 0.999",
+	    runBoth(tunnel, 2, "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\ncv_gate = 0.999\n"),
+	    5e-7);
 	const TWorst t = report("tunnel manoeuvres, mm, gate 0.999",
-	                        runBoth(tunnel, 2, m + "cv_gate = 0.999\n"), 5e-7);
+	                        runBoth(tunnel, 2, m + "[ObjectModel]\ncv_gate = 0.999\n"), 5e-7);
 	EXPECT_LT(t.mean, 2 * c.mean);
 	EXPECT_LT(t.cov, 2 * c.cov);
 	EXPECT_GT(t.object_updates, 100u);
@@ -315,11 +317,12 @@ TEST(Alg1, CaBadInput)
 		}
 		return std::string();
 	};
-	EXPECT_EQ(error("cv_dt = 0.5\n"), "");
-	EXPECT_EQ(error("cv_dt = 0.5\ncv_accel_psd = [0.1 0 0.1]\n"), "");  // not ca's
+	EXPECT_EQ(error("[ObjectModel]\ncv_dt = 0.5\n"), "");
+	EXPECT_EQ(error("[ObjectModel]\ncv_dt = 0.5\ncv_accel_psd = [0.1 0 0.1]\n"), "");  // not ca's
 	for (const char* bad : {"[0.1 0 0.1]", "[0.1 -1 0.1]"})
 	{
-		const std::string e = error(std::string("cv_dt = 0.5\nca_jerk_psd = ") + bad + "\n");
+		const std::string e =
+		    error(std::string("[ObjectModel]\ncv_dt = 0.5\nca_jerk_psd = ") + bad + "\n");
 		EXPECT_NE(e.find("ca_jerk_psd"), std::string::npos) << bad << ": '" << e << "'";
 	}
 	EXPECT_NE(error("").find("cv_dt"), std::string::npos);
@@ -334,13 +337,13 @@ TEST(Alg1, WholeRunEquivalenceObjectModelsIllConditioned)
 	// inversion that reports the covariance lose about kappa * eps (doc/framework.md). The
 	// same operations, measured: see the printed errors.
 	const std::string m =
-	    "object_model = ctrv\ncv_dt = 0.5\ncv_accel_psd = [0.01 0.01 1e-4]\n"
+	    "object_model = ctrv\n[ObjectModel]\ncv_dt = 0.5\ncv_accel_psd = [0.01 0.01 1e-4]\n"
 	    "cv_velocity_prior_std = [0.5 0.5 0.05]\n";
 	report("generated, ctrv, tunnel settings",
 	       runBoth(scenario("generated_small_scenario.ini", 18), 6, m),
 	       1e-8);  // measured 1.0e-9 (covariance), 3.5e-10 (mean)
 	report("highway, ctrv, tunnel settings, gate 0.99",
-	       runBoth(scenario("highway.ini", 60), 1, m + "cv_gate = 0.99\n"),
+	       runBoth(scenario("highway.ini", 60), 1, m + "[ObjectModel]\ncv_gate = 0.99\n"),
 	       1e-5);  // measured 1.1e-6 (covariance), 2.1e-9 (mean)
 }
 
@@ -351,18 +354,22 @@ TEST(Alg1, ObjectModelsBadInput)
 	// construction.
 	const auto make = [](const std::string& extra)
 	{
-		mrpt::config::CConfigFileMemory ini(modelIni("object_model = cv\ncv_dt = 0.5\n" + extra));
+		mrpt::config::CConfigFileMemory ini(
+		    modelIni("object_model = cv\n[ObjectModel]\ncv_dt = 0.5\n" + extra));
 		TBackendOptions bo;
 		bo.loadFromConfigFile(ini, "Framework");
 		CAlg1Backend alg(bo);
 	};
 	EXPECT_NO_THROW(make(""));
-	EXPECT_THROW(make("cv_fallback_steps = 3\n"), std::invalid_argument);     // EKF only
-	EXPECT_NO_THROW(make("cv_fallback_steps = 0\n"));                         // off
-	EXPECT_THROW(make("cv_heading_inflation = 3\n"), std::invalid_argument);  // EKF only
-	EXPECT_NO_THROW(make("cv_heading_inflation = 0\n"));                      // off
-	EXPECT_THROW(make("cv_accel_psd = [0.01 0 1e-4]\n"), std::invalid_argument);
-	EXPECT_THROW(make("cv_velocity_prior_std = [0.5 0 0.05]\n"), std::invalid_argument);
+	EXPECT_THROW(make("[ObjectModel]\ncv_fallback_steps = 3\n"),
+	             std::invalid_argument);                              // EKF only
+	EXPECT_NO_THROW(make("[ObjectModel]\ncv_fallback_steps = 0\n"));  // off
+	EXPECT_THROW(make("[ObjectModel]\ncv_heading_inflation = 3\n"),
+	             std::invalid_argument);                                 // EKF only
+	EXPECT_NO_THROW(make("[ObjectModel]\ncv_heading_inflation = 0\n"));  // off
+	EXPECT_THROW(make("[ObjectModel]\ncv_accel_psd = [0.01 0 1e-4]\n"), std::invalid_argument);
+	EXPECT_THROW(make("[ObjectModel]\ncv_velocity_prior_std = [0.5 0 0.05]\n"),
+	             std::invalid_argument);
 }
 
 TEST(Alg1, WholeRunEquivalenceRangeBearingAndConfigNoise)
@@ -423,9 +430,9 @@ TEST(Alg1, WholeRunEquivalenceAnchoredPrior)
 	report("generated, anchor, keep time-t features",
 	       runBoth(scenario("generated_small_scenario.ini", 18), 3,
 	               a + "drop_time_t_features = false\n"));
-	const TWorst cv =
-	    report("generated, cv, anchor", runBoth(scenario("generated_small_scenario.ini", 18), 6,
-	                                            a + "object_model = cv\ncv_dt = 0.5\n"));
+	const TWorst cv = report("generated, cv, anchor",
+	                         runBoth(scenario("generated_small_scenario.ini", 18), 6,
+	                                 a + "object_model = cv\n[ObjectModel]\ncv_dt = 0.5\n"));
 	EXPECT_GT(cv.velocities, 10u);
 	// A framework back-end other than Alg. 1 rejects it (doc/framework.md).
 	TBackendOptions vdo = defaultBackendOptions("vdo");

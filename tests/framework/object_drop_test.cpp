@@ -26,7 +26,8 @@ const std::string kIni =
     "motion_noise = action\n"
     "Sigma_0 = [1e-6 1e-6 1e-8]\n"
     "Sigma_xi = [1e-2 1e-2]\n"
-    "cv_dt = 0.5\n";
+    "[ObjectModel]\ncv_dt = 0.5\n"
+    "[DynamicKFSLAM]\n";  // the tests' keys follow
 constexpr int kSteps = 10, kUnseen = 3;
 /** Object 0 is read at steps 0..3 and 8..9 (unseen 4..7: dropped at the end of step 6);
  * object 1 at 0..3 and 6..9 (unseen 4..5: N - 1 steps, kept). */

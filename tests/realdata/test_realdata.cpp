@@ -234,7 +234,7 @@ TEST(RealDataExcerpt, AnonymousImportThroughTheClassifyingFilter)
 	apps::CCompareApp robotApp;
 	robotApp.setMinLoggingLevel(mrpt::system::LVL_ERROR);
 	ASSERT_TRUE(robotApp.initialize(int(std::size(argv)), argv));
-	robotApp.params.write("DynamicKFSLAM", "classify_static_test", "robot");
+	robotApp.params.write("Classify", "classify_static_test", "robot");
 	robotApp.run();
 	ASSERT_EQ(robotApp.rows.size(), 2u);
 	const auto& robot = robotApp.rows[1];

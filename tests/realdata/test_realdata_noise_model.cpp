@@ -96,9 +96,9 @@ TEST(RealDataNoiseModel, FinalOdometryBiasIsInTheMetrics)
 	EXPECT_TRUE(std::isnan(plain.eval.metrics.odometry_bias_rate));
 	EXPECT_TRUE(plain.run.est.odometry_bias.size() == 0);
 	ini.write("DynamicKFSLAM", "odometry_bias", "rate");
-	ini.write("DynamicKFSLAM", "odometry_dt", 0.4);
-	ini.write("DynamicKFSLAM", "bias_rate_std0", 0.0175);
-	ini.write("DynamicKFSLAM", "bias_rate_rw", 0.003);
+	ini.write("OdometryBias", "odometry_dt", 0.4);
+	ini.write("OdometryBias", "bias_rate_std0", 0.0175);
+	ini.write("OdometryBias", "bias_rate_rw", 0.003);
 	const auto biased = realdata::runRealData(rl, gt, ini, "dynamic");
 	const double b = biased.eval.metrics.odometry_bias_rate;
 	std::cout << "final b_w " << b << " rad/s, ATE " << biased.ate << " m\n";

@@ -1,7 +1,8 @@
-/** dynslam-compare's filter row `default`: the INI with the default profile's
- * [DynamicKFSLAM] keys (doc/configuration.md "Profiles"). */
+/** dynslam-compare's filter row `default`: the INI with the default profile's keys of
+ * [DynamicKFSLAM] and of the module sections (doc/configuration.md "Profiles"). */
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/config_include.h>
+#include <dynslam/model_keys.h>
 
 namespace dynslam::apps
 {
@@ -10,7 +11,9 @@ const mrpt::config::CConfigFileBase& CCompareApp::paramsFor(
 {
 	if (filter != "default") return base;
 	m_defaultParams = std::make_unique<mrpt::config::CConfigFileMemory>();
-	config::overlayProfile(base, defaultProfile, "DynamicKFSLAM", *m_defaultParams);
+	std::vector<std::string> sections{kCoreSection};
+	for (const std::string& s : moduleSections()) sections.push_back(s);
+	config::overlayProfile(base, defaultProfile, sections, *m_defaultParams);
 	return *m_defaultParams;
 }
 }  // namespace dynslam::apps

@@ -6,6 +6,7 @@
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/TBackendOptions.h>
 #include <dynslam/framework/backend_factory.h>
+#include <dynslam/model_keys.h>
 #include <mrpt/core/exceptions.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 
@@ -20,15 +21,15 @@ namespace dynslam::apps
 namespace
 {
 /** dynslam-compare's filters dynamic_cv / dynamic_ctrv / dynamic_smoothing: the [DynamicKFSLAM]
- * filter with another object model. cv and ctrv need cv_dt in the section (no silent default for
+ * filter with another object model. cv and ctrv need cv_dt in [ObjectModel] (no silent default for
  * the step length); paper_smoothing keeps at least the 3 poses it needs. */
 void overrideObjectModel(CDynamicKFSLAM2D& f, const mrpt::config::CConfigFileBase& ini,
                          const std::string& model)
 {
 	const estimator::TObjectMotionCaps& caps = estimator::objectMotionModels().caps(model);
-	if (caps.object_centric && !ini.keyExists("DynamicKFSLAM", "cv_dt"))
-		throw std::invalid_argument("[DynamicKFSLAM] cv_dt: required by the filter dynamic_" +
-		                            model + " (seconds per step)");
+	if (caps.object_centric && !ini.keyExists(kObjectModelSection, "cv_dt"))
+		throw std::invalid_argument("[ObjectModel] cv_dt: required by the filter dynamic_" + model +
+		                            " (seconds per step)");
 	if (caps.smoothing && !ini.keyExists("DynamicKFSLAM", "Sigma_s"))
 		throw std::invalid_argument(
 		    "[DynamicKFSLAM] Sigma_s: required by the filter dynamic_smoothing");
@@ -73,7 +74,8 @@ std::unique_ptr<ISlamBackend> makeBackend(const std::string& kind,
 		}
 		if (optionsDump)
 		{
-			*optionsDump << "# [DynamicKFSLAM] (CDynamicKFSLAM2D::TOptions)";
+			*optionsDump
+			    << "# [DynamicKFSLAM] and its modules' sections (CDynamicKFSLAM2D::TOptions)";
 			f->options.dumpToTextStream(*optionsDump);
 			*optionsDump << "\n# [DynamicKFSLAM_KalmanFilter] (mrpt::bayes::TKF_options)";
 			f->KF_options.dumpToTextStream(*optionsDump);

@@ -82,6 +82,9 @@ const std::vector<std::string>& knownAppSections()
 	                                        "OdometryNoise",
 	                                        "DynamicKFSLAM",
 	                                        "DynamicKFSLAM_KalmanFilter",
+	                                        "ObjectModel",
+	                                        "OdometryBias",
+	                                        "Classify",
 	                                        "RangeBearingKFSLAM",
 	                                        "RangeBearingKFSLAM_KalmanFilter",
 	                                        "MappingApplication"};

@@ -127,17 +127,30 @@ void loadIniWithIncludes(const std::string& path, mrpt::config::CConfigFileMemor
 }
 
 std::vector<std::string> overlayProfile(const mrpt::config::CConfigFileMemory& base,
-                                        const std::string& profile, const std::string& section,
+                                        const std::string& profile,
+                                        const std::vector<std::string>& sections,
                                         mrpt::config::CConfigFileMemory& out)
 {
 	mrpt::config::CConfigFileMemory prof;
 	loadIniWithIncludes(profile, prof);
-	std::vector<std::string> keys;
-	prof.getAllKeys(section, keys);
-	if (keys.empty())
-		failAt(profile, 0, "no section [" + section + "] (or it is empty): not a profile of it");
+	std::vector<std::string> first;
+	if (!sections.empty()) prof.getAllKeys(sections.front(), first);
+	if (first.empty())
+		failAt(profile, 0,
+		       "no section [" + (sections.empty() ? std::string() : sections.front()) +
+		           "] (or it is empty): not a profile of it");
 	out.setContent(base.getContent());
-	for (const std::string& k : keys) out.write(section, k, prof.read_string(section, k, ""));
-	return keys;
+	std::vector<std::string> written;
+	for (const std::string& section : sections)
+	{
+		std::vector<std::string> keys;
+		prof.getAllKeys(section, keys);
+		for (const std::string& k : keys)
+		{
+			out.write(section, k, prof.read_string(section, k, ""));
+			written.push_back("[" + section + "] " + k);
+		}
+	}
+	return written;
 }
 }  // namespace dynslam::config

@@ -1,4 +1,5 @@
-/** TModelOptions: reading, validation and dump of section [DynamicKFSLAM]. */
+/** TModelOptions: reading, validation and dump of section [DynamicKFSLAM] and the module
+ * sections [ObjectModel], [OdometryBias], [Classify] (model_keys.h). */
 #include <dynslam/box_tracker_options.h>
 #include <dynslam/config_utils.h>
 #include <dynslam/estimator/seam_registries.h>
@@ -16,7 +17,35 @@ namespace dynslam
 // ------------------------------------------------------------------------------------------
 namespace
 {
-/** object_model, the cv_* and ca_* keys (issue 13); paper_smoothing is smoothing = true. */
+/** Every key of [s] and of the module sections is known and in its own section: a module key in
+ * [s] (an INI written before the modules had their sections) names the section it moved to. */
+void checkSections(const mrpt::config::CConfigFileBase& c, const std::string& s)
+{
+	const auto misplaced = [&](const std::string& section, const std::string& verb)
+	{
+		std::vector<std::string> keys;
+		c.getAllKeys(section, keys);
+		for (const std::string& k : keys)
+		{
+			const std::string home = sectionOfKey(k);
+			const bool mine = home == (section == s ? std::string(kCoreSection) : section);
+			if (!home.empty() && !mine)
+				throw std::invalid_argument("[" + section + "] key " + k + " " + verb +
+				                            " section [" + (home == kCoreSection ? s : home) +
+				                            "] (doc/configuration.md)");
+		}
+	};
+	misplaced(s, "moved to");
+	config::rejectUnknownKeys(c, s, sectionKeyNames(kCoreSection));
+	for (const std::string& m : moduleSections())
+	{
+		misplaced(m, "belongs to");
+		config::rejectUnknownKeys(c, m, sectionKeyNames(m));
+	}
+}
+
+/** object_model ([s]), the cv_*, ca_* and mm_* keys ([ObjectModel]; issue 13); paper_smoothing is
+ * smoothing = true. */
 void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
@@ -32,16 +61,17 @@ void loadObjectModel(TModelOptions& o, const mrpt::config::CConfigFileBase& c, c
 	else if (o.object_model == "paper" && o.smoothing)
 		o.object_model = "paper_smoothing";
 	const bool cvModel = o.objectCentric();
-	o.cv.dt = readPositive(c, s, "cv_dt", o.cv.dt, cvModel);
-	o.cv.accel_psd = readVector(c, s, "cv_accel_psd", o.cv.accel_psd, 3);
-	o.cv.velocity_prior_std = readVector(c, s, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
-	o.cv.jerk_psd = readVector(c, s, "ca_jerk_psd", o.cv.jerk_psd, 3);
-	o.cv.accel_prior_std = readVector(c, s, "ca_accel_prior_std", o.cv.accel_prior_std, 3);
-	o.cv.mm_switch_prob = readNonNegative(c, s, "mm_switch_prob", o.cv.mm_switch_prob);
-	o.cv.mm_manoeuvre_psd = readVector(c, s, "mm_manoeuvre_psd", o.cv.mm_manoeuvre_psd, 3);
-	o.cv_gate = readNonNegative(c, s, "cv_gate", o.cv_gate);
-	o.cv.fallback_steps = int(readInt(c, s, "cv_fallback_steps", o.cv.fallback_steps));
-	o.cv.heading_inflation = readNonNegative(c, s, "cv_heading_inflation", o.cv.heading_inflation);
+	const std::string m = kObjectModelSection;
+	o.cv.dt = readPositive(c, m, "cv_dt", o.cv.dt, cvModel);
+	o.cv.accel_psd = readVector(c, m, "cv_accel_psd", o.cv.accel_psd, 3);
+	o.cv.velocity_prior_std = readVector(c, m, "cv_velocity_prior_std", o.cv.velocity_prior_std, 3);
+	o.cv.jerk_psd = readVector(c, m, "ca_jerk_psd", o.cv.jerk_psd, 3);
+	o.cv.accel_prior_std = readVector(c, m, "ca_accel_prior_std", o.cv.accel_prior_std, 3);
+	o.cv.mm_switch_prob = readNonNegative(c, m, "mm_switch_prob", o.cv.mm_switch_prob);
+	o.cv.mm_manoeuvre_psd = readVector(c, m, "mm_manoeuvre_psd", o.cv.mm_manoeuvre_psd, 3);
+	o.cv_gate = readNonNegative(c, m, "cv_gate", o.cv_gate);
+	o.cv.fallback_steps = int(readInt(c, m, "cv_fallback_steps", o.cv.fallback_steps));
+	o.cv.heading_inflation = readNonNegative(c, m, "cv_heading_inflation", o.cv.heading_inflation);
 }
 }  // namespace
 
@@ -56,12 +86,13 @@ TBoxTrackerOptions loadBoxTracker(const mrpt::config::CConfigFileBase& c)
 	return b;
 }
 
-/** feature_labels and the classify_* keys (issue 12). */
-void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& s)
+/** feature_labels ([core]) and the classify_* keys ([Classify]; issue 12). */
+void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, const std::string& core)
 {
 	using namespace dynslam::config;
 	const std::vector<std::string> labels{"ids", "classify", "boxes"};
-	o.feature_labels = labels[size_t(readChoice(c, s, "feature_labels", labels, 0))];
+	o.feature_labels = labels[size_t(readChoice(c, core, "feature_labels", labels, 0))];
+	const std::string s = kClassifySection;
 	estimator::TClassifyParams& p = o.classify;
 	p.alpha = readDouble(c, s, "classify_alpha", p.alpha);
 	p.beta = readDouble(c, s, "classify_beta", p.beta);
@@ -106,7 +137,7 @@ void loadClassify(TModelOptions& o, const mrpt::config::CConfigFileBase& c, cons
 void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
 	using namespace dynslam::config;
-	rejectUnknownKeys(c, s, modelKeyNames());  // the descriptor table, model_keys.h
+	checkSections(c, s);  // the descriptor table, model_keys.h
 	measurement_model =
 	    readChoice(c, s, "measurement_model", {"cartesian", "range_bearing"}, 0, true) == 0
 	        ? models::MeasurementModel::Cartesian
@@ -171,7 +202,12 @@ void TModelOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 	}
 	catch (const std::invalid_argument& e)
 	{
-		throw std::invalid_argument("[" + s + "] " + e.what());
+		// The section of the key the message starts with (e.g. "cv_gate = 2: ..." is
+		// [ObjectModel]).
+		const std::string what = e.what();
+		const std::string home = sectionOfKey(what.substr(0, what.find_first_of(" :+")));
+		throw std::invalid_argument("[" + (home.empty() || home == kCoreSection ? s : home) + "] " +
+		                            what);
 	}
 }
 
@@ -304,11 +340,11 @@ void TModelOptions::validate() const
 
 namespace
 {
-/** object_model and the cv_* keys of the dump. */
+/** The section [ObjectModel] of the dump. */
 void dumpObjectModel(std::ostream& out, const TModelOptions& o)
 {
 	using config::formatMatrix;
-	out << "object_model                   = " << o.object_model << "\n";
+	out << "\n[" << kObjectModelSection << "]\n";
 	out << "cv_dt                          = " << o.cv.dt << "\n";
 	out << "cv_accel_psd                   = " << formatMatrix(o.cv.accel_psd.transpose()) << "\n";
 	out << "cv_velocity_prior_std          = " << formatMatrix(o.cv.velocity_prior_std.transpose())
@@ -324,11 +360,10 @@ void dumpObjectModel(std::ostream& out, const TModelOptions& o)
 	    << "\n";
 }
 
-/** The feature_labels = classify keys of the dump. */
-void dumpClassify(std::ostream& out, const std::string& feature_labels,
-                  const estimator::TClassifyParams& classify)
+/** The section [Classify] of the dump. */
+void dumpClassify(std::ostream& out, const estimator::TClassifyParams& classify)
 {
-	out << "feature_labels                 = " << feature_labels << "\n";
+	out << "\n[" << kClassifySection << "]\n";
 	out << "classify_alpha                 = " << classify.alpha << "\n";
 	out << "classify_beta                  = " << classify.beta << "\n";
 	out << "classify_motion_std            = " << classify.motion_std << "\n";
@@ -383,7 +418,7 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "Sigma_xi                       = " << formatMatrix(Sigma_xi) << "\n";
 	out << "smoothing                      = " << (smoothing ? "true" : "false") << "\n";
 	out << "Sigma_s                        = " << formatMatrix(Sigma_s) << "\n";
-	dumpObjectModel(out, *this);
+	out << "object_model                   = " << object_model << "\n";
 	out << "drop_time_t_features           = " << (drop_time_t_features ? "true" : "false") << "\n";
 	out << "keep_last_poses                = " << keep_last_poses << "\n";
 	out << "drop_static_after_unseen_steps = " << drop_static_after_unseen_steps << "\n";
@@ -410,10 +445,18 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	out << "first_estimate_jacobians       = " << (first_estimate_jacobians ? "true" : "false")
 	    << "\n";
 	out << "record_dropped                 = " << (record_dropped ? "true" : "false") << "\n";
+	out << "odometry_bias                  = " << odometry_bias.mode << "\n";
+	out << "feature_labels                 = " << feature_labels << "\n";
+	// The module sections after every key of the core section (the dump reads back as an INI).
+	dumpObjectModel(out, *this);
 	odometry_bias.dump(out);
 	if (feature_labels == "ids") return;  // the classify_* keys only matter with classify
-	dumpClassify(out, feature_labels, classify);
-	if (feature_labels == "boxes") boxes.dumpToTextStream(out);
+	dumpClassify(out, classify);
+	if (feature_labels == "boxes")
+	{
+		out << "\n[BoxTracker]";  // its own section, as the modules' (the dump reads back)
+		boxes.dumpToTextStream(out);
+	}
 }
 TParseOptions TModelOptions::parseOptions() const
 {

@@ -1,18 +1,20 @@
-/** TOdometryBiasOptions: the odometry bias keys of section [DynamicKFSLAM]. */
+/** TOdometryBiasOptions: odometry_bias ([DynamicKFSLAM]) and the keys of [OdometryBias]. */
 #include <dynslam/config_utils.h>
+#include <dynslam/model_keys.h>
 #include <dynslam/odometry_bias_options.h>
 
 #include <ostream>
 
 namespace dynslam
 {
-void TOdometryBiasOptions::load(const mrpt::config::CConfigFileBase& c, const std::string& s)
+void TOdometryBiasOptions::load(const mrpt::config::CConfigFileBase& c, const std::string& core)
 {
 	using namespace dynslam::config;
 	const std::vector<std::string> modes{"none", "rate", "rate_scale"};
-	mode = modes[size_t(readChoice(c, s, "odometry_bias", modes, 0))];
+	mode = modes[size_t(readChoice(c, core, "odometry_bias", modes, 0))];
 	*this = TOdometryBiasOptions{mode};
 	if (!enabled()) return;
+	const std::string s = kOdometryBiasSection;
 	odometry_dt = readPositive(c, s, "odometry_dt", 0, true);
 	rate_std0 = readPositive(c, s, "bias_rate_std0", 0, true);
 	rate_rw = readNonNegative(c, s, "bias_rate_rw", 0, true);
@@ -40,8 +42,8 @@ Eigen::MatrixXd TOdometryBiasOptions::prior() const
 
 void TOdometryBiasOptions::dump(std::ostream& out) const
 {
-	out << "odometry_bias                  = " << mode << "\n";
 	if (!enabled()) return;
+	out << "\n[" << kOdometryBiasSection << "]\n";
 	out << "odometry_dt                    = " << odometry_dt << "\n";
 	out << "bias_rate_std0                 = " << rate_std0 << "\n";
 	out << "bias_rate_rw                   = " << rate_rw << "\n";

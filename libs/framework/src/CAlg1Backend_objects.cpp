@@ -40,7 +40,7 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeMotionMod
 	for (const auto& [set, what] : ekfOnly)
 		if (set)
 			throw std::invalid_argument(
-			    std::string("[DynamicKFSLAM] ") + what +
+			    std::string("[ObjectModel] ") + what +
 			    " is not implemented in the framework (the dynamic EKF only)");
 	auto model = estimator::objectMotionModels().make(o.object_model, params);
 	// The model's process noise for a 3-dof pose (a 2-dof one uses its first two axes).
@@ -48,7 +48,7 @@ std::shared_ptr<const estimator::IObjectMotionModel> CAlg1Backend::makeMotionMod
 	model->predict(Eigen::VectorXd::Zero(3 + model->velocityDim(3)), &F, &Q);
 	if ((Q.diagonal().array() <= 0).any())
 		throw std::invalid_argument(
-		    std::string("[DynamicKFSLAM] ") +
+		    std::string("[ObjectModel] ") +
 		    estimator::objectMotionModels().caps(o.object_model).noise_key +
 		    ": every entry must be > 0 in the framework (its motion term needs an invertible "
 		    "process noise; the dynamic EKF accepts 0)");

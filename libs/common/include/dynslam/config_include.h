@@ -34,11 +34,13 @@ std::string readIniText(const std::string& path, std::vector<std::string>* files
 void loadIniWithIncludes(const std::string& path, mrpt::config::CConfigFileMemory& out,
                          std::vector<std::string>* files = nullptr);
 
-/** A copy of `base` in which every key that section `section` of the INI file `profile` (read
- * with its includes) sets replaces the base's value: what a profile changes in an app's INI.
- * Returns the keys written. Throws std::runtime_error naming the profile if it has no such
- * section. */
+/** A copy of `base` in which every key that the sections `sections` of the INI file `profile`
+ * (read with its includes) set replaces the base's value in the same section: what a profile
+ * changes in an app's INI (the model's core section and its module sections). Returns the keys
+ * written, as "[section] key". Throws std::runtime_error naming the profile if its first
+ * section is missing or empty (the others may be absent). */
 std::vector<std::string> overlayProfile(const mrpt::config::CConfigFileMemory& base,
-                                        const std::string& profile, const std::string& section,
+                                        const std::string& profile,
+                                        const std::vector<std::string>& sections,
                                         mrpt::config::CConfigFileMemory& out);
 }  // namespace dynslam::config

@@ -2,7 +2,8 @@
 /** @file model_options.h
  * The model of the dynamic SLAM problem (paper Section II): measurement model and noise,
  * motion noise, prior, object-pose map residual, smoothing, drop policies. Section
- * [DynamicKFSLAM] of the INI files. Shared by every back-end: the dynamic EKF
+ * [DynamicKFSLAM] of the INI files, and the capability modules' sections [ObjectModel],
+ * [OdometryBias], [Classify] (dynslam/model_keys.h). Shared by every back-end: the dynamic EKF
  * (CDynamicKFSLAM2D::TOptions is this struct) and the framework's configurations
  * (framework::TBackendOptions::model), so it lives below both, in dynslam::common. */
 #include <dynslam/box_tracker_options.h>
@@ -23,8 +24,14 @@ namespace dynslam
 /** Options, section [DynamicKFSLAM] (the EKF's KF_options in [DynamicKFSLAM_KalmanFilter]). */
 struct TModelOptions : public mrpt::config::CLoadableOptions
 {
+	/** Reads the core keys from [section] and the modules' keys from their fixed sections
+	 * ([ObjectModel], [OdometryBias], [Classify]; the switches object_model, odometry_bias and
+	 * feature_labels stay in [section]). Unknown keys of any of them are errors, and so is a
+	 * module key in [section]: "[DynamicKFSLAM] key classify_alpha moved to section [Classify]". */
 	void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
 	                        const std::string& section) override;
+	/** The core keys, then each module's section ([OdometryBias] when enabled, [Classify] when
+	 * feature_labels != ids): the dump reads back as an INI. */
 	void dumpToTextStream(std::ostream& out) const override;
 	/** Throws std::invalid_argument naming the offending option. */
 	void validate() const;
@@ -68,15 +75,15 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	/** An object-centric model (objects have a velocity and update the state: cv, ctrv): the
 	 * capability of object_model in estimator::objectMotionModels(); false if unknown. */
 	bool objectCentric() const;
-	/** cv: cv_dt [s per step] (required with cv), cv_accel_psd (white-acceleration spectral
-	 * densities ax, ay, alpha), cv_velocity_prior_std (vx, vy, omega; > 0), cv_gate (chi-square
-	 * probability of the per-reading gate on object readings, 0 = no gate; a gated reading is
-	 * not used and counted in TStepReport::object_gated_out, the object coasts on its
-	 * prediction), cv_fallback_steps (an object whose readings were all gated out
-	 * at that many consecutive steps falls back to the paper's formulation until two poses
-	 * give it a new velocity; 0 = off, the default), cv_heading_inflation (object readings' noise
-	 * Sigma_v + c P_thth h h^T, h the reading's Jacobian on the ego heading; 0 = off, the
-	 * default; estimator::TCvParams::heading_inflation). */
+	/** Section [ObjectModel]. cv: cv_dt [s per step] (required with cv), cv_accel_psd
+	 * (white-acceleration spectral densities ax, ay, alpha), cv_velocity_prior_std (vx, vy, omega;
+	 * > 0), cv_gate (chi-square probability of the per-reading gate on object readings, 0 = no
+	 * gate; a gated reading is not used and counted in TStepReport::object_gated_out, the object
+	 * coasts on its prediction), cv_fallback_steps (an object whose readings were all gated out at
+	 * that many consecutive steps falls back to the paper's formulation until two poses give it a
+	 * new velocity; 0 = off, the default), cv_heading_inflation (object readings' noise Sigma_v + c
+	 * P_thth h h^T, h the reading's Jacobian on the ego heading; 0 = off, the default;
+	 * estimator::TCvParams::heading_inflation). */
 	estimator::TCvParams cv;
 	double cv_gate = 0;
 	bool drop_time_t_features = true;  ///< drop f_t after pose augmentation
@@ -161,13 +168,14 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * and rotation) of the true one. See doc/results/results.md. */
 	bool first_estimate_jacobians = false;
 	/** Online odometry bias estimation (issue 17): odometry_bias = none | rate | rate_scale
-	 * and its keys, dynslam/odometry_bias_options.h. Only the dynamic EKF supports it. */
+	 * and its keys (section [OdometryBias]), dynslam/odometry_bias_options.h. Only the dynamic EKF
+	 * supports it. */
 	TOdometryBiasOptions odometry_bias;
 	/** feature_labels (issue 12, doc/results/classification.md): ids (default: the ID ranges of
 	 * dynslam/landmark_ids.h say what each reading is) or classify (every ID >= 0 is an
 	 * anonymous track, classified online by estimator::CClassifyingRouter with the
-	 * classify_* keys; EKF only) or boxes (detector boxes without IDs: estimator::CBoxRouter,
-	 * the tracker of [BoxTracker] then classify; EKF only). */
+	 * classify_* keys of section [Classify]; EKF only) or boxes (detector boxes without IDs:
+	 * estimator::CBoxRouter, the tracker of [BoxTracker] then classify; EKF only). */
 	std::string feature_labels = "ids";
 	estimator::TClassifyParams classify;
 	/** feature_labels = boxes (issue 31, doc/boxes.md): the box tracker and its output rule,

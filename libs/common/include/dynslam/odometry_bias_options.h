@@ -1,6 +1,7 @@
 #pragma once
 /** @file odometry_bias_options.h
- * Online odometry bias estimation (issue 17 item 2), keys of section [DynamicKFSLAM]; the
+ * Online odometry bias estimation (issue 17 item 2): odometry_bias in [DynamicKFSLAM], its
+ * parameters in section [OdometryBias] (odometry_dt, bias_*; dynslam/model_keys.h); the
  * model is dynslam/models/odometry_bias.h, the state block estimator::BlockKind::OdometryBias
  * (doc/state-layout.md). Part of TModelOptions (dynslam/model_options.h). */
 #include <dynslam/ekf_odometry_bias.h>
@@ -33,8 +34,11 @@ struct TOdometryBiasOptions
 	/** The prior covariance of the bias block (dim x dim, diagonal). */
 	Eigen::MatrixXd prior() const;
 
-	/** Reads the keys from [section]; throws std::invalid_argument naming [section] key. */
-	void load(const mrpt::config::CConfigFileBase& c, const std::string& section);
+	/** Reads odometry_bias from [core] and, when enabled, the keys of [OdometryBias]; throws
+	 * std::invalid_argument naming [section] key. */
+	void load(const mrpt::config::CConfigFileBase& c, const std::string& core);
+	/** The section [OdometryBias] with its keys when enabled (odometry_bias itself is dumped
+	 * with the core keys); nothing when off. */
 	void dump(std::ostream& out) const;
 };
 }  // namespace dynslam

@@ -112,8 +112,9 @@ public:
 	int progressEvery = 0;  ///< [Compare] progress_every (0: ten lines per filter on long runs)
 	/** [Compare] default_profile (relative to the INI's folder; default: the shipped
 	 * config/profiles/default.ini, found as the default INI is):
-	 * the row `default` is the dynamic EKF on `params` with every [DynamicKFSLAM] key this
-	 * profile sets replaced by its value (doc/configuration.md "Profiles"). */
+	 * the row `default` is the dynamic EKF on `params` with every key this profile sets in
+	 * [DynamicKFSLAM] and in the module sections ([ObjectModel], [OdometryBias], [Classify])
+	 * replaced by its value (doc/configuration.md "Profiles"). */
 	std::string defaultProfile;
 	/** The INI is the shipped default (no -c): without a scenario file its noise values do not
 	 * count; the noise then comes from the rawlog's observations (noise_sources.h). */
