@@ -23,8 +23,8 @@ for v in values:
     ini = os.path.join(src, "config", "_grid_%s.ini" % os.getpid())
     with open(ini, "w") as f:
         f.write("@include compare_kitti_detections.ini\n[BoxTracker]\n")
-        if v != "none":
-            f.write("min_score = %s\n" % v)
+        # none: no threshold (below every score; the shipped INI's own value is overridden)
+        f.write("min_score = %s\n" % ("-1e9" if v == "none" else v))
     try:
         for s in seqs:
             d = os.path.join(out, v, s)

@@ -51,12 +51,9 @@ void CTrackerBaselineBackend::onStep(const estimator::TStepInput& in)
 	}
 	m_tracker->update(world);
 
-	const bool firstFrames = m_options.report_first_frames && steps() <= m_options.params.min_hits;
 	for (const estimator::TBoxTrack& t : m_tracker->tracks())
 	{
-		const bool confirmedNow = t.state == estimator::ETrackState::Confirmed && t.updated;
-		const bool lost = m_options.report_lost && t.state == estimator::ETrackState::Lost;
-		if (!(confirmedNow || lost || firstFrames)) continue;
+		if (!m_options.reports(t, steps())) continue;
 		TTrackedBox o;
 		o.track = t.id;
 		o.cls = t.cls;

@@ -72,4 +72,10 @@ void TBoxTrackerOptions::dumpToTextStream(std::ostream& out) const
 	out << "report_lost                    = " << (report_lost ? "true" : "false") << "\n";
 	out << "report_first_frames            = " << (report_first_frames ? "true" : "false") << "\n";
 }
+bool TBoxTrackerOptions::reports(const estimator::TBoxTrack& t, int frame) const
+{
+	const bool confirmedNow = t.state == estimator::ETrackState::Confirmed && t.updated;
+	const bool lost = report_lost && t.state == estimator::ETrackState::Lost;
+	return confirmedNow || lost || (report_first_frames && frame <= params.min_hits);
+}
 }  // namespace dynslam

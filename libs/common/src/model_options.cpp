@@ -79,11 +79,11 @@ namespace
 {
 /** feature_labels = boxes: the box front-end's tracker, section [BoxTracker] (the same keys and
  * defaults as dynslam-compare's tracker_baseline row: box_tracker_options.h). */
-estimator::TBoxTrackerParams loadBoxTracker(const mrpt::config::CConfigFileBase& c)
+TBoxTrackerOptions loadBoxTracker(const mrpt::config::CConfigFileBase& c)
 {
 	TBoxTrackerOptions b;
 	b.loadFromConfigFile(c, "BoxTracker");
-	return b.params;
+	return b;
 }
 
 /** feature_labels ([core]) and the classify_* keys ([Classify]; issue 12). */
@@ -323,7 +323,7 @@ void TModelOptions::validate() const
 		throw std::invalid_argument("feature_labels = " + feature_labels +
 		                            ": must be ids, classify or boxes");
 	classify.validate();
-	if (feature_labels == "boxes") boxes.validate();
+	if (feature_labels == "boxes") boxes.params.validate();
 	if (feature_labels == "boxes" && compressed_static_update)
 		throw std::invalid_argument(
 		    "feature_labels = boxes: not implemented with static_update = compressed (the box "
@@ -454,10 +454,8 @@ void TModelOptions::dumpToTextStream(std::ostream& out) const
 	dumpClassify(out, classify);
 	if (feature_labels == "boxes")
 	{
-		TBoxTrackerOptions b;
-		b.params = boxes;
 		out << "\n[BoxTracker]";  // its own section, as the modules' (the dump reads back)
-		b.dumpToTextStream(out);
+		boxes.dumpToTextStream(out);
 	}
 }
 TParseOptions TModelOptions::parseOptions() const

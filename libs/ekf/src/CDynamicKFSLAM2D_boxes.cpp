@@ -42,7 +42,7 @@ std::vector<TTrackedBox> CDynamicKFSLAM2D::trackedBoxes() const
 	std::vector<TTrackedBox> out;
 	for (const estimator::TBoxTrack& t : tracker->tracks())
 	{
-		if (t.state != estimator::ETrackState::Confirmed || !t.updated) continue;
+		if (!options.boxes.reports(t, m_step + 1)) continue;  // tracker_baseline's output rule
 		TTrackedBox b;
 		b.track = t.id;
 		b.cls = t.cls;

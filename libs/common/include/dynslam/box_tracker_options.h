@@ -40,6 +40,11 @@ struct TBoxTrackerOptions : public mrpt::config::CLoadableOptions
 	 * included (AB3DMOT's "or frame_count <= min_hits"). */
 	bool report_first_frames = true;
 
+	/** The output rule (both the tracker_baseline row and feature_labels = boxes): whether track
+	 * t is reported at the `frame`-th step (1-based): Confirmed and updated, or Lost with
+	 * report_lost, or any live track in the first min_hits steps with report_first_frames. */
+	bool reports(const estimator::TBoxTrack& t, int frame) const;
+
 	/** Reads [section] (see the file comment); validates. Throws std::invalid_argument. */
 	void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
 	                        const std::string& section) override;

@@ -6,7 +6,7 @@
  * [OdometryBias], [Classify] (dynslam/model_keys.h). Shared by every back-end: the dynamic EKF
  * (CDynamicKFSLAM2D::TOptions is this struct) and the framework's configurations
  * (framework::TBackendOptions::model), so it lives below both, in dynslam::common. */
-#include <dynslam/estimator/box_tracker.h>
+#include <dynslam/box_tracker_options.h>
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/drop_policy.h>
@@ -178,7 +178,8 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * estimator::CBoxRouter, the tracker of [BoxTracker] then classify; EKF only). */
 	std::string feature_labels = "ids";
 	estimator::TClassifyParams classify;
-	/** feature_labels = boxes (issue 31, doc/boxes.md): the box tracker, section [BoxTracker]. */
-	estimator::TBoxTrackerParams boxes;
+	/** feature_labels = boxes (issue 31, doc/boxes.md): the box tracker and its output rule,
+	 * section [BoxTracker] (the same keys as the tracker_baseline row). */
+	TBoxTrackerOptions boxes;
 };
 }  // namespace dynslam

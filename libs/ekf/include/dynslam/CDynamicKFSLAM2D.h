@@ -168,7 +168,8 @@ public:
 	}
 	/** The modes of object_model (mm: stationary, cv, turn, manoeuvre; empty: a single model). */
 	std::vector<std::string> objectModeNames() const override;
-	/** feature_labels = boxes: the confirmed tracks updated at the last step (robot frame). */
+	/** feature_labels = boxes: the box tracks of the last step by [BoxTracker]'s output rule (robot
+	 * frame). */
 	std::vector<TTrackedBox> trackedBoxes() const override;
 	/** The typed state after the ego pose (blocks and where they are stored; of the whole
 	 * state, like every getter below: with compressed entries in the working state, of its
