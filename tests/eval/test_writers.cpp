@@ -114,10 +114,10 @@ TEST(Writers, MetricsCsvHasRequiredColumnsAndOneRowPerFilter)
 	const auto est = smallRun();
 	std::vector<TMetricsRow> rows;
 	rows.push_back({"static_all", computeRunMetrics(gt, est), std::nullopt, std::nullopt,
-	                std::nullopt, std::nullopt, std::nullopt});
+	                std::nullopt, std::nullopt, std::nullopt, std::nullopt});
 	rows.push_back({"dynamic", computeRunMetrics(gt, est),
 	                summarizeConsistency({computeRunConsistency(gt, est)}), std::nullopt,
-	                std::nullopt, std::nullopt, std::nullopt});
+	                std::nullopt, std::nullopt, std::nullopt, std::nullopt});
 	std::ostringstream os;
 	writeMetricsCsv(os, rows);
 	const auto l = lines(os.str());
@@ -163,10 +163,11 @@ TEST(Writers, MetricsCsvCarriesTheFinalOdometryBias)
 	auto est = smallRun();
 	est.odometry_bias = Eigen::Vector2d(0.0175, -0.03);
 	std::vector<TMetricsRow> rows{{"rate_scale", computeRunMetrics(gt, est), std::nullopt,
-	                               std::nullopt, std::nullopt, std::nullopt, std::nullopt}};
+	                               std::nullopt, std::nullopt, std::nullopt, std::nullopt,
+	                               std::nullopt}};
 	est.odometry_bias = Eigen::VectorXd::Constant(1, -0.002);
 	rows.push_back({"rate", computeRunMetrics(gt, est), std::nullopt, std::nullopt, std::nullopt,
-	                std::nullopt, std::nullopt});
+	                std::nullopt, std::nullopt, std::nullopt});
 	EXPECT_EQ(rows[0].metrics.odometry_bias_rate, 0.0175);
 	EXPECT_EQ(rows[0].metrics.odometry_bias_scale, -0.03);
 	EXPECT_TRUE(std::isnan(rows[1].metrics.odometry_bias_scale));

@@ -258,8 +258,8 @@ void CCompareApp::runRow(const std::string& f, size_t i, const TLoadedData& d, s
 	if (hasGroundTruth)
 	{
 		const TEvaluation ev = evaluateRun(gt, r.est);
-		rows.push_back(
-		    {f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt, std::nullopt});
+		rows.push_back({f, ev.metrics, ev.summary, std::nullopt, std::nullopt, std::nullopt,
+		                std::nullopt, std::nullopt});
 		if (!landmarkGaps.empty()) rows.back().gap = eval::gapMetrics(gt, r.est.ego, landmarkGaps);
 		scoreObjects(rows.back(), classifies ? &decisions : nullptr, r.est);
 		if (tracks && m_motTruth && m_motTruth->valid)

@@ -228,7 +228,7 @@ eval::TConsistencySummary CRunApp::evaluateAndReport()
 		summary = evaluation->summary;
 		std::vector<eval::TMetricsRow> rows{
 		    {result.name, evaluation->metrics, summary, std::nullopt, std::nullopt,
-		     eval::objectVelocityErrors(gt, result.est), std::nullopt}};
+		     eval::objectVelocityErrors(gt, result.est), std::nullopt, std::nullopt}};
 		rows[0].peak_rss_mb = eval::peakRssMb();  // the peak so far: the run is done
 		writeOutput("metrics.csv", [&](std::ostream& os) { eval::writeMetricsCsv(os, rows); });
 		std::ostringstream table;
