@@ -113,7 +113,7 @@ TEST(KittiDetectionsEndToEnd, RowsAndTrackingMetrics)
 	std::cout << "odometry ATE " << odo.metrics.ate << "\n";
 	EXPECT_EQ(def.mot->cls, "Car");
 	EXPECT_EQ(def.mot->iou.gt, base.mot->iou.gt);  // the same truth
-	EXPECT_GT(def.mot->iou.gt, 250u);  // 278 annotated boxes in the region
+	EXPECT_GT(def.mot->iou.gt, 250u);              // 278 annotated boxes in the region
 	// Measured (2026-11-29): default MOTA 0.939 (FP 2, FN 15, IDS 0), tracker_baseline 0.953
 	// (FP 0, FN 13): thresholds at about three times their error. The ~60 false positives
 	// (scores below min_score 5) never become tracks.

@@ -98,7 +98,8 @@ void CDynamicKFSLAM2D::makeSeams()
 		// A merge needs the lost object predicted across the gap (doc/results/classification.md
 		// "Merging a linked object"): object-centric models only.
 		classify.merge_linked = classify.merge_linked && objectCentric;
-		m_router = estimator::routers().make(options.feature_labels, {&classify, &options.boxes.params});
+		m_router =
+		    estimator::routers().make(options.feature_labels, {&classify, &options.boxes.params});
 		// ID -1 readings associated with MRPT's data association (as CRangeBearingKFSLAM2D).
 		m_router->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
