@@ -74,4 +74,22 @@ inline std::string runApp(const std::string& d, dynslam::kitti::CKittiApp& app,
 	return "";
 }
 
+/** dynslam-kitti --simulate-detections on sequence 0000 of labelsDir/posesDir: detection files
+ * into d/det, the import into d/out; `import` is the [KITTI_Import] section's INI, `simulate`
+ * the [KITTI_SimulateDetections] one. */
+inline void simulateAndImport(dynslam::kitti::CKittiApp& app, const std::string& labelsDir,
+                              const std::string& posesDir, const std::string& d,
+                              const mrpt::config::CConfigFileBase& import,
+                              const mrpt::config::CConfigFileBase& simulate)
+{
+	app.labels_dir = labelsDir;
+	app.poses_dir = posesDir;
+	app.sequence = "0000";
+	app.out_dir = d + "/out";
+	app.simulate_dir = d + "/det";
+	app.quiet = true;
+	app.options.loadFromConfigFile(import, "KITTI_Import");
+	app.simulate_options.loadFromConfigFile(simulate, "KITTI_SimulateDetections");
+	app.run();
+}
 }  // namespace kitti_test

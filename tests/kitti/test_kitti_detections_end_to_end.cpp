@@ -14,7 +14,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "mini_sequence.h"
+#include "detection_fixture.h"
 
 using namespace dynslam;
 
@@ -56,20 +56,12 @@ TRun runAll()
 	const std::string d = kitti_test::tempDir("detections_e2e");
 	writeSequence(d);
 	kitti::CKittiApp imp;
-	imp.labels_dir = d + "/label_02";
-	imp.poses_dir = d + "/poses";
-	imp.sequence = "0000";
-	imp.out_dir = d + "/out";
-	imp.simulate_dir = d + "/det";
-	imp.quiet = true;
 	mrpt::config::CConfigFile ini(std::string(DYNSLAM_CONFIG_DIR) + "/kitti_detections.ini");
-	imp.options.loadFromConfigFile(ini, "KITTI_Import");
 	mrpt::config::CConfigFileMemory sim(
 	    "[KITTI_SimulateDetections]\nseed = 31\nmiss_probability = 0.1\n"
 	    "false_positives_per_frame = 1\nfp_score_min = -1\nfp_score_max = 3\nscore_min = 6\n"
 	    "score_max = 12\nstd_xy = 0.15\nstd_yaw = 0.05\nstd_size = 0.05\nflip_probability = 0.2\n");
-	imp.simulate_options.loadFromConfigFile(sim, "KITTI_SimulateDetections");
-	imp.run();
+	kitti_test::simulateAndImport(imp, d + "/label_02", d + "/poses", d, ini, sim);
 
 	apps::CCompareApp app;
 	std::vector<std::string> args{"dynslam-compare",

@@ -16,7 +16,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "mini_sequence.h"
+#include "detection_fixture.h"
 
 using namespace dynslam;
 using namespace dynslam::kitti;
@@ -38,16 +38,8 @@ bool detectable(const TKittiBox& b)
 std::string simulateAndImport(const std::string& name, const std::string& ini, CKittiApp& app)
 {
 	const std::string d = kitti_test::tempDir(name);
-	app.labels_dir = kData + "/label_02";
-	app.poses_dir = kData + "/poses";
-	app.sequence = "0000";
-	app.out_dir = d + "/out";
-	app.simulate_dir = d + "/det";
-	app.quiet = true;
 	mrpt::config::CConfigFileMemory c(ini);
-	app.options.loadFromConfigFile(c, "KITTI_Import");
-	app.simulate_options.loadFromConfigFile(c, "KITTI_SimulateDetections");
-	app.run();
+	kitti_test::simulateAndImport(app, kData + "/label_02", kData + "/poses", d, c, c);
 	return d;
 }
 }  // namespace
