@@ -18,7 +18,10 @@ function(dynslam_add_library)
   set(t dynslam_${A_NAME})
   add_library(${t} ${A_SOURCES})
   add_library(dynslam::${A_NAME} ALIAS ${t})
-  set_target_properties(${t} PROPERTIES EXPORT_NAME ${A_NAME})
+  # DEFINE_SYMBOL "": no -Ddynslam_<name>_EXPORTS in a shared build (nothing uses it; all
+  # symbols have default visibility), so a static and a shared build compile every source with
+  # the same command line and share ccache's entries (tests/consumer: SharedLibsInstall).
+  set_target_properties(${t} PROPERTIES EXPORT_NAME ${A_NAME} DEFINE_SYMBOL "")
   target_include_directories(${t} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
