@@ -51,9 +51,11 @@ for bin in "$WORK/build/consumer" "$WORK/build_estimator/consumer_estimator" \
   loaded="$(ldd "$bin" | grep -o 'libdynslam_[a-z_]*\.so[^ ]* => [^ ]*' || true)"
   if [ "$OTHER" = ON ]; then
     [ -n "$loaded" ] || { echo "other linkage: $bin loads no libdynslam_*.so" >&2; exit 1; }
-    if echo "$loaded" | grep -v "=> $LIB/" | grep -q .; then
-      echo "other linkage: $bin loads dynslam libraries from outside $LIB:" >&2; echo "$loaded" >&2; exit 1
-    fi
+    while read -r lib _ path; do
+      [ "$path" != not ] || { echo "other linkage: $bin cannot find $lib (RUNPATH)" >&2; exit 1; }
+      [ "$(dirname "$(realpath "$path")")" = "$(realpath "$LIB")" ] || {
+        echo "other linkage: $bin loads $path, not from $LIB:" >&2; echo "$loaded" >&2; exit 1; }
+    done <<< "$loaded"
   else
     [ -z "$loaded" ] || { echo "other linkage: $bin loads $loaded in a static build" >&2; exit 1; }
   fi
