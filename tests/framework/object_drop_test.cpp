@@ -170,8 +170,8 @@ TEST(ObjectDrop, BadInputIsAClearError)
 	const std::string head = "[DynamicKFSLAM]\nmeasurement_model = cartesian\nSigma_v = [1 1]\n";
 	for (const auto& [keys, word] : std::vector<std::pair<std::string, std::string>>{
 	         {"drop_object_after_unseen_steps = -1\n", ">= 0"},
-	         {"drop_object_after_unseen_steps = 3\nfeature_labels = classify\n",
-	          "feature_labels = ids only"}})
+	         {"drop_object_after_unseen_steps = 3\nfeature_labels = boxes\n",
+	          "ids and classify"}})
 	{
 		mrpt::config::CConfigFileMemory c(head + keys);
 		TModelOptions o;

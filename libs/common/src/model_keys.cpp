@@ -46,7 +46,7 @@ const std::vector<TKeyInfo> kKeys{
      "drop static landmarks unseen this long (0: never)", kObjects},
     {"drop_object_after_unseen_steps", "int >= 0", "0", "steps",
      "drop an object without readings this long, its track recorded per record_dropped "
-     "(0: never); EKF with feature_labels = ids",
+     "(0: never); EKF with feature_labels = ids or classify",
      kObjects},
     {"skip_prediction_on_empty_map", "bool", "false", "-",
      "no prediction while the map is empty (MRPT's CRangeBearingKFSLAM2D)", kObjects},

@@ -299,11 +299,11 @@ void TModelOptions::validate() const
 		throw std::invalid_argument(
 		    "drop_object_after_unseen_steps = " + std::to_string(drop_object_after_unseen_steps) +
 		    ": must be >= 0 (0 = never)");
-	if (drop_object_after_unseen_steps > 0 && feature_labels != "ids")
+	if (drop_object_after_unseen_steps > 0 && feature_labels == "boxes")
 		throw std::invalid_argument(
 		    "drop_object_after_unseen_steps = " + std::to_string(drop_object_after_unseen_steps) +
-		    ": implemented for feature_labels = ids only (feature_labels = " + feature_labels +
-		    " links and merges objects across breaks)");
+		    ": implemented for feature_labels = ids and classify (with boxes the box tracker "
+		    "deletes its tracks itself: [BoxTracker] max_age)");
 	validateFusion(*this);
 	if (!initial_pose.allFinite()) throw std::invalid_argument("initial_pose: not finite");
 	if (!(innovation_gate >= 0 && innovation_gate < 1))

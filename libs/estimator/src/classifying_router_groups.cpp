@@ -92,6 +92,8 @@ int32_t CClassifyingRouter::restartTrack(int32_t id, int32_t externalId)
 		// landmark of the map (the point it saw is still there).
 		auto& members = m_objectTracks[t.object];
 		members.erase(std::remove(members.begin(), members.end(), id), members.end());
+		if (members.empty() && m_registry.has(t.object) && m_registry.at(t.object).dropped)
+			m_objectTracks.erase(t.object);  // a dropped object's last track: nothing to keep
 		m_tracks.erase(id);
 		m_unknown.forget(id);
 	}
@@ -114,7 +116,10 @@ void CClassifyingRouter::checkAssignments(int step, std::vector<TReading>& rd,
 		TTrack& t = it->second;
 		const bool gap = m_p.reuse_gap > 0 && step - t.last_seen >= m_p.reuse_gap;
 		bool restart = false, split = false;
-		if (t.cls == TrackClass::Static && gap && t.q_valid)
+		if (t.cls == TrackClass::Moving && m_registry.has(t.object) &&
+		    m_registry.at(t.object).dropped)
+			restart = true;  // its object left the state (drop_object_after_unseen_steps)
+		else if (t.cls == TrackClass::Static && gap && t.q_valid)
 		{
 			const Eigen::Vector2d nu = pts[i].p - t.q.p;
 			restart = nu.dot((t.q.C + pts[i].C).inverse() * nu) > staticGate;

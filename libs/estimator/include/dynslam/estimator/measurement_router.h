@@ -65,8 +65,10 @@ struct TRoutedStep
 	/** Moving tracks decided static in this step (their object stopped, classify_stop_count):
 	 * their reading starts a static landmark (StaticNew). */
 	size_t stopped = 0;
-	/** Tracks restarted as new candidates under a fresh ID (classify_reuse_gap): after a break,
-	 * a reading inconsistent with the track's assignment (its ID reused by another point). */
+	/** Tracks restarted as new candidates under a fresh ID: after a break, a reading
+	 * inconsistent with the track's assignment (its ID reused by another point,
+	 * classify_reuse_gap), or a moving track whose object the filter dropped
+	 * (drop_object_after_unseen_steps): its readings start a new object once decided. */
 	size_t restarted = 0;
 	/** Moving tracks split off their object (classify_split_count): restarted as candidates. */
 	size_t split = 0;
