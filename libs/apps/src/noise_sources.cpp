@@ -11,7 +11,7 @@ namespace dynslam::apps
 {
 namespace
 {
-std::string num(double v)
+std::string numText(double v)
 {
 	std::ostringstream s;
 	s.precision(17);
@@ -129,8 +129,8 @@ std::string applyNoiseSources(mrpt::config::CConfigFileMemory& ini, const TRawlo
 	}
 	if (needStatic && obs)
 	{
-		ini.write(st, "std_sensor_range", num(obs->std_range));
-		ini.write(st, "std_sensor_yaw_deg", num(obs->std_yaw * 180 / M_PI));
+		ini.write(st, "std_sensor_range", numText(obs->std_range));
+		ini.write(st, "std_sensor_yaw_deg", numText(obs->std_yaw * 180 / M_PI));
 		if (what.tellp() == 0)
 			what << "noise from the rawlog's observations (" << describe(*obs) << "):";
 		what << " [" << st << "] std_sensor_range, std_sensor_yaw_deg";

@@ -22,7 +22,7 @@ using mrpt::opengl::CEllipsoid2D;
 using mrpt::opengl::CPointCloud;
 using mrpt::opengl::CSetOfLines;
 
-const mrpt::img::TColor kTruth(0, 160, 0);
+const mrpt::img::TColor kSceneTruth(0, 160, 0);
 
 mrpt::img::TColor colorOf(const TDrawnRun& r) { return {r.rgb[0], r.rgb[1], r.rgb[2]}; }
 
@@ -55,10 +55,10 @@ void addGroundTruth(mrpt::opengl::COpenGLScene& scene, const TGroundTruth& gt)
 {
 	std::vector<Eigen::Vector2d> path;
 	for (const auto& p : gt.ego) path.push_back(p.head<2>());
-	scene.insert(strip(path, kTruth, "ground_truth/ego_path", 0.0f, 2.0f));
+	scene.insert(strip(path, kSceneTruth, "ground_truth/ego_path", 0.0f, 2.0f));
 	auto lm = CPointCloud::Create();
 	lm->setName("ground_truth/landmarks");
-	lm->setColor_u8(kTruth);
+	lm->setColor_u8(kSceneTruth);
 	lm->setPointSize(6.0f);
 	for (const auto& [id, p] : gt.landmarks) lm->insertPoint(float(p.x()), float(p.y()), 0.0f);
 	scene.insert(lm);
@@ -68,7 +68,7 @@ void addGroundTruth(mrpt::opengl::COpenGLScene& scene, const TGroundTruth& gt)
 			std::vector<Eigen::Vector2d> track;
 			for (const auto& F : o.features) track.push_back(F.col(f));
 			scene.insert(strip(
-			    track, kTruth,
+			    track, kSceneTruth,
 			    "ground_truth/object_" + std::to_string(o.object) + "_feature_" + std::to_string(f),
 			    0.0f, 1.0f));
 		}

@@ -15,7 +15,7 @@ using mrpt::img::TColor;
 namespace
 {
 const TColor kStatic(30, 80, 220), kMoving(220, 30, 30), kUndecided(170, 170, 170),
-    kWrong(240, 140, 0), kClutter(0, 0, 0), kGrey(185, 185, 185), kWhite(255, 255, 255);
+    kWrong(240, 140, 0), kClutter(0, 0, 0), kTruthGrey(185, 185, 185), kBackground(255, 255, 255);
 
 /** The true class of each written ID: moving if any reading of it is moving, clutter if all
  * are clutter, else static. */
@@ -41,7 +41,7 @@ mrpt::img::CImage drawClassMap(const TGroundTruth* gt, const TRunEstimates& est,
 	if (width < 200 || height < 150)
 		throw std::invalid_argument("drawClassMap: figure size must be at least 200 x 150 pixels");
 	mrpt::img::CImage img(width, height, mrpt::img::CH_RGB);
-	img.filledRectangle(0, 0, width - 1, height - 1, kWhite);
+	img.filledRectangle(0, 0, width - 1, height - 1, kBackground);
 	TBox box = TBox::empty();
 	for (const auto& e : est.ego) box.expand(e.mean[0], e.mean[1]);
 	for (const auto& l : est.landmarks) box.expand(l.mean[0], l.mean[1]);
@@ -58,9 +58,9 @@ mrpt::img::CImage drawClassMap(const TGroundTruth* gt, const TRunEstimates& est,
 	{
 		std::vector<Eigen::Vector2d> path;
 		for (const auto& e : gt->ego) path.push_back(e.head<2>());
-		cv.polyline(path, kGrey, 2);
-		for (const auto& [id, p] : gt->landmarks) cv.mark(p[0], p[1], kGrey, 'x', 3);
-		legend.push_back({"ego and landmarks (truth)", kGrey, 0});
+		cv.polyline(path, kTruthGrey, 2);
+		for (const auto& [id, p] : gt->landmarks) cv.mark(p[0], p[1], kTruthGrey, 'x', 3);
+		legend.push_back({"ego and landmarks (truth)", kTruthGrey, 0});
 	}
 	std::map<int, Eigen::Vector3d> ego;
 	for (const auto& e : est.ego) ego[e.step] = e.mean;
@@ -118,7 +118,7 @@ mrpt::img::CImage drawDecisionTimeline(const TReadingDecisions& d,
 	const int left = 80, top = 40, plotW = 1200, plotH = int(rows) * rowH;
 	const int width = left + plotW + 30, height = std::max(200, top + plotH + 60);
 	mrpt::img::CImage img(width, height, mrpt::img::CH_RGB);
-	img.filledRectangle(0, 0, width - 1, height - 1, kWhite);
+	img.filledRectangle(0, 0, width - 1, height - 1, kBackground);
 	TBox box{-0.5, double(lastStep) + 0.5, 0, double(std::max<size_t>(rows, 1))};
 	CPlotCanvas cv(img, left, top, plotW, std::max(plotH, 100), box, false);
 	std::string t = title + " (" + std::to_string(rows) + " of " + std::to_string(order.size()) +

@@ -1,3 +1,4 @@
+#include <dynslam/eval/estimates.h>  // kNaN
 #include <dynslam/eval/mot_metrics.h>
 #include <dynslam/models/assignment.h>
 
@@ -12,7 +13,6 @@ namespace dynslam::eval
 {
 namespace
 {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 void checkOptions(const TMotOptions& o)

@@ -50,7 +50,7 @@ using detail::fmtRamps;
 
 namespace
 {
-std::string lower(std::string s)
+std::string lowered(std::string s)
 {
 	std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
 	return s;
@@ -105,7 +105,7 @@ void dumpEffects(std::ostream& o, const TReadingEffects& e)
 
 TNoiseLevel noiseLevel(const std::string& name)
 {
-	const std::string l = lower(name);
+	const std::string l = lowered(name);
 	TNoiseLevel n;
 	if (l == "none") return n;
 	if (l.size() == 4 && l[0] == 'w' && l[2] == 'v' && l[1] >= '1' && l[1] <= '3' && l[3] >= '1' &&
@@ -125,7 +125,7 @@ TNoiseLevel noiseLevel(const std::string& name)
 void TScenarioOptions::setNoiseLevel(const std::string& level)
 {
 	const TNoiseLevel n = noiseLevel(level);
-	noise_level = lower(level);
+	noise_level = lowered(level);
 	Sigma_w = n.Sigma_w;
 	Sigma_v = n.Sigma_v;
 	Sigma_0 = Sigma_w;
