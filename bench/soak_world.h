@@ -27,6 +27,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "world_common.h"
+
 namespace dynslam_bench
 {
 struct TSoakOptions
@@ -81,10 +83,7 @@ public:
 			cov = m_o.Sigma_w;
 		}
 		act = dynslam::makeOdometryAction(um, cov);
-		auto obs = mrpt::obs::CObservationBearingRange::Create();
-		obs->sensorLabel = "RB";
-		obs->maxSensorDistance = float(m_o.range);
-		obs->fieldOfView_yaw = float(2 * M_PI);
+		auto obs = makeObservation(m_o.range);
 		// The IDs of this lap: landmark i is lap * landmarks + i (below kClutterBase); clutter
 		// IDs count up from kClutterBase (fresh IDs, never reused).
 		const int32_t lapBase = int32_t(lap()) * m_o.landmarks;
@@ -96,20 +95,12 @@ public:
 				add(*obs, lapBase + i, landmark(i));
 		for (int a = 0; a < m_o.objects; ++a)
 		{
-			const double side = (a % 2 == 0) ? 1.0 : -1.0;
-			const Eigen::Vector3d off(6.0 + 4.0 * (a / 2 % 5), side * (4.0 + 3.0 * (a / 10)),
-			                          0.02 * m_k * (1 + a % 3));
-			const Eigen::Vector3d body = dynslam::models::composePose(m_x, off);
+			const Eigen::Vector3d body = convoyBody(m_x, a, m_k);
 			const int gen = m_o.object_lifetime > 0 ? m_k / m_o.object_lifetime : 0;
 			for (int f = 0; f < m_o.features_per_object; ++f)
-			{
-				const double ang = 2.1 * f + a;
-				const Eigen::Vector2d local =
-				    Eigen::Vector2d(std::cos(ang), std::sin(ang)) * (0.8 + 0.3 * f);
 				if (!missed())
 					add(*obs, dynslam::ids::objectFeatureId(gen * m_o.objects + a, f),
-					    body.head<2>() + dynslam::models::rot2(body[2]) * local);
-			}
+					    convoyFeature(body, a, f));
 		}
 		std::uniform_real_distribution<double> u01(0.0, 1.0);
 		for (int c = 0; c < m_o.clutter_per_step; ++c)
@@ -130,13 +121,7 @@ public:
 	}
 
 private:
-	Eigen::Vector2d landmark(int i) const
-	{
-		const double a = 2 * M_PI * i / m_o.landmarks;
-		const double off = ((i % 2) ? 1.0 : -1.0) * (3.0 + 7.0 * ((i * 7919) % 101) / 100.0);
-		const double r = m_radius + off;
-		return Eigen::Vector2d(r * std::sin(a), m_radius - r * std::cos(a));
-	}
+	Eigen::Vector2d landmark(int i) const { return ringLandmark(i, m_o.landmarks, m_radius); }
 	bool missed()
 	{
 		return m_o.missed_probability > 0 &&
@@ -144,16 +129,7 @@ private:
 	}
 	void add(mrpt::obs::CObservationBearingRange& obs, int32_t id, const Eigen::Vector2d& f)
 	{
-		Eigen::Vector2d z = dynslam::models::cartesianObserve(m_x, f);
-		z[0] += m_n(m_rng) * std::sqrt(m_o.Sigma_v(0, 0));
-		z[1] += m_n(m_rng) * std::sqrt(m_o.Sigma_v(1, 1));
-		const Eigen::Vector2d rb = dynslam::models::cartesianToRangeBearing(z);
-		mrpt::obs::CObservationBearingRange::TMeasurement m;
-		m.range = float(rb[0]);
-		m.yaw = float(rb[1]);
-		m.pitch = 0;
-		m.landmarkID = id;
-		obs.sensedData.push_back(m);
+		addReading(obs, m_x, id, f, m_o.Sigma_v, m_rng, m_n);
 	}
 
 	TSoakOptions m_o;

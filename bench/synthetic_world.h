@@ -30,6 +30,8 @@
 #include <utility>
 #include <vector>
 
+#include "world_common.h"
+
 namespace dynslam_bench
 {
 struct TSyntheticOptions
@@ -66,7 +68,8 @@ public:
 			throw std::invalid_argument("CSyntheticWorld: bad object counts");
 		m_radius = std::max(60.0, o.landmarks * o.spacing / (2 * M_PI));
 		if (o.track == TSyntheticOptions::Track::Ring)
-			for (int i = 0; i < o.landmarks; ++i) m_ring.push_back(ringLandmark(i));
+			for (int i = 0; i < o.landmarks; ++i)
+				m_ring.push_back(ringLandmark(i, o.landmarks, m_radius));
 		const double dth = o.track == TSyntheticOptions::Track::Ring ? o.step_length / m_radius : 0;
 		m_u = dth == 0
 		          ? Eigen::Vector3d(o.step_length, 0, 0)
@@ -90,10 +93,7 @@ public:
 			cov = m_o.Sigma_w;
 		}
 		act = makeAction(um, cov);
-		auto obs = mrpt::obs::CObservationBearingRange::Create();
-		obs->sensorLabel = "RB";
-		obs->maxSensorDistance = float(m_o.range);
-		obs->fieldOfView_yaw = float(2 * M_PI);
+		auto obs = makeObservation(m_o.range);
 		// Static landmarks: nearest first, at most max_visible (all on step 0 if asked).
 		m_cand.clear();
 		const Eigen::Vector2d p = m_x.head<2>();
@@ -133,18 +133,9 @@ public:
 		// Objects in convoy: body pose = ego pose (+) offset, rotating slowly in place.
 		for (int a = 0; a < m_o.objects; ++a)
 		{
-			const double side = (a % 2 == 0) ? 1.0 : -1.0;
-			const Eigen::Vector3d off(6.0 + 4.0 * (a / 2 % 5), side * (4.0 + 3.0 * (a / 10)),
-			                          0.02 * m_k * (1 + a % 3));
-			const Eigen::Vector3d body = dynslam::models::composePose(m_x, off);
+			const Eigen::Vector3d body = convoyBody(m_x, a, m_k);
 			for (int f = 0; f < m_o.features_per_object; ++f)
-			{
-				const double ang = 2.1 * f + a;
-				const Eigen::Vector2d local =
-				    Eigen::Vector2d(std::cos(ang), std::sin(ang)) * (0.8 + 0.3 * f);
-				add(*obs, dynslam::ids::objectFeatureId(a, f),
-				    body.head<2>() + dynslam::models::rot2(body[2]) * local);
-			}
+				add(*obs, dynslam::ids::objectFeatureId(a, f), convoyFeature(body, a, f));
 		}
 		sf = mrpt::obs::CSensoryFrame::Create();
 		sf->insert(obs);
@@ -152,13 +143,6 @@ public:
 	}
 
 private:
-	Eigen::Vector2d ringLandmark(int i) const
-	{
-		const double a = 2 * M_PI * i / m_o.landmarks;
-		const double off = ((i % 2) ? 1.0 : -1.0) * (3.0 + 7.0 * ((i * 7919) % 101) / 100.0);
-		const double r = m_radius + off;
-		return Eigen::Vector2d(r * std::sin(a), m_radius - r * std::cos(a));
-	}
 	Eigen::Vector2d straightLandmark(int i) const
 	{
 		const double off = ((i % 2) ? 1.0 : -1.0) * (5.0 + 10.0 * ((i * 7919) % 101) / 100.0);
@@ -172,16 +156,7 @@ private:
 	}
 	void add(mrpt::obs::CObservationBearingRange& obs, int32_t id, const Eigen::Vector2d& f)
 	{
-		Eigen::Vector2d z = dynslam::models::cartesianObserve(m_x, f);
-		z[0] += m_n(m_rng) * std::sqrt(m_o.Sigma_v(0, 0));
-		z[1] += m_n(m_rng) * std::sqrt(m_o.Sigma_v(1, 1));
-		const Eigen::Vector2d rb = dynslam::models::cartesianToRangeBearing(z);
-		mrpt::obs::CObservationBearingRange::TMeasurement m;
-		m.range = float(rb[0]);
-		m.yaw = float(rb[1]);
-		m.pitch = 0;
-		m.landmarkID = id;
-		obs.sensedData.push_back(m);
+		addReading(obs, m_x, id, f, m_o.Sigma_v, m_rng, m_n);
 	}
 	static mrpt::obs::CActionCollection::Ptr makeAction(const Eigen::Vector3d& u,
 	                                                    const Eigen::Matrix3d& C)

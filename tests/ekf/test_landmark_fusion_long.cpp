@@ -9,10 +9,10 @@
  * time per step. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/clutter_runs.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -53,31 +53,20 @@ struct TRun
 TRun run(const sim::TSimulatedRun& s, const TGroundTruth& gt, const std::string& extra)
 {
 	mrpt::config::CConfigFileMemory ini(
-	    "[DynamicKFSLAM]\nmeasurement_model = cartesian\nSigma_v = [1e-5 1e-5]\n"
-	    "motion_noise = action\nSigma_0 = [1e-5 1e-5 1e-7]\nSigma_xi = [0.1 0.1]\n"
-	    "prune_min_sightings = 3\nprune_window = 5\n" +
-	    extra + "[DynamicKFSLAM_KalmanFilter]\nmethod = kfEKFNaive\n");
+	    dynslam_test::highwayFilterIni("prune_min_sightings = 3\nprune_window = 5\n" + extra));
 	CDynamicKFSLAM2D ekf;
 	ekf.setMinLoggingLevel(mrpt::system::LVL_ERROR);
 	ekf.loadOptions(ini, "DynamicKFSLAM");
 	TRun r;
-	double se = 0;
 	const size_t n = s.actions.size(), tenth = n / 10;
-	for (size_t k = 0; k < n; ++k)
-	{
-		const auto t0 = std::chrono::steady_clock::now();
-		ekf.processActionObservation(s.actions[k], s.frames[k]);
-		const double ms =
-		    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-		        .count();
-		r.msAll += ms / double(n);
-		if (k >= 100 && k < 200) r.msFirst += ms / 100;
-		if (k >= n - tenth) r.msLast += ms / double(tenth);
-		r.fused += ekf.getLastStepReport().fused_static;
-		const auto p = ekf.getEgoPose().mean;
-		se += (Eigen::Vector2d(p.x(), p.y()) - gt.ego[k].head<2>()).squaredNorm();
-	}
-	r.ate = std::sqrt(se / double(n));
+	r.ate = dynslam_test::runSteps(ekf, s, gt,
+	                               [&](size_t k, double ms)
+	                               {
+		                               r.msAll += ms / double(n);
+		                               if (k >= 100 && k < 200) r.msFirst += ms / 100;
+		                               if (k >= n - tenth) r.msLast += ms / double(tenth);
+		                               r.fused += ekf.getLastStepReport().fused_static;
+	                               });
 	r.live = ekf.getStaticLandmarks().size();
 	r.fusions = ekf.getFusedLandmarks();
 	return r;

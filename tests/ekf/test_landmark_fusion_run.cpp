@@ -8,11 +8,11 @@
  *    noise seeds; the mean ego ATE within 10 % of that of the runs without fusion. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/clutter_runs.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <Eigen/Dense>
-#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -24,15 +24,7 @@ namespace
 {
 std::string filterIni(const std::string& extra)
 {
-	return "[DynamicKFSLAM]\n"
-	       "measurement_model = cartesian\n"
-	       "Sigma_v = [1e-5 1e-5]\n"
-	       "motion_noise = action\n"
-	       "Sigma_0 = [1e-5 1e-5 1e-7]\n"
-	       "Sigma_xi = [0.1 0.1]\n"
-	       "prune_min_sightings = 3\n"
-	       "prune_window = 5\n" +
-	       extra + "[DynamicKFSLAM_KalmanFilter]\nmethod = kfEKFNaive\n";
+	return dynslam_test::highwayFilterIni("prune_min_sightings = 3\nprune_window = 5\n" + extra);
 }
 const std::string kFuse = "fuse_landmarks_prob = 0.99\n";
 
@@ -77,19 +69,14 @@ TRun run(const sim::TSimulatedRun& s, const TGroundTruth& gt, const std::string&
 	CDynamicKFSLAM2D ekf;
 	loadFilter(ekf, extra);
 	TRun r;
-	double se = 0;
-	for (size_t k = 0; k < s.actions.size(); ++k)
-	{
-		const auto t0 = std::chrono::steady_clock::now();
-		ekf.processActionObservation(s.actions[k], s.frames[k]);
-		r.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-		            .count();
-		r.fused += ekf.getLastStepReport().fused_static;
-		r.duplicates += ekf.getLastStepReport().skipped_fused_duplicate;
-		const auto p = ekf.getEgoPose().mean;
-		se += (Eigen::Vector2d(p.x(), p.y()) - gt.ego[k].head<2>()).squaredNorm();
-	}
-	r.ate = std::sqrt(se / double(s.actions.size()));
+	r.ate = dynslam_test::runSteps(ekf, s, gt,
+	                               [&](size_t, double ms)
+	                               {
+		                               r.ms += ms;
+		                               r.fused += ekf.getLastStepReport().fused_static;
+		                               r.duplicates +=
+		                                   ekf.getLastStepReport().skipped_fused_duplicate;
+	                               });
 	for (const auto& l : ekf.getStaticLandmarks()) r.live.insert(l.id);
 	r.fusions = ekf.getFusedLandmarks();
 	return r;

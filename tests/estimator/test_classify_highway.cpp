@@ -6,6 +6,7 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -16,8 +17,6 @@
 #include <fstream>
 #include <map>
 #include <sstream>
-
-#include "highway_filter_setup.h"
 
 using namespace dynslam;
 

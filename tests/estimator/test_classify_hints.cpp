@@ -9,6 +9,7 @@
 #include <dynslam/odometry_action.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam/step_input.h>
+#include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -19,7 +20,6 @@
 #include <sstream>
 #include <tuple>
 
-#include "highway_filter_setup.h"
 #include "router_synth.h"
 
 using namespace dynslam;

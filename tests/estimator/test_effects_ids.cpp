@@ -3,14 +3,13 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/landmark_ids.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 
 #include <set>
 #include <sstream>
-
-#include "highway_filter_setup.h"
 
 using namespace dynslam;
 

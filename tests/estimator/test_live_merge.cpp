@@ -8,6 +8,7 @@
 #include <dynslam/estimator/live_merge.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -20,7 +21,6 @@
 #include <set>
 #include <sstream>
 
-#include "highway_filter_setup.h"
 #include "live_merge_setup.h"
 
 using namespace dynslam;

@@ -18,6 +18,7 @@
  * pass: a change that makes the test merge more easily fails. LMR_SEEDS overrides N (by hand). */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -29,7 +30,6 @@
 #include <string>
 #include <vector>
 
-#include "highway_filter_setup.h"
 #include "live_merge_setup.h"
 
 using namespace dynslam;

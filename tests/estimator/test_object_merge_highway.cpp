@@ -9,6 +9,7 @@
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/models/object_motion.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -18,7 +19,6 @@
 #include <set>
 #include <sstream>
 
-#include "highway_filter_setup.h"
 #include "object_merge_setup.h"
 
 using namespace dynslam;

@@ -9,13 +9,13 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/models/se2.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <map>
 
 #include "core_test_utils.h"
-#include "highway_filter_setup.h"
 
 using namespace dynslam;
 

@@ -9,6 +9,7 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/models/object_motion.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -16,7 +17,6 @@
 #include <optional>
 #include <set>
 
-#include "highway_filter_setup.h"
 #include "object_merge_setup.h"
 
 using namespace dynslam;

@@ -10,6 +10,7 @@
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/mrpt_static_association.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -18,8 +19,6 @@
 #include <iostream>
 #include <map>
 #include <set>
-
-#include "highway_filter_setup.h"
 
 using namespace dynslam;
 using namespace dynslam::estimator;

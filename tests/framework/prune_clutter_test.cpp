@@ -10,10 +10,10 @@
  *    landmarks (its passive landmarks are brought back when due) with the same estimate. */
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
+#include <dynslam_test/clutter_runs.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <set>
@@ -23,17 +23,6 @@ using namespace dynslam;
 namespace
 {
 constexpr int kMin = 3, kWindow = 5;
-
-std::string filterIni(const std::string& extra)
-{
-	return "[DynamicKFSLAM]\n"
-	       "measurement_model = cartesian\n"
-	       "Sigma_v = [1e-5 1e-5]\n"
-	       "motion_noise = action\n"
-	       "Sigma_0 = [1e-5 1e-5 1e-7]\n"
-	       "Sigma_xi = [0.1 0.1]\n" +
-	       extra + "[DynamicKFSLAM_KalmanFilter]\nmethod = kfEKFNaive\n";
-}
 
 std::string pruneKeys()
 {
@@ -51,28 +40,24 @@ struct TRun
 
 TRun run(const sim::TSimulatedRun& s, const TGroundTruth& gt, const std::string& extra)
 {
-	mrpt::config::CConfigFileMemory ini(filterIni(extra));
+	mrpt::config::CConfigFileMemory ini(dynslam_test::highwayFilterIni(extra));
 	CDynamicKFSLAM2D ekf;
 	ekf.loadOptions(ini, "DynamicKFSLAM");
 	TRun r;
-	double se = 0;
-	for (size_t k = 0; k < s.actions.size(); ++k)
-	{
-		const auto t0 = std::chrono::steady_clock::now();
-		ekf.processActionObservation(s.actions[k], s.frames[k]);
-		r.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-		            .count();
-		r.pruned += ekf.getLastStepReport().pruned_static;
-		r.maxLive = std::max(r.maxLive, ekf.staticLandmarkCount());
-		const auto p = ekf.getEgoPose().mean;
-		r.ego.emplace_back(p.x(), p.y(), p.phi());
-		se += (Eigen::Vector2d(p.x(), p.y()) - gt.ego[k].head<2>()).squaredNorm();
-	}
-	r.ate = std::sqrt(se / double(s.actions.size()));
+	r.ate = dynslam_test::runSteps(ekf, s, gt,
+	                               [&](size_t, double ms)
+	                               {
+		                               r.ms += ms;
+		                               r.pruned += ekf.getLastStepReport().pruned_static;
+		                               r.maxLive = std::max(r.maxLive, ekf.staticLandmarkCount());
+		                               const auto p = ekf.getEgoPose().mean;
+		                               r.ego.emplace_back(p.x(), p.y(), p.phi());
+	                               });
 	for (const auto& l : ekf.getStaticLandmarks()) r.live.insert(l.id);
 	for (const auto& l : ekf.getDroppedStaticLandmarks()) r.recorded.insert(l.id);
 	return r;
 }
+
 /** The truth: per static-range ID (landmarks and clutter; objects have their own range) the
  * step of its first reading and its readings in the window that starts there. */
 struct TTruth

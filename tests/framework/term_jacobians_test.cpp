@@ -258,3 +258,83 @@ TEST(TermJacobians, ObjectMotionSightingAndVelocityInit)
 	                        models::MeasurementModel::Cartesian, Eigen::Matrix2d::Identity()),
 	    std::invalid_argument);
 }
+
+TEST(TermJacobians, ObjectMixtureMotion)
+{
+	// object_model = mm (issue 28): the moment-matched mixture of a cv and a ctrv prediction
+	// made at s_lin (models::mixModes, as estimator::CObjectModes does), checked at s_lin and
+	// away from it, rotations next to +-pi. The residual is affine in every block (up to the
+	// wrap of the heading rows, which numericJ wraps too), so central differences have no
+	// truncation error: what is left is rounding, eps |r| / h ~ 1e-10 for |r| ~ 10 at h = 1e-6,
+	// well inside the default 1e-6; a wrong sign or column of F_bar is an error of order
+	// |F_bar| >= 1.
+	estimator::TCvParams p;
+	p.dt = 0.5;
+	const estimator::CConstantVelocity cv(p);
+	const estimator::CConstantTurnRate ctrv(p);
+	const TVarKey xa = TVarKey::objectPose(1, 3), va = TVarKey::objectVelocity(1, 3),
+	              xb = TVarKey::objectPose(1, 4), vb = TVarKey::objectVelocity(1, 4);
+	std::mt19937 g(17);
+	for (double th : kHeadings)
+	{
+		Eigen::VectorXd s(6);
+		s << 0.3, 0.2, th, 1.5, -0.7, 0.4;
+		std::vector<Eigen::VectorXd> sj;
+		std::vector<Eigen::MatrixXd> Fj, Qj;
+		const estimator::IObjectMotionModel* const modes[] = {&cv, &ctrv};
+		for (const estimator::IObjectMotionModel* m : modes)
+		{
+			Eigen::MatrixXd F, Q;
+			sj.push_back(m->predict(s, &F, &Q));
+			Fj.push_back(F);
+			Qj.push_back(Q);
+		}
+		Eigen::MatrixXd P = Eigen::MatrixXd::Identity(6, 6) * 0.05;
+		P(0, 3) = P(3, 0) = 0.01;
+		const models::TModeMixture mix =
+		    models::mixModes(sj, Fj, Qj, Eigen::Vector2d(0.7, 0.3), P, 2);
+		const CObjectMixtureMotionTerm t(xa, va, xb, vb, s, mix);
+		SCOPED_TRACE(::testing::Message() << "heading " << th);
+		// At s_lin, next to the mixture's mean.
+		checkTerm(t, {s.head(3), s.tail(3), mix.s.head(3) + Eigen::Vector3d(0.01, -0.02, 0.003),
+		              mix.s.tail(3) + Eigen::Vector3d(0.02, 0.01, -0.01)});
+		// Away from s_lin (the previous pose across the cut for the headings next to it).
+		const Eigen::Vector2d a = 0.2 * pt(g, 1), b = 0.1 * pt(g, 1);
+		const Eigen::Vector3d dxi(a[0], a[1], 3e-7), dv(b[0], b[1], 0.05);
+		checkTerm(t, {blockPlus(VarKind::ObjectPose, s.head(3), dxi), s.tail(3) + dv,
+		              blockPlus(VarKind::ObjectPose, mix.s.head(3), -dxi), mix.s.tail(3)});
+	}
+}
+
+TEST(TermJacobians, ObjectMixtureMotionSizes)
+{
+	// The constructor's checks: s_bar, F_bar and s_lin of one size (each off by one throws),
+	// Q_eff positive definite; the matching sizes construct.
+	const TVarKey xa = TVarKey::objectPose(1, 3), va = TVarKey::objectVelocity(1, 3),
+	              xb = TVarKey::objectPose(1, 4), vb = TVarKey::objectVelocity(1, 4);
+	models::TModeMixture mix;
+	mix.s = Eigen::VectorXd::Zero(6);
+	mix.F = Eigen::MatrixXd::Identity(6, 6);
+	mix.Q_eff = Eigen::MatrixXd::Identity(6, 6) * 1e-2;
+	const Eigen::VectorXd sLin = Eigen::VectorXd::Zero(6);
+	EXPECT_NO_THROW(CObjectMixtureMotionTerm(xa, va, xb, vb, sLin, mix));
+	EXPECT_THROW(CObjectMixtureMotionTerm(xa, va, xb, vb, Eigen::VectorXd::Zero(5), mix),
+	             std::invalid_argument);
+	models::TModeMixture bad = mix;
+	bad.s = Eigen::VectorXd::Zero(7);
+	EXPECT_THROW(CObjectMixtureMotionTerm(xa, va, xb, vb, sLin, bad), std::invalid_argument);
+	bad = mix;
+	bad.F = Eigen::MatrixXd::Identity(5, 6);
+	EXPECT_THROW(CObjectMixtureMotionTerm(xa, va, xb, vb, sLin, bad), std::invalid_argument);
+	bad = mix;
+	bad.F = Eigen::MatrixXd::Identity(6, 5);
+	EXPECT_THROW(CObjectMixtureMotionTerm(xa, va, xb, vb, sLin, bad), std::invalid_argument);
+	bad = mix;
+	bad.Q_eff(2, 2) = 0;  // semidefinite: the framework needs an invertible process noise
+	EXPECT_THROW(CObjectMixtureMotionTerm(xa, va, xb, vb, sLin, bad), std::invalid_argument);
+	// linearize's own check: blocks that do not add up to s_lin.
+	const CObjectMixtureMotionTerm t(xa, va, xb, vb, sLin, mix);
+	EXPECT_THROW(t.linearize({Eigen::Vector2d::Zero(), Eigen::Vector3d::Zero(),
+	                          Eigen::Vector2d::Zero(), Eigen::Vector3d::Zero()}),
+	             std::invalid_argument);
+}

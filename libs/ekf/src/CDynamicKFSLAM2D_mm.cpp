@@ -59,35 +59,22 @@ Eigen::VectorXd CDynamicKFSLAM2D::modeLogLikelihoods(int32_t obj, const std::vec
 	}
 	const auto x = m_xkk.asEigen();
 	const Eigen::MatrixXd P_all = ekf::marginal(cov(), all);
-	const Eigen::Index ns = Eigen::Index(idx.size()), d = ns / 2, m = Eigen::Index(readings.size());
+	const Eigen::Index ns = Eigen::Index(idx.size()), d = ns / 2;
 	Eigen::Matrix2Xd f0(2, n);
 	for (Eigen::Index k = 0; k < n; ++k) f0.col(k) = x.segment(all[size_t(3 + ns + 2 * k)], 2);
 	const Eigen::Vector3d ego = x.head<3>();
-	Eigen::MatrixXd R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
-	for (Eigen::Index r = 0; r < m; ++r) R.block(2 * r, 2 * r, 2, 2) = options.Sigma_v;
-	Eigen::VectorXd logL(Eigen::Index(pred.s.size()));
-	for (size_t j = 0; j < pred.s.size(); ++j)
-	{
-		const Eigen::VectorXd xi = pred.s[j].head(d);
-		Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * m, P_all.cols());
-		Eigen::VectorXd nu(2 * m);
-		for (Eigen::Index r = 0; r < m; ++r)
-		{
-			models::Matrix23d J_z_x;
-			Eigen::MatrixXd J_z_xi, J_z_f0;
-			const auto& z = readings[size_t(r)].reading;
-			const Eigen::Vector2d zhat =
-			    detail::sighting(options.measurement_model, ego, m_in.sensor_pose, xi, f0,
-			                     info.indexOf(z.id), &J_z_x, &J_z_xi, &J_z_f0, info.founders);
-			H.block(2 * r, 0, 2, 3) = J_z_x;
-			H.block(2 * r, 3, 2, d) = J_z_xi;  // the velocity's columns stay 0
-			H.block(2 * r, 3 + ns, 2, 2 * n) = J_z_f0;
-			nu.segment(2 * r, 2) = models::innovation(options.measurement_model, z.z, zhat);
-		}
-		logL[Eigen::Index(j)] =
-		    models::predictedReadingsLogLikelihood(P_all, 3, pred.F[j], pred.Q[j], H, nu, R);
-	}
-	return logL;
+	return estimator::readingsModeLogLikelihoods(
+	    pred, P_all, d, Eigen::Index(readings.size()), options.Sigma_v,
+	    [&](Eigen::Index r, const Eigen::VectorXd& xi)
+	    {
+		    estimator::TReadingSighting s;
+		    const auto& z = readings[size_t(r)].reading;
+		    const Eigen::Vector2d zhat =
+		        detail::sighting(options.measurement_model, ego, m_in.sensor_pose, xi, f0,
+		                         info.indexOf(z.id), &s.H_x, &s.H_xi, &s.H_f0, info.founders);
+		    s.nu = models::innovation(options.measurement_model, z.z, zhat);
+		    return s;
+	    });
 }
 
 void CDynamicKFSLAM2D::attachModeProbabilities(std::map<int32_t, TObjectTrack>& tracks) const

@@ -135,36 +135,23 @@ Eigen::VectorXd CAlg1Backend::modeLogLikelihoods(int32_t obj, const TVarKey& xi,
 	for (size_t j = 0; j < info.feature_ids.size(); ++j)
 		blocks.push_back(TVarKey::objectFeature(obj, info.feature_index[j], info.first_step));
 	const Eigen::MatrixXd P_e = m_cost.covariance(blocks);
-	const Eigen::Index n = Eigen::Index(info.feature_ids.size()), m = Eigen::Index(readings.size());
-	const Eigen::Index d = m_cost.dim(xi), ns = d + m_cost.dim(v);
+	const Eigen::Index n = Eigen::Index(info.feature_ids.size());
 	Eigen::Matrix2Xd f0(2, n);
 	for (Eigen::Index k = 0; k < n; ++k) f0.col(k) = m_cost.value(blocks[size_t(3 + k)]);
 	const Eigen::Vector3d ego = m_cost.value(m_ego);
 	const auto& mo = m_opts.model;
-	Eigen::MatrixXd R = Eigen::MatrixXd::Zero(2 * m, 2 * m);
-	for (Eigen::Index r = 0; r < m; ++r) R.block(2 * r, 2 * r, 2, 2) = mo.Sigma_v;
-	Eigen::VectorXd logL(Eigen::Index(pred.s.size()));
-	for (size_t j = 0; j < pred.s.size(); ++j)
-	{
-		Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * m, P_e.cols());
-		Eigen::VectorXd nu(2 * m);
-		for (Eigen::Index r = 0; r < m; ++r)
-		{
-			models::Matrix23d Hx;
-			Eigen::MatrixXd H_xi, H_f0;
-			const auto& z = readings[size_t(r)].reading;
-			const Eigen::Vector2d zhat = models::observeObjectFeatureFromSensor(
-			    mo.measurement_model, ego, m_sensor, pred.s[j].head(d), f0, info.indexOf(z.id), &Hx,
-			    &H_xi, &H_f0);
-			H.block(2 * r, 0, 2, 3) = Hx;
-			H.block(2 * r, 3, 2, d) = H_xi;  // the velocity's columns stay 0
-			H.block(2 * r, 3 + ns, 2, 2 * n) = H_f0;
-			nu.segment(2 * r, 2) = models::innovation(mo.measurement_model, z.z, zhat);
-		}
-		logL[Eigen::Index(j)] =
-		    models::predictedReadingsLogLikelihood(P_e, 3, pred.F[j], pred.Q[j], H, nu, R);
-	}
-	return logL;
+	return estimator::readingsModeLogLikelihoods(
+	    pred, P_e, m_cost.dim(xi), Eigen::Index(readings.size()), mo.Sigma_v,
+	    [&](Eigen::Index r, const Eigen::VectorXd& pose)
+	    {
+		    estimator::TReadingSighting s;
+		    const auto& z = readings[size_t(r)].reading;
+		    const Eigen::Vector2d zhat = models::observeObjectFeatureFromSensor(
+		        mo.measurement_model, ego, m_sensor, pose, f0, info.indexOf(z.id), &s.H_x, &s.H_xi,
+		        &s.H_f0);
+		    s.nu = models::innovation(mo.measurement_model, z.z, zhat);
+		    return s;
+	    });
 }
 
 void CAlg1Backend::objectFeatureUpdates(const estimator::TRoutedStep& in)

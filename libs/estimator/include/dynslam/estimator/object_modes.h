@@ -8,6 +8,7 @@
  * (CAlg1Backend_objects.cpp) call predict() with their own likelihood of the readings. Pure
  * Eigen. */
 #include <dynslam/estimator/object_motion_model.h>
+#include <dynslam/models/measurement.h>
 #include <dynslam/models/mode_mixture.h>
 
 #include <Eigen/Core>
@@ -31,6 +32,31 @@ struct TModePredictions
 
 /** The names of the model's modes (empty for a single model). */
 std::vector<std::string> modeNames(const IObjectMotionModel& model);
+
+/** One reading's sighting under a predicted object pose xi: its innovation (z (-) z_hat) and
+ * the Jacobians of z_hat on the ego pose (2x3), on xi (2 x |xi|) and on the object's time-0
+ * features (2 x 2n, all n of them). */
+struct TReadingSighting
+{
+	Eigen::Vector2d nu;
+	models::Matrix23d H_x;
+	Eigen::MatrixXd H_xi, H_f0;
+};
+/** The sighting of reading r (0..m-1) of the object under the predicted pose xi. */
+using TSightingFn = std::function<TReadingSighting(Eigen::Index r, const Eigen::VectorXd& xi)>;
+
+/** log L_j of an object's m readings under each mode j's prediction (TLogLikelihoods for
+ * CObjectModes::predict): the readings' innovations and Jacobians (sighting, at the pose part
+ * pred.s[j].head(poseDim)) stacked into nu and H on the entries e = [ego (3); s (pred.s[j]'s
+ * size, the velocity's columns 0); f_0 (the rest of P_e)], R = diag(Sigma_v, ..., Sigma_v),
+ * then models::predictedReadingsLogLikelihood(P_e, 3, F_j, Q_j, H, nu, R). P_e: the prior
+ * covariance of e. m = 0: empty (no readings). The stacking shared by the dynamic EKF
+ * (CDynamicKFSLAM2D_mm.cpp) and Alg. 1 (CAlg1Backend_objects.cpp), which differ only in how
+ * they sight a reading. Throws std::invalid_argument on sizes. */
+Eigen::VectorXd readingsModeLogLikelihoods(const TModePredictions& pred, const Eigen::MatrixXd& P_e,
+                                           Eigen::Index poseDim, Eigen::Index m,
+                                           const Eigen::Matrix2d& Sigma_v,
+                                           const TSightingFn& sighting);
 
 class CObjectModes
 {

@@ -1,7 +1,8 @@
 #pragma once
-/** The dynamic EKF's INI for the highway tests of the estimator area (test_classify_highway,
- * test_effects_ids, test_unknown_ids): Cartesian readings with the simulator's noise, the
- * action's odometry covariance, a near-exact start. */
+/** The dynamic EKF's INI for the highway tests (tests/estimator: test_classify_highway,
+ * test_effects_ids, test_unknown_ids, the merge tests; the clutter runs of clutter_runs.h):
+ * Cartesian readings with the simulator's noise, the action's odometry covariance, a near-exact
+ * start. */
 #include <dynslam/sim/scenario.h>
 
 #include <string>
