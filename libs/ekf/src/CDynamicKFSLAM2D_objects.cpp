@@ -18,7 +18,7 @@ using estimator::TBlock;
 namespace
 {
 /** Where one object's blocks are, from one scan of the layout. */
-struct TObjectBlocks
+struct TPoseBlocks
 {
 	int32_t object = -1;
 	std::vector<std::pair<int32_t, size_t>> f0;  ///< (feature ID, its time-0 block), by ID
@@ -37,9 +37,9 @@ struct TObjectBlocks
  * their capacity: the map of before allocated a node per object and per feature each step). */
 struct TObjectIndex
 {
-	const TObjectBlocks *first, *last;
-	const TObjectBlocks* begin() const { return first; }
-	const TObjectBlocks* end() const { return last; }
+	const TPoseBlocks *first, *last;
+	const TPoseBlocks* begin() const { return first; }
+	const TPoseBlocks* end() const { return last; }
 };
 bool indexed(BlockKind k, int blockStep, int step)
 {
@@ -49,7 +49,7 @@ bool indexed(BlockKind k, int blockStep, int step)
 TObjectIndex indexObjects(const estimator::CPaddedLayout& L, int step)
 {
 	static thread_local std::vector<int32_t> objs;
-	static thread_local std::vector<TObjectBlocks> pool;
+	static thread_local std::vector<TPoseBlocks> pool;
 	objs.clear();
 	for (size_t b = 0; b < L.size(); ++b)
 		if (indexed(L[b].kind, L[b].step, step)) objs.push_back(L[b].object);
@@ -67,7 +67,7 @@ TObjectIndex indexObjects(const estimator::CPaddedLayout& L, int step)
 	{
 		const TBlock& t = L[b];
 		if (!indexed(t.kind, t.step, step)) continue;
-		TObjectBlocks& o =
+		TPoseBlocks& o =
 		    pool[size_t(std::lower_bound(objs.begin(), objs.end(), t.object) - objs.begin())];
 		if (t.kind == BlockKind::ObjectFeature0)
 			o.f0.emplace_back(t.id, b);
@@ -92,7 +92,7 @@ struct TObjectFit
 };
 /** Writes the fit into `fit` (its vectors cleared first, their capacity kept). */
 void objectFit(const estimator::CPaddedLayout& ext, const estimator::TObjectEntry& info,
-               const TObjectBlocks& os, TObjectFit& fit)
+               const TPoseBlocks& os, TObjectFit& fit)
 {
 	fit.f0_idx.clear();
 	fit.ft_idx.clear();
@@ -238,7 +238,7 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 	poses.clear();
 	at.clear();
 	Eigen::Index size = 0;
-	for (const TObjectBlocks& os : indexObjects(ext, m_step))
+	for (const TPoseBlocks& os : indexObjects(ext, m_step))
 	{
 		const int32_t obj = os.object;
 		if (os.ft.empty()) continue;
@@ -294,7 +294,7 @@ void CDynamicKFSLAM2D::planObjectPoses(TPending& plan)
 
 void CDynamicKFSLAM2D::applyObjectMotion()
 {
-	for (const TObjectBlocks& os : indexObjects(m_layout, m_step))
+	for (const TPoseBlocks& os : indexObjects(m_layout, m_step))
 	{
 		const int32_t obj = os.object;
 		const int d = m_router->registry().at(obj).poseDim();
@@ -342,7 +342,7 @@ void CDynamicKFSLAM2D::planDrops(TPending& plan)
 			}
 	}
 	// Object poses beyond the last K: recorded with their marginal covariance.
-	for (const TObjectBlocks& os : indexObjects(ext, m_step))
+	for (const TPoseBlocks& os : indexObjects(ext, m_step))
 	{
 		const int32_t obj = os.object;
 		const size_t nd = m_drop.posesToDrop(os.poses.size());

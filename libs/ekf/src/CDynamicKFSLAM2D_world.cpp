@@ -17,15 +17,15 @@ using estimator::TBlock;
 namespace
 {
 /** The blocks of one object in a layout: its newest pose, its velocity, its f_0 by feature ID. */
-struct TObjectBlocks
+struct TWorldBlocks
 {
 	size_t pose = SIZE_MAX, vel = SIZE_MAX;
 	std::map<int32_t, size_t> f0;
 };
 
-TObjectBlocks blocksOf(const estimator::CPaddedLayout& L, int32_t obj)
+TWorldBlocks worldBlocksOf(const estimator::CPaddedLayout& L, int32_t obj)
 {
-	TObjectBlocks o;
+	TWorldBlocks o;
 	for (size_t b = 0; b < L.size(); ++b)
 	{
 		const TBlock& t = L[b];
@@ -40,7 +40,7 @@ TObjectBlocks blocksOf(const estimator::CPaddedLayout& L, int32_t obj)
 	return o;
 }
 
-void append(std::vector<int>& a, const std::vector<int>& b)
+void appendIndices(std::vector<int>& a, const std::vector<int>& b)
 {
 	a.insert(a.end(), b.begin(), b.end());
 }
@@ -60,7 +60,7 @@ std::optional<TObjectWorldPose> CDynamicKFSLAM2D::getObjectWorldPose(int32_t obj
 	const estimator::TObjectEntry& e = entryOf(m_router->registry(), object, "getObjectWorldPose");
 	if (e.dropped) return std::nullopt;  // drop_object_after_unseen_steps
 	const TStateRef s = wholeState();
-	const TObjectBlocks o = blocksOf(s.layout, object);
+	const TWorldBlocks o = worldBlocksOf(s.layout, object);
 	const int d = e.poseDim();
 	// Inputs [xi; founders' f_0]; without a pose in the state, only before any pose was made
 	// (the first sighting: xi = 0 exactly, no entries).
@@ -85,7 +85,7 @@ std::optional<TObjectWorldPose> CDynamicKFSLAM2D::getObjectWorldPose(int32_t obj
 		if (it == o.f0.end()) return std::nullopt;
 		const std::vector<int> fi = s.layout.indices(it->second);
 		f0.col(k) = s.x(fi);
-		append(idx, fi);
+		appendIndices(idx, fi);
 	}
 	const Eigen::VectorXd xi =
 	    o.pose != SIZE_MAX ? s.x(idx).head(d).eval() : Eigen::VectorXd::Zero(d).eval();
@@ -115,7 +115,7 @@ std::optional<TObjectVelocity> CDynamicKFSLAM2D::getObjectVelocity(int32_t objec
 {
 	const estimator::TObjectEntry& e = entryOf(m_router->registry(), object, "getObjectVelocity");
 	const TStateRef s = wholeState();
-	const TObjectBlocks o = blocksOf(s.layout, object);
+	const TWorldBlocks o = worldBlocksOf(s.layout, object);
 	if (o.vel == SIZE_MAX) return std::nullopt;
 	// The velocity: the block's first poseDim entries (ca's block goes on with the acceleration).
 	const std::vector<int> all = s.layout.indices(o.vel);
