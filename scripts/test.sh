@@ -3,6 +3,6 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 "$ROOT/scripts/install_deps.sh"
-"$ROOT/scripts/build.sh"
+DYNSLAM_UNITY="${DYNSLAM_UNITY:-OFF}" "$ROOT/scripts/build.sh"  # one source per compile
 cd "${DYNSLAM_BUILD_DIR:-$ROOT/build}"
 ctest --output-on-failure -j"$(nproc)" --timeout 900

@@ -28,7 +28,7 @@ namespace dynslam::apps
 {
 namespace
 {
-const char* kSection = "Compare";
+const char* kCompareSection = "Compare";
 const char* kDefaultIni = "config/compare_highway.ini";
 
 /** `dynamic` and `default` (the default profile's keys: paramsFor) are the dynamic EKF. */
@@ -139,13 +139,13 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 	try
 	{
 		using namespace dynslam::config;
-		rejectUnknownKeys(params, kSection,
+		rejectUnknownKeys(params, kCompareSection,
 		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "filters",
 		                   "figures", "out_dir", "progress_every", "default_profile"});
-		const std::string profile = readString(params, kSection, "default_profile", "");
+		const std::string profile = readString(params, kCompareSection, "default_profile", "");
 		defaultProfile = profile.empty() ? locateShippedFile("config/profiles/default.ini")
 		                                 : resolvePath(profile, folderOf(iniFile));
-		data = readDataSettings(params, kSection, folderOf(iniFile));
+		data = readDataSettings(params, kCompareSection, folderOf(iniFile));
 		if (o.rawlog)
 		{
 			// The INI's ground truth belongs to its rawlog: look beside the new one instead.
@@ -158,13 +158,14 @@ void CCompareApp::readSettings(const TCompareOverrides& o)
 			throw std::invalid_argument(
 			    "dynslam-compare: no rawlog (give -r FILE or [Compare] rawlog in " + iniFile + ")");
 
-		const std::string fl = o.filters ? *o.filters : readString(params, kSection, "filters", "");
+		const std::string fl =
+		    o.filters ? *o.filters : readString(params, kCompareSection, "filters", "");
 		if (!fl.empty()) filters = detail::parseFilterList(fl);
-		figures = readBool(params, kSection, "figures", true) && !o.noFigures;
-		progressEvery = int(readInt(params, kSection, "progress_every", 0));
+		figures = readBool(params, kCompareSection, "figures", true) && !o.noFigures;
+		progressEvery = int(readInt(params, kCompareSection, "progress_every", 0));
 		if (progressEvery < 0)
-			fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
-		outDir = readString(params, kSection, "out_dir", "");
+			fail(kCompareSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
+		outDir = readString(params, kCompareSection, "out_dir", "");
 		if (o.out) outDir = *o.out;
 		if (fullCovariance && outDir.empty())
 			throw std::invalid_argument("--full-covariance needs --out DIR (the files go there)");

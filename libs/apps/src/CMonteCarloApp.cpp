@@ -25,7 +25,7 @@ namespace dynslam::apps
 {
 namespace
 {
-const char* kSection = "MonteCarlo";
+const char* kMonteCarloSection = "MonteCarlo";
 
 std::vector<std::string> parseLevels(const std::string& s)
 {
@@ -71,40 +71,41 @@ void readMonteCarloSettings(CMonteCarloApp& app, TCLAP::ValueArg<int>& argRuns,
 {
 	using namespace dynslam::config;
 	auto& params = app.params;
-	rejectUnknownKeys(params, kSection,
+	rejectUnknownKeys(params, kMonteCarloSection,
 	                  {"scenario", "backend", "runs", "levels", "threads", "seed", "figures",
 	                   "initial_covariance"});
 	app.scenarioFile =
-	    resolvePath(requireString(params, kSection, "scenario"), folderOf(app.iniFile));
+	    resolvePath(requireString(params, kMonteCarloSection, "scenario"), folderOf(app.iniFile));
 	app.scenario = sim::loadScenario(app.scenarioFile);
-	app.backend = readString(params, kSection, "backend", "ekf");
+	app.backend = readString(params, kMonteCarloSection, "backend", "ekf");
 	int& runs = app.runs;
-	runs = int(readInt(params, kSection, "runs", 25));
+	runs = int(readInt(params, kMonteCarloSection, "runs", 25));
 	if (argRuns.isSet()) runs = argRuns.getValue();
-	if (runs < 1) fail(kSection, "runs", std::to_string(runs), "must be >= 1");
+	if (runs < 1) fail(kMonteCarloSection, "runs", std::to_string(runs), "must be >= 1");
 	const std::string lv = !argLevels.getValue().empty()
 	                           ? argLevels.getValue()  // --noise (or --levels)
-	                           : readString(params, kSection, "levels", "all");
+	                           : readString(params, kMonteCarloSection, "levels", "all");
 	try
 	{
 		app.levels = parseLevels(lv);
 	}
 	catch (const std::invalid_argument& e)
 	{
-		fail(kSection, "levels", lv, e.what());
+		fail(kMonteCarloSection, "levels", lv, e.what());
 	}
 	int& threads = app.threads;
-	threads = int(readInt(params, kSection, "threads", 0));
+	threads = int(readInt(params, kMonteCarloSection, "threads", 0));
 	if (argThreads.isSet()) threads = argThreads.getValue();
-	if (threads < 0) fail(kSection, "threads", std::to_string(threads), "must be >= 0");
-	const long long s = argSeed.isSet() ? argSeed.getValue() : readInt(params, kSection, "seed", 1);
+	if (threads < 0) fail(kMonteCarloSection, "threads", std::to_string(threads), "must be >= 0");
+	const long long s =
+	    argSeed.isSet() ? argSeed.getValue() : readInt(params, kMonteCarloSection, "seed", 1);
 	if (s < 0 || s + 1000LL * 9 + runs > 4294967295LL)
-		fail(kSection, "seed", std::to_string(s),
+		fail(kMonteCarloSection, "seed", std::to_string(s),
 		     "seed + 1000 * 8 + runs must be in [0, 4294967295]");
 	app.seed = uint64_t(s);
-	app.figures = readBool(params, kSection, "figures", true) && !argNoFig.getValue();
+	app.figures = readBool(params, kMonteCarloSection, "figures", true) && !argNoFig.getValue();
 	app.sigma0FromLevel =
-	    readChoice(params, kSection, "initial_covariance", {"sigma_w", "ini"}, 0) == 0;
+	    readChoice(params, kMonteCarloSection, "initial_covariance", {"sigma_w", "ini"}, 0) == 0;
 	for (const auto& w : checkMrptSections(params, app.iniFile, strict))
 		app.logStr(mrpt::system::LVL_WARN, w);
 	makeBackend(app.backend, params);

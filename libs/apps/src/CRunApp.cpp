@@ -21,7 +21,7 @@ namespace dynslam::apps
 {
 namespace
 {
-const char* kSection = "Run";
+const char* kRunSection = "Run";
 }
 
 CRunApp::CRunApp() : mrpt::system::COutputLogger("dynslam-run") {}
@@ -96,10 +96,10 @@ void CRunApp::readSettings(const TRunOverrides& o)
 	try
 	{
 		using namespace dynslam::config;
-		rejectUnknownKeys(params, kSection,
+		rejectUnknownKeys(params, kRunSection,
 		                  {"rawlog", "ground_truth", "scenario", "noise_from_scenario", "backend",
 		                   "out_dir", "figures", "progress_every"});
-		const TDataSettings d = readDataSettings(params, kSection, folderOf(iniFile));
+		const TDataSettings d = readDataSettings(params, kRunSection, folderOf(iniFile));
 		rawlogFile = o.rawlog ? *o.rawlog : d.rawlog;
 		groundTruth = d.groundTruth;
 		if (o.rawlog) groundTruth = "auto";  // the INI's ground truth belongs to its rawlog
@@ -107,14 +107,14 @@ void CRunApp::readSettings(const TRunOverrides& o)
 		if (o.noGt) groundTruth.clear();
 		scenarioFile = d.scenario;
 		noiseFromScenario = d.noiseFromScenario;
-		backend = readString(params, kSection, "backend", "ekf");
+		backend = readString(params, kRunSection, "backend", "ekf");
 		if (o.backend) backend = *o.backend;
-		outDir = readString(params, kSection, "out_dir", outDir);
+		outDir = readString(params, kRunSection, "out_dir", outDir);
 		if (o.out) outDir = *o.out;
-		figures = readBool(params, kSection, "figures", true) && !o.noFigures;
-		progressEvery = int(readInt(params, kSection, "progress_every", 0));
+		figures = readBool(params, kRunSection, "figures", true) && !o.noFigures;
+		progressEvery = int(readInt(params, kRunSection, "progress_every", 0));
 		if (progressEvery < 0)
-			fail(kSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
+			fail(kRunSection, "progress_every", std::to_string(progressEvery), "must be >= 0");
 		if (rawlogFile.empty())
 			throw std::invalid_argument("dynslam-run: no rawlog (give -r FILE or [Run] rawlog in " +
 			                            iniFile + ")");

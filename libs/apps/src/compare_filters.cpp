@@ -9,7 +9,7 @@ namespace dynslam::apps::detail
 {
 namespace
 {
-const char* kSection = "Compare";
+const char* kCompareFiltersSection = "Compare";
 
 /** Every filter [Compare] filters may list: the default ones, then the dynamic EKF with the
  * other object models (issue 13; makeBackend). */
@@ -53,8 +53,9 @@ std::vector<std::string> parseFilterList(const std::string& fl)
 	for (const auto& k : all) known += (known.empty() ? "" : ", ") + k;
 	for (const auto& f : filters)
 		if (std::find(all.begin(), all.end(), f) == all.end())
-			fail(kSection, "filters", fl, "unknown filter '" + f + "' (known: " + known + ")");
-	if (filters.empty()) fail(kSection, "filters", fl, "empty list");
+			fail(kCompareFiltersSection, "filters", fl,
+			     "unknown filter '" + f + "' (known: " + known + ")");
+	if (filters.empty()) fail(kCompareFiltersSection, "filters", fl, "empty list");
 	return filters;
 }
 }  // namespace dynslam::apps::detail
