@@ -154,7 +154,6 @@ void CDynamicKFSLAM2D::reset()
 	if (options.odometry_bias.enabled()) addOdometryBiasBlock();
 	onLayoutChanged();
 	m_droppedStatic.clear();
-	m_droppedFeatures.clear();
 	m_in = estimator::TStepInput();
 	m_routed = estimator::TRoutedStep();
 	m_step = -1;
@@ -265,9 +264,8 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 			planObjectVelocities(plan);  // object-centric motion models only (cv)
 		}
 		planDrops(plan);
-		modules.planDrops(access, plan);
-		planObjectDrops(plan);  // drop_object_after_unseen_steps
-		planFallbacks(plan);    // object-centric motion models only (cv_fallback_steps)
+		modules.planDrops(access, plan);  // object drop
+		planFallbacks(plan);              // object-centric motion models only (cv_fallback_steps)
 		commit(plan);
 		modules.afterCommit(access);  // fusion
 		mergeLinkedObjects();         // classify_merge_linked (object-centric models) only

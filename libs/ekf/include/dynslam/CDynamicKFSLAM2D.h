@@ -347,12 +347,6 @@ private:
 	void planFeatures(TPending& plan);     // Alg. 3: new static landmarks, objects
 	void planObjectPoses(TPending& plan);  // Alg. 4, on the state extended by plan
 	void planDrops(TPending& plan);        // drop policies, recording what they drop
-	/** drop_object_after_unseen_steps (CDynamicKFSLAM2D_objectdrop.cpp): every block of the
-	 * objects due leaves the state; their poses (with the velocity) and f_0 are recorded per
-	 * record_dropped, the registry marks them dropped. After planDrops (which may have listed
-	 * and recorded some of their blocks already). */
-	void planObjectDrops(TPending& plan);
-	std::vector<TObjectFeatureEstimate> m_droppedFeatures;  ///< f_0 of dropped objects
 	/** Writes plan to the state: x, P (one rewrite; reallocated only if the size changes) and
 	 * the slot tables; clears plan. */
 	void commit(TPending& plan);

@@ -4,6 +4,7 @@
 
 #include "first_estimates.h"
 #include "fusion.h"
+#include "object_drop.h"
 
 namespace dynslam::ekf
 {
@@ -28,6 +29,9 @@ void CModuleList::build(TFilterAccess& a)
 	auto fej = makeFirstEstimateModule(a);  // first_estimate_jacobians
 	m_firstEstimates = fej.get();
 	add(std::move(fej));
+	auto drop = makeObjectDropModule(a);  // drop_object_after_unseen_steps
+	m_objectDrop = drop.get();
+	add(std::move(drop));
 }
 
 std::vector<std::string> CModuleList::names() const

@@ -12,6 +12,7 @@
 namespace dynslam::ekf
 {
 class CLandmarkFusionModule;
+class CObjectDropModule;
 class CFirstEstimateModule;
 
 class CModuleList
@@ -34,6 +35,7 @@ public:
 
 	// the modules the facade's getters and the static update read (null: disabled)
 	const CLandmarkFusionModule* fusion() const { return m_fusion; }
+	const CObjectDropModule* objectDrop() const { return m_objectDrop; }
 	const CFirstEstimateModule* firstEstimates() const { return m_firstEstimates; }
 
 private:
@@ -47,6 +49,7 @@ private:
 	std::array<std::vector<IFilterModule*>, kHookCount> m_hooks;
 	size_t m_calls = 0;
 	CLandmarkFusionModule* m_fusion = nullptr;
+	CObjectDropModule* m_objectDrop = nullptr;
 	CFirstEstimateModule* m_firstEstimates = nullptr;
 };
 }  // namespace dynslam::ekf
