@@ -110,12 +110,6 @@ void CDynamicKFSLAM2D::makeSeams()
 		// ID -1 readings associated with MRPT's data association (as CRangeBearingKFSLAM2D).
 		m_router->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
-	m_liveMerge.reset();  // classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp)
-	// The live merge belongs to the routers that classify (their registry capability; a user
-	// router outside the registry has none).
-	if (const auto& reg = estimator::routers();
-	    reg.has(m_router->name()) && reg.caps(m_router->name()).classifies)
-		m_liveMerge = estimator::makeLiveMergeDetector(options.classify, objectCentric);
 	m_router->reset();
 	if (!m_userEngine && !options.sparse_static_update)
 		m_engine = std::make_unique<CMrptUpdateEngine>(*this);  // static_update = mrpt
@@ -267,9 +261,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		modules.planDrops(access, plan);  // object drop
 		planFallbacks(plan);              // object-centric motion models only (cv_fallback_steps)
 		commit(plan);
-		modules.afterCommit(access);  // fusion
-		mergeLinkedObjects();         // classify_merge_linked (object-centric models) only
-		mergeLiveObjects();           // classify_merge_live only
+		modules.afterCommit(access);  // fusion, linked merge, live merge
 		modules.endOfStep(access);    // first estimates: record the new landmarks'
 		compressIfDue();              // compressed EKF only
 	}

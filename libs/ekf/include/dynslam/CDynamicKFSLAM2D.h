@@ -382,12 +382,6 @@ private:
 	};
 	/** The velocity of obj from its pose block `pose` of this step; false: none yet. */
 	bool velocityInit(int32_t obj, size_t pose, TVelocityInit& out);
-	/** The step's merges (TRoutedStep::merges), after its commit; counted in the report. */
-	void mergeLinkedObjects();
-	/** classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp): tests every pair of objects seen
-	 * in this step (estimator::CLiveMergeDetector) and merges those that move as one body. */
-	void mergeLiveObjects();
-	std::unique_ptr<estimator::CLiveMergeDetector> m_liveMerge;  ///< null: classify_merge_live off
 	std::set<int32_t> m_lostNow;      ///< objects lost in this step (objectFeatureUpdates)
 	std::set<int32_t> m_awaitingVel;  ///< lost objects that have no velocity yet
 	std::set<int32_t> m_reinitNow;    ///< lost objects given a velocity in this step

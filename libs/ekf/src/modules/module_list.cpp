@@ -4,6 +4,8 @@
 
 #include "first_estimates.h"
 #include "fusion.h"
+#include "linked_merge.h"
+#include "live_merge.h"
 #include "object_drop.h"
 
 namespace dynslam::ekf
@@ -32,6 +34,8 @@ void CModuleList::build(TFilterAccess& a)
 	auto drop = makeObjectDropModule(a);  // drop_object_after_unseen_steps
 	m_objectDrop = drop.get();
 	add(std::move(drop));
+	add(makeLinkedMergeModule(a));  // classify_merge_linked
+	add(makeLiveMergeModule(a));    // classify_merge_live
 }
 
 std::vector<std::string> CModuleList::names() const
