@@ -1,6 +1,7 @@
 /** CDynamicKFSLAM2D: the step driver on the estimator core (parse -> route -> propagate ->
  * update -> augment -> motion model -> drop -> commit), the prediction (Alg. 7), the static
- * update through the update engine (Alg. 5) and first-estimate Jacobians. MRPT's hooks and
+ * update through the update engine (Alg. 5). The capability modules' hooks: src/modules/
+ * (doc/architecture.md "Capability modules"). MRPT's hooks and
  * MRPT's update engine: CDynamicKFSLAM2D_mrpt.cpp. Augmentations, drops and the object motion
  * model: CDynamicKFSLAM2D_objects.cpp. */
 #include <dynslam/CDynamicKFSLAM2D.h>
@@ -17,6 +18,10 @@
 #include <limits>
 #include <set>
 #include <stdexcept>
+
+#include "modules/first_estimates.h"
+#include "modules/fusion.h"
+#include "modules/module_list.h"
 
 namespace dynslam
 {
@@ -51,6 +56,8 @@ CDynamicKFSLAM2D::CDynamicKFSLAM2D()
 	setLoggerName("CDynamicKFSLAM2D");
 	reset();
 }
+
+CDynamicKFSLAM2D::~CDynamicKFSLAM2D() = default;
 
 void CDynamicKFSLAM2D::setRouter(std::unique_ptr<estimator::IMeasurementRouter> r)
 {
@@ -103,12 +110,6 @@ void CDynamicKFSLAM2D::makeSeams()
 		// ID -1 readings associated with MRPT's data association (as CRangeBearingKFSLAM2D).
 		m_router->setStaticAssociation(slamStaticAssociation(options.classify.assoc));
 	}
-	m_liveMerge.reset();  // classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp)
-	// The live merge belongs to the routers that classify (their registry capability; a user
-	// router outside the registry has none).
-	if (const auto& reg = estimator::routers();
-	    reg.has(m_router->name()) && reg.caps(m_router->name()).classifies)
-		m_liveMerge = estimator::makeLiveMergeDetector(options.classify, objectCentric);
 	m_router->reset();
 	if (!m_userEngine && !options.sparse_static_update)
 		m_engine = std::make_unique<CMrptUpdateEngine>(*this);  // static_update = mrpt
@@ -137,20 +138,16 @@ void CDynamicKFSLAM2D::reset()
 	m_gaugeOrigin = options.initial_pose.head<2>();
 	makeSeams();
 	m_drop = estimator::CDropPolicy(options.dropOptions());
-	m_fusion = estimator::CLandmarkFusion(options.fuse_landmarks_prob);
-	m_fusions.clear();
-	if (m_fusion.enabled() && m_lifecycle->rewritesStorage())
-		throw std::invalid_argument(
-		    "CDynamicKFSLAM2D: fuse_landmarks_prob needs the full state "
-		    "(the state lifecycle " +
-		    m_lifecycle->name() + " keeps landmarks out of it)");
+	// The capability modules the options enable (src/modules/module_list.cpp).
+	if (!m_modules) m_modules = std::make_unique<ekf::CModuleList>();
+	ekf::TFilterAccess access{*this};
+	m_modules->build(access);
 	m_lifecycle->reset();
 	m_whole.valid = false;
 	m_layout.clear();
 	if (options.odometry_bias.enabled()) addOdometryBiasBlock();
 	onLayoutChanged();
 	m_droppedStatic.clear();
-	m_droppedFeatures.clear();
 	m_in = estimator::TStepInput();
 	m_routed = estimator::TRoutedStep();
 	m_step = -1;
@@ -160,8 +157,6 @@ void CDynamicKFSLAM2D::reset()
 	m_reinitNow.clear();
 	m_modes.clear();
 	m_failed = false;
-	m_firstEstimate.clear();
-	m_predictedEgo.reset();
 	m_lastF.reset();
 	m_lastStamp = std::numeric_limits<double>::quiet_NaN();
 }
@@ -218,13 +213,15 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 	m_report = TStepReport();
 	m_report.step = m_step;
 	m_whole.valid = false;
+	ekf::TFilterAccess access{*this};  // the modules' hooks
+	ekf::CModuleList& modules = *m_modules;
 	try
 	{
 		expandIfNeeded();  // compressed EKF only
 		m_router->setContext(routerContext());
 		m_routed = m_router->route(m_step, m_in.readings,
 		                           [this](int32_t id) { return m_staticBlock.count(id) != 0; });
-		resolveFusedIds();  // fuse_landmarks_prob: fused IDs read as their landmark
+		modules.afterRoute(access);  // fusion: fused IDs read as their landmark
 		m_report.skipped_unknown_object_feature = m_routed.skipped_unknown_object_feature;
 		m_report.skipped_dropped_object = m_routed.skipped_dropped_object;
 		m_report.classify_candidates = m_routed.candidates;
@@ -239,6 +236,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		m_report.classify_joined = m_routed.joined;
 		convertStaticLandmarks(m_routed.converted);  // classify: a parked car drove off
 		propagateEgo();                              // Alg. 7
+		modules.afterPropagate(access);              // first estimates: x_{k|k-1}
 		predictObjects();                            // object-centric motion models only (cv)
 		staticUpdate();                              // Alg. 5
 		objectFeatureUpdates();                      // object-centric motion models only (cv)
@@ -260,14 +258,12 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 			planObjectVelocities(plan);  // object-centric motion models only (cv)
 		}
 		planDrops(plan);
-		planObjectDrops(plan);  // drop_object_after_unseen_steps
-		planFallbacks(plan);    // object-centric motion models only (cv_fallback_steps)
+		modules.planDrops(access, plan);  // object drop
+		planFallbacks(plan);              // object-centric motion models only (cv_fallback_steps)
 		commit(plan);
-		fuseLandmarks();         // fuse_landmarks_prob only
-		mergeLinkedObjects();    // classify_merge_linked (object-centric models) only
-		mergeLiveObjects();      // classify_merge_live only
-		recordFirstEstimates();  // first-estimate Jacobians (optional)
-		compressIfDue();         // compressed EKF only
+		modules.afterCommit(access);  // fusion, linked merge, live merge
+		modules.endOfStep(access);    // first estimates: record the new landmarks'
+		compressIfDue();              // compressed EKF only
 	}
 	catch (const std::exception& e)
 	{
@@ -290,9 +286,9 @@ void CDynamicKFSLAM2D::propagateEgo()
 		const Eigen::Matrix3d& S = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
 		auto x = m_xkk.asEigen();
 		auto P = cov();
-		const bool fej = options.first_estimate_jacobians && m_predictedEgo;
 		Eigen::Matrix3d F;
-		const Eigen::Vector3d* fejPrev = fej ? &*m_predictedEgo : nullptr;
+		const ekf::CFirstEstimateModule* fej = m_modules->firstEstimates();
+		const Eigen::Vector3d* fejPrev = fej ? fej->predictedEgo() : nullptr;
 		if (options.odometry_bias.enabled())  // the bias block is block 0
 			ekf::propagateWithBias(x, P, m_in.u, S, options.odometry_bias.block(m_layout.first(0)),
 			                       dt, fejPrev, &F);
@@ -301,8 +297,6 @@ void CDynamicKFSLAM2D::propagateEgo()
 		m_lastF = F;
 		OnNormalizeStateVector();
 	}
-	if (options.first_estimate_jacobians)
-		m_predictedEgo = Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]);
 }
 
 estimator::TRouterContext CDynamicKFSLAM2D::routerContext() const
@@ -332,9 +326,10 @@ estimator::TUpdateContext CDynamicKFSLAM2D::updateContext() const
 	ctx.sensor_pose = m_in.sensor_pose;
 	ctx.gate_threshold = m_engineGated ? estimator::gateThreshold2Dof(options.innovation_gate)
 	                                   : std::numeric_limits<double>::infinity();
-	if (options.first_estimate_jacobians)
-		ctx.jacobians = [this](int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& Jx,
-		                       Eigen::Matrix2d& Jf) { firstEstimateJacobians(id, ego, Jx, Jf); };
+	if (const ekf::CFirstEstimateModule* fej = m_modules->firstEstimates())
+		ctx.jacobians = [this, fej](int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& Jx,
+		                            Eigen::Matrix2d& Jf)
+		{ fej->jacobians(options.measurement_model, m_in.sensor_pose, id, ego, Jx, Jf); };
 	return ctx;
 }
 
@@ -355,45 +350,37 @@ void CDynamicKFSLAM2D::staticUpdate()
 }
 
 // ------------------------------------------------------------------------------------------
-// First-estimate Jacobians
+// The capability modules (src/modules/)
 // ------------------------------------------------------------------------------------------
 
-void CDynamicKFSLAM2D::recordFirstEstimates()
+void CDynamicKFSLAM2D::forgetStatic(int32_t id)
 {
-	if (!options.first_estimate_jacobians) return;
-	// A landmark's first estimate is its mean at the end of the step that initialized it (the
-	// object steps and the smoothing may move it after its augmentation in that step). A
-	// dropped landmark is forgotten: if seen again, it is a new state entry with a new one.
-	std::set<int32_t> inState;
-	for (const auto& [id, b] : m_staticBlock)
-	{
-		inState.insert(id);
-		const int k = m_layout.first(b);
-		m_firstEstimate.emplace(id, Eigen::Vector2d(m_xkk[k], m_xkk[k + 1]));
-	}
-	for (auto it = m_firstEstimate.begin(); it != m_firstEstimate.end();)
-		it = inState.count(it->first) || m_lifecycle->isPassive(it->first)
-		         ? std::next(it)
-		         : m_firstEstimate.erase(it);
+	m_drop.forget(id);
+	m_modules->staticForgotten(id);
 }
 
-void CDynamicKFSLAM2D::firstEstimateJacobians(int32_t id, const Eigen::Vector3d& ego,
-                                              models::Matrix23d& J_z_x,
-                                              Eigen::Matrix2d& J_z_f) const
+std::vector<std::string> CDynamicKFSLAM2D::enabledModules() const { return m_modules->names(); }
+
+size_t CDynamicKFSLAM2D::moduleHookCalls() const { return m_modules->hookCalls(); }
+
+const std::vector<estimator::TFusionPair>& CDynamicKFSLAM2D::getFusedLandmarks() const
 {
-	const auto it = m_firstEstimate.find(id);
-	if (it == m_firstEstimate.end()) return;
-	models::observeFromSensor(options.measurement_model, ego, m_in.sensor_pose, it->second, &J_z_x,
-	                          &J_z_f);
+	static const std::vector<estimator::TFusionPair> none;
+	const ekf::CLandmarkFusionModule* fusion = m_modules->fusion();
+	return fusion ? fusion->fusions() : none;
 }
 
 std::optional<Eigen::Vector2d> CDynamicKFSLAM2D::firstEstimate(int32_t id) const
 {
-	const auto it = m_firstEstimate.find(id);
-	if (it == m_firstEstimate.end()) return std::nullopt;
-	return it->second;
+	const ekf::CFirstEstimateModule* fej = m_modules->firstEstimates();
+	return fej ? fej->firstEstimate(id) : std::nullopt;
 }
 
-std::optional<Eigen::Vector3d> CDynamicKFSLAM2D::lastPredictedEgo() const { return m_predictedEgo; }
+std::optional<Eigen::Vector3d> CDynamicKFSLAM2D::lastPredictedEgo() const
+{
+	const ekf::CFirstEstimateModule* fej = m_modules->firstEstimates();
+	const Eigen::Vector3d* e = fej ? fej->predictedEgo() : nullptr;
+	return e ? std::optional<Eigen::Vector3d>(*e) : std::nullopt;
+}
 
 }  // namespace dynslam

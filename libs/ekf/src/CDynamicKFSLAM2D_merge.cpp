@@ -51,12 +51,6 @@ void append(std::vector<int>& a, const std::vector<int>& b)
 }
 }  // namespace
 
-void CDynamicKFSLAM2D::mergeLinkedObjects()
-{
-	for (const auto& m : m_routed.merges)
-		++(mergeObjects(m.from, m.into) ? m_report.objects_merged : m_report.merges_skipped);
-}
-
 bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 {
 	const estimator::CObjectRegistry& reg = m_router->registry();

@@ -8,6 +8,9 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "modules/module_list.h"
+#include "modules/object_drop.h"
+
 namespace dynslam
 {
 using estimator::BlockKind;
@@ -93,7 +96,10 @@ std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 	}
 	TBlock f0;  // recorded f_0 of dropped objects: their relative covariance plus the gauge's
 	f0.kind = BlockKind::ObjectFeature0;
-	for (TObjectFeatureEstimate e : m_droppedFeatures)
+	static const std::vector<TObjectFeatureEstimate> none;
+	const ekf::CObjectDropModule* drops =
+	    m_modules->objectDrop();  // drop_object_after_unseen_steps
+	for (TObjectFeatureEstimate e : drops ? drops->droppedFeatures() : none)
 	{
 		e.cov += gaugeTerm(&f0, e.mean);
 		out.push_back(e);

@@ -69,6 +69,12 @@
 
 namespace dynslam
 {
+namespace ekf
+{
+struct TFilterAccess;  // the capability modules' access (src/modules/filter_module.h)
+class CModuleList;
+}  // namespace ekf
+
 /** What one 2-dof slot of MRPT's storage (after the ego pose) holds: a view of the typed
  * layout (estimator::CPaddedLayout, getLayout()) for MRPT's landmark indices and for tests. */
 enum class SlotKind : uint8_t
@@ -105,7 +111,7 @@ public:
 	using TOptions = TModelOptions;
 	TOptions options;
 	CDynamicKFSLAM2D();
-	~CDynamicKFSLAM2D() override = default;
+	~CDynamicKFSLAM2D() override;
 	// Not copyable (KF_options holds a reference to the logger's level, see mrpt-notes).
 	CDynamicKFSLAM2D(const CDynamicKFSLAM2D&) = delete;
 	CDynamicKFSLAM2D& operator=(const CDynamicKFSLAM2D&) = delete;
@@ -189,8 +195,13 @@ public:
 	/** State vector index of the pad entries (for checks). */
 	std::vector<size_t> padIndices() const;
 	const TStepReport& getLastStepReport() const override { return m_report; }
-	/** fuse_landmarks_prob (CDynamicKFSLAM2D_fusion.cpp): every fusion so far (record_dropped). */
-	const std::vector<estimator::TFusionPair>& getFusedLandmarks() const { return m_fusions; }
+	/** fuse_landmarks_prob (src/modules/fusion.cpp): every fusion so far (record_dropped). */
+	const std::vector<estimator::TFusionPair>& getFusedLandmarks() const;
+	/** The capability modules the options enabled (doc/architecture.md "Capability modules"), in
+	 * the order their hooks run; empty: the step calls no module hook. */
+	std::vector<std::string> enabledModules() const;
+	/** The module hook calls since reset() (0 with no module enabled). */
+	size_t moduleHookCalls() const;
 	/** The router's decisions about the last step's readings, in observation order. */
 	const estimator::TRoutedStep& lastRoutedStep() const { return m_routed; }
 	int stepCount() const { return m_step + 1; }
@@ -286,17 +297,10 @@ protected:
 	void OnNormalizeStateVector() override;
 
 private:
-	// first-estimate Jacobians (options.first_estimate_jacobians)
-	/** Records the mean of static landmarks without a first estimate, forgets the first
-	 * estimates of landmarks no longer in the state (called at the end of every step). */
-	void recordFirstEstimates();
-	/** Replaces J_z_x, J_z_f of static landmark `id` by those at (ego, its first estimate);
-	 * unchanged if it has none. */
-	void firstEstimateJacobians(int32_t id, const Eigen::Vector3d& ego, models::Matrix23d& J_z_x,
-	                            Eigen::Matrix2d& J_z_f) const;
-	std::map<int32_t, Eigen::Vector2d> m_firstEstimate;  ///< landmark ID -> first estimate
-	std::optional<Eigen::Vector3d> m_predictedEgo;       ///< x_{k|k-1} of the last step
-	std::optional<Eigen::Matrix3d> m_lastF;              ///< F of the last prediction
+	/** The enabled capability modules (src/modules/module_list.h; made by reset()). */
+	std::unique_ptr<ekf::CModuleList> m_modules;
+	friend struct ekf::TFilterAccess;
+	std::optional<Eigen::Matrix3d> m_lastF;  ///< F of the last prediction
 
 	// odometry bias (options.odometry_bias, CDynamicKFSLAM2D_bias.cpp)
 	/** Appends the bias block (the first block, never dropped) with its prior. */
@@ -309,7 +313,8 @@ private:
 
 	friend class CMrptUpdateEngine;
 	/** Alg. 7: the ego prediction by ekf::propagate (skipped on an empty map if
-	 * skip_prediction_on_empty_map), then the first-estimate record. */
+	 * skip_prediction_on_empty_map); with first-estimate Jacobians, linearised at the last
+	 * step's x_{k|k-1} (src/modules/first_estimates.h). */
 	void propagateEgo();
 	/** Alg. 5 by the update engine, with the tracked static readings of the step. */
 	void staticUpdate();
@@ -342,12 +347,6 @@ private:
 	void planFeatures(TPending& plan);     // Alg. 3: new static landmarks, objects
 	void planObjectPoses(TPending& plan);  // Alg. 4, on the state extended by plan
 	void planDrops(TPending& plan);        // drop policies, recording what they drop
-	/** drop_object_after_unseen_steps (CDynamicKFSLAM2D_objectdrop.cpp): every block of the
-	 * objects due leaves the state; their poses (with the velocity) and f_0 are recorded per
-	 * record_dropped, the registry marks them dropped. After planDrops (which may have listed
-	 * and recorded some of their blocks already). */
-	void planObjectDrops(TPending& plan);
-	std::vector<TObjectFeatureEstimate> m_droppedFeatures;  ///< f_0 of dropped objects
 	/** Writes plan to the state: x, P (one rewrite; reallocated only if the size changes) and
 	 * the slot tables; clears plan. */
 	void commit(TPending& plan);
@@ -383,12 +382,6 @@ private:
 	};
 	/** The velocity of obj from its pose block `pose` of this step; false: none yet. */
 	bool velocityInit(int32_t obj, size_t pose, TVelocityInit& out);
-	/** The step's merges (TRoutedStep::merges), after its commit; counted in the report. */
-	void mergeLinkedObjects();
-	/** classify_merge_live (CDynamicKFSLAM2D_livemerge.cpp): tests every pair of objects seen
-	 * in this step (estimator::CLiveMergeDetector) and merges those that move as one body. */
-	void mergeLiveObjects();
-	std::unique_ptr<estimator::CLiveMergeDetector> m_liveMerge;  ///< null: classify_merge_live off
 	std::set<int32_t> m_lostNow;      ///< objects lost in this step (objectFeatureUpdates)
 	std::set<int32_t> m_awaitingVel;  ///< lost objects that have no velocity yet
 	std::set<int32_t> m_reinitNow;    ///< lost objects given a velocity in this step
@@ -456,12 +449,7 @@ private:
 	 */
 	void makeSeams();
 	estimator::CDropPolicy m_drop;
-	// landmark fusion (fuse_landmarks_prob, CDynamicKFSLAM2D_fusion.cpp)
-	void resolveFusedIds();         ///< after routing: fused IDs read as their landmark
-	void fuseLandmarks();           ///< after the commit: the step's fusions
-	void forgetStatic(int32_t id);  ///< a static landmark left the state (drop policy, fusion)
-	estimator::CLandmarkFusion m_fusion;
-	std::vector<estimator::TFusionPair> m_fusions;
+	void forgetStatic(int32_t id);  ///< a static landmark left the state (drop policy, surgery)
 
 	// inputs of the current step
 	estimator::TStepInput m_in;

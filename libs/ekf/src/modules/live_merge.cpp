@@ -1,18 +1,14 @@
-/** CDynamicKFSLAM2D: merging two live objects that move as one rigid body (classify_merge_live,
- * doc/results/classification.md "Merging two live objects"). At the end of a step, every pair of
- * objects seen in it is tested (estimator::CLiveMergeDetector) on B's features expressed in A's
- * frame, f' = g_A^-1(xi_A, g_B(xi_B, f^B)) (models::mergeObjectFeatures, the map the merge
- * applies), with their covariance J P J^T from the filter's joint covariance, and, with an
- * object-centric model, the velocity residual (models::rigidVelocityResidual); a pair decided rigid
- * is merged by mergeObjects (CDynamicKFSLAM2D_merge.cpp). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+/** The live-merge module (live_merge.h). */
+#include "live_merge.h"
+
+#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/models/live_merge.h>
 #include <dynslam/models/object_merge.h>
 
 #include <Eigen/Cholesky>
 #include <utility>
 
-namespace dynslam
+namespace dynslam::ekf
 {
 using estimator::BlockKind;
 
@@ -141,16 +137,31 @@ static estimator::TLiveMergeSample liveSample(const estimator::CPaddedLayout& L,
 	return s;
 }
 
-void CDynamicKFSLAM2D::mergeLiveObjects()
+std::unique_ptr<CLiveMergeModule> makeLiveMergeModule(TFilterAccess& a)
 {
-	if (!m_liveMerge) return;
+	// The live merge belongs to the routers that classify (their registry capability; a user
+	// router outside the registry has none).
+	const auto& reg = estimator::routers();
+	const std::string router = a.router().name();
+	if (!reg.has(router) || !reg.caps(router).classifies) return nullptr;
+	auto detector =
+	    estimator::makeLiveMergeDetector(a.options().classify, a.motion().objectCentric());
+	if (!detector) return nullptr;  // classify_merge_live off
+	return std::make_unique<CLiveMergeModule>(std::move(detector));
+}
+
+void CLiveMergeModule::afterCommit(TFilterAccess& a)
+{
+	const int step = a.step();
+	estimator::IMeasurementRouter& router = a.router();
+	const estimator::CPaddedLayout& layout = a.layout();
 	std::set<int32_t> seen;
-	for (const estimator::TRoutedReading& r : m_routed.readings)
+	for (const estimator::TRoutedReading& r : a.routed().readings)
 		if (r.route == estimator::Route::ObjectTimeT && r.object >= 0) seen.insert(r.object);
-	const Eigen::VectorXd x = m_xkk.asEigen();
+	const Eigen::VectorXd x = a.mean();
 	const std::vector<TLive> live =
-	    liveObjects(m_layout, m_router->registry(), x, m_step, m_motion->objectCentric(), seen);
-	const ekf::CSquareBuffer::ConstView P = std::as_const(m_cov).view();
+	    liveObjects(layout, router.registry(), x, step, a.motion().objectCentric(), seen);
+	const ekf::CSquareBuffer::ConstView P = a.covBuffer().view();
 	std::vector<std::pair<int32_t, int32_t>> merges;  // (from, into)
 	std::set<int32_t> busy;
 	for (size_t i = 0; i < live.size(); ++i)
@@ -162,17 +173,17 @@ void CDynamicKFSLAM2D::mergeLiveObjects()
 			const bool iInto = live[i].dim == 3 && (live[j].dim == 2 || live[i].obj < live[j].obj);
 			const TLive& A = iInto ? live[i] : live[j];
 			const TLive& B = iInto ? live[j] : live[i];
-			if ((A.p - B.p).norm() > options.classify.group_max_dist) continue;
-			if (!m_router->allowsMerge(A.obj, B.obj)) continue;  // e.g. two boxes
-			const estimator::TLiveMergeSample smp = liveSample(m_layout, x, P, A, B, m_step);
-			const estimator::TLiveMergeStats st = m_liveMerge->observe(A.obj, B.obj, smp);
+			if ((A.p - B.p).norm() > a.options().classify.group_max_dist) continue;
+			if (!router.allowsMerge(A.obj, B.obj)) continue;  // e.g. two boxes
+			const estimator::TLiveMergeSample smp = liveSample(layout, x, P, A, B, step);
+			const estimator::TLiveMergeStats st = m_detector->observe(A.obj, B.obj, smp);
 			if (!st.rigid || busy.count(A.obj) || busy.count(B.obj)) continue;
 			merges.emplace_back(B.obj, A.obj);
 			busy.insert(A.obj);
 			busy.insert(B.obj);
 		}
-	m_liveMerge->prune(m_step, 2 * m_liveMerge->window() + 2);
+	m_detector->prune(step, 2 * m_detector->window() + 2);
 	for (const auto& [from, into] : merges)
-		if (mergeObjects(from, into)) ++m_report.objects_merged_live;
+		if (a.mergeObjects(from, into)) ++a.report().objects_merged_live;
 }
-}  // namespace dynslam
+}  // namespace dynslam::ekf

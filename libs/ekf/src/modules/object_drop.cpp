@@ -1,10 +1,10 @@
-/** CDynamicKFSLAM2D: dropping objects without readings (drop_object_after_unseen_steps). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+/** The object-drop module (object_drop.h). */
+#include "object_drop.h"
 
 #include <stdexcept>
 #include <type_traits>
 
-namespace dynslam
+namespace dynslam::ekf
 {
 using estimator::BlockKind;
 using estimator::TBlock;
@@ -37,19 +37,28 @@ Record recordOf(const Vec& x, const Mat& P, const std::vector<int>& idx, int ste
 }
 }  // namespace
 
-void CDynamicKFSLAM2D::planObjectDrops(TPending& plan)
+std::unique_ptr<CObjectDropModule> makeObjectDropModule(TFilterAccess& a)
 {
-	if (m_drop.options().drop_object_after_unseen_steps <= 0) return;
-	estimator::CObjectRegistry& registry = m_router->registry();
+	if (a.dropPolicy().options().drop_object_after_unseen_steps <= 0) return nullptr;
+	return std::make_unique<CObjectDropModule>();
+}
+
+void CObjectDropModule::planDrops(TFilterAccess& a, TPending& plan)
+{
+	estimator::CDropPolicy& drop = a.dropPolicy();
+	estimator::CObjectRegistry& registry = a.router().registry();
+	const int step = a.step();
 	std::vector<int32_t> due;
 	for (const auto& [obj, entry] : registry.objects())
-		if (!entry.dropped && m_drop.objectDue(obj, m_step, entry.first_step)) due.push_back(obj);
+		if (!entry.dropped && drop.objectDue(obj, step, entry.first_step)) due.push_back(obj);
 	if (due.empty()) return;
-	const estimator::CPaddedLayout& ext = extendedLayout(plan);
-	std::vector<bool>& listed = m_dropFlags;
+	const estimator::CPaddedLayout& ext = a.extendedLayout(plan);
+	const estimator::CPaddedLayout& layout = a.layout();
+	std::vector<bool>& listed = m_listed;
 	listed.assign(ext.size(), false);
 	for (const size_t b : plan.remove) listed[b] = true;
-	const auto P = cov();
+	const auto P = a.cov();
+	const auto x = a.mean();
 	for (const int32_t obj : due)
 	{
 		size_t velocity = SIZE_MAX, newest = SIZE_MAX;
@@ -57,7 +66,7 @@ void CDynamicKFSLAM2D::planObjectDrops(TPending& plan)
 		{
 			const TBlock& t = ext[b];
 			if (t.object != obj || !isObjectBlock(t.kind)) continue;
-			if (b >= m_layout.size())
+			if (b >= layout.size())
 				throw std::logic_error("CDynamicKFSLAM2D: an object without readings got a block");
 			if (t.kind == BlockKind::ObjectVelocity) velocity = b;
 			if (t.kind == BlockKind::ObjectPose &&
@@ -68,21 +77,19 @@ void CDynamicKFSLAM2D::planObjectDrops(TPending& plan)
 		{
 			const TBlock& t = ext[b];
 			if (t.object != obj || !isObjectBlock(t.kind) || listed[b]) continue;
-			const std::vector<int> idx = m_layout.indices(b);
+			const std::vector<int> idx = layout.indices(b);
 			if (t.kind == BlockKind::ObjectPose)
 			{
 				const int dim = int(idx.size());
 				registry.recordDroppedPose(
-				    obj, recordOf<estimator::TPoseRecord>(m_xkk, P, idx, t.step, dim),
-				    m_drop.record());
+				    obj, recordOf<estimator::TPoseRecord>(x, P, idx, t.step, dim), drop.record());
 				if (b == newest && velocity != SIZE_MAX)  // the velocity: its first dim entries
-					registry.recordDroppedVelocity(
-					    obj,
-					    recordOf<estimator::TVelocityRecord>(m_xkk, P, m_layout.indices(velocity),
-					                                         t.step, dim),
-					    m_drop.record());
+					registry.recordDroppedVelocity(obj,
+					                               recordOf<estimator::TVelocityRecord>(
+					                                   x, P, layout.indices(velocity), t.step, dim),
+					                               drop.record());
 			}
-			else if (t.kind == BlockKind::ObjectFeature0 && m_drop.record())
+			else if (t.kind == BlockKind::ObjectFeature0 && drop.record())
 			{
 				TObjectFeatureEstimate f;
 				f.object = obj;
@@ -90,19 +97,17 @@ void CDynamicKFSLAM2D::planObjectDrops(TPending& plan)
 				f.id = t.id;
 				f.at_time0 = true;
 				f.step = t.step;
-				f.mean = Eigen::Vector2d(m_xkk[idx[0]], m_xkk[idx[1]]);
+				f.mean = Eigen::Vector2d(x[idx[0]], x[idx[1]]);
 				f.cov << P(idx[0], idx[0]), P(idx[0], idx[1]), P(idx[1], idx[0]), P(idx[1], idx[1]);
-				m_droppedFeatures.push_back(f);
+				m_dropped.push_back(f);
 			}
 			plan.remove.push_back(b);
 			listed[b] = true;
 		}
 		registry.markDropped(obj);
-		m_drop.forgetObject(obj);
-		m_lostNow.erase(obj);
-		m_awaitingVel.erase(obj);
-		m_reinitNow.erase(obj);
-		++m_report.dropped_objects;
+		drop.forgetObject(obj);
+		a.forgetObjectMotion(obj);
+		++a.report().dropped_objects;
 	}
 }
-}  // namespace dynslam
+}  // namespace dynslam::ekf

@@ -1,0 +1,106 @@
+#pragma once
+/** @file filter_module.h
+ * (Internal to dynslam::ekf.) The capability-module seam of CDynamicKFSLAM2D (issue 32 item 2,
+ * doc/architecture.md "Capability modules"). A capability that only some configurations use
+ * (landmark fusion, object drops, first-estimate Jacobians, linked and live merges) is a module:
+ * it owns its members, is made by reset() only when its options enable it (module_list.cpp), and
+ * names the hooks of the step it takes part in. The step calls the hooks of the enabled modules
+ * only, in the order the modules were made:
+ *
+ *   route -> AfterRoute -> propagate -> AfterPropagate -> update -> augment -> motion model ->
+ *   drops -> PlanDrops -> commit -> AfterCommit -> EndOfStep -> compression
+ *
+ * plus StaticForgotten whenever a static landmark leaves the state (drop policy, surgery).
+ * Modules reach the filter's internals only through TFilterAccess, the one friend of the facade
+ * for them: the list of what a module may read and write. */
+#include <dynslam/CDynamicKFSLAM2D.h>
+
+#include <cstdint>
+#include <string>
+#include <utility>
+
+namespace dynslam::ekf
+{
+/** The hook points of the step (IFilterModule's virtual functions of the same names). */
+enum class Hook : uint8_t
+{
+	AfterRoute,      ///< after the router's decisions, before the report copies them
+	AfterPropagate,  ///< after the ego prediction (also when it was skipped)
+	PlanDrops,       ///< after the drop policies planned theirs, before the commit
+	AfterCommit,     ///< after the step's last commit (state surgery may commit again)
+	EndOfStep,       ///< last, before the state's lifecycle compresses
+	StaticForgotten  ///< a static landmark left the state or became an object feature
+};
+constexpr size_t kHookCount = 6;
+/** The bit of hook h in IFilterModule::hooks(). */
+constexpr unsigned hookBit(Hook h) { return 1u << unsigned(h); }
+
+/** The narrow access of the modules to the filter (a friend of CDynamicKFSLAM2D). Everything a
+ * module reads or writes of the filter goes through these members. */
+struct TFilterAccess
+{
+	using TPending = CDynamicKFSLAM2D::TPending;
+	CDynamicKFSLAM2D& f;
+
+	const TModelOptions& options() const { return f.options; }
+	int step() const { return f.m_step; }
+	TStepReport& report() { return f.m_report; }
+	/** The sensor pose of the step's readings (robot frame). */
+	const Eigen::Vector3d& sensorPose() const { return f.m_in.sensor_pose; }
+	/** The router's decisions of the step (AfterRoute may change their routes and IDs). */
+	estimator::TRoutedStep& routed() { return f.m_routed; }
+	estimator::IMeasurementRouter& router() { return *f.m_router; }
+	/** Whether the router was set by setRouter (not made from the options). */
+	bool userRouter() const { return f.m_userRouter; }
+	const estimator::IObjectMotionModel& motion() const { return *f.m_motion; }
+	const estimator::IStateLifecycle& lifecycle() const { return *f.m_lifecycle; }
+	estimator::CDropPolicy& dropPolicy() { return f.m_drop; }
+
+	// the working state
+	const estimator::CPaddedLayout& layout() const { return f.m_layout; }
+	/** Landmark ID -> block of the static landmarks in the working state. */
+	const std::map<int32_t, size_t>& staticBlocks() const { return f.m_staticBlock; }
+	auto mean() { return f.m_xkk.asEigen(); }
+	auto mean() const { return std::as_const(f.m_xkk).asEigen(); }
+	Eigen::Vector3d ego() const { return {f.m_xkk[0], f.m_xkk[1], f.m_xkk[2]}; }
+	/** The covariance for writing (marks MRPT's copy stale). */
+	ekf::CSquareBuffer::View cov() { return f.cov(); }
+	const ekf::CSquareBuffer& covBuffer() const { return f.m_cov; }
+
+	// operations of the facade
+	/** The layout extended by plan (valid until the next call or commit). */
+	const estimator::CPaddedLayout& extendedLayout(const TPending& plan)
+	{
+		return f.extendedLayout(plan);
+	}
+	void commit(TPending& plan) { f.commit(plan); }
+	bool mergeObjects(int32_t from, int32_t into) { return f.mergeObjects(from, into); }
+	/** A static landmark's last estimate joins the dropped ones (getDroppedStaticLandmarks). */
+	void recordDroppedStatic(const TStaticLandmarkEstimate& e) { f.m_droppedStatic.push_back(e); }
+	/** Object obj left the state: the object-centric models' per-step sets forget it. */
+	void forgetObjectMotion(int32_t obj)
+	{
+		f.m_lostNow.erase(obj);
+		f.m_awaitingVel.erase(obj);
+		f.m_reinitNow.erase(obj);
+	}
+};
+
+/** A capability module. Only the hooks named by hooks() are called. */
+class IFilterModule
+{
+public:
+	using TPending = TFilterAccess::TPending;
+	virtual ~IFilterModule() = default;
+	/** The module's name (CDynamicKFSLAM2D::enabledModules()). */
+	virtual std::string name() const = 0;
+	/** The hooks it takes part in: a bit per Hook (hookBit). */
+	virtual unsigned hooks() const = 0;
+	virtual void afterRoute(TFilterAccess&) {}
+	virtual void afterPropagate(TFilterAccess&) {}
+	virtual void planDrops(TFilterAccess&, TPending&) {}
+	virtual void afterCommit(TFilterAccess&) {}
+	virtual void endOfStep(TFilterAccess&) {}
+	virtual void staticForgotten(int32_t) {}
+};
+}  // namespace dynslam::ekf

@@ -1,0 +1,147 @@
+/** The capability modules of CDynamicKFSLAM2D (libs/ekf/src/modules, doc/architecture.md
+ * "Capability modules"): the shipped profiles enable none (the step calls no module hook), each
+ * option enables exactly its module, on both sides of its enabling condition, and an enabled
+ * module's hooks are called once per step and hook. */
+#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/config_include.h>
+#include <dynslam/estimator/seam_registries.h>
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tiny_scenario.h"
+
+using namespace dynslam;
+using Names = std::vector<std::string>;
+
+namespace
+{
+const char* kIni =
+    "[DynamicKFSLAM]\n"
+    "measurement_model = cartesian\n"
+    "Sigma_v = [1e-4 1e-4]\n"
+    "motion_noise = action\n"
+    "Sigma_0 = [1e-6 1e-6 1e-8]\n"
+    "Sigma_xi = [0.1 0.1]\n";
+
+/** kIni with `keys` added to [DynamicKFSLAM], `classify` as the [Classify] section and the
+ * step length of the object-centric models. */
+std::string ini(const std::string& keys, const std::string& classify = "")
+{
+	return std::string(kIni) + keys + "\n[Classify]\n" + classify +
+	       "\n[ObjectModel]\ncv_dt = 0.5\n[DynamicKFSLAM_KalmanFilter]\nmethod = kfEKFNaive\n";
+}
+
+Names modulesOf(const std::string& text)
+{
+	CDynamicKFSLAM2D f;
+	mrpt::config::CConfigFileMemory c(text);
+	f.loadOptions(c, "DynamicKFSLAM");
+	return f.enabledModules();
+}
+
+dynslam_test::TinyScenario scenario()
+{
+	dynslam_test::TinyScenarioOptions o;
+	o.objects = 2;
+	o.cartesian_noise = true;
+	o.steps = 12;
+	o.seed = 11;
+	return dynslam_test::makeTinyScenario(o);
+}
+
+/** Runs the tiny scenario; returns the hook calls. */
+size_t run(CDynamicKFSLAM2D& f)
+{
+	const auto sc = scenario();
+	for (size_t k = 0; k < sc.actions.size(); ++k)
+		f.processActionObservation(sc.actions[k], sc.frames[k]);
+	return f.moduleHookCalls();
+}
+}  // namespace
+
+TEST(Modules, ShippedProfilesEnableNoneAndTheStepCallsNoHook)
+{
+	for (const char* profile : {"paper.ini", "default.ini"})
+	{
+		const std::string path =
+		    (std::filesystem::path(DYNSLAM_CONFIG_DIR) / "profiles" / profile).string();
+		mrpt::config::CConfigFileMemory base(ini("")), c;
+		config::overlayProfile(base, path, {"DynamicKFSLAM", "DynamicKFSLAM_KalmanFilter"}, c);
+		CDynamicKFSLAM2D f;
+		f.loadOptions(c, "DynamicKFSLAM");
+		EXPECT_EQ(f.enabledModules(), Names{}) << profile;
+		EXPECT_EQ(run(f), 0u) << profile;
+		EXPECT_GT(f.getObjectTracks().size(), 0u) << profile;  // the scenario has objects
+	}
+}
+
+TEST(Modules, EachOptionEnablesExactlyItsModule)
+{
+	EXPECT_EQ(modulesOf(ini("")), Names{});
+	EXPECT_EQ(modulesOf(ini("fuse_landmarks_prob = 0.99")), Names{"landmark_fusion"});
+	EXPECT_EQ(modulesOf(ini("fuse_landmarks_prob = 0")), Names{});
+	EXPECT_EQ(modulesOf(ini("first_estimate_jacobians = true")), Names{"first_estimates"});
+	EXPECT_EQ(modulesOf(ini("first_estimate_jacobians = false")), Names{});
+	EXPECT_EQ(modulesOf(ini("drop_object_after_unseen_steps = 1")), Names{"object_drop"});
+	EXPECT_EQ(modulesOf(ini("drop_object_after_unseen_steps = 0")), Names{});
+	// Live merges: with a router that classifies only.
+	EXPECT_EQ(modulesOf(ini("feature_labels = classify", "classify_merge_live = true")),
+	          Names{"live_merge"});
+	EXPECT_EQ(modulesOf(ini("feature_labels = ids", "classify_merge_live = true")), Names{});
+	EXPECT_EQ(modulesOf(ini("feature_labels = classify", "classify_merge_live = false")), Names{});
+	// Linked merges: a classifying router with an object-centric model only.
+	EXPECT_EQ(modulesOf(ini("feature_labels = classify\nobject_model = cv",
+	                        "classify_merge_linked = true")),
+	          Names{"linked_merge"});
+	EXPECT_EQ(modulesOf(ini("feature_labels = classify\nobject_model = paper",
+	                        "classify_merge_linked = true")),
+	          Names{});
+	EXPECT_EQ(
+	    modulesOf(ini("feature_labels = ids\nobject_model = cv", "classify_merge_linked = true")),
+	    Names{});
+	// Several, in the order their hooks run (fusion and object drops need feature_labels = ids).
+	EXPECT_EQ(modulesOf(ini("first_estimate_jacobians = true\ndrop_object_after_unseen_steps = 3\n"
+	                        "fuse_landmarks_prob = 0.99")),
+	          (Names{"landmark_fusion", "first_estimates", "object_drop"}));
+	EXPECT_EQ(modulesOf(ini("feature_labels = classify\nobject_model = cv\n"
+	                        "first_estimate_jacobians = true",
+	                        "classify_merge_linked = true\nclassify_merge_live = true")),
+	          (Names{"first_estimates", "linked_merge", "live_merge"}));
+}
+
+TEST(Modules, HooksAreCalledOncePerStepAndHook)
+{
+	const size_t steps = scenario().actions.size();
+	ASSERT_GT(steps, 0u);
+	// fusion: AfterRoute and AfterCommit (StaticForgotten: no static landmark leaves the state
+	// here, nothing drops them); first estimates: AfterPropagate and EndOfStep; object drop:
+	// PlanDrops.
+	const std::vector<std::pair<std::string, size_t>> cases{
+	    {"fuse_landmarks_prob = 0.99", 2 * steps},
+	    {"first_estimate_jacobians = true", 2 * steps},
+	    {"drop_object_after_unseen_steps = 100", steps},
+	    {"fuse_landmarks_prob = 0.99\nfirst_estimate_jacobians = true", 4 * steps}};
+	for (const auto& [keys, calls] : cases)
+	{
+		CDynamicKFSLAM2D f;
+		mrpt::config::CConfigFileMemory c(ini(keys));
+		f.loadOptions(c, "DynamicKFSLAM");
+		EXPECT_EQ(run(f), calls) << keys;
+		f.reset();  // a reset starts the count again
+		EXPECT_EQ(f.moduleHookCalls(), 0u) << keys;
+	}
+}
+
+TEST(Modules, RouterSetByTheUserMayMergeLinkedObjects)
+{
+	CDynamicKFSLAM2D f;
+	f.setRouter(estimator::routers().make("ids", {}));
+	f.reset();
+	EXPECT_EQ(f.enabledModules(), Names{"linked_merge"});
+	CDynamicKFSLAM2D g;
+	EXPECT_EQ(g.enabledModules(), Names{});
+}
