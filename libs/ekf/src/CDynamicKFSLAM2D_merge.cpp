@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "index_append.h"
+
 namespace dynslam
 {
 using estimator::BlockKind;
@@ -45,10 +47,6 @@ TObjectBlocks blocksOf(const estimator::CPaddedLayout& L, int32_t obj)
 	return o;
 }
 
-void append(std::vector<int>& a, const std::vector<int>& b)
-{
-	a.insert(a.end(), b.begin(), b.end());
-}
 }  // namespace
 
 bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
@@ -76,10 +74,10 @@ bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 	const int dL = int(in.size());
 	if (dL == 3)
 		for (int k = 0; k < eL.founders; ++k)
-			append(in, m_layout.indices(L.f0.at(eL.feature_ids[size_t(k)])));
+			ekf::appendIndices(in, m_layout.indices(L.f0.at(eL.feature_ids[size_t(k)])));
 	const int nL = dL == 3 ? eL.founders : 0;
 	const std::vector<int> ipN = N.pose == SIZE_MAX ? std::vector<int>{} : m_layout.indices(N.pose);
-	append(in, ipN);
+	ekf::appendIndices(in, ipN);
 	const Eigen::Index off = Eigen::Index(in.size());  // first entry of N's features
 	for (const int32_t id : eN.feature_ids)
 	{
@@ -87,7 +85,7 @@ bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 		if (b == N.f0.end())
 			throw std::logic_error("CDynamicKFSLAM2D::mergeObjects: feature " + std::to_string(id) +
 			                       " of object " + std::to_string(from) + " has no f_0");
-		append(in, m_layout.indices(b->second));
+		ekf::appendIndices(in, m_layout.indices(b->second));
 	}
 	auto x = m_xkk.asEigen();
 	const Eigen::VectorXd xin = x(in);

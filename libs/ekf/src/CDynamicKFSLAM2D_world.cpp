@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "index_append.h"
+
 namespace dynslam
 {
 using estimator::BlockKind;
@@ -38,11 +40,6 @@ TWorldBlocks worldBlocksOf(const estimator::CPaddedLayout& L, int32_t obj)
 			o.f0[t.id] = b;
 	}
 	return o;
-}
-
-void appendIndices(std::vector<int>& a, const std::vector<int>& b)
-{
-	a.insert(a.end(), b.begin(), b.end());
 }
 
 const estimator::TObjectEntry& entryOf(const estimator::CObjectRegistry& reg, int32_t obj,
@@ -85,7 +82,7 @@ std::optional<TObjectWorldPose> CDynamicKFSLAM2D::getObjectWorldPose(int32_t obj
 		if (it == o.f0.end()) return std::nullopt;
 		const std::vector<int> fi = s.layout.indices(it->second);
 		f0.col(k) = s.x(fi);
-		appendIndices(idx, fi);
+		ekf::appendIndices(idx, fi);
 	}
 	const Eigen::VectorXd xi =
 	    o.pose != SIZE_MAX ? s.x(idx).head(d).eval() : Eigen::VectorXd::Zero(d).eval();

@@ -8,6 +8,8 @@
 #include <Eigen/Cholesky>
 #include <utility>
 
+#include "../index_append.h"
+
 namespace dynslam::ekf
 {
 using estimator::BlockKind;
@@ -71,10 +73,6 @@ std::vector<TLive> liveObjects(const estimator::CPaddedLayout& L,
 	return out;
 }
 
-void append(std::vector<int>& a, const std::vector<int>& b)
-{
-	a.insert(a.end(), b.begin(), b.end());
-}
 }  // namespace
 
 /** The live-merge sample of B in A's frame (A has a 3-dof pose). */
@@ -85,18 +83,18 @@ static estimator::TLiveMergeSample liveSample(const estimator::CPaddedLayout& L,
 {
 	// Inputs: [xi_A; A's founders' f_0; xi_B; B's f_0 (all); v_A; v_B].
 	std::vector<int> in = L.indices(A.pose);
-	for (int k = 0; k < A.founders; ++k) append(in, L.indices(A.f0[size_t(k)]));
+	for (int k = 0; k < A.founders; ++k) ekf::appendIndices(in, L.indices(A.f0[size_t(k)]));
 	const Eigen::Index cxiB = Eigen::Index(in.size());
-	append(in, L.indices(B.pose));
+	ekf::appendIndices(in, L.indices(B.pose));
 	const Eigen::Index cfB = Eigen::Index(in.size());
-	for (const size_t b : B.f0) append(in, L.indices(b));
+	for (const size_t b : B.f0) ekf::appendIndices(in, L.indices(b));
 	const Eigen::Index cvA = Eigen::Index(in.size());
 	const bool vel = A.vel != SIZE_MAX && B.vel != SIZE_MAX;
 	if (vel)  // the velocities: the blocks' first entries (ca: then the acceleration)
 	{
 		const std::vector<int> vA = L.indices(A.vel), vB = L.indices(B.vel);
-		append(in, std::vector<int>(vA.begin(), vA.begin() + 3));
-		append(in, std::vector<int>(vB.begin(), vB.begin() + B.dim));
+		ekf::appendIndices(in, std::vector<int>(vA.begin(), vA.begin() + 3));
+		ekf::appendIndices(in, std::vector<int>(vB.begin(), vB.begin() + B.dim));
 	}
 	const Eigen::Index n = Eigen::Index(in.size()), m = Eigen::Index(B.f0.size());
 	Eigen::VectorXd xin(n);
