@@ -5,6 +5,7 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/config_include.h>
 #include <dynslam/estimator/seam_registries.h>
+#include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -19,13 +20,9 @@ using Names = std::vector<std::string>;
 
 namespace
 {
-const char* kIni =
-    "[DynamicKFSLAM]\n"
-    "measurement_model = cartesian\n"
-    "Sigma_v = [1e-4 1e-4]\n"
-    "motion_noise = action\n"
-    "Sigma_0 = [1e-6 1e-6 1e-8]\n"
-    "Sigma_xi = [0.1 0.1]\n";
+const std::string kIni = dynslam_test::script::kFilterKeys +
+                         "Sigma_0 = [1e-6 1e-6 1e-8]\n"
+                         "Sigma_xi = [0.1 0.1]\n";
 
 /** kIni with `keys` added to [DynamicKFSLAM], `classify` as the [Classify] section and the
  * step length of the object-centric models. */

@@ -5,6 +5,7 @@
 #include <dynslam/CDynamicKFSLAM2D.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/models/se2.h>
+#include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -18,17 +19,13 @@ using namespace dynslam::estimator;
 
 namespace
 {
-const char* kIni =
-    "[DynamicKFSLAM]\n"
-    "measurement_model = cartesian\n"
-    "Sigma_v = [1e-4 1e-4]\n"
-    "motion_noise = action\n"
-    "Sigma_0 = [1e-6 1e-6 1e-8]\n"
-    "Sigma_xi = [0.1 0.1]\n"
-    "[DynamicKFSLAM_KalmanFilter]\n"
-    "method = kfEKFNaive\n"
-    "[Framework]\n"
-    "backend = alg1\n";
+const std::string kIni = dynslam_test::script::kFilterKeys +
+                         "Sigma_0 = [1e-6 1e-6 1e-8]\n"
+                         "Sigma_xi = [0.1 0.1]\n"
+                         "[DynamicKFSLAM_KalmanFilter]\n"
+                         "method = kfEKFNaive\n"
+                         "[Framework]\n"
+                         "backend = alg1\n";
 
 dynslam_test::TinyScenario scenario()
 {

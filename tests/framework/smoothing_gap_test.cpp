@@ -16,18 +16,14 @@ namespace script = dynslam_test::script;
 
 namespace
 {
-const char* kIni =
-    "[DynamicKFSLAM]\n"
-    "measurement_model = cartesian\n"
-    "Sigma_v = [1e-4 1e-4]\n"
-    "motion_noise = action\n"
-    "Sigma_0 = [1e-6 1e-6 1e-8]\n"
-    "Sigma_xi = [1e-3 1e-3]\n"
-    "smoothing = true\n"
-    "Sigma_s = [1e-2 1e-2 1e-3]\n"
-    "keep_last_poses = 3\n"
-    "[Framework]\n"
-    "window_size = 4\n";
+const std::string kIni = dynslam_test::script::kFilterKeys +
+                         "Sigma_0 = [1e-6 1e-6 1e-8]\n"
+                         "Sigma_xi = [1e-3 1e-3]\n"
+                         "smoothing = true\n"
+                         "Sigma_s = [1e-2 1e-2 1e-3]\n"
+                         "keep_last_poses = 3\n"
+                         "[Framework]\n"
+                         "window_size = 4\n";
 
 constexpr int kSteps = 10;
 constexpr int kUnseen = 4;  ///< the object is not seen at this step

@@ -17,16 +17,12 @@ namespace script = dynslam_test::script;
 
 namespace
 {
-const char* kIni =
-    "[DynamicKFSLAM]\n"
-    "measurement_model = cartesian\n"
-    "Sigma_v = [1e-4 1e-4]\n"
-    "motion_noise = action\n"
-    "Sigma_0 = [1e-6 1e-6 1e-8]\n"
-    "Sigma_xi = [0.1 0.1]\n"
-    "drop_static_after_unseen_steps = 3\n"
-    "[Framework]\n"
-    "window_size = 4\n";
+const std::string kIni = dynslam_test::script::kFilterKeys +
+                         "Sigma_0 = [1e-6 1e-6 1e-8]\n"
+                         "Sigma_xi = [0.1 0.1]\n"
+                         "drop_static_after_unseen_steps = 3\n"
+                         "[Framework]\n"
+                         "window_size = 4\n";
 
 constexpr int kLastSeen = 2;     ///< landmark 7 is seen at steps 0..2
 constexpr int kUnseenSteps = 3;  ///< drop_static_after_unseen_steps above

@@ -16,11 +16,19 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
 namespace dynslam_test::script
 {
+/** The [DynamicKFSLAM] keys the scripted filter tests share (Cartesian readings, odometry noise
+ * from the action); each test adds Sigma_0, Sigma_xi and its own keys. */
+inline const std::string kFilterKeys =
+    "[DynamicKFSLAM]\n"
+    "measurement_model = cartesian\n"
+    "Sigma_v = [1e-4 1e-4]\n"
+    "motion_noise = action\n";
 /** A CActionCollection with one CActionRobotMovement2D: increment u, covariance C. */
 inline mrpt::obs::CActionCollection::Ptr action(const Eigen::Vector3d& u, const Eigen::Matrix3d& C)
 {

@@ -15,7 +15,7 @@ void CModuleList::add(std::unique_ptr<IFilterModule> m)
 	if (!m) return;
 	const unsigned bits = m->hooks();
 	for (size_t h = 0; h < kHookCount; ++h)
-		if (bits & (1u << h)) m_hooks[h].push_back(m.get());
+		if (bits & hookBit(Hook(h))) m_hooks[h].push_back(m.get());
 	m_modules.push_back(std::move(m));
 }
 
