@@ -2,17 +2,14 @@
 # Installs dynslam from the build tree into a temporary prefix, then configures, builds and runs
 # a tiny external project that finds it with find_package(dynslam).
 set -euo pipefail
-BUILD="$1"; SRC="$2"; WORK="$3"
+BUILD="$1"; WORK="$2"
 rm -rf "$WORK"; mkdir -p "$WORK"
 cmake --install "$BUILD" --prefix "$WORK/prefix" >/dev/null
-cmake -S "$SRC" -B "$WORK/build" -DCMAKE_PREFIX_PATH="$WORK/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$WORK/build" -j2 >/dev/null
-"$WORK/build/consumer"
-# The estimator libraries without apps: no OpenCV looked for (project_estimator/CMakeLists.txt).
-cmake -S "$SRC/../project_estimator" -B "$WORK/build_estimator" -DCMAKE_PREFIX_PATH="$WORK/prefix" \
-  -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$WORK/build_estimator" -j2 >/dev/null
-"$WORK/build_estimator/consumer_estimator"
+# Both external projects (consumer_projects.sh); project_estimator uses the estimator libraries
+# without apps: no OpenCV looked for (project_estimator/CMakeLists.txt). cmake's output hidden.
+source "$(dirname "$0")/consumer_projects.sh"
+cmake_quiet() { if [ "$1" = cmake ]; then "$@" >/dev/null; else "$@"; fi; }
+build_consumers "$WORK/prefix" "$WORK" cmake_quiet
 echo "consumer: find_package(dynslam COMPONENTS <all but apps>) without OpenCV ok"
 # The installed dynslam-montecarlo finds its module libdynslam_slam_services.so (MRPT's static
 # filter; doc/results/performance.md section 14) through its RUNPATH $ORIGIN/../lib: one static run.

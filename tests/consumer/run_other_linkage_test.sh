@@ -34,14 +34,8 @@ else
   [ "$static_libs" -eq 11 ] && [ "$shared_libs" -eq 0 ] ||
     { echo "other linkage: expected 11 archives and no shared library in $LIB, found $static_libs and $shared_libs" >&2; exit 1; }
 fi
-SRC="$ROOT/tests/consumer"
-step cmake -S "$SRC/project" -B "$WORK/build" -DCMAKE_PREFIX_PATH="$WORK/prefix" -DCMAKE_BUILD_TYPE=Release
-step cmake --build "$WORK/build" -j2
-step "$WORK/build/consumer"
-step cmake -S "$SRC/project_estimator" -B "$WORK/build_estimator" -DCMAKE_PREFIX_PATH="$WORK/prefix" \
-  -DCMAKE_BUILD_TYPE=Release
-step cmake --build "$WORK/build_estimator" -j2
-step "$WORK/build_estimator/consumer_estimator"
+source "$ROOT/tests/consumer/consumer_projects.sh"
+build_consumers "$WORK/prefix" "$WORK" step
 # Which dynslam libraries each binary loads, and from where: with shared libraries, only those
 # of the install tree (RUNPATH; the build folder is removed first so it cannot serve them).
 rm -rf "$OUT/libs" "$OUT/apps"

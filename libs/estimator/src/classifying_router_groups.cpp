@@ -12,6 +12,13 @@ namespace dynslam::estimator
 {
 namespace
 {
+/** Whether obj is an object of the registry that the filter dropped (one lookup). */
+bool droppedObject(const CObjectRegistry& r, int32_t obj)
+{
+	const auto it = r.objects().find(obj);
+	return it != r.objects().end() && it->second.dropped;
+}
+
 /** The fast check of CClassifyingRouter::validate: IDs -1 or in [0, kFirstResolvedId), those >= 0
  * distinct (sorted copy, no allocation per reading). */
 bool valid(const std::vector<TReading>& readings)
@@ -92,7 +99,7 @@ int32_t CClassifyingRouter::restartTrack(int32_t id, int32_t externalId)
 		// landmark of the map (the point it saw is still there).
 		auto& members = m_objectTracks[t.object];
 		members.erase(std::remove(members.begin(), members.end(), id), members.end());
-		if (members.empty() && m_registry.has(t.object) && m_registry.at(t.object).dropped)
+		if (members.empty() && droppedObject(m_registry, t.object))
 			m_objectTracks.erase(t.object);  // a dropped object's last track: nothing to keep
 		m_tracks.erase(id);
 		m_unknown.forget(id);
@@ -116,8 +123,7 @@ void CClassifyingRouter::checkAssignments(int step, std::vector<TReading>& rd,
 		TTrack& t = it->second;
 		const bool gap = m_p.reuse_gap > 0 && step - t.last_seen >= m_p.reuse_gap;
 		bool restart = false, split = false;
-		if (t.cls == TrackClass::Moving && m_registry.has(t.object) &&
-		    m_registry.at(t.object).dropped)
+		if (t.cls == TrackClass::Moving && droppedObject(m_registry, t.object))
 			restart = true;  // its object left the state (drop_object_after_unseen_steps)
 		else if (t.cls == TrackClass::Static && gap && t.q_valid)
 		{
