@@ -1,10 +1,10 @@
 /** dynslam-bench main: Google Benchmark's, plus --peak-memory (one default highway run, then
  * the process's peak resident set size from getrusage) and --isa=sse2|avx2 (the kernel variant,
- * dynslam/kernels.h; default: DYNSLAM_ISA, else the best the CPU runs; reported in the context
+ * dynslam/core/kernels.h; default: DYNSLAM_ISA, else the best the CPU runs; reported in the context
  * as dynslam_isa). Run it through scripts/bench.sh. CSV output (--benchmark_format=csv,
  * --benchmark_out_format=csv) has the union of the counters of all benchmarks (csv_reporter.h). */
 #include <benchmark/benchmark.h>
-#include <dynslam/kernels.h>
+#include <dynslam/core/kernels.h>
 
 #include <cstring>
 #include <iostream>

@@ -2,7 +2,7 @@
 /** @file bench_setup.h
  * Shared set-up of dynslam-bench: the shipped highway rawlog, in-memory simulated runs, and the
  * two filters configured alike. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <mrpt/slam/CRangeBearingKFSLAM2D.h>
 
 #include <Eigen/Core>

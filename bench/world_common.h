@@ -4,8 +4,8 @@
  * soak_world.h) build alike: the ring of landmarks, the objects in convoy with the ego, the
  * range-bearing observation and one noisy reading of it. Header only. The random draws (the
  * reading's noise) are made in the same order as each world made them itself. */
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/se2.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 
 #include <Eigen/Core>

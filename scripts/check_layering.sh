@@ -12,6 +12,7 @@
 #     CKalmanFilterCapable.h or CDynamicKFSLAM2D.h, and no public header of core, io or
 #     estimator includes an MRPT or OpenCV header (the compiler's -M with the library's own
 #     include paths; a header that needs another library's include path fails too).
+#  5. every public header of a library is under its dynslam/<lib>/ folder.
 # Usage: scripts/check_layering.sh [work dir] (default: a temporary directory; a fresh CMake
 # configure of the libraries only, ~10-30 s; nothing is compiled).
 set -euo pipefail
@@ -154,10 +155,17 @@ for lib in core io estimator; do
 	bad=$(grep -E '/mrpt/|/opencv' "$WORK/layering_$lib.deps" | head -3 || true)
 	[[ -z "$bad" ]] || violation "a public header of libs/$lib includes $(echo "$bad" | tr '\n' ' ')"
 done
+# 5. Every public header is under dynslam/<lib>/ (MRPT's mrpt/<lib>/ pattern): two libraries
+#    never offer the same include path, and an include names the library it needs.
+for lib in $LIBS; do
+	[[ -d "$ROOT/libs/$lib/include" ]] || continue
+	bad=$(cd "$ROOT/libs/$lib/include" && find . -name '*.h' ! -path "./dynslam/$lib/*" | head -3)
+	[[ -z "$bad" ]] || violation "libs/$lib has public headers outside dynslam/$lib/: $(echo "$bad" | tr '\n' ' ')"
+done
 if [[ $fail -eq 0 ]]; then
 	echo "check_layering: ok (every arrow of $(wc -w <<<"$LIBS") libraries in the table; core, io," \
 		"estimator without MRPT; the EKF without OpenCV and mrpt::img; nothing below the EKF" \
 		"and the apps depends on them; headers of common, framework, sim without the Kalman" \
-		"filter, of core, io, estimator without MRPT)"
+		"filter, of core, io, estimator without MRPT; every public header under dynslam/<lib>/)"
 fi
 exit $fail

@@ -1,5 +1,5 @@
 /** dynslam-backend-table: every back-end on the highway Monte Carlo (doc/backends.md). */
-#include <dynslam/app_support.h>
+#include <dynslam/common/app_support.h>
 #include <dynslam/apps/app_main.h>
 #include <dynslam/apps/backend_table.h>
 #include <dynslam/apps/run_outputs.h>

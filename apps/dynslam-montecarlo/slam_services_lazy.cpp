@@ -1,4 +1,4 @@
-/** dynslam-montecarlo's own definitions of the functions of dynslam/slam_services.h and
+/** dynslam-montecarlo's own definitions of the functions of dynslam/ekf/slam_services.h and
  * dynslam/apps/slam_services.h: the module libdynslam_slam_services.so (slam_services_table.h)
  * is loaded on the first call, so the executable itself does not link libmrpt-slam (checked
  * by the test MonteCarloSlamModule.ExecutableDoesNotNeedLibmrptSlam). Being defined here, the

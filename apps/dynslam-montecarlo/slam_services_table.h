@@ -1,13 +1,13 @@
 #pragma once
 /** @file slam_services_table.h
  * What the module libdynslam_slam_services.so hands to dynslam-montecarlo: the four functions
- * of dynslam/slam_services.h (EKF) and dynslam/apps/slam_services.h (static baselines), i.e.
+ * of dynslam/ekf/slam_services.h (EKF) and dynslam/apps/slam_services.h (static baselines), i.e.
  * every use of MRPT's slam library, compiled and linked in the module. The executable defines
  * the same four functions itself (slam_services_lazy.cpp) and loads the module on first use,
  * so a sweep of the EKF never loads libmrpt-slam and its ~125 dependent libraries
  * (doc/results/performance.md section 14). */
 #include <dynslam/apps/slam_services.h>
-#include <dynslam/slam_services.h>
+#include <dynslam/ekf/slam_services.h>
 
 namespace dynslam::apps
 {

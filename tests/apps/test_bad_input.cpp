@@ -1,7 +1,7 @@
 /** Bad input to the executables: a clear message and exit code 1, never a crash. Each case
  * runs the real executable (paths from CMake) with its output captured. */
 #include <apps_test_utils.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <random>
 #include <regex>

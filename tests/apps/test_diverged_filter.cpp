@@ -6,7 +6,7 @@
  * covariance is singular at the second sighting of a landmark. */
 #include <apps_test_utils.h>
 #include <dynslam/apps/CCompareApp.h>
-#include <dynslam/rawlog_file_writer.h>
+#include <dynslam/common/rawlog_file_writer.h>
 #include <dynslam_test/scripted_steps.h>
 
 #include <regex>

@@ -3,7 +3,7 @@
 #include <apps_test_utils.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/rawlog_io.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/poses/CPosePDFGaussian.h>

@@ -6,7 +6,7 @@
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/noise_sources.h>
 #include <dynslam/apps/rawlog_io.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_utils.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 
 #include <cmath>

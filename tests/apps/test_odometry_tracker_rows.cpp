@@ -4,15 +4,15 @@
  *   the first-order propagation) of the increments, mean and covariance;
  * - tracker_baseline on a synthetic two-car sequence (the ego driving 1 m per 0.1 s step; car A
  *   parked at (10, 3), car B driving 0.5 m per step at y = -3), boxes in the DETECTION_BOXES
- *   comment (dynslam/detection_boxes.h): the IDs, AB3DMOT's output rule (the first min_hits
+ *   comment (dynslam/common/detection_boxes.h): the IDs, AB3DMOT's output rule (the first min_hits
  *   steps, Lost tracks with report_lost, deletion after max_age = 2 misses, a new ID on
  *   return), and the reported poses in the robot frame;
  * - bad input: boxes without a time stamp, [BoxTracker] keys. */
 #include <dynslam/apps/CTrackerBaselineBackend.h>
 #include <dynslam/apps/filter_run.h>
-#include <dynslam/detection_boxes.h>
-#include <dynslam/detection_groups.h>
-#include <dynslam/odometry_action.h>
+#include <dynslam/common/detection_boxes.h>
+#include <dynslam/common/detection_groups.h>
+#include <dynslam/common/odometry_action.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>

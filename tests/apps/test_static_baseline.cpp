@@ -5,7 +5,7 @@
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
 #include <dynslam/estimator/unknown_id_association.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 

@@ -1,11 +1,11 @@
-/** The DETECTION_BOXES rawlog comment (dynslam/detection_boxes.h, issue 31 item 1): an exact
+/** The DETECTION_BOXES rawlog comment (dynslam/common/detection_boxes.h, issue 31 item 1): an exact
  * round trip (also through MRPT's serialization), every malformed line a std::runtime_error
  * naming the line, the corners by hand, and the step-input parser's boxes with their
- * group/corner consistency check (dynslam/step_input.h). */
-#include <dynslam/detection_boxes.h>
-#include <dynslam/detection_groups.h>
-#include <dynslam/odometry_action.h>
-#include <dynslam/step_input.h>
+ * group/corner consistency check (dynslam/common/step_input.h). */
+#include <dynslam/common/detection_boxes.h>
+#include <dynslam/common/detection_groups.h>
+#include <dynslam/common/odometry_action.h>
+#include <dynslam/common/step_input.h>
 #include <gtest/gtest.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CObservationBearingRange.h>

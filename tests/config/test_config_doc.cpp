@@ -1,11 +1,11 @@
 /** The key reference doc/configuration.md is generated from the descriptor table of
- * [DynamicKFSLAM] and the module sections (dynslam/model_keys.h) and the shipped profiles (the .ini
+ * [DynamicKFSLAM] and the module sections (dynslam/common/model_keys.h) and the shipped profiles (the .ini
  * files of config/profiles). CommittedReferenceIsCurrent fails when the committed file is stale;
  * regenerate it with DYNSLAM_WRITE_CONFIG_DOC=1 ctest -R ConfigDoc.CommittedReferenceIsCurrent (or
  * run config_tests with that variable set). */
-#include <dynslam/config_include.h>
-#include <dynslam/model_keys.h>
-#include <dynslam/model_options.h>
+#include <dynslam/common/config_include.h>
+#include <dynslam/common/model_keys.h>
+#include <dynslam/common/model_options.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

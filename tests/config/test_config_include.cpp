@@ -1,7 +1,7 @@
 /** `@include` in INI files (libs/common/config_include.h, doc/configuration.md): relative
  * paths, later keys override included ones, MRPT's own @define still works across an include,
  * and every bad include is a clear error naming the file. */
-#include <dynslam/config_include.h>
+#include <dynslam/common/config_include.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

@@ -1,6 +1,6 @@
 /** models::solveAssignment (assignment.h): hand-checked optima, rectangular shapes, forbidden
  * pairs (most pairs first, then least cost) and a brute-force comparison on random matrices. */
-#include <dynslam/models/assignment.h>
+#include <dynslam/core/models/assignment.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>

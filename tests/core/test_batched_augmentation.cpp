@@ -3,8 +3,8 @@
  * covariance once per step, vs the same step done one augmentation at a time on dense
  * matrices: new features (Alg. 3), then the poses of two objects (Alg. 4, one rigid with a
  * pad, one translation-only) each appended before the next is computed, then drops. */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>

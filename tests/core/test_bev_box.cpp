@@ -1,5 +1,5 @@
 /** models::bevIoU (bev_box.h) against closed forms of the intersection of oriented boxes. */
-#include <dynslam/models/bev_box.h>
+#include <dynslam/core/models/bev_box.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -2,8 +2,8 @@
  * differences (relative error <= 1e-6) at 60 seeded random states and with the ego and object
  * headings at +-pi; the inverse as a round trip; the front/back ambiguity of the heading
  * residual on both sides of its pi/2 boundary. */
-#include <dynslam/models/box.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/box.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

@@ -1,8 +1,8 @@
 /** Degenerate and invalid input of the core models, and the landmark ID ranges. */
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/smoothing.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/smoothing.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

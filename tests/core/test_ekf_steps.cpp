@@ -4,8 +4,8 @@
  * models (no library model call) and differentiate them with a 6th-order stencil, so they
  * also check the library's analytic Jacobians. Mean and covariance agree to 1e-10, relative
  * to the largest entry (absolute below 1). */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>

@@ -1,8 +1,8 @@
 /** EKF steps of ekf_steps.h vs dense computations of the paper's formulas (continued from
  * test_ekf_steps.cpp, same random states and tolerances): the smoothing update, propagation,
  * kept indices and marginals, and bad input to the augmentations. */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>

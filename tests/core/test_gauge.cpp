@@ -3,9 +3,9 @@
  * the object readings under the transform (what makes the anchored filter exact in the linear
  * case), the commutation of the cv / ctrv predictions with it, and P + N Sigma_0 N^T against a
  * dense entry-by-entry sum. */
-#include <dynslam/models/gauge.h>
-#include <dynslam/models/object_motion.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/gauge.h>
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

@@ -1,10 +1,10 @@
 /** Every analytic Jacobian of dynslam::core's models vs central differences (relative error
  * <= 1e-6) at >= 50 seeded random states each, plus states at the +-pi wrap. Angle outputs
  * are unwrapped relative to the nominal value before differencing. */
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
-#include <dynslam/models/smoothing.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
+#include <dynslam/core/models/smoothing.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -2,8 +2,8 @@
  * doc/results/classification.md "Merging two live objects"): zero for a point carried by A's twist
  * (the rigid flow differentiated numerically, independent of the formula), and J_out_in against
  * central differences at random states and at headings +-pi, for B with 2 and 3 pose entries. */
-#include <dynslam/models/live_merge.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/live_merge.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

@@ -3,9 +3,9 @@
  * (every entry of the state, cross terms included), also across the +-pi wrap of an angle;
  * Q_eff is PSD; the switching matrix, the mode posterior and the Gaussian log-likelihood
  * against independent computations; bad input. */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/models/mode_mixture.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/mode_mixture.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>

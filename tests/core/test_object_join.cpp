@@ -2,8 +2,8 @@
  * fixed by the founders (models::objectPoseInverse / objectPoseMap, centroidCols) and the time-0
  * position of a feature that joins an object later (ekf::appendJoinedFeatures): values on
  * noise-free data, Jacobians against central differences, the noise layout. */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/models/object_pose.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/object_pose.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

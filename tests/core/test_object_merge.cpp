@@ -3,8 +3,8 @@
  * frame are where N put them (g_L(xi_L, f') = g_N(xi_N, f^N), L's centroid fixed by its founders),
  * and the Jacobian J_out_in against central differences, at random states and at headings +-pi, for
  * every pose dimension (L: 2 or 3 entries; N: none, 2 or 3). */
-#include <dynslam/models/object_merge.h>
-#include <dynslam/models/object_pose.h>
+#include <dynslam/core/models/object_merge.h>
+#include <dynslam/core/models/object_pose.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

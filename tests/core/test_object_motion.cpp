@@ -2,9 +2,9 @@
  * sighting of an object feature z = h(x, g(xi, f0)_k) vs central differences, at seeded random
  * states and at the +-pi wrap of the ego heading and of the object's rotation; the process
  * noise against its closed form; ekf::predictSubset against the dense T P T^T + Q. */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/models/object_motion.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

@@ -2,8 +2,8 @@
  * seeded random states, at the +-pi wrap of the object rotation and at turn rates 0, +-1e-9,
  * across the series threshold |omega dt| = 1e-2 and far from it; the omega -> 0 limit is the CV
  * step; a full circle comes back to its start; zero speed stays put. */
-#include <dynslam/models/object_motion.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

@@ -3,9 +3,9 @@
  * the +-pi wrap; the covariance vs the dense Phi P Phi^T + Q with Phi from a high-order
  * numerical Jacobian of the whole-state transition; the zero-bias, zero-noise case vs
  * ekf::propagate; bad input. */
-#include <dynslam/ekf_odometry_bias.h>
-#include <dynslam/models/odometry_bias.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/ekf_odometry_bias.h>
+#include <dynslam/core/models/odometry_bias.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

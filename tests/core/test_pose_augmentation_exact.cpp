@@ -4,8 +4,8 @@
  * stored, not how they are computed. The reference below is the code of before (2026-11-24,
  * 4d20605), copied. With the AVX2 kernels Gamma * rows (kernels::productColRow) differs in the last
  * bits: measured here against the portable variant, within 1e-12 relative. */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/kernels.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/kernels.h>
 #include <gtest/gtest.h>
 
 #include "core_test_utils.h"

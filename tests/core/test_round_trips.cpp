@@ -1,10 +1,10 @@
 /** Round trips and consistency of the core models: h(x, l(x, z)) = z, gamma(f0, g(xi, f0)) = xi
  * (all features and a subset seen, dtheta at the wrap), zero smoothing residual on
  * constant-velocity sequences across the wrap, wrapToPi, pose composition / difference. */
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
-#include <dynslam/models/smoothing.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
+#include <dynslam/core/models/smoothing.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>

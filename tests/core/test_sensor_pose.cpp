@@ -4,8 +4,8 @@
  * sensor's world heading; the identity sensor pose reproduces the sensor-at-origin functions
  * bit for bit; an independent two-frame formula gives the same values; round trips; a
  * non-finite sensor pose throws. */
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -2,8 +2,8 @@
  * ekf::assembleExtended bit for bit, in a buffer with an outer stride larger than the matrix,
  * and ekf::CSquareBuffer keeps its contents while a size fits its side and reuses the buffers
  * freed in the same thread. */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/square_buffer.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/square_buffer.h>
 #include <gtest/gtest.h>
 
 #include <thread>

@@ -13,8 +13,8 @@
  * 30 m away; ours is exact on the same data). So the oracle is used (a) directly on objects
  * near the origin, and (b) on far objects through centred copies a - abar, b - bbar, with
  * t = t' + bbar - R abar. */
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 #include <mrpt/math/TPose2D.h>
 #include <mrpt/tfest/se2.h>

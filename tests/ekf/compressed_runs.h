@@ -2,7 +2,7 @@
 /** Runs shared by the compressed-EKF tests (test_compressed.cpp, test_compressed_engines.cpp):
  * the highway rawlog, a generated scenario and a ring with revisits, and the comparison of a
  * compressed filter's whole estimate with a full one's, matched by entry label. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CRawlog.h>

@@ -1,7 +1,7 @@
 #pragma once
 /** The highway set-up of the cv tests that run the paper's highway at level w3v1
  * (test_object_model_cv_heading.cpp, test_object_model_cv_ego_delay.cpp). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 
 #include <string>

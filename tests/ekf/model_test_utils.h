@@ -1,7 +1,7 @@
 #pragma once
 /** Helpers of the object-model tests (test_object_model_ca.cpp, test_multiple_model.cpp): central
  * differences with wrapped angle outputs, and the message of an exception. */
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 
 #include <Eigen/Core>
 #include <functional>

@@ -3,7 +3,7 @@
  * test_object_model_bad_input.cpp): Cartesian readings with the tiny scenario's noise, the
  * ego start known exactly, near-rigid objects, and the cv / ctrv keys used by both; and the
  * minimal INI of the object-model option tests (loadCartesianFilter, expectScalarCvKey). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

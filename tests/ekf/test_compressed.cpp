@@ -3,7 +3,7 @@
  * generated scenario and a ring with revisits, with each drop policy and with first-estimate
  * Jacobians, at random checkpoints (each a global update, after which the filter compresses
  * again) and at the end of runs never expanded before. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/compressed_state.h>
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
  * revisits where landmarks do go passive (and are read again: global updates). Before the
  * lifecycle was a seam of its own, compressed with huber, cauchy, gate_recovery or jcbb
  * silently ran uncompressed (the passive count stayed 0). */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/CMrptUpdateEngine.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CMrptUpdateEngine.h>
 #include <gtest/gtest.h>
 
 #include "compressed_runs.h"

@@ -2,7 +2,7 @@
  * default; on, the Jacobians are the models' derivatives at the first estimates, both update
  * paths agree, and the linearized system keeps the 3-dof unobservable subspace (global
  * translation and rotation) that the standard EKF loses; the option parses strictly. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam_test/numeric_jacobian.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

@@ -1,7 +1,7 @@
 /** First-estimate Jacobians, development diagnostics (not run by default): the ego ANEES of
  * the standard EKF, FEJ and the ideal EKF (Jacobians at the true states) over Monte Carlo runs
  * of a tiny circle scenario and of the highway. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>

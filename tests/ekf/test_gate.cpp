@@ -1,6 +1,6 @@
 /** Innovation gate: an outlier on a tracked landmark is rejected, counted, and the result
  * equals the run without that measurement; inliers pass untouched. Both update paths. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 

@@ -1,6 +1,6 @@
 /** After every step: covariance symmetric and PSD, pads unit-variance and uncorrelated, slot
  * table in step with the state; object poses and drop policies as configured. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>

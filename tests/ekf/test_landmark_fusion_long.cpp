@@ -7,7 +7,7 @@
  * unseen steps, so every landmark comes back under a new ID on each lap), pruning k = 3, W = 5; the
  * EKF without and with fuse_landmarks_prob = 0.99: map size vs the truth, wrong fusions, ego ATE,
  * time per step. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/clutter_runs.h>
 #include <gtest/gtest.h>

@@ -6,7 +6,7 @@
  *    final map within 1.2 x the true landmarks seen, no pair fused wrongly (both IDs of every
  *    fused pair belong to one true landmark, by the simulator's class ground truth), on 10
  *    noise seeds; the mean ego ATE within 10 % of that of the runs without fusion. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/clutter_runs.h>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 /** Readings with MRPT's "unknown landmark" ID -1 under the default feature_labels = ids (issue
  * 30, item 1): associated as CRangeBearingKFSLAM2D associates them (data_association_full_
  * covariance, assocNN, metricMaha, chi-square 0.99), never an error. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/unknown_id_association.h>
 #include <gtest/gtest.h>
 #include <mrpt/slam/CRangeBearingKFSLAM2D.h>

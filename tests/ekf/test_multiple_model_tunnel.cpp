@@ -4,10 +4,10 @@
  * leaves cv). Filtered with config/compare_tunnel.ini (setting E, the anchored gauge) and
  * object_model = paper, cv or mm with mm's defaults; seeds 2810..2814. Measured: the ego ATE of
  * the whole run, the ego NEES in the gap, and the mode probabilities. */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/config_include.h>
-#include <dynslam/ground_truth.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/common/config_include.h>
+#include <dynslam/io/ground_truth.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

@@ -3,11 +3,11 @@
  * the paper's highway against the truth; the per-object count of skipped late features
  * (TObjectTrack::skipped_late_readings); the live map apart from the dropped landmarks
  * (getStaticLandmarks / getDroppedStaticLandmarks). */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/ground_truth.h>
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/object_world_pose.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/io/ground_truth.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/object_world_pose.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/numeric_jacobian.h>
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
  * a CTRV object with zero speed (nothing divides by the speed: it is tracked standing still).
  * Velocity priors that are not positive definite: ObjectModelCv.OptionsAndBadInput and
  * ObjectModelCtrv.OptionsAndBadInput. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 
 #include "object_model_setup.h"

@@ -9,12 +9,12 @@
  * config/compare_tunnel.ini and object_model = ca with the truth's parameters. Measured: the Monte
  * Carlo mean of the NEES of each car's whole state [xi; v; a] (9 dof) at every step it has one, and
  * of the ego NEES in the gap, must lie inside the 95 % chi-square bounds of the run count. */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/config_include.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/common/config_include.h>
 #include <dynslam/estimator/constant_acceleration.h>
-#include <dynslam/ground_truth.h>
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/io/ground_truth.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

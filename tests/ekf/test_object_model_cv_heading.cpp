@@ -3,9 +3,9 @@
  * large prior heading variance (Sigma_0 = Sigma_w, as in the paper's Table I), precise readings
  * and large odometry noise, steady objects pull the ego away from the truth (doc/results/results.md
  * 4.3.2); the inflation limits that. Off, the filter is today's to the last digit. */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/ground_truth.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/io/ground_truth.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

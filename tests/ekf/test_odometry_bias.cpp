@@ -3,8 +3,8 @@
  * angular-rate bias of 1 deg/s (TScenarioOptions::odometry_rate_bias, seeded), against the
  * same filter without the bias state and against the bias-free run; the bias-on filter on
  * bias-free data; the bias block in the layout (never dropped, pad untouched); the options. */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 /** TOptions: required keys, invalid values and the dump round trip. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

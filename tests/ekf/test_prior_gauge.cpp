@@ -5,10 +5,10 @@
  * Sigma_0 (the prior's does); the reported covariance equals P + N Sigma_0 N^T with N built
  * here, independently, by central differences of the transform applied by entry label; the
  * model-matched tunnel's gap NEES lies in its chi-square bounds; a bad key value throws. */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/config_include.h>
-#include <dynslam/ground_truth.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/common/config_include.h>
+#include <dynslam/io/ground_truth.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

@@ -4,7 +4,7 @@
  * state's order follows the readings', so entries are matched by label), to rounding. Catches
  * bookkeeping that assumes a reading order, e.g. an object's time-0 features looked up as if
  * they were created in ascending ID order (CDynamicKFSLAM2D_objects.cpp, indexObjects). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservationBearingRange.h>

@@ -1,7 +1,7 @@
 /** With no moving objects the dynamic filter reproduces MRPT's CRangeBearingKFSLAM2D on the
  * same action/observation sequence: ego pose, landmarks and the full covariance; also with a
  * sensor that is not at the robot's origin (sensorLocationOnRobot). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <mrpt/slam/CRangeBearingKFSLAM2D.h>
 

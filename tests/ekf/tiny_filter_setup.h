@@ -1,6 +1,6 @@
 #pragma once
 /** Filter set-up shared by the first-estimate-Jacobian tests (test_fej*.cpp). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include "tiny_scenario.h"
 

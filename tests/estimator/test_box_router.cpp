@@ -4,7 +4,7 @@
  * corners' IDs; malformed steps are clear errors. Synthetic boxes seen from a robot driving
  * along x (Cartesian model, the robot frame). */
 #include <dynslam/estimator/box_router.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <map>

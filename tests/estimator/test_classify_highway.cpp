@@ -3,7 +3,7 @@
  * noise, a parked car that drives off (config/highway_parked_driveoff.ini), and missed
  * detections with clutter (config/highway_clutter.ini). Thresholds are a few times the
  * measured values (measured values in the comments and in doc/results/classification.md). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>

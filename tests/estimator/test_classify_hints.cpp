@@ -1,14 +1,14 @@
 /** Detection-group hints and links after a track break (doc/results/classification.md, "Hints and
- * links after a track break"): the DETECTION_GROUPS comment (dynslam/detection_groups.h), hints as
+ * links after a track break"): the DETECTION_GROUPS comment (dynslam/common/detection_groups.h), hints as
  * grouping evidence, contradicting hints counted, a car that reappears under new IDs linked to
  * its lost object (classify_link), and the anonymous highway end to end. Synthetic tracks:
  * router_synth.h. */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/detection_groups.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/common/detection_groups.h>
 #include <dynslam/eval/class_metrics.h>
-#include <dynslam/odometry_action.h>
+#include <dynslam/common/odometry_action.h>
 #include <dynslam/sim/scenario.h>
-#include <dynslam/step_input.h>
+#include <dynslam/common/step_input.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

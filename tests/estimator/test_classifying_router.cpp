@@ -3,7 +3,7 @@
  * its false-alarm rate over many seeded static tracks stays near the INI alpha, rigid grouping, the
  * reclassification of a static track that starts moving, and bad input. */
 #include <dynslam/estimator/classifying_router.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,7 +1,7 @@
 /** What the ID-labelled dynamic filter (feature_labels = ids, CIdRangeRouter) does with the
  * rawlogs of issue 12's simulator effects: each case is a clear outcome, never a crash. */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>

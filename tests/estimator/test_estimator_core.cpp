@@ -6,9 +6,9 @@
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/estimator/state_layout.h>
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/object_motion.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam_test/numeric_jacobian.h>
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
  * within a bounded number of steps, two cars side by side at different speeds never merged, the
  * shipped clutter highway end to end, and the keys. Thresholds a few times the measured values (in
  * the comments and the doc). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/live_merge.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/sim/scenario.h>

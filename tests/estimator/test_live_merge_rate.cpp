@@ -16,7 +16,7 @@
  *
  * The bounds are a few times the measured counts (binomial: count + 3 sd + 2), never tuned to
  * pass: a change that makes the test merge more easily fails. LMR_SEEDS overrides N (by hand). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>

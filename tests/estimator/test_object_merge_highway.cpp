@@ -5,9 +5,9 @@
  * object's feature set grows by the new tracks); the merged objects' velocity and the world
  * positions of their features stay close to the truth; off is today's filter bit for bit; with
  * the paper's model the key changes nothing. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/class_metrics.h>
-#include <dynslam/models/object_motion.h>
+#include <dynslam/core/models/object_motion.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>

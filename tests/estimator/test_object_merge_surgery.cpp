@@ -6,8 +6,8 @@
  * and of the covariance after the merge must equal G(x) and J P J^T under the renaming
  * obj<N>.f<k>.t0 -> obj<L>.f<n_L + k>.t0, with N's pose and velocity entries gone and nothing else
  * changed. */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>

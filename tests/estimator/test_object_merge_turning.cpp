@@ -6,8 +6,8 @@
  * turned by a few radians. A generated circle-track world (one car driving around with the ego),
  * the car unseen for a few steps (an occlusion), back under new IDs with its detection box as a
  * hint, linked and merged, then tracked while it keeps turning. */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/models/object_motion.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/core/models/object_motion.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
  * dense bookkeeping by entry labels: every entry of the state and of the covariance after the
  * surgery equals the entry before it under the renaming lm<id> -> obj<o>.f<k>.t0, nothing else
  * changes, and a bad conversion list changes nothing. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

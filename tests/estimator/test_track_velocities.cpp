@@ -1,6 +1,6 @@
 /** tracksFromRegistry attaches each recorded velocity to the dropped pose of its own step
  * (issue 13's object velocity RMSE reads them there); poses without one keep none. */
-#include <dynslam/backend_results.h>
+#include <dynslam/common/backend_results.h>
 #include <gtest/gtest.h>
 
 using namespace dynslam;

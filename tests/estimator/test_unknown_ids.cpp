@@ -4,11 +4,11 @@
  * true reading written as -1 (config/highway_unknown_ids.ini) against the anonymous-ID run
  * (config/highway_anonymous.ini). Thresholds: a few times the measured values (in the comments
  * and the doc). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/eval/class_metrics.h>
-#include <dynslam/mrpt_static_association.h>
+#include <dynslam/ekf/mrpt_static_association.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
  * unseen for many steps. And predictStatic with the increment's rotations computed once
  * (TStaticMotion) equals predictStatic(q, u, U) bit for bit, and the formula to rounding. */
 #include <dynslam/estimator/unknown_id_association.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <map>

@@ -14,7 +14,7 @@
  * 2.65-3.57, so object 1's last pose is sampling noise, not a bias. With the odometry noise
  * under-stated 4x (Q = J S J^T / 4) the ego average is 4.34 and the test fails. Runtime about
  * 2-4 s. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/chi2.h>
 #include <dynslam/eval/consistency.h>
 #include <dynslam/sim/scenario.h>

@@ -1,6 +1,6 @@
 /** Relative pose error and the object motion error in VDO-SLAM's form (motion_metrics.h). */
 #include <dynslam/eval/motion_metrics.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

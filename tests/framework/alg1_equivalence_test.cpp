@@ -2,9 +2,9 @@
  * the dynamic EKF (CDynamicKFSLAM2D, a CKalmanFilterCapable subclass) at every step, on the
  * highway scenario and on generated scenarios: mean and covariance within 1e-9 relative
  * (max |A - B| / max |B|), after removing the EKF's pad entries and matching entries by label. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/framework/CAlg1Backend.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

@@ -1,7 +1,7 @@
 #pragma once
 /** Every back-end of the project behind ISlamBackend, from one INI text: "ekf"
  * (CDynamicKFSLAM2D, [DynamicKFSLAM]) or a framework kind (makeBackend, [Framework]). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/framework/backend_factory.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

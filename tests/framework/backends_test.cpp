@@ -3,7 +3,7 @@
  * options are rejected. */
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/backend_factory.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

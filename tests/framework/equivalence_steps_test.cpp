@@ -1,11 +1,11 @@
 /** Theorems 4.1, 4.2 and A.1-A.5: each step of Alg. 1 (a Gauss-Newton or marginalization step
  * on the running cost) equals the matching step of the standard dynamic EKF (ekf_steps.h), on
  * small random states; mean and covariance within 1e-9 relative (max |A-B| / max |B|). */
-#include <dynslam/ekf_steps.h>
+#include <dynslam/core/ekf_steps.h>
 #include <dynslam/framework/running_cost.h>
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <iostream>

@@ -3,7 +3,7 @@
  * show the difference (equal x/y variances without cross terms are rotation invariant). On an
  * odometry-only run every back-end's ego mean and covariance must equal MRPT's own pose
  * composition of Gaussians (CPosePDFGaussian::operator+=), step after step. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
 #include <mrpt/poses/CPosePDFGaussian.h>

@@ -8,7 +8,7 @@
  *    the run without pruning;
  *  - record_dropped = false forgets what is pruned; the compressed EKF prunes the same
  *    landmarks (its passive landmarks are brought back when due) with the same estimate. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/clutter_runs.h>
 #include <gtest/gtest.h>

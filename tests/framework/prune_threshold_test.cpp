@@ -4,9 +4,9 @@
  * the window's last step (its k-th reading one step later is a new landmark with a window of its
  * own), recorded or forgotten per record_dropped, and counted in TStepReport::pruned_static.
  * The windowed back-ends do not implement it and reject the keys. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <dynslam/estimator/drop_policy.h>
-#include <dynslam/model_options.h>
+#include <dynslam/common/model_options.h>
 #include <dynslam_test/option_errors.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>

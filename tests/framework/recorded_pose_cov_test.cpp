@@ -7,7 +7,7 @@
  *    covariance C of (O_0, O_t), with J the numerical Jacobian of blockMinus (no sign
  *    convention taken from the library). */
 #include <dynslam/framework/CWindowBackend.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
  * one step has no pose at that step, and the smoothing residual s(xi_{t-2}, xi_{t-1}, xi_t)
  * must not be applied to the last three poses it has when they are not t-2, t-1, t. Checked
  * in every back-end through its step report (smoothing_updates). */
-#include <dynslam/ISlamBackend.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/common/ISlamBackend.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
 

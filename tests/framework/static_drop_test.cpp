@@ -3,7 +3,7 @@
  * then listed by getDroppedStaticLandmarks() (allStaticLandmarks) as not in the state, and the step
  * report counts it. The windowed back-ends do not implement the rule (doc/backends.md,
  * Limitations): there the landmark must stay. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
 

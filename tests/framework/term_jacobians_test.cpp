@@ -6,7 +6,7 @@
 #include <dynslam/estimator/constant_turn_rate.h>
 #include <dynslam/framework/object_motion_terms.h>
 #include <dynslam/framework/terms.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>

@@ -4,7 +4,7 @@
  * convoy), and the dynamic EKF configured for it (Cartesian model with the world's noise, the
  * sparse update, static landmarks dropped after 5 unseen steps). Each test sets the rest
  * (smoothing, K, record_dropped) and calls reset(). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include "synthetic_world.h"
 

@@ -6,7 +6,7 @@
  *    forget_steps + 1 steps (before: every track ever read, 20,000 steps: 22 x the time per step);
  *  - the -1 association carries no track the router has forgotten (before: every clutter
  *    reading ever, two per step). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/classifying_router.h>
 #include <gtest/gtest.h>
 

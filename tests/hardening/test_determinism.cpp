@@ -1,7 +1,7 @@
 /** Determinism: the same rawlog, configuration and seed give bit-identical outputs, for the
  * simulator (serialized bytes) and the filter (mean and covariance after a full run, both
  * update paths), independent of what ran before in the process. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/io/CMemoryStream.h>

@@ -3,7 +3,7 @@
  * state size must stay bounded and the resident memory must not grow with the steps.
  * Steps: DYNSLAM_SOAK_STEPS (default 20,000 in ctest; the 100,000-step run of
  * doc/robustness.md is DYNSLAM_SOAK_STEPS=100000 hardening_tests --gtest_filter=Soak.*). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <malloc.h>
 #include <unistd.h>

@@ -3,7 +3,7 @@
  * blocks) must stay flat once the state has reached its working size; with the default
  * record_dropped = true it grows by exactly the kept records. Same straight-track world as
  * Soak.* (bench/synthetic_world.h). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

@@ -1,6 +1,6 @@
 #include "kitti_run.h"
 
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CCompareApp.h>
 
 #include <cmath>
@@ -56,7 +56,7 @@ TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
 }
 }  // namespace dynslam::kitti_eval
 
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 
 namespace dynslam::kitti_eval

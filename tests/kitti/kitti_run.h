@@ -8,11 +8,11 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
-#include <dynslam/class_ground_truth.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/motion_metrics.h>
 #include <dynslam/eval/velocity_metrics.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>

@@ -4,7 +4,7 @@
  * the true and estimated ego paths, the ego's 3-sigma ellipse, the static landmarks (truth and
  * estimates with ellipses), the moving objects' true corners and the estimated object positions
  * (centroid of f_0 moved by the latest xi) with their 3-sigma ellipses. doc/kitti.md, section 5. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/eval/figures.h>
 #include <dynslam/eval/plot_canvas.h>

@@ -3,11 +3,11 @@
  * (ID -1), read back through the one step parser; the max_range filter on both sides of its
  * boundary; the labels' ground truth is still written (with the new _gt_boxes.csv), the
  * per-reading class truth is not. */
-#include <dynslam/app_support.h>
-#include <dynslam/detection_boxes.h>
+#include <dynslam/common/app_support.h>
+#include <dynslam/common/detection_boxes.h>
 #include <dynslam/kitti/detection_import.h>
-#include <dynslam/models/se2.h>
-#include <dynslam/step_input.h>
+#include <dynslam/core/models/se2.h>
+#include <dynslam/common/step_input.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CRawlog.h>
 

@@ -5,7 +5,7 @@
 #include <dynslam/apps/data_files.h>
 #include <dynslam/kitti/CKittiApp.h>
 #include <dynslam/kitti/rawlog_writer.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam_test/temp_dir.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>

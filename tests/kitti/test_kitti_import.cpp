@@ -4,8 +4,8 @@
 #include <dynslam/kitti/classify.h>
 #include <dynslam/kitti/geometry.h>
 #include <dynslam/kitti/import.h>
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>

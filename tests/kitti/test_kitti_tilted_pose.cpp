@@ -9,7 +9,7 @@
  * |p| < pi/2, whatever the roll. (Its x axis, R_y(a) R_x(p) R_z(r) e_x, leaves the heading
  * with roll and pitch together: an importer reading it would be off by up to 3.4 degrees below.) */
 #include <dynslam/kitti/geometry.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

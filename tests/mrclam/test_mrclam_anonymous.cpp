@@ -1,8 +1,8 @@
 /** dynslam-mrclam --anonymous (issue 12; anonymous.h, doc/results/real-data.md section 6): the ID
  * permutation, the rewritten readings, and the class ground truth of every reading, on the
  * shipped excerpt and through the app class. */
-#include <dynslam/class_ground_truth.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/io/class_ground_truth.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/mrclam/CMrclamApp.h>
 #include <dynslam/mrclam/CMrclamOptions.h>
 #include <dynslam/mrclam/anonymous.h>

@@ -1,6 +1,6 @@
 /** Bad input for the MRCLAM importer: each case gives a std::runtime_error naming file and
  * line (or a documented drop with a count), never a crash; the app exits non-zero. */
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/mrclam/CMrclamApp.h>
 #include <dynslam/mrclam/import.h>
 #include <dynslam/mrclam/mrclam_files.h>

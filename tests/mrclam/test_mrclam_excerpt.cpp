@@ -1,7 +1,7 @@
 /** End to end on the shipped excerpt (datasets/mrclam/MRCLAM_Dataset6_excerpt, robot 3,
  * first 121 s of Dataset 6): import with config/mrclam.ini, then read everything back. */
-#include <dynslam/ground_truth.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/io/ground_truth.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/mrclam/CMrclamOptions.h>
 #include <dynslam/mrclam/import.h>
 #include <dynslam/mrclam/odometry.h>

@@ -1,6 +1,6 @@
 /** The import rules on the synthetic mini data set: world frame, increments, time window,
  * duration, ground truth of the other robots. */
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/mrclam/import.h>
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 #include "realdata_run.h"
 
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/consistency.h>
 
 #include <cmath>

@@ -14,7 +14,7 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <Eigen/Core>

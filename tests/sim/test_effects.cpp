@@ -1,7 +1,7 @@
 /** Issue 12's simulator effects ([Effects], parked / stopping agents) and the class ground
  * truth (B_gt_classes.csv): each option changes exactly what it says. */
-#include <dynslam/class_ground_truth.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/io/class_ground_truth.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/sim/CSimulateApp.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/temp_dir.h>

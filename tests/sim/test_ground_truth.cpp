@@ -1,8 +1,8 @@
 /** Ground truth of the highway and of generated scenarios: start pose, smoothness, object
  * poses g^o(xi_t, f_0) = f_t, determinism. */
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 

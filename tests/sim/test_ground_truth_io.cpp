@@ -1,6 +1,6 @@
 /** Ground-truth files (libs/core ground_truth.h): exact round trip and strict reading. */
-#include <dynslam/ground_truth.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/io/ground_truth.h>
+#include <dynslam/core/landmark_ids.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -4,8 +4,8 @@
  * empirical switch rate is the configured probability, the noise has the modes' covariance,
  * the ground truth follows the tracks, draws are seeded, bad keys are rejected naming them. */
 #include <dynslam/estimator/multiple_model.h>
-#include <dynslam/models/mode_mixture.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/mode_mixture.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <dynslam/sim/markov_motion.h>
 #include <dynslam/sim/scenario.h>

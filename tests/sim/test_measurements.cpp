@@ -1,8 +1,8 @@
 /** Simulated odometry and measurements: noise-free runs reproduce h(ground truth), noisy runs
  * have the configured covariances (chi-square), identical seeds give identical data. */
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>

@@ -3,8 +3,8 @@
  * world rigidly (the readings do not change), the objects' poses get offsets that follow the CV
  * model of models/object_motion.h; both with the statistics they claim, keys dumped only when
  * set, bad values rejected naming the key. */
-#include <dynslam/models/object_motion.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 /** Smooth profiles and trajectories of the simulator (pure math). */
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/motion.h>
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
  * odometry_scale_error): the reading is (dx / (1 - s), dy / (1 - s), dtheta + b_w dt) of the
  * true increment plus the same noise draws as without the bias; keys dumped and reloaded, bad
  * values rejected naming the key. */
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>

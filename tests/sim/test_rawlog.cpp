@@ -1,6 +1,6 @@
 /** Files: MRPT reads the rawlog, rawlog-edit and kf-slam (mrpt-apps) accept it, outputs are
  * bit-identical for identical seeds, and datasets/ regenerates identically. */
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/CSimulateApp.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>

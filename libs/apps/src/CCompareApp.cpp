@@ -1,11 +1,11 @@
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/noise_sources.h>
 #include <dynslam/apps/run_outputs.h>
-#include <dynslam/class_ground_truth.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/io/class_ground_truth.h>
+#include <dynslam/common/config_utils.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/covariance_writer.h>

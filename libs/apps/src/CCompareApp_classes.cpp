@@ -1,7 +1,7 @@
 /** CCompareApp: the class scores of rows that classify (feature_labels = classify). */
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/data_files.h>
-#include <dynslam/class_ground_truth.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/object_matching.h>
 

@@ -1,7 +1,7 @@
 #include <dynslam/apps/CDeadReckoningBackend.h>
-#include <dynslam/config_utils.h>
-#include <dynslam/models/se2.h>
-#include <dynslam/step_input.h>
+#include <dynslam/common/config_utils.h>
+#include <dynslam/core/models/se2.h>
+#include <dynslam/common/step_input.h>
 #include <mrpt/math/CMatrixFixed.h>
 
 #include <ostream>

@@ -5,7 +5,7 @@
 #include <dynslam/apps/mrpt_sections.h>
 #include <dynslam/apps/progress.h>
 #include <dynslam/apps/run_outputs.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_utils.h>
 #include <dynslam/sim/scenario.h>
 
 #include <algorithm>

@@ -3,7 +3,7 @@
 #include <dynslam/apps/noise_sources.h>
 #include <dynslam/apps/run_outputs.h>
 #include <dynslam/apps/step_timing.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_utils.h>
 #include <dynslam/eval/covariance_writer.h>
 #include <dynslam/eval/figures.h>
 #include <dynslam/eval/mode_figure.h>

@@ -1,5 +1,5 @@
 #include <dynslam/apps/CTrackerBaselineBackend.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 
 #include <ostream>
 #include <stdexcept>

@@ -2,8 +2,8 @@
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/mrpt_sections.h>
 #include <dynslam/apps/noise_sources.h>
-#include <dynslam/config_include.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_include.h>
+#include <dynslam/common/config_utils.h>
 #include <dynslam/eval/writers.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 

@@ -1,10 +1,10 @@
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/backend_table.h>
 #include <dynslam/eval/consistency.h>
 #include <dynslam/eval/metrics.h>
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/backend_factory.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 
 #include <chrono>

@@ -1,7 +1,7 @@
 #pragma once
 // Private helper of the app classes: parses a TCLAP command line with MRPT's bundled TCLAP,
 // which returns false both for --help/--version and for errors (after printing them).
-#include <dynslam/app_support.h>
+#include <dynslam/common/app_support.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
 #include <optional>

@@ -1,7 +1,7 @@
 #include "compare_filters.h"
 
 #include <dynslam/apps/app_common.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_utils.h>
 
 #include <algorithm>
 

@@ -1,7 +1,7 @@
 #include "compare_mot.h"
 
-#include <dynslam/box_ground_truth.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/io/box_ground_truth.h>
+#include <dynslam/core/models/se2.h>
 
 #include <algorithm>
 #include <cmath>

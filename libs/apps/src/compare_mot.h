@@ -7,9 +7,9 @@
  * (max_range, fov_deg of `<base>_scenario.ini`), scored for one class. As the KITTI devkit does
  * for its neighbouring classes, a hypothesis that matches no truth of the class but matches a
  * box of a neighbouring class (Van for Car) is left out, neither a true nor a false positive. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <dynslam/eval/writers.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <string>
 #include <vector>

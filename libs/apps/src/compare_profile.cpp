@@ -1,8 +1,8 @@
 /** dynslam-compare's filter row `default`: the INI with the default profile's keys of
  * [DynamicKFSLAM] and of the module sections (doc/configuration.md "Profiles"). */
 #include <dynslam/apps/CCompareApp.h>
-#include <dynslam/config_include.h>
-#include <dynslam/model_keys.h>
+#include <dynslam/common/config_include.h>
+#include <dynslam/common/model_keys.h>
 
 namespace dynslam::apps
 {

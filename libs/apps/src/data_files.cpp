@@ -1,5 +1,5 @@
 #include <dynslam/apps/data_files.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_utils.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <mrpt/config/CConfigFile.h>
 

@@ -1,4 +1,4 @@
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CTrackerBaselineBackend.h>
 #include <dynslam/apps/app_main.h>
 #include <dynslam/apps/filter_run.h>
@@ -6,7 +6,7 @@
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/TBackendOptions.h>
 #include <dynslam/framework/backend_factory.h>
-#include <dynslam/model_keys.h>
+#include <dynslam/common/model_keys.h>
 #include <mrpt/core/exceptions.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 

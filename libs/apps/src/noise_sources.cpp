@@ -1,6 +1,6 @@
 /** Where the filters' sensor noise comes from without a scenario file (noise_sources.h). */
 #include <dynslam/apps/noise_sources.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_utils.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 
 #include <cmath>

@@ -3,7 +3,7 @@
  * converted into the (action, sensory frame) pairs of the back-ends; the odometry noise model
  * (MRPT's Gaussian motion model). See rawlog_io.h. */
 #include <dynslam/apps/rawlog_io.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_utils.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/poses/CPosePDFGaussian.h>

@@ -1,5 +1,5 @@
 #include <dynslam/apps/run_outputs.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 #include <unistd.h>
 
 #include <algorithm>

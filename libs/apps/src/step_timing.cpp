@@ -1,4 +1,4 @@
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/step_timing.h>
 #include <unistd.h>
 

@@ -1,6 +1,6 @@
 // --video FILE.mp4: the run drawn step by step with OpenCV (run_outputs.h). Headless.
 #include <dynslam/apps/run_outputs.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 
 #include <Eigen/Eigenvalues>

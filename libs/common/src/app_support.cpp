@@ -1,4 +1,4 @@
-#include <dynslam/app_support.h>
+#include <dynslam/common/app_support.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/3rdparty/tclap/StdOutput.h>
 

@@ -1,4 +1,4 @@
-#include <dynslam/backend_results.h>
+#include <dynslam/common/backend_results.h>
 
 #include <algorithm>
 #include <stdexcept>

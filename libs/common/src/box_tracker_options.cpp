@@ -1,6 +1,6 @@
 /** TBoxTrackerOptions: section [BoxTracker]. */
-#include <dynslam/box_tracker_options.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/box_tracker_options.h>
+#include <dynslam/common/config_utils.h>
 
 #include <ostream>
 #include <stdexcept>

@@ -1,5 +1,5 @@
 /** `@include` for INI files: readIniText (config_include.h). */
-#include <dynslam/config_include.h>
+#include <dynslam/common/config_include.h>
 
 #include <filesystem>
 #include <fstream>

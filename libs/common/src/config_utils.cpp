@@ -1,4 +1,4 @@
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_utils.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include <dynslam/detection_boxes.h>
+#include <dynslam/common/detection_boxes.h>
 
 #include <Eigen/Core>
 #include <cerrno>

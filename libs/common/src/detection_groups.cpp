@@ -1,4 +1,4 @@
-#include <dynslam/detection_groups.h>
+#include <dynslam/common/detection_groups.h>
 
 #include <set>
 #include <sstream>

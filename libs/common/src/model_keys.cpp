@@ -1,5 +1,5 @@
 /** The descriptor table of the model's sections and the generated key reference (model_keys.h). */
-#include <dynslam/model_keys.h>
+#include <dynslam/common/model_keys.h>
 
 #include <cctype>
 #include <ostream>

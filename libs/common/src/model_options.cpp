@@ -1,10 +1,10 @@
 /** TModelOptions: reading, validation and dump of section [DynamicKFSLAM] and the module
  * sections [ObjectModel], [OdometryBias], [Classify] (model_keys.h). */
-#include <dynslam/box_tracker_options.h>
-#include <dynslam/config_utils.h>
+#include <dynslam/common/box_tracker_options.h>
+#include <dynslam/common/config_utils.h>
 #include <dynslam/estimator/seam_registries.h>
-#include <dynslam/model_keys.h>
-#include <dynslam/model_options.h>
+#include <dynslam/common/model_keys.h>
+#include <dynslam/common/model_options.h>
 
 #include <ostream>
 #include <stdexcept>

@@ -1,5 +1,5 @@
 /** @file odometry_action.cpp */
-#include <dynslam/odometry_action.h>
+#include <dynslam/common/odometry_action.h>
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPosePDFGaussian.h>

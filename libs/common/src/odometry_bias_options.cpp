@@ -1,7 +1,7 @@
 /** TOdometryBiasOptions: odometry_bias ([DynamicKFSLAM]) and the keys of [OdometryBias]. */
-#include <dynslam/config_utils.h>
-#include <dynslam/model_keys.h>
-#include <dynslam/odometry_bias_options.h>
+#include <dynslam/common/config_utils.h>
+#include <dynslam/common/model_keys.h>
+#include <dynslam/common/odometry_bias_options.h>
 
 #include <ostream>
 

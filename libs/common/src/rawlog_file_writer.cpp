@@ -1,4 +1,4 @@
-#include <dynslam/rawlog_file_writer.h>
+#include <dynslam/common/rawlog_file_writer.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservationComment.h>
 #include <mrpt/serialization/CArchive.h>

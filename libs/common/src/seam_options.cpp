@@ -1,4 +1,4 @@
-#include <dynslam/seam_options.h>
+#include <dynslam/common/seam_options.h>
 
 namespace dynslam
 {

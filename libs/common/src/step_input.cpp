@@ -1,6 +1,6 @@
-#include <dynslam/detection_boxes.h>
-#include <dynslam/detection_groups.h>
-#include <dynslam/step_input.h>
+#include <dynslam/common/detection_boxes.h>
+#include <dynslam/common/detection_groups.h>
+#include <dynslam/common/step_input.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CObservationBearingRange.h>

@@ -1,4 +1,4 @@
-#include <dynslam/models/assignment.h>
+#include <dynslam/core/models/assignment.h>
 
 #include <cmath>
 #include <limits>

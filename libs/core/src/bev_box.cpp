@@ -1,4 +1,4 @@
-#include <dynslam/models/bev_box.h>
+#include <dynslam/core/models/bev_box.h>
 
 #include <algorithm>
 #include <cmath>

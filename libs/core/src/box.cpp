@@ -1,5 +1,5 @@
-#include <dynslam/models/box.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/box.h>
+#include <dynslam/core/models/se2.h>
 
 #include <cmath>
 

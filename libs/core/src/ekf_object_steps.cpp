@@ -1,5 +1,5 @@
 /** The EKF step of object-centric motion models (issue 13): prediction of a subset. */
-#include <dynslam/ekf_steps.h>
+#include <dynslam/core/ekf_steps.h>
 
 #include <Eigen/Cholesky>
 #include <stdexcept>

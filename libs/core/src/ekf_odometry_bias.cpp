@@ -1,5 +1,5 @@
-#include <dynslam/ekf_odometry_bias.h>
-#include <dynslam/models/odometry_bias.h>
+#include <dynslam/core/ekf_odometry_bias.h>
+#include <dynslam/core/models/odometry_bias.h>
 
 #include <stdexcept>
 #include <string>

@@ -1,8 +1,8 @@
-#include <dynslam/ekf_steps.h>
-#include <dynslam/kernels.h>
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
-#include <dynslam/models/smoothing.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/kernels.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
+#include <dynslam/core/models/smoothing.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -389,7 +389,7 @@ double sparseUpdate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<RowMatrixXd> P,
 		throw std::invalid_argument("sparseUpdate: P does not match x");
 	checkIndices("sparseUpdate", idx, x.size());
 	if (m == 0) return 0.0;
-	// The arithmetic is a dispatched kernel (dynslam/kernels.h: SSE2 or AVX2/FMA variant).
+	// The arithmetic is a dispatched kernel (dynslam/core/kernels.h: SSE2 or AVX2/FMA variant).
 	kernels::TSparseUpdateArgs k;
 	k.x = x.data();
 	k.P = P.data();

@@ -1,5 +1,5 @@
-#include <dynslam/models/gauge.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/gauge.h>
+#include <dynslam/core/models/se2.h>
 
 #include <stdexcept>
 

@@ -1,5 +1,5 @@
-/** The dispatcher of dynslam/kernels.h: the ISA choice and the per-kernel forwarding. */
-#include <dynslam/kernels.h>
+/** The dispatcher of dynslam/core/kernels.h: the ISA choice and the per-kernel forwarding. */
+#include <dynslam/core/kernels.h>
 
 #include <atomic>
 #include <cstdlib>

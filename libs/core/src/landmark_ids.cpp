@@ -1,4 +1,4 @@
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 
 #include <stdexcept>
 

@@ -1,4 +1,4 @@
-#include <dynslam/models/live_merge.h>
+#include <dynslam/core/models/live_merge.h>
 
 #include <stdexcept>
 

@@ -1,5 +1,5 @@
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/se2.h>
 
 #include <algorithm>
 #include <cctype>

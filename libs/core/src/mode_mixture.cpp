@@ -1,5 +1,5 @@
-#include <dynslam/models/mode_mixture.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/mode_mixture.h>
+#include <dynslam/core/models/se2.h>
 
 #include <Eigen/Cholesky>
 #include <cmath>

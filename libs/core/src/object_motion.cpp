@@ -1,6 +1,6 @@
-#include <dynslam/models/object_motion.h>
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
 
 #include <cmath>
 #include <stdexcept>

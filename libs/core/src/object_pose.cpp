@@ -1,5 +1,5 @@
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include <dynslam/models/object_world_pose.h>
+#include <dynslam/core/models/object_world_pose.h>
 
 #include <stdexcept>
 

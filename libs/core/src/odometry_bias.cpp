@@ -1,5 +1,5 @@
-#include <dynslam/models/odometry_bias.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/odometry_bias.h>
+#include <dynslam/core/models/se2.h>
 
 #include <stdexcept>
 

@@ -1,5 +1,5 @@
-#include <dynslam/models/se2.h>
-#include <dynslam/models/smoothing.h>
+#include <dynslam/core/models/se2.h>
+#include <dynslam/core/models/smoothing.h>
 
 #include <stdexcept>
 

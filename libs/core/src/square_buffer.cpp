@@ -1,6 +1,6 @@
-/** CSquareBuffer (dynslam/square_buffer.h): the allocation and the per-thread cache of freed
+/** CSquareBuffer (dynslam/core/square_buffer.h): the allocation and the per-thread cache of freed
  * buffers. */
-#include <dynslam/square_buffer.h>
+#include <dynslam/core/square_buffer.h>
 
 #include <algorithm>
 #include <vector>

@@ -1,6 +1,6 @@
 /** CDynamicKFSLAM2D: the odometry bias block (options.odometry_bias, issue 17; the model is
- * dynslam/models/odometry_bias.h, the prediction ekf::propagateWithBias). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+ * dynslam/core/models/odometry_bias.h, the prediction ekf::propagateWithBias). */
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <cmath>
 #include <stdexcept>

@@ -4,7 +4,7 @@
  * lifecycle may take entries out of it at the end of a step and needs them back (the global
  * update) when one is read again or is due to be dropped. Getters of the whole state read an
  * expanded copy and leave the working state as it is. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 namespace dynslam
 {

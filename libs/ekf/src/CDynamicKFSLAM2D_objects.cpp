@@ -1,10 +1,10 @@
 /** CDynamicKFSLAM2D: the steps that add and drop state entries (Alg. 3 for new static landmarks
  * and object features, Alg. 4, the drop policies) and the object motion model (Alg. 6). A step
- * plans its augmentations on the state extended by the pending blocks (dynslam/ekf_steps.h,
+ * plans its augmentations on the state extended by the pending blocks (dynslam/core/ekf_steps.h,
  * "batched augmentation") and commits them with its drops in one rewrite of the covariance.
  * Where a block is stored is the typed layout's business (estimator::CPaddedLayout). */
-#include <dynslam/CDynamicKFSLAM2D.h>
-#include <dynslam/ekf_steps.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/core/ekf_steps.h>
 
 #include <algorithm>
 #include <set>

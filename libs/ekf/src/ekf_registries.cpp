@@ -1,5 +1,5 @@
-#include <dynslam/ekf_registries.h>
-#include <dynslam/slam_services.h>
+#include <dynslam/ekf/ekf_registries.h>
+#include <dynslam/ekf/slam_services.h>
 
 namespace dynslam
 {

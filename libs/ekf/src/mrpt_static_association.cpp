@@ -1,5 +1,5 @@
 /** MRPT's data association for ID -1 readings (mrpt_static_association.h). */
-#include <dynslam/mrpt_static_association.h>
+#include <dynslam/ekf/mrpt_static_association.h>
 #include <mrpt/slam/data_association.h>
 
 #include <stdexcept>

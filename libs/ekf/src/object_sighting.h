@@ -2,7 +2,7 @@
 /** @file object_sighting.h
  * (Internal to dynslam::ekf.) One sighting of an object feature, shared by the object updates
  * (CDynamicKFSLAM2D_cv.cpp) and the multiple-model likelihoods (CDynamicKFSLAM2D_mm.cpp). */
-#include <dynslam/models/object_motion.h>
+#include <dynslam/core/models/object_motion.h>
 
 namespace dynslam::detail
 {

@@ -1,8 +1,8 @@
 /** The default definitions of slam_services.h: the classes, linked in. Keep this file to these
  * two functions (a program that defines them itself must not need anything else from here). */
-#include <dynslam/CJcbbUpdateEngine.h>
-#include <dynslam/mrpt_static_association.h>
-#include <dynslam/slam_services.h>
+#include <dynslam/ekf/CJcbbUpdateEngine.h>
+#include <dynslam/ekf/mrpt_static_association.h>
+#include <dynslam/ekf/slam_services.h>
 
 namespace dynslam
 {

@@ -1,5 +1,5 @@
 #include <dynslam/estimator/compressed_state.h>
-#include <dynslam/kernels.h>
+#include <dynslam/core/kernels.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -54,7 +54,7 @@ void restoreCreationOrder(const CPaddedLayout& out, const Eigen::VectorXd& xo,
 	layout = std::move(sorted);
 }
 /** One level of the global update: xB = x + cross^T beta, CB = G cross,
- * BB = P + cross^T Q cross, symmetrized (a dispatched kernel, dynslam/kernels.h). */
+ * BB = P + cross^T Q cross, symmetrized (a dispatched kernel, dynslam/core/kernels.h). */
 void expandLevel(const TPassiveLevel& lv, const Eigen::MatrixXd& G, const Eigen::MatrixXd& Q,
                  const Eigen::VectorXd& beta, Eigen::VectorXd& xB, Eigen::MatrixXd& CB,
                  Eigen::MatrixXd& BB)

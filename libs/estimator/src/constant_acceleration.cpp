@@ -1,5 +1,5 @@
 #include <dynslam/estimator/constant_acceleration.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include <dynslam/chi2.h>
+#include <dynslam/core/chi2.h>
 #include <dynslam/estimator/landmark_fusion.h>
 
 #include <Eigen/Cholesky>

@@ -2,8 +2,8 @@
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/estimator/unknown_id_association.h>
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/se2.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -102,7 +102,7 @@ void CIdRangeRouter::validate(const std::vector<TReading>& readings, const std::
 			    who + ": " + where(i) +
 			    " is in no known ID range (static landmarks 0..99999, features of moving objects "
 			    "100000..999999999 as 100000 + 1000 x object + feature, -1 unknown; "
-			    "dynslam/landmark_ids.h)");
+			    "dynslam/core/landmark_ids.h)");
 		const auto it = std::lower_bound(seen.begin(), seen.end(), id);
 		if (it != seen.end() && *it == id)
 			throw std::runtime_error(who + ": duplicate " + where(i));

@@ -1,5 +1,5 @@
 #include <dynslam/estimator/object_motion_model.h>
-#include <dynslam/models/smoothing.h>
+#include <dynslam/core/models/smoothing.h>
 
 #include <algorithm>
 #include <limits>

@@ -1,6 +1,6 @@
 #include "dynslam/eval/consistency.h"
 
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>

@@ -1,5 +1,5 @@
 #include <dynslam/eval/object_matching.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 
 #include <cmath>
 #include <limits>

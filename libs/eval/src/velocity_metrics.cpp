@@ -1,7 +1,7 @@
 #include <dynslam/eval/consistency.h>
 #include <dynslam/eval/metrics.h>
 #include <dynslam/eval/velocity_metrics.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 
 #include <cmath>
 

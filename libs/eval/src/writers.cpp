@@ -1,6 +1,6 @@
 #include "dynslam/eval/writers.h"
 
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 
 #include <algorithm>
 #include <cmath>

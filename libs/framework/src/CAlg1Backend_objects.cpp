@@ -5,13 +5,13 @@
  * a new object is an augmentation (GN step on its initialisation term, Theorem A.1); with
  * object_model = mm the motion term is the modes' mixture (CObjectMixtureMotionTerm). The EKF's
  * counterparts are in libs/ekf/src/CDynamicKFSLAM2D_cv.cpp. */
-#include <dynslam/backend_results.h>
+#include <dynslam/common/backend_results.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/framework/object_motion_terms.h>
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/object_motion.h>
-#include <dynslam/seam_options.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/common/seam_options.h>
 
 #include <cmath>
 #include <map>

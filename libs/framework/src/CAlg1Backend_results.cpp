@@ -1,7 +1,7 @@
 /** CAlg1Backend: result getters, with the output term of prior_gauge = anchor. */
-#include <dynslam/backend_results.h>
+#include <dynslam/common/backend_results.h>
 #include <dynslam/framework/CAlg1Backend.h>
-#include <dynslam/models/gauge.h>
+#include <dynslam/core/models/gauge.h>
 
 namespace dynslam::framework
 {

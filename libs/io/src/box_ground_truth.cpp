@@ -1,7 +1,7 @@
 /** @file box_ground_truth.cpp
  * The KITTI importer's box truth: strict reader (see box_ground_truth.h). */
-#include <dynslam/box_ground_truth.h>
-#include <dynslam/text_fields.h>
+#include <dynslam/io/box_ground_truth.h>
+#include <dynslam/io/text_fields.h>
 
 #include <cmath>
 #include <filesystem>

@@ -1,7 +1,7 @@
 /** @file class_ground_truth.cpp
  * B_gt_classes.csv: writer and strict reader (see class_ground_truth.h). */
-#include <dynslam/class_ground_truth.h>
-#include <dynslam/number_format.h>
+#include <dynslam/io/class_ground_truth.h>
+#include <dynslam/io/number_format.h>
 
 #include <cmath>
 #include <cstdio>

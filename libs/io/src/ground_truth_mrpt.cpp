@@ -1,6 +1,6 @@
 /** @file ground_truth_mrpt.cpp
  * Ground truth in MRPT's text formats (simul-landmarks, kf-slam); see ground_truth.h. */
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <cmath>
 #include <cstdlib>

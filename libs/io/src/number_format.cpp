@@ -1,5 +1,5 @@
 /** @file number_format.cpp */
-#include <dynslam/number_format.h>
+#include <dynslam/io/number_format.h>
 
 #include <cstdio>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-#include <dynslam/text_fields.h>
+#include <dynslam/io/text_fields.h>
 
 #include <cerrno>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include <dynslam/app_support.h>
+#include <dynslam/common/app_support.h>
 #include <dynslam/kitti/CKittiApp.h>
 #include <dynslam/kitti/detection_import.h>
 #include <dynslam/kitti/kitti_files.h>

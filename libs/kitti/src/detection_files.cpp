@@ -1,5 +1,5 @@
 #include <dynslam/kitti/detection_files.h>
-#include <dynslam/text_fields.h>
+#include <dynslam/io/text_fields.h>
 
 #include <Eigen/Dense>
 #include <algorithm>

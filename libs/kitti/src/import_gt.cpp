@@ -1,6 +1,6 @@
 #include <dynslam/kitti/geometry.h>
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/se2.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
-#include <dynslam/detection_boxes.h>
-#include <dynslam/detection_groups.h>
+#include <dynslam/common/detection_boxes.h>
+#include <dynslam/common/detection_groups.h>
 #include <dynslam/kitti/rawlog_writer.h>
-#include <dynslam/odometry_action.h>
-#include <dynslam/rawlog_file_writer.h>
+#include <dynslam/common/odometry_action.h>
+#include <dynslam/common/rawlog_file_writer.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -43,7 +43,7 @@ mrpt::obs::CObservationBearingRange::TMeasurement measurement(double range, doub
 }
 
 /** Detection mode: every box's corners (ID -1) and the DETECTION_GROUPS / DETECTION_BOXES
- * comments (dynslam/detection_boxes.h). */
+ * comments (dynslam/common/detection_boxes.h). */
 void addBoxes(const TStep& s, mrpt::obs::CObservationBearingRange& obs,
               mrpt::obs::CSensoryFrame& sf)
 {

@@ -1,4 +1,4 @@
-#include <dynslam/app_support.h>
+#include <dynslam/common/app_support.h>
 #include <dynslam/mrclam/CMrclamApp.h>
 #include <dynslam/mrclam/anonymous.h>
 #include <dynslam/mrclam/rawlog_writer.h>

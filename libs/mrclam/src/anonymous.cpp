@@ -1,5 +1,5 @@
 /** Anonymous IDs and the class ground truth of an MRCLAM import (anonymous.h). */
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/mrclam/anonymous.h>
 
 #include <numeric>

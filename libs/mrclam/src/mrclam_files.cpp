@@ -1,5 +1,5 @@
 #include <dynslam/mrclam/mrclam_files.h>
-#include <dynslam/text_fields.h>
+#include <dynslam/io/text_fields.h>
 
 #include <cmath>
 #include <fstream>

@@ -1,7 +1,7 @@
 #include <dynslam/mrclam/anonymous.h>
 #include <dynslam/mrclam/rawlog_writer.h>
-#include <dynslam/odometry_action.h>
-#include <dynslam/rawlog_file_writer.h>
+#include <dynslam/common/odometry_action.h>
+#include <dynslam/common/rawlog_file_writer.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>

@@ -1,4 +1,4 @@
-#include <dynslam/app_support.h>
+#include <dynslam/common/app_support.h>
 #include <dynslam/sim/CSimulateApp.h>
 #include <dynslam/sim/figure.h>
 #include <dynslam/sim/scenario.h>

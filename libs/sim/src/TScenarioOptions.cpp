@@ -1,7 +1,7 @@
 /** @file TScenarioOptions.cpp
  * Strict reading of a scenario INI into TScenarioOptions. */
-#include <dynslam/config_utils.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/common/config_utils.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>

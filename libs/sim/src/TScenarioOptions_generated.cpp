@@ -1,8 +1,8 @@
 /** @file TScenarioOptions_generated.cpp
  * The [Generated] section of TScenarioOptions: strict reading and the effective-configuration
  * writer. */
-#include <dynslam/config_utils.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/common/config_utils.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <mrpt/config/CConfigFileBase.h>
 

@@ -1,7 +1,7 @@
 /** @file TScenarioOptions_write.cpp
  * The noise grid and the effective-configuration writer of TScenarioOptions. */
-#include <dynslam/models/measurement.h>
-#include <dynslam/number_format.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/io/number_format.h>
 #include <dynslam/sim/TScenarioOptions.h>
 
 #include <algorithm>

@@ -2,7 +2,7 @@
  * Missed detections, track breaks, anonymous IDs and clutter (issue 12; doc/simulator.md). */
 #include "effects.h"
 
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 
 #include <algorithm>
 #include <cmath>

@@ -3,8 +3,8 @@
  * Issue 12's front-end effects applied to one step's readings after their noise was drawn
  * (private to libs/sim; see doc/simulator.md, "Front-end effects"): missed detections, track
  * breaks, anonymous IDs, clutter, and the class ground truth of every reading. */
-#include <dynslam/class_ground_truth.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/class_ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/random/RandomGenerators.h>

@@ -1,10 +1,10 @@
 /** @file markov_motion.cpp
  * Markov-switching object motion (markov_motion.h) and the [ObjectMotion] section of the
  * scenario INI (strict reading, effective-configuration writer). */
-#include <dynslam/config_utils.h>
-#include <dynslam/models/mode_mixture.h>
-#include <dynslam/models/object_motion.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/common/config_utils.h>
+#include <dynslam/core/models/mode_mixture.h>
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/markov_motion.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/random/RandomGenerators.h>

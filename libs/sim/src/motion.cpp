@@ -1,4 +1,4 @@
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/motion.h>
 
 #include <algorithm>

@@ -1,12 +1,12 @@
 /** @file simulate.cpp
  * Noisy odometry and range-bearing observations from the ground truth (see doc/simulator.md:
  * sensor model, noise conversion, draw order). */
-#include <dynslam/detection_groups.h>
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/se2.h>
-#include <dynslam/odometry_action.h>
-#include <dynslam/rawlog_file_writer.h>
+#include <dynslam/common/detection_groups.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/se2.h>
+#include <dynslam/common/odometry_action.h>
+#include <dynslam/common/rawlog_file_writer.h>
 #include <dynslam/sim/scenario.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>

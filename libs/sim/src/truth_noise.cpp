@@ -2,7 +2,7 @@
  * The model-matched truth (truth_noise.h). */
 #include "truth_noise.h"
 
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <mrpt/random/RandomGenerators.h>
 
 #include <Eigen/Eigenvalues>

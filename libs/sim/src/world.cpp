@@ -1,9 +1,9 @@
 /** @file world.cpp
  * The highway of Section V and generated scenarios as closed-form trajectories, and their
  * ground truth (see doc/simulator.md). */
-#include <dynslam/landmark_ids.h>
-#include <dynslam/models/object_pose.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/markov_motion.h>
 #include <dynslam/sim/scenario.h>
 #include <mrpt/random/RandomGenerators.h>

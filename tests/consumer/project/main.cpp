@@ -3,18 +3,18 @@
 // static filter behind the project's interface (apps) on the same few steps, and one function
 // each of core, io, sim, eval and mrclam. Exit code 0 only if every result is as expected.
 // With DYNSLAM_CONSUMER_WITHOUT_APPS (tests/consumer/project_estimator): everything but apps.
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #ifndef DYNSLAM_CONSUMER_WITHOUT_APPS
 #include <dynslam/apps/CStaticBaselineBackend.h>
 #endif
-#include <dynslam/config_utils.h>
+#include <dynslam/common/config_utils.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/eval/chi2.h>
 #include <dynslam/framework/backend_factory.h>
 #include <dynslam/kitti/geometry.h>
-#include <dynslam/landmark_ids.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/mrclam/odometry.h>
-#include <dynslam/number_format.h>
+#include <dynslam/io/number_format.h>
 #include <dynslam/sim/motion.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>

@@ -1,7 +1,7 @@
 #pragma once
 /** Helpers shared by the dynslam::core tests: angle-aware numeric differentiation, a
  * high-order stencil for the dense EKF reference computations, and seeded random states. */
-#include <dynslam/models/se2.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam_test/numeric_jacobian.h>
 
 #include <Eigen/Dense>

@@ -2,8 +2,8 @@
 /** Shared by the EKF step tests (test_ekf_steps*.cpp): the random test state (ego + 3 static
  * landmarks + one object with 3 features at time 0 and time t, n = 21), the trial headings,
  * error measures and dense reference computations of the paper's formulas. */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/models/se2.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>

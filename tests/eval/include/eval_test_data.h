@@ -1,6 +1,6 @@
 #pragma once
 // A small hand-made ground truth shared by the eval tests.
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <cmath>
 #include <limits>

@@ -5,7 +5,7 @@
  *  - their filter: highwayFilterIni (highway_filter_setup.h);
  *  - runSteps(ekf, s, gt, onStep): every step of s, onStep(k, ms) after it (ms: the step's wall
  *    time), and the ego ATE (RMS of the position error against gt). */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 

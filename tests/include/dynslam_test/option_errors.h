@@ -3,7 +3,7 @@
  * std::invalid_argument whose message names every one of `words` (the key, its section, the
  * rule broken). Shared by the pruning, dropping and fusion tests (tests/framework,
  * tests/ekf). */
-#include <dynslam/model_options.h>
+#include <dynslam/common/model_options.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

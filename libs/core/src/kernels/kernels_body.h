@@ -1,4 +1,4 @@
-/** The kernels of dynslam/kernels.h, included once per ISA variant by kernels_<isa>.cpp, which
+/** The kernels of dynslam/core/kernels.h, included once per ISA variant by kernels_<isa>.cpp, which
  * defines DYNSLAM_KERNEL_NS (the variant's namespace) first. No include guard on purpose.
  * Everything here is Eigen and raw storage only: in the AVX2 variant "Eigen" is a renamed
  * namespace (kernels_avx2.cpp), so no type or template of the rest of the program may appear. */

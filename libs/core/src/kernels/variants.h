@@ -1,7 +1,7 @@
 #pragma once
-/** The per-ISA kernel variants behind the dispatcher of dynslam/kernels.h: the same source
+/** The per-ISA kernel variants behind the dispatcher of dynslam/core/kernels.h: the same source
  * (kernels_body.h) compiled once per instruction set, each in its own namespace. */
-#include <dynslam/kernels.h>
+#include <dynslam/core/kernels.h>
 
 #define DYNSLAM_KERNEL_DECLARATIONS                                                          \
 	bool sparseUpdate(const ::dynslam::kernels::TSparseUpdateArgs& a, double& nis);          \

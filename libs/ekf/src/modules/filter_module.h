@@ -13,7 +13,7 @@
  * plus StaticForgotten whenever a static landmark leaves the state (drop policy, surgery).
  * Modules reach the filter's internals only through TFilterAccess, the one friend of the facade
  * for them: the list of what a module may read and write. */
-#include <dynslam/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <cstdint>
 #include <string>

@@ -6,7 +6,7 @@
  * of static landmarks without a first estimate and forgets those no longer in the state. The
  * static update's Jacobians of a landmark are those at (ego, its first estimate) (jacobians(),
  * read by the facade's updateContext). */
-#include <dynslam/models/measurement.h>
+#include <dynslam/core/models/measurement.h>
 
 #include <map>
 #include <memory>

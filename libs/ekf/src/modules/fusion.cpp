@@ -1,7 +1,7 @@
 /** The landmark-fusion module (fusion.h). */
 #include "fusion.h"
 
-#include <dynslam/ekf_steps.h>
+#include <dynslam/core/ekf_steps.h>
 #include <dynslam/estimator/state_helper.h>
 
 #include <algorithm>

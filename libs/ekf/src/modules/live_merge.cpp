@@ -2,8 +2,8 @@
 #include "live_merge.h"
 
 #include <dynslam/estimator/seam_registries.h>
-#include <dynslam/models/live_merge.h>
-#include <dynslam/models/object_merge.h>
+#include <dynslam/core/models/live_merge.h>
+#include <dynslam/core/models/object_merge.h>
 
 #include <Eigen/Cholesky>
 #include <utility>

@@ -4,7 +4,7 @@
  *  (a) static_all: mrpt::slam::CRangeBearingKFSLAM2D unchanged, every feature treated as a
  *      static landmark;
  *  (b) static_landmarks_only: the same filter given only the static landmarks (moving
- *      features removed by ID, dynslam/landmark_ids.h);
+ *      features removed by ID, dynslam/core/landmark_ids.h);
  *  (c) dynamic: the dynamic EKF (CDynamicKFSLAM2D);
  *  optional rows: dynamic_cv, dynamic_smoothing (other object models), default (the dynamic
  *  EKF with the default profile's keys, doc/configuration.md), dynamic_classified
@@ -29,7 +29,7 @@
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/figures.h>
 #include <dynslam/eval/writers.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/COutputLogger.h>
 

@@ -5,7 +5,7 @@
  *  - AllFeatures (filter name "static_all"): every range-bearing reading goes to the filter,
  *    so the features of moving objects are taken for static landmarks (the naive baseline);
  *  - StaticOnly ("static_landmarks_only"): readings whose landmark ID is an object feature
- *    (dynslam/landmark_ids.h) are removed before the filter sees them (an oracle baseline
+ *    (dynslam/core/landmark_ids.h) are removed before the filter sees them (an oracle baseline
  *    that knows which features move).
  * Readings with MRPT's unknown landmark ID -1 go to the filter in both modes, which associates
  * them as MRPT does (data_assoc_* keys of [RangeBearingKFSLAM]); IDs may be mixed with -1.
@@ -14,7 +14,7 @@
  * (read by CRangeBearingKFSLAM2D::loadOptions). MRPT reads them leniently (defaults for
  * missing keys); this wrapper additionally requires std_sensor_range and std_sensor_yaw_deg
  * (they set R) and rejects non-positive values and unsupported KF methods. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <map>

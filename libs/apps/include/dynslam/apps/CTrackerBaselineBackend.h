@@ -2,7 +2,7 @@
 /** @file CTrackerBaselineBackend.h
  * The `tracker_baseline` row of dynslam-compare (issue 31, item 5; doc/boxes.md "Tracker"): the
  * peer. AB3DMOT's method (estimator::CBoxTracker with AB3DMOT's parameters, section
- * [BoxTracker], dynslam/box_tracker_options.h) on the steps' detector boxes
+ * [BoxTracker], dynslam/common/box_tracker_options.h) on the steps' detector boxes
  * (TStepInput::boxes), with ego-motion compensation from the odometry: the ego is the
  * dead-reckoned pose of the `odometry` row (CDeadReckoningBackend), each box is placed in the
  * world by it and the sensor's pose, x_w = ego (+) sensor (+) box. The odometry is taken as
@@ -16,7 +16,7 @@
  * with report_first_frames, in the first min_hits steps every live track; each placed back in
  * the robot frame of the step by the same dead-reckoned ego, score = its last box's. */
 #include <dynslam/apps/CDeadReckoningBackend.h>
-#include <dynslam/box_tracker_options.h>
+#include <dynslam/common/box_tracker_options.h>
 #include <dynslam/estimator/box_tracker.h>
 
 #include <cmath>

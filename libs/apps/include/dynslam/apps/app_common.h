@@ -2,12 +2,12 @@
 /** @file app_common.h
  * Pieces shared by the app classes: INI loading, evaluation of one run against the ground
  * truth, and the per-filter output files. */
-#include <dynslam/app_support.h>
+#include <dynslam/common/app_support.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
 #include <dynslam/eval/consistency.h>
 #include <dynslam/eval/metrics.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <optional>

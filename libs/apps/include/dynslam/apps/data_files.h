@@ -4,7 +4,7 @@
  * written in INI files, loading the ground truth of a rawlog (with the step-count check) and
  * the noise levels of a simulated scenario (<base>_scenario.ini written by dynslam-simulate).
  * See doc/apps.md. */
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <Eigen/Core>

@@ -3,7 +3,7 @@
  * Running any back-end (ISlamBackend) over a sequence of (action, sensory frame) pairs and
  * collecting its estimates as plain data (dynslam::eval::TRunEstimates), plus the back-end
  * factory used by the apps. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <dynslam/eval/estimates.h>
 #include <mrpt/config/CConfigFileBase.h>
 

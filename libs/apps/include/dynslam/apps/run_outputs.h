@@ -8,7 +8,7 @@
  *  - --video FILE.mp4: the run drawn step by step (OpenCV VideoWriter, headless).
  * See doc/apps.md. */
 #include <dynslam/apps/filter_run.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <mrpt/obs/CSensoryFrame.h>
 
 #include <array>

@@ -5,8 +5,8 @@
  * behind two functions that makeBackend() and collectFinalEstimates() call instead of the
  * class. Defined in libdynslam_apps (slam_services.cpp, nothing else in that object file); a
  * program may define both itself, as dynslam-montecarlo does to start without libmrpt-slam
- * (see dynslam/slam_services.h of the EKF for the mechanism). */
-#include <dynslam/ISlamBackend.h>
+ * (see dynslam/ekf/slam_services.h of the EKF for the mechanism). */
+#include <dynslam/common/ISlamBackend.h>
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <Eigen/Core>

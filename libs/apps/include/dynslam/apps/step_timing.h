@@ -4,7 +4,7 @@
  * state after it, streamed to a temporary file during the run (nothing held in memory for the
  * whole run) and moved into the output folder once the run is done (a run that fails leaves
  * no output folder). Format in doc/formats.md. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 
 #include <cstddef>
 #include <fstream>

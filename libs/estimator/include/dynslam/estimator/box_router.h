@@ -2,7 +2,7 @@
 /** @file box_router.h
  * feature_labels = boxes (issue 31, item 2; doc/boxes.md): the router of a detector's boxes
  * without IDs. Each step, the step's boxes (TRouterContext::boxes; in the rawlog, the
- * DETECTION_BOXES comment, dynslam/detection_boxes.h) are placed in the world with the filter's
+ * DETECTION_BOXES comment, dynslam/common/detection_boxes.h) are placed in the world with the filter's
  * ego predicted by the step's odometry, and a CBoxTracker (box_tracker.h) associates them with
  * its tracks (the joint part: a track the filter holds is predicted by the filter,
  * TRouterContext::box_prediction). The four corner readings (ID -1, hint = the box's group) of

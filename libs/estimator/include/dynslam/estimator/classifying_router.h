@@ -42,7 +42,7 @@
 
 namespace dynslam::estimator
 {
-/** The INI keys classify_* of [DynamicKFSLAM] (dynslam/model_options.h). */
+/** The INI keys classify_* of [DynamicKFSLAM] (dynslam/common/model_options.h). */
 struct TClassifyParams
 {
 	double alpha = 0.01;              ///< classify_alpha: P(decide moving | static), in (0, 1)

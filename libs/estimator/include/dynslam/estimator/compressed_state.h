@@ -22,7 +22,7 @@
  * A later compression makes the earlier level's C entries passive along with new landmarks
  * (nested levels), so a compression costs O((|A| + |C|)^2 |A|) whatever the map size; the global
  * update unwinds every level, O(n^2 |A|). */
-#include <dynslam/ekf_steps.h>
+#include <dynslam/core/ekf_steps.h>
 #include <dynslam/estimator/state_layout.h>
 
 #include <Eigen/Core>

@@ -19,7 +19,7 @@
  *     the older one (earlier first reading, then the lower ID) is kept.
  * The decisions of a step are taken on the state before its first fusion; the pairs are
  * disjoint (rule 4). Pure Eigen. */
-#include <dynslam/ekf_steps.h>
+#include <dynslam/core/ekf_steps.h>
 
 #include <Eigen/Core>
 #include <cstdint>

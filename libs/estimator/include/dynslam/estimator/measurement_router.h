@@ -4,10 +4,10 @@
  * A router says, for every reading, static-known / static-new / object-first-sighting /
  * object-time-t / skip, and owns the object registry. One router serves the EKF and every
  * framework back-end. The first implementation, CIdRangeRouter, is the ID-range rule of
- * dynslam/landmark_ids.h (the oracle the paper assumes). */
+ * dynslam/core/landmark_ids.h (the oracle the paper assumes). */
 #include <dynslam/estimator/object_registry.h>
 #include <dynslam/estimator/readings.h>
-#include <dynslam/models/measurement.h>
+#include <dynslam/core/models/measurement.h>
 
 #include <Eigen/Core>
 #include <array>
@@ -207,7 +207,7 @@ public:
 	virtual Eigen::Vector3d boxPlacementPose() const { return Eigen::Vector3d::Zero(); }
 };
 
-/** The ID-range rule (dynslam/landmark_ids.h): 0..99,999 static, 100,000 + 1000 object + k
+/** The ID-range rule (dynslam/core/landmark_ids.h): 0..99,999 static, 100,000 + 1000 object + k
  * feature k of object `object`. MRPT's "unknown landmark" ID -1 (INVALID_LANDMARK_ID) is
  * associated as CRangeBearingKFSLAM2D associates it: against the predictions of the static
  * landmarks in the state (TRouterContext::static_innovation) by a StaticAssociationFn (the EKF

@@ -8,8 +8,8 @@
  * (CAlg1Backend_objects.cpp) call predict() with their own likelihood of the readings. Pure
  * Eigen. */
 #include <dynslam/estimator/object_motion_model.h>
-#include <dynslam/models/measurement.h>
-#include <dynslam/models/mode_mixture.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/mode_mixture.h>
 
 #include <Eigen/Core>
 #include <cstdint>

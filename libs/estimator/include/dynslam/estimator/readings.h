@@ -2,7 +2,7 @@
 /** @file readings.h
  * One step's input after parsing, independent of MRPT: the odometry increment and the
  * readings of the step in the measurement model's space. Produced by the one step-input
- * parser (dynslam/step_input.h, libs/common), consumed by every back-end through an
+ * parser (dynslam/common/step_input.h, libs/common), consumed by every back-end through an
  * IMeasurementRouter. */
 #include <Eigen/Core>
 #include <cstdint>
@@ -18,14 +18,14 @@ struct TReading
 	int32_t id;
 	Eigen::Vector2d z;
 	/** Optional detection group (a box / detection ID of the front-end) of this reading, -1:
-	 * none. Read from the step's DETECTION_GROUPS comment (dynslam/detection_groups.h); used only
+	 * none. Read from the step's DETECTION_GROUPS comment (dynslam/common/detection_groups.h); used only
 	 * by the classifying router with classify_use_hints (doc/results/classification.md, "Hints").
 	 */
 	int32_t hint = -1;
 };
 
 /** One box of a 3-D detector in the bird's-eye view (issue 31; the rawlog's DETECTION_BOXES
- * comment, dynslam/detection_boxes.h): no track ID. Its four footprint corners are also readings
+ * comment, dynslam/common/detection_boxes.h): no track ID. Its four footprint corners are also readings
  * of the step (ID -1, hint = group), in the order front-left, front-right, rear-right, rear-left
  * of the box frame (x along the heading, y to its left). */
 struct TBoxDetection
@@ -49,7 +49,7 @@ struct TStepInput
 	double stamp = std::numeric_limits<double>::quiet_NaN();
 	/** The sensor's pose on the robot s = (x, y, yaw) (the SE(2) part of MRPT's
 	 * sensorLocationOnRobot): every reading of the step is z = h(x (+) s, f)
-	 * (dynslam/models/measurement.h, observeFromSensor). Zero: the sensor at the origin. */
+	 * (dynslam/core/models/measurement.h, observeFromSensor). Zero: the sensor at the origin. */
 	Eigen::Vector3d sensor_pose = Eigen::Vector3d::Zero();
 	/** The step's detector boxes (DETECTION_BOXES comment; empty without one). */
 	std::vector<TBoxDetection> boxes;

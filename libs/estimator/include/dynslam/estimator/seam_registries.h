@@ -3,7 +3,7 @@
  * The registries of the estimator's four seams (registry.h; doc/architecture.md): name ->
  * factory, capabilities. The EKF (CDynamicKFSLAM2D::reset()), the framework's back-ends and the
  * apps make their implementations here. Engines that need MRPT (jcbb) are added by libs/ekf
- * (dynslam/ekf_registries.h: ekfUpdateEngines()); this library stays pure Eigen. */
+ * (dynslam/ekf/ekf_registries.h: ekfUpdateEngines()); this library stays pure Eigen. */
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>

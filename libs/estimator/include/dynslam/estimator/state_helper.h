@@ -11,7 +11,7 @@
  *  - condition: the perfect constraint x[a] = x[b] (landmark fusion: a noise-free update on the
  *    difference; marginalize b afterwards).
  * Pure Eigen; tested against dense computations (tests/estimator/test_state_helper.cpp). */
-#include <dynslam/ekf_steps.h>
+#include <dynslam/core/ekf_steps.h>
 #include <dynslam/estimator/state_layout.h>
 #include <dynslam/estimator/update_engine.h>
 

@@ -25,7 +25,7 @@ enum class BlockKind : uint8_t
 	 * (vx, vy[, omega]), as many as the pose has; further ones are the model's (ca: the
 	 * acceleration), read by no one else (doc/state-layout.md). */
 	ObjectVelocity,
-	OdometryBias,  ///< (b_w) or (b_w, s): odometry bias (dynslam/models/odometry_bias.h)
+	OdometryBias,  ///< (b_w) or (b_w, s): odometry bias (dynslam/core/models/odometry_bias.h)
 	/** Compressed EKF only (compressed_state.h): two columns of the accumulated cross-covariance
 	 * of the active state with the passive one (`object` = the level, `feature` = the pair). */
 	Compressed

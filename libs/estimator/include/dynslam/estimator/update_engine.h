@@ -6,8 +6,8 @@
  * robust engines (robust_update_engines.h), and MRPT's own update (CKalmanFilterCapable's
  * kfEKFNaive / kfEKFAlaDavison) and JCBB in libs/ekf. How the state is stored between steps
  * (e.g. compressed) is a seam of its own, state_lifecycle.h. */
-#include <dynslam/ekf_steps.h>
-#include <dynslam/models/measurement.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/measurement.h>
 
 #include <Eigen/Core>
 #include <cstdint>

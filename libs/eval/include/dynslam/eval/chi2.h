@@ -1,10 +1,10 @@
 #pragma once
 /** @file chi2.h
  * Chi-square bounds of the evaluation: the interval of an average of NEES/NIS values over
- * independent runs. The distribution function and quantiles are core's (dynslam/chi2.h: pure
+ * independent runs. The distribution function and quantiles are core's (dynslam/core/chi2.h: pure
  * math, used by the estimators' gates too); the using-declarations keep them reachable as
  * dynslam::eval::chi2Quantile etc. for the evaluation's callers. */
-#include <dynslam/chi2.h>
+#include <dynslam/core/chi2.h>
 
 namespace dynslam::eval
 {

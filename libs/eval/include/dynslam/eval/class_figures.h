@@ -10,10 +10,10 @@
  *    decision (upper band: grey undecided, blue static, red moving) and, if the truth is given,
  *    the true class (lower band: blue static, red moving, black clutter). Rows sorted by true
  *    class then first step; at most max_rows rows (the first ones; the title says how many). */
-#include <dynslam/class_ground_truth.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/estimates.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <mrpt/img/CImage.h>
 
 #include <cstdint>

@@ -5,7 +5,7 @@
  * classifier's decisions. Definitions and conventions: doc/metrics.md, section
  * "Classification and grouping". "Moving" is the positive class; static landmarks and clutter
  * are negatives. */
-#include <dynslam/class_ground_truth.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/estimates.h>
 
 #include <cstddef>

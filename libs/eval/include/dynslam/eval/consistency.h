@@ -12,7 +12,7 @@
  * only less well conditioned blocks go through the eigenvalues.) */
 #include <dynslam/eval/chi2.h>
 #include <dynslam/eval/estimates.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <Eigen/Core>
 #include <map>

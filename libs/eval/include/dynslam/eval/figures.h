@@ -16,7 +16,7 @@
 #include <dynslam/eval/consistency.h>
 #include <dynslam/eval/estimates.h>
 #include <dynslam/eval/plot_canvas.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <mrpt/img/CImage.h>
 
 #include <map>

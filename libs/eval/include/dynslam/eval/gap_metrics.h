@@ -5,7 +5,7 @@
  * steps, the position error at the last gap step, and the mean ego NEES (3 dof) over the gap
  * steps with its two-sided 95 % chi-square bounds. Pure Eigen. */
 #include <dynslam/eval/estimates.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <utility>
 #include <vector>

@@ -4,7 +4,7 @@
  * (arXiv 2207.05043), plus the ego ATE and per-step errors with 3-sigma bounds. Definitions:
  * doc/metrics.md. All errors are estimate - truth, angles wrapped to (-pi, pi]. */
 #include <dynslam/eval/estimates.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <Eigen/Core>
 #include <cstddef>

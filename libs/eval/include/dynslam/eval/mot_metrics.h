@@ -31,7 +31,7 @@
  *   most one match per level.)
  * Not modelled: KITTI's DontCare regions and its ignored classes (Van for Car, ...); the
  * caller selects what to score (selectClass). */
-#include <dynslam/models/bev_box.h>
+#include <dynslam/core/models/bev_box.h>
 
 #include <cstddef>
 #include <limits>

@@ -21,7 +21,7 @@
  * objects (2-dof poses): M = translation by d_k - d_{k-1}, r_err not counted (their truth's
  * dtheta is ignored too).  */
 #include <dynslam/eval/estimates.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <cstdint>
 #include <map>

@@ -6,11 +6,11 @@
  * object columns cannot match estimate and truth by number. Instead every estimated object is
  * matched to a true object by the class ground truth of its readings (class_ground_truth.h).
  * Pure Eigen. */
-#include <dynslam/class_ground_truth.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/estimates.h>
 #include <dynslam/eval/metrics.h>
 #include <dynslam/eval/velocity_metrics.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <cstdint>
 #include <map>

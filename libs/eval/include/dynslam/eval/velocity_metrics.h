@@ -12,7 +12,7 @@
  * not in the truth, or at steps without two finite true poses around them, are skipped
  * (counted). */
 #include <dynslam/eval/estimates.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <cstdint>
 #include <map>

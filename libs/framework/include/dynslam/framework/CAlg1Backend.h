@@ -26,7 +26,7 @@
  * The same steps as the EKF's, so Alg. 1 equals it (tests/framework/alg1_equivalence_test.cpp).
  * After every GN step the cost is replaced by ||x - mu||^2_{J^T J} (Alg. 1: "cost <- ...").
  * The state is kept in information form; covariances are computed when asked for. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_modes.h>

@@ -15,7 +15,7 @@
  *    (semi-decoupled: one-way coupling); nothing flows back into the static cost.
  * Ego poses older than the window are marginalized; object poses leave with them and are
  * recorded with their last estimate. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>

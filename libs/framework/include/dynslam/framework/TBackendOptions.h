@@ -4,7 +4,7 @@
  * measurement model, prior, drop policies) is the dynamic EKF's: TModelOptions (dynslam::common),
  * read from the section named by `model_section` (default [DynamicKFSLAM]), so one INI
  * configures the EKF and every back-end alike. */
-#include <dynslam/model_options.h>
+#include <dynslam/common/model_options.h>
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <string>

@@ -3,7 +3,7 @@
  * Creates a back-end of the framework by kind (doc/backends.md): alg1 (CAlg1Backend, the
  * EKF-equivalent Alg. 1), vdo, dynaslam2, cubeslam, clusterslam_decoupled,
  * clusterslam_semidecoupled (CWindowBackend). */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <dynslam/framework/TBackendOptions.h>
 #include <mrpt/config/CConfigFileBase.h>
 

@@ -16,7 +16,7 @@
  * on the initialisation term is the EKF's velocity augmentation. */
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/framework/terms.h>
-#include <dynslam/models/mode_mixture.h>
+#include <dynslam/core/models/mode_mixture.h>
 
 namespace dynslam::framework
 {

@@ -23,7 +23,7 @@
  * linearization point (as the EKF does with its Jacobians). */
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/framework/variables.h>
-#include <dynslam/models/measurement.h>
+#include <dynslam/core/models/measurement.h>
 
 #include <Eigen/Core>
 #include <memory>

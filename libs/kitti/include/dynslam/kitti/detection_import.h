@@ -5,7 +5,7 @@
  * frame (detection_files.h: classes of detection_classes, score >= detection_min_score) become
  * the step's boxes (estimator::TBoxDetection, ego = sensor frame) and their footprint corners the
  * step's only readings (landmark ID -1, group = the box's group); the rawlog writer adds the
- * DETECTION_GROUPS and DETECTION_BOXES comments (dynslam/detection_boxes.h). Pure C++/Eigen.
+ * DETECTION_GROUPS and DETECTION_BOXES comments (dynslam/common/detection_boxes.h). Pure C++/Eigen.
  *
  * - Frame: as the labels (geometry.h): the bottom centre (x, y, z) of the camera frame is the ego
  *   point (z, -x), the yaw -rot_y - pi/2 (wrapped to (-pi, pi]); extent = (l, w); class = the

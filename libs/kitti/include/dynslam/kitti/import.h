@@ -31,9 +31,9 @@
  *   on (c = footprint centre = the centroid of the 4 corners, the g^o rotation centre), NaN
  *   elsewhere. Extra files: the track list, the per-step class truth, the ID table
  *   (rawlog_writer.h). */
-#include <dynslam/class_ground_truth.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/estimator/readings.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/kitti/kitti_files.h>
 
 #include <Eigen/Core>
@@ -72,7 +72,7 @@ struct TImportOptions
 	double odo_std_phi_per_m = 0.001;          ///< [rad/m]
 	bool anonymous = false;
 	/** detection_groups: each step also writes a DETECTION_GROUPS comment
-	 * (dynslam/detection_groups.h): every corner's group is its KITTI track ID (the box it
+	 * (dynslam/common/detection_groups.h): every corner's group is its KITTI track ID (the box it
 	 * belongs to), the optional hint of the classifying filter. Off: the rawlog is unchanged. */
 	bool detection_groups = false;
 	/** The camera trajectory's positions are multiplied by pose_scale (headings unchanged; the

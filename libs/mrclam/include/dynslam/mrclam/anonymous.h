@@ -9,13 +9,13 @@
  * shuffle driven by std::mt19937(seed) with j = rng() mod (i + 1), so it is the same on every
  * standard library (std::shuffle is not). The ego's own subject keeps its slot but never occurs.
  *
- * Class ground truth (dynslam/class_ground_truth.h, `<base>_gt_classes.csv`, written for
+ * Class ground truth (dynslam/io/class_ground_truth.h, `<base>_gt_classes.csv`, written for
  * labelled and anonymous imports alike): one row per kept measurement, in rawlog order; id =
  * the ID written; true_id = the labelled ID (landmark subject s: s; robot r:
  * ids::objectFeatureId(r, 0)); class = static for landmarks, moving for robots (every robot
  * reading, also while that robot stands still: the robots are the moving objects of the data
  * set); object = the robot's subject number, feature 0 (landmarks: object -1, feature = s). */
-#include <dynslam/class_ground_truth.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/mrclam/import.h>
 
 #include <cstdint>

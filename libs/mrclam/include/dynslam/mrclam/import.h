@@ -27,7 +27,7 @@
  *   k, first_step = first step it was measured, pose = (p_k - p_first_step, 0) from
  *   first_step on (NaN before). TGroundTruth stores object i at index i, so objects 0..5 are
  *   exported: object 0 and the ego's own index are placeholders (never visible, NaN). */
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/mrclam/mrclam_files.h>
 #include <dynslam/mrclam/odometry.h>
 

@@ -10,7 +10,7 @@
  * Writes into DIR: BASE.rawlog, the five ground-truth files of ground_truth.h, the kf-slam
  * files (BASE_gt_landmarks.txt, BASE_gt_robot_path.txt, BASE_gt_data_association.txt) and
  * BASE_scenario.ini (the effective configuration). */
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <mrpt/system/COutputLogger.h>
 

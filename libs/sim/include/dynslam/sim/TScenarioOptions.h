@@ -7,7 +7,7 @@
  *
  * Sections: [Scenario] [Sensor] [Noise], then either [Highway] [Ego] [Agent1]..[AgentN]
  * (type = highway) or [Generated] (type = generated). */
-#include <dynslam/models/measurement.h>
+#include <dynslam/core/models/measurement.h>
 #include <dynslam/sim/motion.h>
 #include <mrpt/config/CLoadableOptions.h>
 
@@ -121,7 +121,7 @@ struct TReadingEffects
 	 * its ID for its other readings). */
 	double unknown_id_probability = 0;
 	/** detection_groups: each step also writes a DETECTION_GROUPS comment
-	 * (dynslam/detection_groups.h) giving every reading of an object (moving or parked) its
+	 * (dynslam/common/detection_groups.h) giving every reading of an object (moving or parked) its
 	 * object index as a box ID (a detector's box that survives track breaks); static landmarks
 	 * and clutter get none. Off: the rawlog is unchanged. Not a reading effect (no draws). */
 	bool detection_groups = false;
@@ -189,7 +189,7 @@ struct TScenarioOptions : public mrpt::config::CLoadableOptions
 	double std_range = 0, std_yaw = 0;  ///< range_bearing model: the noise; cartesian: equivalent
 	/** A constant odometry bias (issue 17; ground truth unchanged): the reading of the true
 	 * increment (dx, dy, dtheta) over dt is (dx / (1 - s), dy / (1 - s), dtheta + b_w dt)
-	 * before the noise, the inverse of dynslam/models/odometry_bias.h. Keys
+	 * before the noise, the inverse of dynslam/core/models/odometry_bias.h. Keys
 	 * odometry_rate_bias_deg_s (b_w [deg/s], default 0) and odometry_scale_error (s, in
 	 * (-1, 1), default 0); written by dumpToTextStream only when non-zero. */
 	double odometry_rate_bias = 0;  ///< b_w [rad/s]

@@ -4,7 +4,7 @@
  * ego path red, objects green / blue / purple (then further colours), static landmarks
  * yellow, each object's features at its first sighting as small squares, the road (highway)
  * in grey. Long scenes get a stretched lateral axis (the factor is printed in the image). */
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/TScenarioOptions.h>
 
 #include <string>

@@ -6,8 +6,8 @@
  * Step k = 0..steps, t_k = k dt. For every step the rawlog holds ACT_k (the noisy odometry
  * increment INTO pose k; ACT_0 is a zero increment with zero covariance) and SF_k (one
  * CObservationBearingRange taken at pose k). Ground truth step k is the pose of SF_k. */
-#include <dynslam/class_ground_truth.h>
-#include <dynslam/ground_truth.h>
+#include <dynslam/io/class_ground_truth.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <dynslam/sim/motion.h>
 #include <mrpt/obs/CActionCollection.h>

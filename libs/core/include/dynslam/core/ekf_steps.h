@@ -12,7 +12,7 @@
  * Every function checks its arguments: state indices out of range throw std::out_of_range;
  * inconsistent sizes (P not matching x, Sigma_s not 2x2 or 3x3, several time-t features for a
  * one-feature object) throw std::invalid_argument. */
-#include <dynslam/models/measurement.h>
+#include <dynslam/core/models/measurement.h>
 
 #include <Eigen/Core>
 #include <functional>

@@ -1,8 +1,8 @@
 #pragma once
 /** @file ekf_odometry_bias.h
  * Alg. 7 with an odometry bias block in the state (issue 17 item 2; the model:
- * dynslam/models/odometry_bias.h). Pure Eigen, like dynslam/ekf_steps.h. */
-#include <dynslam/ekf_steps.h>
+ * dynslam/core/models/odometry_bias.h). Pure Eigen, like dynslam/core/ekf_steps.h. */
+#include <dynslam/core/ekf_steps.h>
 
 #include <Eigen/Core>
 

@@ -28,7 +28,7 @@
  *
  * A sighting of feature k of an object is z = h(x_ego, g(xi, f0)_k): the measurement of
  * ego, object pose and the object's body-frame features together. */
-#include <dynslam/models/measurement.h>
+#include <dynslam/core/models/measurement.h>
 
 #include <Eigen/Core>
 

@@ -4,7 +4,7 @@
  * registries (dynslam/estimator/seam_registries.h): the one translation from keys to seam
  * parameters, shared by the EKF, the framework's back-ends and the apps. */
 #include <dynslam/estimator/seam_registries.h>
-#include <dynslam/model_options.h>
+#include <dynslam/common/model_options.h>
 
 #include <string>
 

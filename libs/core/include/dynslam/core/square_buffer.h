@@ -9,7 +9,7 @@
  * n outgrows the side, geometrically. Freed buffers are kept in a small per-thread cache and handed
  * to the next buffer of that thread (a Monte Carlo sweep runs one filter after the other: no fresh
  * pages from the kernel per run). Copying is not needed by the filter and not provided. */
-#include <dynslam/ekf_steps.h>
+#include <dynslam/core/ekf_steps.h>
 
 #include <Eigen/Core>
 #include <cstddef>

@@ -1,10 +1,10 @@
 #pragma once
 /** @file odometry_bias_options.h
  * Online odometry bias estimation (issue 17 item 2): odometry_bias in [DynamicKFSLAM], its
- * parameters in section [OdometryBias] (odometry_dt, bias_*; dynslam/model_keys.h); the
- * model is dynslam/models/odometry_bias.h, the state block estimator::BlockKind::OdometryBias
- * (doc/state-layout.md). Part of TModelOptions (dynslam/model_options.h). */
-#include <dynslam/ekf_odometry_bias.h>
+ * parameters in section [OdometryBias] (odometry_dt, bias_*; dynslam/common/model_keys.h); the
+ * model is dynslam/core/models/odometry_bias.h, the state block estimator::BlockKind::OdometryBias
+ * (doc/state-layout.md). Part of TModelOptions (dynslam/common/model_options.h). */
+#include <dynslam/core/ekf_odometry_bias.h>
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <iosfwd>

@@ -3,7 +3,7 @@
  * The result getters every back-end shares: object tracks from the object registry (first
  * sighting, feature set, the poses recorded when dropped), completed by the back-end with the
  * poses still in its state and sorted. */
-#include <dynslam/ISlamBackend.h>
+#include <dynslam/common/ISlamBackend.h>
 #include <dynslam/estimator/object_registry.h>
 
 #include <map>

@@ -13,7 +13,7 @@
  * One step (processActionObservation), built on the estimator core (libs/estimator,
  * doc/architecture.md): parse -> route -> propagate -> update -> augment -> motion model ->
  * drop -> commit.
- *  1. Parse (dynslam/step_input.h) and route the readings (IMeasurementRouter: static known /
+ *  1. Parse (dynslam/common/step_input.h) and route the readings (IMeasurementRouter: static known /
  *     new, object first sighting / time t, skip).
  *  2. Prediction with the odometry (Alg. 7, ekf::propagate) and update with the tracked static
  *     landmarks (Alg. 5) by the update engine (IUpdateEngine: the sparse update, or MRPT's
@@ -33,10 +33,10 @@
  *
  * Input: a CActionCollection with a CActionRobotMovement2D, and a CSensoryFrame whose first
  * CObservationBearingRange holds static landmarks and object features, told apart by ID
- * (dynslam/landmark_ids.h). Bad input throws std::runtime_error (nothing is changed) or is
+ * (dynslam/core/landmark_ids.h). Bad input throws std::runtime_error (nothing is changed) or is
  * skipped and counted, as documented per case in getLastStepReport(). */
-#include <dynslam/ISlamBackend.h>
-#include <dynslam/ekf_steps.h>
+#include <dynslam/common/ISlamBackend.h>
+#include <dynslam/core/ekf_steps.h>
 #include <dynslam/estimator/compressed_state.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/landmark_fusion.h>
@@ -47,11 +47,11 @@
 #include <dynslam/estimator/state_layout.h>
 #include <dynslam/estimator/state_lifecycle.h>
 #include <dynslam/estimator/update_engine.h>
-#include <dynslam/model_options.h>
-#include <dynslam/models/measurement.h>
-#include <dynslam/object_world_estimate.h>
-#include <dynslam/square_buffer.h>
-#include <dynslam/step_input.h>
+#include <dynslam/common/model_options.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/ekf/object_world_estimate.h>
+#include <dynslam/core/square_buffer.h>
+#include <dynslam/common/step_input.h>
 #include <mrpt/bayes/CKalmanFilterCapable.h>
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -107,7 +107,7 @@ public:
 	using Base = mrpt::bayes::CKalmanFilterCapable<3, 2, 2, 3>;
 
 	/** Options, section [DynamicKFSLAM] (KF_options in [DynamicKFSLAM_KalmanFilter]): the
-	 * model shared with the framework, dynslam/model_options.h. */
+	 * model shared with the framework, dynslam/common/model_options.h. */
 	using TOptions = TModelOptions;
 	TOptions options;
 	CDynamicKFSLAM2D();
@@ -249,7 +249,7 @@ public:
 	Eigen::MatrixXd gaugeJacobian() const;
 	Eigen::MatrixXd reportedCov() const;
 	/** odometry_bias != none: the bias estimate, (b_w) or (b_w, s), and its covariance
-	 * (dynslam/models/odometry_bias.h); empty otherwise. */
+	 * (dynslam/core/models/odometry_bias.h); empty otherwise. */
 	std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> getOdometryBias() const;
 
 protected:
