@@ -157,6 +157,31 @@ TEST(ClassMetrics, GroupingAri)
 	EXPECT_THROW(groupingAri(t, {1}), std::invalid_argument);
 }
 
+TEST(ClassMetrics, IdentityCounts)
+{
+	// True objects 0 (two tracks after a break) and 1; a static reading never counts.
+	const std::vector<TReadingClass> t = {row(0, 0, 1, M, 0, 0), row(1, 0, 2, M, 0, 0),
+	                                      row(0, 1, 3, M, 1, 0), row(1, 1, 4, M, 1, 0),
+	                                      row(0, 2, 5, S, -1, 5)};
+	// The break linked (both tracks of object 0 in identity 7): one identity per true object.
+	TIdentityCounts c = identityCounts(t, {7, 7, 8, 8, 9});
+	EXPECT_EQ(c.true_objects, 2u);
+	EXPECT_EQ(c.identities, 2u);
+	EXPECT_EQ(c.impure, 0u);
+	EXPECT_EQ(c.split, 0u);
+	// Not linked: object 0 in identities 7 and 6 (split); an ungrouped reading counts nowhere.
+	c = identityCounts(t, {7, 6, 8, -1, 9});
+	EXPECT_EQ(c.identities, 3u);
+	EXPECT_EQ(c.impure, 0u);
+	EXPECT_EQ(c.split, 1u);
+	// Linked wrongly: identity 7 holds readings of objects 0 and 1.
+	c = identityCounts(t, {7, 7, 7, 8, 9});
+	EXPECT_EQ(c.identities, 2u);
+	EXPECT_EQ(c.impure, 1u);
+	EXPECT_EQ(c.split, 1u);
+	EXPECT_THROW(identityCounts(t, {1}), std::invalid_argument);
+}
+
 TEST(ClassMetrics, WrongStaticLandmarks)
 {
 	const std::vector<TReadingClass> t = {row(0, 0, 1, S, -1, 1), row(0, 1, 2, S, 0, 0),

@@ -87,6 +87,15 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 	    row.filter + ": " + std::to_string(match.size()) + " estimated objects matched to " +
 	    std::to_string(trueHit.size()) + " true objects by the majority of their readings (" +
 	    std::to_string(unmatched) + " without a true object); " + agentNote(agents));
+	// Objects joined across track breaks (classify_link): one identity per true object is the
+	// ideal; impure identities are wrong links (doc/metrics.md "Objects of classifying rows").
+	const eval::TIdentityCounts ids = eval::identityCounts(truth, d.groups);
+	identities[row.filter] = ids;
+	objectNotes.push_back(row.filter + ": " + std::to_string(ids.identities) +
+	                      " object identities (objects joined across track breaks) for " +
+	                      std::to_string(ids.true_objects) + " true moving objects; " +
+	                      std::to_string(ids.impure) + " identities hold two or more true objects, " +
+	                      std::to_string(ids.split) + " true objects are split over two or more");
 }
 
 void CCompareApp::clearResults()
@@ -94,6 +103,7 @@ void CCompareApp::clearResults()
 	runs.clear();
 	rows.clear();
 	objectNotes.clear();
+	identities.clear();
 	failedFilters.clear();
 	writtenFiles.clear();
 	m_classTruth.reset();

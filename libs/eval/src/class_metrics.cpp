@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <numeric>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -159,6 +160,31 @@ double groupingAri(const std::vector<TReadingClass>& truth,
 		e.push_back(estimatedGroup[i] >= 0 ? estimatedGroup[i] : singleton--);
 	}
 	return t.empty() ? kNaN : adjustedRandIndex(t, e);
+}
+
+TIdentityCounts identityCounts(const std::vector<TReadingClass>& truth,
+                               const std::vector<int64_t>& estimatedGroup)
+{
+	if (truth.size() != estimatedGroup.size())
+		throw std::invalid_argument("identityCounts: " + std::to_string(truth.size()) +
+		                            " ground-truth rows but " +
+		                            std::to_string(estimatedGroup.size()) + " groups");
+	std::map<int64_t, std::set<int32_t>> objectsOf;  // identity -> true objects
+	std::map<int32_t, std::set<int64_t>> groupsOf;   // true object -> identities
+	for (size_t i = 0; i < truth.size(); ++i)
+	{
+		if (truth[i].cls != TrueClass::Moving) continue;
+		std::set<int64_t>& g = groupsOf[truth[i].object];
+		if (estimatedGroup[i] < 0) continue;
+		g.insert(estimatedGroup[i]);
+		objectsOf[estimatedGroup[i]].insert(truth[i].object);
+	}
+	TIdentityCounts c;
+	c.true_objects = groupsOf.size();
+	c.identities = objectsOf.size();
+	for (const auto& [g, objects] : objectsOf) c.impure += objects.size() > 1 ? 1 : 0;
+	for (const auto& [o, groups] : groupsOf) c.split += groups.size() > 1 ? 1 : 0;
+	return c;
 }
 
 TWrongStatic wrongStaticLandmarks(const std::vector<TReadingClass>& truth,

@@ -142,6 +142,9 @@ public:
 	/** One line per classifying row on how its object columns were scored (objects matched to
 	 * the truth by their readings, or empty without a class ground truth); under the table. */
 	std::vector<std::string> objectNotes;
+	/** Per classifying row with a class ground truth: its object identities against the true
+	 * objects (eval::identityCounts; also a line of objectNotes). */
+	std::map<std::string, eval::TIdentityCounts> identities;
 	std::vector<std::string> writtenFiles;
 	/** How many times run() read <ground truth>_gt_classes.csv (at most once per run). */
 	size_t classTruthFilesRead = 0;

@@ -83,6 +83,22 @@ double adjustedRandIndex(const std::vector<int64_t>& truth, const std::vector<in
 double groupingAri(const std::vector<TReadingClass>& truth,
                    const std::vector<int64_t>& estimatedGroup);
 
+/** Estimated object identities against the true objects (issue 29, "estimated objects"): over
+ * the readings whose true class is moving, the distinct estimated groups (an object, or the
+ * identity it continues after a track break: TRoutedReading::identity) and the distinct true
+ * objects. An identity is impure when its readings come from two or more true objects; a true
+ * object is split when its readings fall into two or more identities. Negative groups (not
+ * grouped, decided static) count in neither. Throws std::invalid_argument on different sizes. */
+struct TIdentityCounts
+{
+	size_t true_objects = 0;  ///< distinct true objects with a moving reading
+	size_t identities = 0;    ///< distinct estimated groups >= 0 among those readings
+	size_t impure = 0;        ///< identities with readings of two or more true objects
+	size_t split = 0;         ///< true objects whose readings fall into two or more identities
+};
+TIdentityCounts identityCounts(const std::vector<TReadingClass>& truth,
+                               const std::vector<int64_t>& estimatedGroup);
+
 /** Static landmarks of a final map that should not be there. */
 struct TWrongStatic
 {
