@@ -5,10 +5,10 @@
  * Sigma_0 (the prior's does); the reported covariance equals P + N Sigma_0 N^T with N built
  * here, independently, by central differences of the transform applied by entry label; the
  * model-matched tunnel's gap NEES lies in its chi-square bounds; a bad key value throws. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/common/config_include.h>
-#include <dynslam/io/ground_truth.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -59,7 +59,7 @@ TEnd run(const std::string& model, bool anchor, const Eigen::Matrix3d& S0, uint3
 {
 	sim::TScenarioOptions o = tunnel();
 	o.noise_seed = seed;
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun r = sim::simulateMeasurements(gt, o, seed);
 	auto f = makeFilter(o, model, anchor, S0);
 	for (size_t k = 0; k < std::min(steps, r.actions.size()); ++k)
@@ -231,7 +231,7 @@ TEST(PriorGauge, ModelMatchedTunnelNeesInsideChiSquareBounds)
 	for (int i = 0; i < runs; ++i)
 	{
 		o.noise_seed = 930001 + uint32_t(i);
-		const TGroundTruth gt = sim::buildGroundTruth(o);
+		const io::TGroundTruth gt = sim::buildGroundTruth(o);
 		const sim::TSimulatedRun r = sim::simulateMeasurements(gt, o, o.noise_seed);
 		auto f = makeFilter(o, "cv", true, o.Sigma_0);
 		double sum = 0;
