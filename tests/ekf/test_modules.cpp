@@ -2,8 +2,8 @@
  * "Capability modules"): the shipped profiles enable none (the step calls no module hook), each
  * option enables exactly its module, on both sides of its enabling condition, and an enabled
  * module's hooks are called once per step and hook. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/common/config_include.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>

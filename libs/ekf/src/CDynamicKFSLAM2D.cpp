@@ -4,15 +4,15 @@
  * (doc/architecture.md "Capability modules"). MRPT's hooks and
  * MRPT's update engine: CDynamicKFSLAM2D_mrpt.cpp. Augmentations, drops and the object motion
  * model: CDynamicKFSLAM2D_objects.cpp. */
+#include <dynslam/common/seam_options.h>
+#include <dynslam/core/ekf_odometry_bias.h>
+#include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/ekf/CMrptUpdateEngine.h>
-#include <dynslam/core/ekf_odometry_bias.h>
 #include <dynslam/ekf/ekf_registries.h>
-#include <dynslam/core/ekf_steps.h>
-#include <dynslam/estimator/state_helper.h>
-#include <dynslam/core/models/se2.h>
-#include <dynslam/common/seam_options.h>
 #include <dynslam/ekf/slam_services.h>
+#include <dynslam/estimator/state_helper.h>
 #include <mrpt/system/string_utils.h>
 
 #include <limits>

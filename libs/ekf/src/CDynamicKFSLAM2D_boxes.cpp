@@ -4,9 +4,9 @@
  * box as the tracker has it, relative to the pose that placed it). A moving object's pose in
  * the filter is that of its founders' centroid, the box centre only when all four corners
  * founded it: measured worse on 0000-0010 (doc/boxes.md), so it is not used. */
+#include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/box_router.h>
-#include <dynslam/core/models/se2.h>
 
 namespace dynslam
 {

@@ -1,7 +1,7 @@
 /** CDynamicKFSLAM2D: the filter's own innovation of a static reading for the classifying
  * router (classify_static_test = map, doc/results/classification.md). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 namespace dynslam
 {

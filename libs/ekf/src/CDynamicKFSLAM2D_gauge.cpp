@@ -1,7 +1,7 @@
 /** CDynamicKFSLAM2D: the prior gauge (prior_gauge = anchor, doc/state-layout.md "The prior
  * gauge"): the output term N Sigma_0 N^T of the reported covariances. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/models/gauge.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <stdexcept>
 

@@ -1,10 +1,10 @@
 /** CDynamicKFSLAM2D: merging an object that reappears under new IDs into the lost object it was
  * linked to (classify_merge_linked with an object-centric model, doc/results/classification.md
  * "Merging a linked object"): a state surgery x' = g(x), P' = J P J^T (models/object_merge.h). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/ekf_steps.h>
-#include <dynslam/estimator/state_helper.h>
 #include <dynslam/core/models/object_merge.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/estimator/state_helper.h>
 
 #include <stdexcept>
 #include <string>

@@ -2,9 +2,9 @@
  * (static_update = mrpt): runOneKalmanIteration with the prediction skipped (the prediction is
  * Alg. 7 by ekf::propagate, for every engine) and only the tracked static landmarks handed to
  * MRPT (new ones are augmented by the filter, CDynamicKFSLAM2D_objects.cpp). */
+#include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/ekf/CMrptUpdateEngine.h>
-#include <dynslam/core/models/se2.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>

@@ -3,8 +3,8 @@
  * plans its augmentations on the state extended by the pending blocks (dynslam/core/ekf_steps.h,
  * "batched augmentation") and commits them with its drops in one rewrite of the covariance.
  * Where a block is stored is the typed layout's business (estimator::CPaddedLayout). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/ekf_steps.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <algorithm>
 #include <set>

@@ -1,8 +1,8 @@
 /** CDynamicKFSLAM2D: result getters (the options are dynslam/common/model_options.h). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/common/backend_results.h>
 #include <dynslam/common/config_utils.h>
 #include <dynslam/core/ekf_steps.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <algorithm>
 #include <ostream>

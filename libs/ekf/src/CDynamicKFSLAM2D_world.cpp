@@ -1,8 +1,8 @@
 /** CDynamicKFSLAM2D: an object's pose in the world and its velocity (issue 30 item 5;
  * object_world_estimate.h, models/object_world_pose.h). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/ekf_steps.h>
 #include <dynslam/core/models/object_world_pose.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <algorithm>
 #include <climits>

@@ -1,9 +1,9 @@
 /** The live-merge module (live_merge.h). */
 #include "live_merge.h"
 
-#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/core/models/live_merge.h>
 #include <dynslam/core/models/object_merge.h>
+#include <dynslam/estimator/seam_registries.h>
 
 #include <Eigen/Cholesky>
 #include <utility>

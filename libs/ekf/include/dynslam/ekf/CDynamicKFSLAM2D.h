@@ -13,8 +13,8 @@
  * One step (processActionObservation), built on the estimator core (libs/estimator,
  * doc/architecture.md): parse -> route -> propagate -> update -> augment -> motion model ->
  * drop -> commit.
- *  1. Parse (dynslam/common/step_input.h) and route the readings (IMeasurementRouter: static known /
- *     new, object first sighting / time t, skip).
+ *  1. Parse (dynslam/common/step_input.h) and route the readings (IMeasurementRouter: static known
+ * / new, object first sighting / time t, skip).
  *  2. Prediction with the odometry (Alg. 7, ekf::propagate) and update with the tracked static
  *     landmarks (Alg. 5) by the update engine (IUpdateEngine: the sparse update, or MRPT's
  *     runOneKalmanIteration with its prediction skipped).
@@ -36,7 +36,12 @@
  * (dynslam/core/landmark_ids.h). Bad input throws std::runtime_error (nothing is changed) or is
  * skipped and counted, as documented per case in getLastStepReport(). */
 #include <dynslam/common/ISlamBackend.h>
+#include <dynslam/common/model_options.h>
+#include <dynslam/common/step_input.h>
 #include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/square_buffer.h>
+#include <dynslam/ekf/object_world_estimate.h>
 #include <dynslam/estimator/compressed_state.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/landmark_fusion.h>
@@ -47,11 +52,6 @@
 #include <dynslam/estimator/state_layout.h>
 #include <dynslam/estimator/state_lifecycle.h>
 #include <dynslam/estimator/update_engine.h>
-#include <dynslam/common/model_options.h>
-#include <dynslam/core/models/measurement.h>
-#include <dynslam/ekf/object_world_estimate.h>
-#include <dynslam/core/square_buffer.h>
-#include <dynslam/common/step_input.h>
 #include <mrpt/bayes/CKalmanFilterCapable.h>
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/obs/CActionCollection.h>
