@@ -14,6 +14,7 @@
  * Modules reach the filter's internals only through TFilterAccess, the one friend of the facade
  * for them: the list of what a module may read and write. */
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/estimator/state_helper.h>
 
 #include <cstdint>
 #include <string>
@@ -66,6 +67,19 @@ struct TFilterAccess
 	/** The covariance for writing (marks MRPT's copy stale). */
 	ekf::CSquareBuffer::View cov() { return f.cov(); }
 	const ekf::CSquareBuffer& covBuffer() const { return f.m_cov; }
+	/** The state helper's augment (estimator::state::augment) on the working state: `block`
+	 * appended with mean g, Jacobian J on x[in] and noise R (reset(): the odometry bias). */
+	void augment(const estimator::TBlock& block, const Eigen::VectorXd& g,
+	             const std::vector<int>& in, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R)
+	{
+		Eigen::VectorXd x = f.m_xkk.asEigen();
+		ekf::RowMatrixXd P = f.m_cov.view();
+		estimator::state::augment(x, P, f.m_layout, block, g, in, J, R);
+		f.m_xkk.resize(size_t(x.size()));
+		f.m_xkk.asEigen() = x;
+		f.setCov(P);
+		f.onLayoutChanged();
+	}
 
 	// operations of the facade
 	/** The layout extended by plan (valid until the next call or commit). */
