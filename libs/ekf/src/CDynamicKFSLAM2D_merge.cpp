@@ -1,15 +1,16 @@
 /** CDynamicKFSLAM2D: merging an object that reappears under new IDs into the lost object it was
  * linked to (classify_merge_linked with an object-centric model, doc/results/classification.md
  * "Merging a linked object"): a state surgery x' = g(x), P' = J P J^T (models/object_merge.h). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/ekf_steps.h>
-#include <dynslam/estimator/state_helper.h>
 #include <dynslam/core/models/object_merge.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/estimator/state_helper.h>
 
 #include <stdexcept>
 #include <string>
 
 #include "index_append.h"
+#include "modules/module_list.h"
 
 namespace dynslam
 {
@@ -114,7 +115,7 @@ bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 	if (N.velocity != SIZE_MAX) plan.remove.push_back(N.velocity);
 	commit(plan);  // N's pose, velocity and time-t features leave the state (marginalised)
 	onLayoutChanged();
-	m_awaitingVel.erase(from);
+	m_modules->objectForgotten(from);  // object motion: from is no longer awaiting a velocity
 	return true;
 }
 }  // namespace dynslam

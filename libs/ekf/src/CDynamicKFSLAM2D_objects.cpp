@@ -3,12 +3,15 @@
  * plans its augmentations on the state extended by the pending blocks (dynslam/core/ekf_steps.h,
  * "batched augmentation") and commits them with its drops in one rewrite of the covariance.
  * Where a block is stored is the typed layout's business (estimator::CPaddedLayout). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/ekf_steps.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <algorithm>
 #include <set>
 #include <stdexcept>
+
+#include "modules/module_list.h"
+#include "modules/object_motion.h"
 
 namespace dynslam
 {
@@ -205,7 +208,9 @@ void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 		++m_report.static_new;
 	}
 	// Objects with a velocity (object-centric models) were updated by their readings.
-	const std::set<int32_t> withState = objectsWithVelocity();
+	const ekf::CObjectMotionModule* motion = m_modules->objectMotion();
+	const std::set<int32_t> withState =
+	    motion ? motion->objectsWithVelocity(m_layout) : std::set<int32_t>();
 	for (const auto& m : m_routed.objects())
 	{
 		if (withState.count(m.object)) continue;

@@ -1,8 +1,8 @@
 /** CDynamicKFSLAM2D: result getters (the options are dynslam/common/model_options.h). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/common/backend_results.h>
 #include <dynslam/common/config_utils.h>
 #include <dynslam/core/ekf_steps.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <algorithm>
 #include <ostream>
@@ -10,6 +10,7 @@
 
 #include "modules/module_list.h"
 #include "modules/object_drop.h"
+#include "modules/object_motion.h"
 
 namespace dynslam
 {
@@ -151,7 +152,8 @@ std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 		out[t.object].poses.push_back(e);
 	}
 	sortTrackPoses(out);
-	attachModeProbabilities(out);  // object_model = mm
+	if (const ekf::CObjectMotionModule* motion = m_modules->objectMotion())
+		motion->attachModeProbabilities(out);  // object_model = mm
 	return out;
 }
 

@@ -14,6 +14,7 @@ namespace dynslam::ekf
 class CLandmarkFusionModule;
 class CObjectDropModule;
 class CFirstEstimateModule;
+class CObjectMotionModule;
 
 class CModuleList
 {
@@ -28,15 +29,19 @@ public:
 
 	void afterRoute(TFilterAccess& a);
 	void afterPropagate(TFilterAccess& a);
+	void afterStaticUpdate(TFilterAccess& a);
+	void afterMotion(TFilterAccess& a, TFilterAccess::TPending& plan);
 	void planDrops(TFilterAccess& a, TFilterAccess::TPending& plan);
 	void afterCommit(TFilterAccess& a);
 	void endOfStep(TFilterAccess& a);
 	void staticForgotten(int32_t id);
+	void objectForgotten(int32_t obj);
 
 	// the modules the facade's getters and the static update read (null: disabled)
 	const CLandmarkFusionModule* fusion() const { return m_fusion; }
 	const CObjectDropModule* objectDrop() const { return m_objectDrop; }
 	const CFirstEstimateModule* firstEstimates() const { return m_firstEstimates; }
+	const CObjectMotionModule* objectMotion() const { return m_objectMotion; }
 
 private:
 	void add(std::unique_ptr<IFilterModule> m);
@@ -51,5 +56,6 @@ private:
 	CLandmarkFusionModule* m_fusion = nullptr;
 	CObjectDropModule* m_objectDrop = nullptr;
 	CFirstEstimateModule* m_firstEstimates = nullptr;
+	CObjectMotionModule* m_objectMotion = nullptr;
 };
 }  // namespace dynslam::ekf

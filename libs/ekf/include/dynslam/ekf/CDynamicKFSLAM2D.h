@@ -13,8 +13,8 @@
  * One step (processActionObservation), built on the estimator core (libs/estimator,
  * doc/architecture.md): parse -> route -> propagate -> update -> augment -> motion model ->
  * drop -> commit.
- *  1. Parse (dynslam/common/step_input.h) and route the readings (IMeasurementRouter: static known /
- *     new, object first sighting / time t, skip).
+ *  1. Parse (dynslam/common/step_input.h) and route the readings (IMeasurementRouter: static known
+ * / new, object first sighting / time t, skip).
  *  2. Prediction with the odometry (Alg. 7, ekf::propagate) and update with the tracked static
  *     landmarks (Alg. 5) by the update engine (IUpdateEngine: the sparse update, or MRPT's
  *     runOneKalmanIteration with its prediction skipped).
@@ -36,7 +36,12 @@
  * (dynslam/core/landmark_ids.h). Bad input throws std::runtime_error (nothing is changed) or is
  * skipped and counted, as documented per case in getLastStepReport(). */
 #include <dynslam/common/ISlamBackend.h>
+#include <dynslam/common/model_options.h>
+#include <dynslam/common/step_input.h>
 #include <dynslam/core/ekf_steps.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/square_buffer.h>
+#include <dynslam/ekf/object_world_estimate.h>
 #include <dynslam/estimator/compressed_state.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/landmark_fusion.h>
@@ -47,11 +52,6 @@
 #include <dynslam/estimator/state_layout.h>
 #include <dynslam/estimator/state_lifecycle.h>
 #include <dynslam/estimator/update_engine.h>
-#include <dynslam/common/model_options.h>
-#include <dynslam/core/models/measurement.h>
-#include <dynslam/ekf/object_world_estimate.h>
-#include <dynslam/core/square_buffer.h>
-#include <dynslam/common/step_input.h>
 #include <mrpt/bayes/CKalmanFilterCapable.h>
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -168,10 +168,7 @@ public:
 	std::optional<TObjectVelocity> getObjectVelocity(int32_t object) const;
 	/** object_model = mm: the mode probabilities of every object with a velocity after this
 	 * step's readings, in the order of objectModeNames() (empty for single models). */
-	const std::map<int32_t, Eigen::VectorXd>& getObjectModeProbabilities() const
-	{
-		return m_modes.probabilities();
-	}
+	const std::map<int32_t, Eigen::VectorXd>& getObjectModeProbabilities() const;
 	/** The modes of object_model (mm: stationary, cv, turn, manoeuvre; empty: a single model). */
 	std::vector<std::string> objectModeNames() const override;
 	/** feature_labels = boxes: the box tracks of the last step by [BoxTracker]'s output rule (robot
@@ -351,42 +348,7 @@ private:
 	 * the slot tables; clears plan. */
 	void commit(TPending& plan);
 	void applyObjectMotion();  // the object motion model's pseudo-measurements (Alg. 6)
-	// object-centric motion models (velocityDim() > 0, e.g. cv; CDynamicKFSLAM2D_cv.cpp)
-	/** Predicts every object with a velocity over one step (its last pose is recorded first). */
-	void predictObjects();
-	/** object_model = mm (CDynamicKFSLAM2D_mm.cpp): predicts object obj's s = x[idx] ([pose;
-	 * velocity]) by the mixture of the modes, weighted by their probabilities after this step's
-	 * readings of it (models/mode_mixture.h). */
-	void predictObjectModes(int32_t obj, const std::vector<int>& idx);
-	/** log L_j of obj's readings of this step under each mode's prediction (empty: none). */
-	Eigen::VectorXd modeLogLikelihoods(int32_t obj, const std::vector<int>& idx,
-	                                   const estimator::TModePredictions& pred) const;
-	/** Sets the poses' mode_probabilities from m_modes' history (getObjectTracks). */
-	void attachModeProbabilities(std::map<int32_t, TObjectTrack>& tracks) const;
-	estimator::CObjectModes m_modes;  ///< object_model = mm: per object
-	/** Sightings of features of objects with a velocity: measurement updates of ego, pose and
-	 * body-frame features (gated by the model's readingGate()). */
-	void objectFeatureUpdates();
-	/** Velocity blocks for the objects whose first pose was added in this step (after a
-	 * fallback: whose second pose since the fallback was added in this step). */
-	void planObjectVelocities(TPending& plan);
-	/** Fallback of a lost object (cv_fallback_steps): removes the velocity and pose of the
-	 * objects lost in this step and the poses older than the newest of those re-initialised. */
-	void planFallbacks(TPending& plan);
-	/** One object's velocity block and its prior v = G x + n, n ~ N(0, prior). */
-	struct TVelocityInit
-	{
-		estimator::TBlock block;
-		Eigen::MatrixXd G, prior;
-		Eigen::VectorXd mean;
-	};
-	/** The velocity of obj from its pose block `pose` of this step; false: none yet. */
-	bool velocityInit(int32_t obj, size_t pose, TVelocityInit& out);
-	std::set<int32_t> m_lostNow;      ///< objects lost in this step (objectFeatureUpdates)
-	std::set<int32_t> m_awaitingVel;  ///< lost objects that have no velocity yet
-	std::set<int32_t> m_reinitNow;    ///< lost objects given a velocity in this step
-	/** Objects that have a velocity block (their readings are updates, not time-t features). */
-	std::set<int32_t> objectsWithVelocity() const;
+	// The object-centric motion models (cv, ctrv, ca, mm): src/modules/object_motion.h.
 	// the state's lifecycle (IStateLifecycle, CDynamicKFSLAM2D_compressed.cpp)
 	/** At the start of a step: the global update if the lifecycle needs it (a passive landmark
 	 * is read or due to be dropped). */
