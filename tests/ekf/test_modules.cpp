@@ -90,16 +90,24 @@ TEST(Modules, EachOptionEnablesExactlyItsModule)
 	          Names{"live_merge"});
 	EXPECT_EQ(modulesOf(ini("feature_labels = ids", "classify_merge_live = true")), Names{});
 	EXPECT_EQ(modulesOf(ini("feature_labels = classify", "classify_merge_live = false")), Names{});
+	// The object-centric motion models (a velocity block): cv, ctrv, ca, mm; not the paper's.
+	for (const char* model : {"cv", "ctrv", "ca", "mm"})
+		EXPECT_EQ(modulesOf(ini(std::string("object_model = ") + model)), Names{"object_motion"})
+		    << model;
+	EXPECT_EQ(modulesOf(ini("object_model = paper")), Names{});
+	EXPECT_EQ(modulesOf(ini("object_model = paper_smoothing\nSigma_s = [1e-2 1e-2 1e-3]\n"
+	                        "keep_last_poses = 3")),
+	          Names{});
 	// Linked merges: a classifying router with an object-centric model only.
 	EXPECT_EQ(modulesOf(ini("feature_labels = classify\nobject_model = cv",
 	                        "classify_merge_linked = true")),
-	          Names{"linked_merge"});
+	          (Names{"object_motion", "linked_merge"}));
 	EXPECT_EQ(modulesOf(ini("feature_labels = classify\nobject_model = paper",
 	                        "classify_merge_linked = true")),
 	          Names{});
 	EXPECT_EQ(
 	    modulesOf(ini("feature_labels = ids\nobject_model = cv", "classify_merge_linked = true")),
-	    Names{});
+	    Names{"object_motion"});
 	// Several, in the order their hooks run (fusion and object drops need feature_labels = ids).
 	EXPECT_EQ(modulesOf(ini("first_estimate_jacobians = true\ndrop_object_after_unseen_steps = 3\n"
 	                        "fuse_landmarks_prob = 0.99")),
@@ -107,7 +115,7 @@ TEST(Modules, EachOptionEnablesExactlyItsModule)
 	EXPECT_EQ(modulesOf(ini("feature_labels = classify\nobject_model = cv\n"
 	                        "first_estimate_jacobians = true",
 	                        "classify_merge_linked = true\nclassify_merge_live = true")),
-	          (Names{"first_estimates", "linked_merge", "live_merge"}));
+	          (Names{"first_estimates", "object_motion", "linked_merge", "live_merge"}));
 }
 
 TEST(Modules, HooksAreCalledOncePerStepAndHook)
@@ -116,9 +124,11 @@ TEST(Modules, HooksAreCalledOncePerStepAndHook)
 	ASSERT_GT(steps, 0u);
 	// fusion: AfterRoute and AfterCommit (StaticForgotten: no static landmark leaves the state
 	// here, nothing drops them); first estimates: AfterPropagate and EndOfStep; object drop:
-	// PlanDrops.
+	// PlanDrops; object motion: AfterPropagate, AfterStaticUpdate, AfterMotion and PlanDrops
+	// (ObjectForgotten: no object is dropped or merged here).
 	const std::vector<std::pair<std::string, size_t>> cases{
 	    {"fuse_landmarks_prob = 0.99", 2 * steps},
+	    {"object_model = cv", 4 * steps},
 	    {"first_estimate_jacobians = true", 2 * steps},
 	    {"drop_object_after_unseen_steps = 100", steps},
 	    {"fuse_landmarks_prob = 0.99\nfirst_estimate_jacobians = true", 4 * steps}};

@@ -22,6 +22,7 @@
 #include "modules/first_estimates.h"
 #include "modules/fusion.h"
 #include "modules/module_list.h"
+#include "modules/object_motion.h"
 #include "modules/odometry_bias.h"
 
 namespace dynslam
@@ -152,10 +153,6 @@ void CDynamicKFSLAM2D::reset()
 	m_routed = estimator::TRoutedStep();
 	m_step = -1;
 	m_report = TStepReport();
-	m_lostNow.clear();
-	m_awaitingVel.clear();
-	m_reinitNow.clear();
-	m_modes.clear();
 	m_failed = false;
 	m_lastF.reset();
 }
@@ -235,10 +232,9 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		m_report.classify_joined = m_routed.joined;
 		convertStaticLandmarks(m_routed.converted);  // classify: a parked car drove off
 		propagateEgo();                              // Alg. 7
-		modules.afterPropagate(access);              // first estimates: x_{k|k-1}
-		predictObjects();                            // object-centric motion models only (cv)
-		staticUpdate();                              // Alg. 5
-		objectFeatureUpdates();                      // object-centric motion models only (cv)
+		modules.afterPropagate(access);     // first estimates: x_{k|k-1}; objects predicted
+		staticUpdate();                     // Alg. 5
+		modules.afterStaticUpdate(access);  // object motion: objects' readings as updates
 		for (const auto& m : m_routed.statics()) m_drop.noteSeen(m.reading.id, m_step);
 		for (const auto& m : m_routed.objects()) m_drop.noteObjectSeen(m.object, m_step);
 
@@ -253,12 +249,11 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		if (m_motion->actsOnNewPoses())
 		{
 			commit(plan);
-			applyObjectMotion();         // Alg. 6
-			planObjectVelocities(plan);  // object-centric motion models only (cv)
+			applyObjectMotion();                // Alg. 6
+			modules.afterMotion(access, plan);  // object motion: velocities of new objects
 		}
 		planDrops(plan);
-		modules.planDrops(access, plan);  // object drop
-		planFallbacks(plan);              // object-centric motion models only (cv_fallback_steps)
+		modules.planDrops(access, plan);  // object drop; object motion: fallbacks (lost objects)
 		commit(plan);
 		modules.afterCommit(access);  // fusion, linked merge, live merge
 		modules.endOfStep(access);    // first estimates: record the new landmarks'
@@ -363,6 +358,18 @@ void CDynamicKFSLAM2D::forgetStatic(int32_t id)
 }
 
 std::vector<std::string> CDynamicKFSLAM2D::enabledModules() const { return m_modules->names(); }
+
+const std::map<int32_t, Eigen::VectorXd>& CDynamicKFSLAM2D::getObjectModeProbabilities() const
+{
+	static const std::map<int32_t, Eigen::VectorXd> none;
+	const ekf::CObjectMotionModule* motion = m_modules->objectMotion();
+	return motion ? motion->modeProbabilities() : none;
+}
+
+std::vector<std::string> CDynamicKFSLAM2D::objectModeNames() const
+{
+	return estimator::modeNames(*m_motion);
+}
 
 size_t CDynamicKFSLAM2D::moduleHookCalls() const { return m_modules->hookCalls(); }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "index_append.h"
+#include "modules/module_list.h"
 
 namespace dynslam
 {
@@ -114,7 +115,7 @@ bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
 	if (N.velocity != SIZE_MAX) plan.remove.push_back(N.velocity);
 	commit(plan);  // N's pose, velocity and time-t features leave the state (marginalised)
 	onLayoutChanged();
-	m_awaitingVel.erase(from);
+	m_modules->objectForgotten(from);  // object motion: from is no longer awaiting a velocity
 	return true;
 }
 }  // namespace dynslam

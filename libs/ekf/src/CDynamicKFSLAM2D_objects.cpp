@@ -10,6 +10,9 @@
 #include <set>
 #include <stdexcept>
 
+#include "modules/module_list.h"
+#include "modules/object_motion.h"
+
 namespace dynslam
 {
 using estimator::BlockKind;
@@ -205,7 +208,9 @@ void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 		++m_report.static_new;
 	}
 	// Objects with a velocity (object-centric models) were updated by their readings.
-	const std::set<int32_t> withState = objectsWithVelocity();
+	const ekf::CObjectMotionModule* motion = m_modules->objectMotion();
+	const std::set<int32_t> withState =
+	    motion ? motion->objectsWithVelocity(m_layout) : std::set<int32_t>();
 	for (const auto& m : m_routed.objects())
 	{
 		if (withState.count(m.object)) continue;

@@ -4,6 +4,8 @@
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include "gauge/prior_gauge.h"
+#include "modules/module_list.h"
+#include "modules/object_motion.h"
 #include "modules/odometry_bias.h"
 #include "results/reader.h"
 
@@ -38,7 +40,8 @@ std::vector<TObjectFeatureEstimate> CDynamicKFSLAM2D::getObjectFeatures() const
 std::map<int32_t, TObjectTrack> CDynamicKFSLAM2D::getObjectTracks() const
 {
 	std::map<int32_t, TObjectTrack> out = results::objectTracks(viewOf(*this));
-	attachModeProbabilities(out);  // object_model = mm
+	if (const ekf::CObjectMotionModule* motion = m_modules->objectMotion())
+		motion->attachModeProbabilities(out);  // object_model = mm
 	return out;
 }
 

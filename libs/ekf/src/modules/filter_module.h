@@ -2,15 +2,18 @@
 /** @file filter_module.h
  * (Internal to dynslam::ekf.) The capability-module seam of CDynamicKFSLAM2D (issue 32 item 2,
  * doc/architecture.md "Capability modules"). A capability that only some configurations use
- * (landmark fusion, object drops, first-estimate Jacobians, linked and live merges) is a module:
+ * (landmark fusion, object drops, first-estimate Jacobians, linked and live merges, the
+ * object-centric motion models) is a module:
  * it owns its members, is made by reset() only when its options enable it (module_list.cpp), and
  * names the hooks of the step it takes part in. The step calls the hooks of the enabled modules
  * only, in the order the modules were made:
  *
- *   route -> AfterRoute -> propagate -> AfterPropagate -> update -> augment -> motion model ->
- *   drops -> PlanDrops -> commit -> AfterCommit -> EndOfStep -> compression
+ *   route -> AfterRoute -> propagate -> AfterPropagate -> update -> AfterStaticUpdate ->
+ *   augment -> motion model -> AfterMotion -> drops -> PlanDrops -> commit -> AfterCommit ->
+ *   EndOfStep -> compression
  *
- * plus StaticForgotten whenever a static landmark leaves the state (drop policy, surgery).
+ * plus StaticForgotten whenever a static landmark leaves the state (drop policy, surgery) and
+ * ObjectForgotten whenever an object does (object drop, merge).
  * Modules reach the filter's internals only through TFilterAccess, the one friend of the facade
  * for them: the list of what a module may read and write. */
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
@@ -25,14 +28,17 @@ namespace dynslam::ekf
 /** The hook points of the step (IFilterModule's virtual functions of the same names). */
 enum class Hook : uint8_t
 {
-	AfterRoute,      ///< after the router's decisions, before the report copies them
-	AfterPropagate,  ///< after the ego prediction (also when it was skipped)
-	PlanDrops,       ///< after the drop policies planned theirs, before the commit
-	AfterCommit,     ///< after the step's last commit (state surgery may commit again)
-	EndOfStep,       ///< last, before the state's lifecycle compresses
-	StaticForgotten  ///< a static landmark left the state or became an object feature
+	AfterRoute,         ///< after the router's decisions, before the report copies them
+	AfterPropagate,     ///< after the ego prediction (also when it was skipped)
+	AfterStaticUpdate,  ///< after the static update (Alg. 5), before the augmentations
+	AfterMotion,        ///< after the motion model's pseudo-measurements (if actsOnNewPoses())
+	PlanDrops,          ///< after the drop policies planned theirs, before the commit
+	AfterCommit,        ///< after the step's last commit (state surgery may commit again)
+	EndOfStep,          ///< last, before the state's lifecycle compresses
+	StaticForgotten,    ///< a static landmark left the state or became an object feature
+	ObjectForgotten     ///< an object left the state (object drop) or the registry (merge)
 };
-constexpr size_t kHookCount = 6;
+constexpr size_t kHookCount = 9;
 /** The bit of hook h in IFilterModule::hooks(). */
 constexpr unsigned hookBit(Hook h) { return 1u << unsigned(h); }
 
@@ -54,6 +60,7 @@ struct TFilterAccess
 	/** Whether the router was set by setRouter (not made from the options). */
 	bool userRouter() const { return f.m_userRouter; }
 	const estimator::IObjectMotionModel& motion() const { return *f.m_motion; }
+	estimator::IObjectMotionModel& motion() { return *f.m_motion; }
 	const estimator::IStateLifecycle& lifecycle() const { return *f.m_lifecycle; }
 	estimator::CDropPolicy& dropPolicy() { return f.m_drop; }
 
@@ -80,6 +87,12 @@ struct TFilterAccess
 		f.setCov(P);
 		f.onLayoutChanged();
 	}
+	/** Sets the step of block b of the working layout (call layoutChanged() after). */
+	void setBlockStep(size_t b, int step) { f.m_layout.setStep(b, step); }
+	/** Rebuilds what the facade derives from the layout (its slot view). */
+	void layoutChanged() { f.onLayoutChanged(); }
+	/** Wraps the state's angles (MRPT's OnNormalizeStateVector). */
+	void normalize() { f.OnNormalizeStateVector(); }
 
 	// operations of the facade
 	/** The layout extended by plan (valid until the next call or commit). */
@@ -91,13 +104,8 @@ struct TFilterAccess
 	bool mergeObjects(int32_t from, int32_t into) { return f.mergeObjects(from, into); }
 	/** A static landmark's last estimate joins the dropped ones (getDroppedStaticLandmarks). */
 	void recordDroppedStatic(const TStaticLandmarkEstimate& e) { f.m_droppedStatic.push_back(e); }
-	/** Object obj left the state: the object-centric models' per-step sets forget it. */
-	void forgetObjectMotion(int32_t obj)
-	{
-		f.m_lostNow.erase(obj);
-		f.m_awaitingVel.erase(obj);
-		f.m_reinitNow.erase(obj);
-	}
+	/** Object obj left the state: the ObjectForgotten hooks (module_list.cpp). */
+	void objectForgotten(int32_t obj);
 };
 
 /** A capability module. Only the hooks named by hooks() are called. */
@@ -112,9 +120,12 @@ public:
 	virtual unsigned hooks() const = 0;
 	virtual void afterRoute(TFilterAccess&) {}
 	virtual void afterPropagate(TFilterAccess&) {}
+	virtual void afterStaticUpdate(TFilterAccess&) {}
+	virtual void afterMotion(TFilterAccess&, TPending&) {}
 	virtual void planDrops(TFilterAccess&, TPending&) {}
 	virtual void afterCommit(TFilterAccess&) {}
 	virtual void endOfStep(TFilterAccess&) {}
 	virtual void staticForgotten(int32_t) {}
+	virtual void objectForgotten(int32_t) {}
 };
 }  // namespace dynslam::ekf

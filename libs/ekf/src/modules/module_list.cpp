@@ -7,6 +7,7 @@
 #include "linked_merge.h"
 #include "live_merge.h"
 #include "object_drop.h"
+#include "object_motion.h"
 #include "odometry_bias.h"
 
 namespace dynslam::ekf
@@ -38,6 +39,9 @@ void CModuleList::build(TFilterAccess& a)
 	auto drop = makeObjectDropModule(a);  // drop_object_after_unseen_steps
 	m_objectDrop = drop.get();
 	add(std::move(drop));
+	auto motion = makeObjectMotionModule(a);  // object_model with a velocity block (cv, ..., mm)
+	m_objectMotion = motion.get();
+	add(std::move(motion));
 	add(makeLinkedMergeModule(a));  // classify_merge_linked
 	add(makeLiveMergeModule(a));    // classify_merge_live
 }
@@ -59,6 +63,16 @@ void CModuleList::afterPropagate(TFilterAccess& a)
 	for (IFilterModule* m : at(Hook::AfterPropagate)) m->afterPropagate(a);
 }
 
+void CModuleList::afterStaticUpdate(TFilterAccess& a)
+{
+	for (IFilterModule* m : at(Hook::AfterStaticUpdate)) m->afterStaticUpdate(a);
+}
+
+void CModuleList::afterMotion(TFilterAccess& a, TFilterAccess::TPending& plan)
+{
+	for (IFilterModule* m : at(Hook::AfterMotion)) m->afterMotion(a, plan);
+}
+
 void CModuleList::planDrops(TFilterAccess& a, TFilterAccess::TPending& plan)
 {
 	for (IFilterModule* m : at(Hook::PlanDrops)) m->planDrops(a, plan);
@@ -78,4 +92,11 @@ void CModuleList::staticForgotten(int32_t id)
 {
 	for (IFilterModule* m : at(Hook::StaticForgotten)) m->staticForgotten(id);
 }
+
+void CModuleList::objectForgotten(int32_t obj)
+{
+	for (IFilterModule* m : at(Hook::ObjectForgotten)) m->objectForgotten(obj);
+}
+
+void TFilterAccess::objectForgotten(int32_t obj) { f.m_modules->objectForgotten(obj); }
 }  // namespace dynslam::ekf

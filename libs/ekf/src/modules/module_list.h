@@ -15,6 +15,7 @@ class CLandmarkFusionModule;
 class CObjectDropModule;
 class CFirstEstimateModule;
 class COdometryBiasModule;
+class CObjectMotionModule;
 
 class CModuleList
 {
@@ -29,10 +30,13 @@ public:
 
 	void afterRoute(TFilterAccess& a);
 	void afterPropagate(TFilterAccess& a);
+	void afterStaticUpdate(TFilterAccess& a);
+	void afterMotion(TFilterAccess& a, TFilterAccess::TPending& plan);
 	void planDrops(TFilterAccess& a, TFilterAccess::TPending& plan);
 	void afterCommit(TFilterAccess& a);
 	void endOfStep(TFilterAccess& a);
 	void staticForgotten(int32_t id);
+	void objectForgotten(int32_t obj);
 
 	// the modules the facade's getters and the static update read (null: disabled)
 	const CLandmarkFusionModule* fusion() const { return m_fusion; }
@@ -40,6 +44,7 @@ public:
 	const CFirstEstimateModule* firstEstimates() const { return m_firstEstimates; }
 	/** The odometry bias (no hook: reset() and the prediction call it; it records timestamps). */
 	COdometryBiasModule* odometryBias() const { return m_odometryBias; }
+	const CObjectMotionModule* objectMotion() const { return m_objectMotion; }
 
 private:
 	void add(std::unique_ptr<IFilterModule> m);
@@ -55,5 +60,6 @@ private:
 	CObjectDropModule* m_objectDrop = nullptr;
 	CFirstEstimateModule* m_firstEstimates = nullptr;
 	COdometryBiasModule* m_odometryBias = nullptr;
+	CObjectMotionModule* m_objectMotion = nullptr;
 };
 }  // namespace dynslam::ekf

@@ -106,7 +106,7 @@ void CObjectDropModule::planDrops(TFilterAccess& a, TPending& plan)
 		}
 		registry.markDropped(obj);
 		drop.forgetObject(obj);
-		a.forgetObjectMotion(obj);
+		a.objectForgotten(obj);  // object motion: its per-step sets
 		++a.report().dropped_objects;
 	}
 }

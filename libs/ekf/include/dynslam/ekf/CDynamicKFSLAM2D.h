@@ -158,10 +158,7 @@ public:
 	std::optional<TObjectVelocity> getObjectVelocity(int32_t object) const;
 	/** object_model = mm: the mode probabilities of every object with a velocity after this
 	 * step's readings, in the order of objectModeNames() (empty for single models). */
-	const std::map<int32_t, Eigen::VectorXd>& getObjectModeProbabilities() const
-	{
-		return m_modes.probabilities();
-	}
+	const std::map<int32_t, Eigen::VectorXd>& getObjectModeProbabilities() const;
 	/** The modes of object_model (mm: stationary, cv, turn, manoeuvre; empty: a single model). */
 	std::vector<std::string> objectModeNames() const override;
 	/** feature_labels = boxes: the box tracks of the last step by [BoxTracker]'s output rule (robot
@@ -330,42 +327,7 @@ private:
 	 * the slot tables; clears plan. */
 	void commit(TPending& plan);
 	void applyObjectMotion();  // the object motion model's pseudo-measurements (Alg. 6)
-	// object-centric motion models (velocityDim() > 0, e.g. cv; CDynamicKFSLAM2D_cv.cpp)
-	/** Predicts every object with a velocity over one step (its last pose is recorded first). */
-	void predictObjects();
-	/** object_model = mm (CDynamicKFSLAM2D_mm.cpp): predicts object obj's s = x[idx] ([pose;
-	 * velocity]) by the mixture of the modes, weighted by their probabilities after this step's
-	 * readings of it (models/mode_mixture.h). */
-	void predictObjectModes(int32_t obj, const std::vector<int>& idx);
-	/** log L_j of obj's readings of this step under each mode's prediction (empty: none). */
-	Eigen::VectorXd modeLogLikelihoods(int32_t obj, const std::vector<int>& idx,
-	                                   const estimator::TModePredictions& pred) const;
-	/** Sets the poses' mode_probabilities from m_modes' history (getObjectTracks). */
-	void attachModeProbabilities(std::map<int32_t, TObjectTrack>& tracks) const;
-	estimator::CObjectModes m_modes;  ///< object_model = mm: per object
-	/** Sightings of features of objects with a velocity: measurement updates of ego, pose and
-	 * body-frame features (gated by the model's readingGate()). */
-	void objectFeatureUpdates();
-	/** Velocity blocks for the objects whose first pose was added in this step (after a
-	 * fallback: whose second pose since the fallback was added in this step). */
-	void planObjectVelocities(TPending& plan);
-	/** Fallback of a lost object (cv_fallback_steps): removes the velocity and pose of the
-	 * objects lost in this step and the poses older than the newest of those re-initialised. */
-	void planFallbacks(TPending& plan);
-	/** One object's velocity block and its prior v = G x + n, n ~ N(0, prior). */
-	struct TVelocityInit
-	{
-		estimator::TBlock block;
-		Eigen::MatrixXd G, prior;
-		Eigen::VectorXd mean;
-	};
-	/** The velocity of obj from its pose block `pose` of this step; false: none yet. */
-	bool velocityInit(int32_t obj, size_t pose, TVelocityInit& out);
-	std::set<int32_t> m_lostNow;      ///< objects lost in this step (objectFeatureUpdates)
-	std::set<int32_t> m_awaitingVel;  ///< lost objects that have no velocity yet
-	std::set<int32_t> m_reinitNow;    ///< lost objects given a velocity in this step
-	/** Objects that have a velocity block (their readings are updates, not time-t features). */
-	std::set<int32_t> objectsWithVelocity() const;
+	// The object-centric motion models (cv, ctrv, ca, mm): src/modules/object_motion.h.
 	// the state's lifecycle (IStateLifecycle, CDynamicKFSLAM2D_compressed.cpp)
 	/** At the start of a step: the global update if the lifecycle needs it (a passive landmark
 	 * is read or due to be dropped). */

@@ -4,8 +4,8 @@
  * models/mode_mixture.h, doc/state-layout.md "Multiple-model objects"): per object, the
  * probabilities of the model's modes, updated each step by the object's readings (a GPB1-style
  * switch), their history for the outputs, and the moment-matched prediction they weight. One
- * module for both back-ends: the dynamic EKF (CDynamicKFSLAM2D_mm.cpp) and Alg. 1
- * (CAlg1Backend_objects.cpp) call predict() with their own likelihood of the readings. Pure
+ * module for both back-ends: the dynamic EKF (libs/ekf/src/modules/object_motion_modes.cpp) and
+ * Alg. 1 (CAlg1Backend_objects.cpp) call predict() with their own likelihood of the readings. Pure
  * Eigen. */
 #include <dynslam/core/models/measurement.h>
 #include <dynslam/core/models/mode_mixture.h>
@@ -51,7 +51,7 @@ using TSightingFn = std::function<TReadingSighting(Eigen::Index r, const Eigen::
  * size, the velocity's columns 0); f_0 (the rest of P_e)], R = diag(Sigma_v, ..., Sigma_v),
  * then models::predictedReadingsLogLikelihood(P_e, 3, F_j, Q_j, H, nu, R). P_e: the prior
  * covariance of e. m = 0: empty (no readings). The stacking shared by the dynamic EKF
- * (CDynamicKFSLAM2D_mm.cpp) and Alg. 1 (CAlg1Backend_objects.cpp), which differ only in how
+ * (object_motion_modes.cpp) and Alg. 1 (CAlg1Backend_objects.cpp), which differ only in how
  * they sight a reading. Throws std::invalid_argument on sizes. */
 Eigen::VectorXd readingsModeLogLikelihoods(const TModePredictions& pred, const Eigen::MatrixXd& P_e,
                                            Eigen::Index poseDim, Eigen::Index m,

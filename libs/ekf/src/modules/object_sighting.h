@@ -1,7 +1,7 @@
 #pragma once
 /** @file object_sighting.h
  * (Internal to dynslam::ekf.) One sighting of an object feature, shared by the object updates
- * (CDynamicKFSLAM2D_cv.cpp) and the multiple-model likelihoods (CDynamicKFSLAM2D_mm.cpp). */
+ * (object_motion_update.cpp) and the multiple-model likelihoods (object_motion_modes.cpp). */
 #include <dynslam/core/models/object_motion.h>
 
 namespace dynslam::detail
