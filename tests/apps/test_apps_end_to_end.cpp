@@ -272,7 +272,14 @@ TEST(CompareApp, ClassifiedRowHasClassColumns)
 	ASSERT_NE(pc, header.end());
 	EXPECT_NE(apps_test::splitCsv(lines[1])[size_t(pc - header.begin())], "");
 	EXPECT_NE(apps_test::splitCsv(lines[2])[size_t(pc - header.begin())], "");
-	ASSERT_EQ(app.objectNotes.size(), 1u);
+	ASSERT_EQ(app.objectNotes.size(), 2u);  // the matching, then the identities
+	// Three agents, no track break on the shipped highway: one identity each, none mixed.
+	const eval::TIdentityCounts& ids = app.identities.at("dynamic_classified");
+	EXPECT_EQ(ids.true_objects, 3u);
+	EXPECT_EQ(ids.identities, 3u);
+	EXPECT_EQ(ids.impure + ids.split, 0u);
+	EXPECT_NE(app.objectNotes[1].find("3 object identities"), std::string::npos)
+	    << app.objectNotes[1];
 	EXPECT_NE(app.objectNotes[0].find("3 estimated objects matched to 3 true objects"),
 	          std::string::npos)
 	    << app.objectNotes[0];
@@ -310,7 +317,7 @@ TEST(CompareApp, ClassifiedRowScoresItsAgents)
 	}
 	EXPECT_LT(cls[0].poses.theta, 0.01);
 	EXPECT_LT(cls[1].poses.theta, 0.01);
-	ASSERT_EQ(app.objectNotes.size(), 1u);
+	ASSERT_EQ(app.objectNotes.size(), 2u);
 	EXPECT_NE(app.objectNotes[0].find("agent 1 <- object 0 (time 0 step 1"), std::string::npos)
 	    << app.objectNotes[0];
 }
