@@ -3,8 +3,8 @@
  * plans its augmentations on the state extended by the pending blocks (dynslam/core/ekf_steps.h,
  * "batched augmentation") and commits them with its drops in one rewrite of the covariance.
  * Where a block is stored is the typed layout's business (estimator::CPaddedLayout). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/ekf_steps.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <algorithm>
 #include <set>
@@ -156,25 +156,6 @@ const estimator::CPaddedLayout& CDynamicKFSLAM2D::extendedLayout(const TPending&
 	m_ext = m_layout;  // copy assignment: reuses m_ext's capacity
 	for (const auto& b : plan.blocks) m_ext.append(b);
 	return m_ext;
-}
-
-void CDynamicKFSLAM2D::convertStaticLandmarks(
-    const std::vector<estimator::TRoutedStep::TConversion>& conversions)
-{
-	if (conversions.empty()) return;
-	std::set<int32_t> ids;  // checked first: a bad list changes nothing
-	for (const auto& c : conversions)
-		if (!m_staticBlock.count(c.id) || !ids.insert(c.id).second)
-			throw std::logic_error("CDynamicKFSLAM2D: state surgery: landmark " +
-			                       std::to_string(c.id) +
-			                       " is not a static landmark in the state (or listed twice)");
-	for (const auto& c : conversions)
-	{
-		m_layout.convertToObjectFeature0(m_staticBlock.at(c.id), c.object, c.feature);
-		forgetStatic(c.id);
-		++m_report.converted_static;
-	}
-	onLayoutChanged();
 }
 
 void CDynamicKFSLAM2D::planFeatures(TPending& plan)

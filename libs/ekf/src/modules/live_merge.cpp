@@ -1,14 +1,15 @@
 /** The live-merge module (live_merge.h). */
 #include "live_merge.h"
 
-#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/core/models/live_merge.h>
 #include <dynslam/core/models/object_merge.h>
+#include <dynslam/estimator/seam_registries.h>
 
 #include <Eigen/Cholesky>
 #include <utility>
 
 #include "../index_append.h"
+#include "state_surgery.h"
 
 namespace dynslam::ekf
 {
@@ -182,6 +183,6 @@ void CLiveMergeModule::afterCommit(TFilterAccess& a)
 		}
 	m_detector->prune(step, 2 * m_detector->window() + 2);
 	for (const auto& [from, into] : merges)
-		if (a.mergeObjects(from, into)) ++a.report().objects_merged_live;
+		if (mergeObjects(a, from, into)) ++a.report().objects_merged_live;
 }
 }  // namespace dynslam::ekf
