@@ -160,7 +160,7 @@ void BM_MonteCarlo225(benchmark::State& state)
 	const auto base = dynslam::sim::loadScenario(DYNSLAM_SOURCE_DIR "/config/highway.ini");
 	// Pre-simulated runs for the filter-only variant.
 	std::vector<dynslam::sim::TScenarioOptions> opts;
-	std::vector<dynslam::TGroundTruth> gts;
+	std::vector<dynslam::io::TGroundTruth> gts;
 	for (const char* l : levels)
 	{
 		auto o = base;

@@ -14,10 +14,10 @@
  *    is replaced by a new object (new object ID, the front-end's track break) every
  *    `object_lifetime` steps, so objects keep disappearing for good.
  * Deterministic given the seed; the random draws of an effect are made only if it is on. */
+#include <dynslam/common/odometry_action.h>
 #include <dynslam/core/landmark_ids.h>
 #include <dynslam/core/models/measurement.h>
 #include <dynslam/core/models/se2.h>
-#include <dynslam/common/odometry_action.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CSensoryFrame.h>

@@ -12,10 +12,10 @@
  *  - M objects in convoy with the ego (each rigid, rotating slowly in its own frame, always
  *    visible), so every step augments M object poses.
  * Steps are generated on demand (nothing is stored), deterministic given the seed. */
+#include <dynslam/common/odometry_action.h>
 #include <dynslam/core/landmark_ids.h>
 #include <dynslam/core/models/measurement.h>
 #include <dynslam/core/models/se2.h>
-#include <dynslam/common/odometry_action.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>

@@ -1,8 +1,8 @@
 /** The fuzzed entry points (fuzz_entries.h). */
 #include "fuzz_entries.h"
 
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>

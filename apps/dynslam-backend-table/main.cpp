@@ -1,8 +1,8 @@
 /** dynslam-backend-table: every back-end on the highway Monte Carlo (doc/backends.md). */
-#include <dynslam/common/app_support.h>
 #include <dynslam/apps/app_main.h>
 #include <dynslam/apps/backend_table.h>
 #include <dynslam/apps/run_outputs.h>
+#include <dynslam/common/app_support.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
 #include <filesystem>

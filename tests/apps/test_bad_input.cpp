@@ -72,7 +72,7 @@ TEST(BadInput, GroundTruthOfAnotherLength)
 {
 	// The shipped ground truth cut to 100 steps.
 	const std::string dir = apps_test::freshDir("gt");
-	dynslam::TGroundTruth gt = dynslam::readGroundTruth(DYNSLAM_DATASETS_DIR, "highway");
+	dynslam::io::TGroundTruth gt = dynslam::io::readGroundTruth(DYNSLAM_DATASETS_DIR, "highway");
 	gt.t.resize(100);
 	gt.ego.resize(100);
 	for (auto& o : gt.objects)
@@ -81,7 +81,7 @@ TEST(BadInput, GroundTruthOfAnotherLength)
 		o.pose.resize(100);
 		o.visible.resize(100);
 	}
-	dynslam::writeGroundTruth(gt, dir, "short");
+	dynslam::io::writeGroundTruth(gt, dir, "short");
 	const auto r =
 	    runCommand(std::string(q(DYNSLAM_RUN_EXE)) + " -c " + q(configFile("run_highway.ini")) +
 	               " --gt " + q(dir + "/short") + " -o " + q(dir + "/out"));

@@ -40,7 +40,7 @@ bool contains(const std::string& s, const std::string& what)
 TEST(RawlogIO, ShippedHighwayHasOnePairPerGroundTruthStep)
 {
 	const TRawlog r = loadRawlog(dataset("highway.rawlog"));
-	const TGroundTruth gt = readGroundTruth(DYNSLAM_DATASETS_DIR, "highway");
+	const io::TGroundTruth gt = io::readGroundTruth(DYNSLAM_DATASETS_DIR, "highway");
 	EXPECT_EQ(r.size(), gt.numSteps());
 	EXPECT_EQ(r.size(), 121u);  // 60 s at 0.5 s, k = 0..120
 	EXPECT_EQ(r.frames.size(), r.actions.size());
@@ -127,7 +127,7 @@ TEST(GroundTruthFiles, SpecForms)
 
 TEST(GroundTruthFiles, StepCountMustMatchTheRawlog)
 {
-	const TGroundTruth gt = loadGroundTruthFor(dataset("highway"), 121, "r.rawlog");
+	const io::TGroundTruth gt = loadGroundTruthFor(dataset("highway"), 121, "r.rawlog");
 	EXPECT_EQ(gt.numSteps(), 121u);
 	try
 	{

@@ -31,8 +31,7 @@ eval::TIdentityCounts compareIdentities(const std::string& sim, const std::strin
 {
 	const std::string dir = apps_test::freshDir(tag);
 	const std::string ini = dir + "/compare.ini";
-	apps_test::writeFile(ini, filterIni +
-	                              "\n[Compare]\nrawlog = " + sim +
+	apps_test::writeFile(ini, filterIni + "\n[Compare]\nrawlog = " + sim +
 	                              "/generated_longrun.rawlog\nground_truth = " + sim +
 	                              "/generated_longrun\nscenario = auto\nnoise_from_scenario = "
 	                              "auto\nfilters = dynamic_classified\nfigures = false\n");
@@ -111,9 +110,8 @@ TEST(LongRun, TrackBreaksAreLinkedIntoObjectIdentities)
 		app.run();
 	}
 	const std::string shippedIni = apps_test::shippedIniText("run_longrun.ini");
-	const std::string gap80Ini =
-	    std::regex_replace(shippedIni, std::regex("\nclassify_link_gap *= *400"),
-	                       "\nclassify_link_gap = 80");
+	const std::string gap80Ini = std::regex_replace(
+	    shippedIni, std::regex("\nclassify_link_gap *= *400"), "\nclassify_link_gap = 80");
 	ASSERT_NE(gap80Ini, shippedIni);
 	const eval::TIdentityCounts shipped = compareIdentities(sim, shippedIni, "ids_shipped");
 	const eval::TIdentityCounts gap80 = compareIdentities(sim, gap80Ini, "ids_gap80");

@@ -91,7 +91,7 @@ TEST(SimulLandmarks, PairedAsKfSlamPairsWithNotes)
 	// row k + 1 (the pose after ACT_k), not row k. Range residuals vs stdRange = 0.01 m.
 	const std::string gtSpec = groundTruthBesideRawlog(rawlog);
 	ASSERT_TRUE(isMrptGroundTruthSpec(gtSpec)) << gtSpec;
-	const TGroundTruth gt = loadGroundTruthForRawlog(gtSpec, r);
+	const io::TGroundTruth gt = loadGroundTruthForRawlog(gtSpec, r);
 	ASSERT_EQ(gt.numSteps(), r.size());
 	EXPECT_EQ(gt.landmarks.size(), 70u);
 	double worstRight = 0, worstShifted = 0;
@@ -193,7 +193,7 @@ TEST(MrptGroundTruth, BadFilesNameFileAndLine)
 		apps_test::writeFile(lms, l);
 		try
 		{
-			readMrptGroundTruth(path, lms, rows, {0, 1}, {0.0, 1.0});
+			io::readMrptGroundTruth(path, lms, rows, {0, 1}, {0.0, 1.0});
 		}
 		catch (const std::runtime_error& e)
 		{
@@ -219,7 +219,7 @@ TEST(MrptGroundTruth, BadFilesNameFileAndLine)
 	std::filesystem::remove(lms);
 	try
 	{
-		readMrptGroundTruth(path, lms, 2, {0, 1}, {0.0, 1.0});
+		io::readMrptGroundTruth(path, lms, 2, {0, 1}, {0.0, 1.0});
 		FAIL();
 	}
 	catch (const std::runtime_error& x)

@@ -175,7 +175,7 @@ TEST(ObservationsOnly, EveryBackendGetsTheSameEstimates)
 	}
 	// MRPT's static filter always takes the action's covariance, here MRPT's Gaussian model
 	// instead of the file's Sigma_w: not the same numbers, but as accurate.
-	const TGroundTruth gt = readGroundTruth(DYNSLAM_DATASETS_DIR, "highway");
+	const io::TGroundTruth gt = io::readGroundTruth(DYNSLAM_DATASETS_DIR, "highway");
 	double ate[2];
 	for (int i = 0; i < 2; ++i)
 	{

@@ -4,8 +4,8 @@
 #include <dynslam/apps/CStaticBaselineBackend.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
-#include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/estimator/unknown_id_association.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 

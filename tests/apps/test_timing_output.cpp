@@ -3,10 +3,10 @@
  * independent replay of the same back-end, the peak memory against the kernel's VmRSS / VmHWM
  * read by the test. */
 #include <apps_test_utils.h>
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CRunApp.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <unistd.h>
 
 #include <filesystem>

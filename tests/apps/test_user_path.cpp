@@ -3,8 +3,8 @@
 #include <apps_test_utils.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
-#include <dynslam/core/landmark_ids.h>
 #include <dynslam/common/rawlog_file_writer.h>
+#include <dynslam/core/landmark_ids.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 

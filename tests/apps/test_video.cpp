@@ -12,7 +12,7 @@ using namespace dynslam::apps;
 namespace
 {
 /** The ego drives 1 km along y = 0 in 101 steps; the filter's estimate is the truth. */
-TFilterRun straightRun(TGroundTruth& gt)
+TFilterRun straightRun(io::TGroundTruth& gt)
 {
 	TFilterRun run;
 	run.name = "dynamic";
@@ -51,7 +51,7 @@ bool blue(const cv::Mat& f, int x, int y)
 
 TEST(Video, FollowsTheEgoWithAWindowOrShowsTheWholeScene)
 {
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	const TFilterRun run = straightRun(gt);
 	const std::vector<TDrawnRun> drawn{{"dynamic", {0, 0, 255}, &run}};
 	const std::string dir = apps_test::freshDir("video");

@@ -1,8 +1,8 @@
 /** The key reference doc/configuration.md is generated from the descriptor table of
- * [DynamicKFSLAM] and the module sections (dynslam/common/model_keys.h) and the shipped profiles (the .ini
- * files of config/profiles). CommittedReferenceIsCurrent fails when the committed file is stale;
- * regenerate it with DYNSLAM_WRITE_CONFIG_DOC=1 ctest -R ConfigDoc.CommittedReferenceIsCurrent (or
- * run config_tests with that variable set). */
+ * [DynamicKFSLAM] and the module sections (dynslam/common/model_keys.h) and the shipped profiles
+ * (the .ini files of config/profiles). CommittedReferenceIsCurrent fails when the committed file is
+ * stale; regenerate it with DYNSLAM_WRITE_CONFIG_DOC=1 ctest -R
+ * ConfigDoc.CommittedReferenceIsCurrent (or run config_tests with that variable set). */
 #include <dynslam/common/config_include.h>
 #include <dynslam/common/model_keys.h>
 #include <dynslam/common/model_options.h>

@@ -1,5 +1,5 @@
-/** The dispatched kernels (dynslam/core/kernels.h): the ISA choice, and the AVX2/FMA variant equal to
- * the SSE2 one within 1e-12 (relative) on random inputs. The comparisons need a CPU with AVX2
+/** The dispatched kernels (dynslam/core/kernels.h): the ISA choice, and the AVX2/FMA variant equal
+ * to the SSE2 one within 1e-12 (relative) on random inputs. The comparisons need a CPU with AVX2
  * and FMA and a build with the AVX2 variant: elsewhere they are skipped (GTEST_SKIP, with the
  * reason). */
 #include <dynslam/core/ekf_steps.h>

@@ -1,6 +1,6 @@
 /** Bad input: a clear error (state unchanged) or a documented, counted skip; never a crash. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CActionRobotMovement3D.h>
 #include <mrpt/obs/CObservationBearingRange.h>

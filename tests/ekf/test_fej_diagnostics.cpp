@@ -109,7 +109,7 @@ TEST(Fej, DISABLED_HighwayEgoAneesIdealEkfAndSpread)
 	                                      "w2v3", "w3v1", "w3v2", "w3v3"};
 	const auto base = sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/highway.ini");
 	// Ego ANEES of one run (steps 1..N; P = 0 at step 0).
-	auto runAnees = [](CIdealFilter& f, const TGroundTruth& gt, const sim::TSimulatedRun& run)
+	auto runAnees = [](CIdealFilter& f, const io::TGroundTruth& gt, const sim::TSimulatedRun& run)
 	{
 		double s = 0;
 		size_t d = 0;

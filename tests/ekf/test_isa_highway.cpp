@@ -1,9 +1,9 @@
 /** A whole highway run (datasets/highway.rawlog, 121 steps) with the AVX2/FMA kernels equals the
- * run with the SSE2 kernels (dynslam/core/kernels.h) within 1e-12 relative, mean and covariance, with
- * the sparse and the compressed update engines. Skipped (GTEST_SKIP) where the CPU lacks AVX2 or
- * FMA or the build has no AVX2 variant. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+ * run with the SSE2 kernels (dynslam/core/kernels.h) within 1e-12 relative, mean and covariance,
+ * with the sparse and the compressed update engines. Skipped (GTEST_SKIP) where the CPU lacks AVX2
+ * or FMA or the build has no AVX2 variant. */
 #include <dynslam/core/kernels.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CRawlog.h>

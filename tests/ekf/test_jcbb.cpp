@@ -2,10 +2,10 @@
 // step, rejects a gross outlier as the gate does, and rejects readings that pass the gate one
 // by one but not jointly (where MRPT's JCBB alone associates them); empty step, bad
 // confidence, the INI key, and a whole EKF run.
+#include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/ekf/CJcbbUpdateEngine.h>
 #include <dynslam/eval/chi2.h>
-#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>

@@ -2,10 +2,10 @@
  * conditioning of the state helper against a dense Kalman update on the difference, the test
  * on both sides of its chi-square threshold, the ambiguity rule and the alias table, and the
  * key's bad input. */
+#include <dynslam/common/model_options.h>
 #include <dynslam/core/chi2.h>
 #include <dynslam/estimator/landmark_fusion.h>
 #include <dynslam/estimator/state_helper.h>
-#include <dynslam/common/model_options.h>
 #include <dynslam_test/option_errors.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

@@ -50,7 +50,7 @@ struct TRun
 	std::vector<estimator::TFusionPair> fusions;
 };
 
-TRun run(const sim::TSimulatedRun& s, const TGroundTruth& gt, const std::string& extra)
+TRun run(const sim::TSimulatedRun& s, const io::TGroundTruth& gt, const std::string& extra)
 {
 	mrpt::config::CConfigFileMemory ini(
 	    dynslam_test::highwayFilterIni("prune_min_sightings = 3\nprune_window = 5\n" + extra));
@@ -78,15 +78,15 @@ TEST(LandmarkFusionLong, DISABLED_GeneratedCircleWithBreaksClutterAndMisses)
 	for (const uint32_t seed : {1u, 2u, 3u})
 	{
 		const sim::TScenarioOptions o = longScenario(seed);
-		const TGroundTruth gt = sim::buildGroundTruth(o);
+		const io::TGroundTruth gt = sim::buildGroundTruth(o);
 		const sim::TSimulatedRun s = sim::simulateMeasurements(gt, o, o.noise_seed);
 		std::map<int32_t, int32_t> trueOf;
 		std::set<int32_t> trueSeen;
 		for (const auto& c : s.classes)
 		{
-			if (c.cls == TrueClass::Moving) continue;
-			trueOf[c.id] = c.cls == TrueClass::Static ? c.true_id : -1;
-			if (c.cls == TrueClass::Static) trueSeen.insert(c.true_id);
+			if (c.cls == io::TrueClass::Moving) continue;
+			trueOf[c.id] = c.cls == io::TrueClass::Static ? c.true_id : -1;
+			if (c.cls == io::TrueClass::Static) trueSeen.insert(c.true_id);
 		}
 		const TRun off = run(s, gt, ""), on = run(s, gt, "fuse_landmarks_prob = 0.99\n");
 		size_t wrong = 0;

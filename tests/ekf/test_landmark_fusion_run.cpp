@@ -65,7 +65,7 @@ struct TRun
 	std::vector<estimator::TFusionPair> fusions;
 };
 
-TRun run(const sim::TSimulatedRun& s, const TGroundTruth& gt, const std::string& extra)
+TRun run(const sim::TSimulatedRun& s, const io::TGroundTruth& gt, const std::string& extra)
 {
 	CDynamicKFSLAM2D ekf;
 	loadFilter(ekf, extra);
@@ -87,7 +87,7 @@ TRun run(const sim::TSimulatedRun& s, const TGroundTruth& gt, const std::string&
 TEST(LandmarkFusionRun, FirstFusionEqualsTheDenseUpdateOfTheRunWithout)
 {
 	const sim::TScenarioOptions o = breaksScenario(1);
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun s = sim::simulateMeasurements(gt, o, o.noise_seed);
 	CDynamicKFSLAM2D off, on;
 	loadFilter(off, "");
@@ -155,7 +155,7 @@ TEST(LandmarkFusionRun, HighwayWithTrackBreaksMapWithin1p2xNoWrongFusionSameAte)
 	for (uint32_t seed = 1; seed <= 10; ++seed)
 	{
 		const sim::TScenarioOptions o = breaksScenario(seed);
-		const TGroundTruth gt = sim::buildGroundTruth(o);
+		const io::TGroundTruth gt = sim::buildGroundTruth(o);
 		const sim::TSimulatedRun s = sim::simulateMeasurements(gt, o, o.noise_seed);
 		// The truth: rawlog ID -> true landmark (static readings); clutter IDs map to -1.
 		std::map<int32_t, int32_t> trueOf;
@@ -163,8 +163,8 @@ TEST(LandmarkFusionRun, HighwayWithTrackBreaksMapWithin1p2xNoWrongFusionSameAte)
 		size_t breaks = 0;
 		for (const auto& c : s.classes)
 		{
-			if (c.cls == TrueClass::Moving) continue;
-			const int32_t t = c.cls == TrueClass::Static ? c.true_id : -1;
+			if (c.cls == io::TrueClass::Moving) continue;
+			const int32_t t = c.cls == io::TrueClass::Static ? c.true_id : -1;
 			if (!trueOf.count(c.id)) breaks += t >= 0 && c.id != c.true_id;
 			trueOf[c.id] = t;
 			if (t >= 0) trueSeen.insert(t);
@@ -206,7 +206,7 @@ TEST(LandmarkFusionRun, WithoutTrackBreaksNothingIsFusedAndTheRunIsUnchanged)
 	for (const char* cfg : {"/highway.ini", "/highway_clutter.ini"})
 	{
 		const sim::TScenarioOptions o = sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + cfg);
-		const TGroundTruth gt = sim::buildGroundTruth(o);
+		const io::TGroundTruth gt = sim::buildGroundTruth(o);
 		const sim::TSimulatedRun s = sim::simulateMeasurements(gt, o, o.noise_seed);
 		const TRun off = run(s, gt, ""), on = run(s, gt, kFuse);
 		EXPECT_EQ(on.fused, 0u) << cfg;
@@ -224,7 +224,7 @@ TEST(LandmarkFusionRun, AFusedIdReadLaterUpdatesTheLandmarkItWasFusedInto)
 	for (uint32_t seed = 1; seed <= 3; ++seed)
 	{
 		const sim::TScenarioOptions o = breaksScenario(seed);
-		const TGroundTruth gt = sim::buildGroundTruth(o);
+		const io::TGroundTruth gt = sim::buildGroundTruth(o);
 		const sim::TSimulatedRun s = sim::simulateMeasurements(gt, o, o.noise_seed);
 		CDynamicKFSLAM2D ekf;
 		loadFilter(ekf, kFuse);

@@ -2,8 +2,8 @@
  * Cartesian model is then linear in positions, and one-feature objects have linear
  * (translation-only) poses. The filter must equal the batch least-squares solution of the same
  * data, marginalised to the variables the filter keeps. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 

@@ -2,8 +2,8 @@
  * "Capability modules"): the shipped profiles enable none (the step calls no module hook), each
  * option enables exactly its module, on both sides of its enabling condition, and an enabled
  * module's hooks are called once per step and hook. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/common/config_include.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
@@ -141,4 +141,30 @@ TEST(Modules, RouterSetByTheUserMayMergeLinkedObjects)
 	EXPECT_EQ(f.enabledModules(), Names{"linked_merge"});
 	CDynamicKFSLAM2D g;
 	EXPECT_EQ(g.enabledModules(), Names{});
+}
+
+TEST(Modules, OdometryBiasIsAModuleWithoutHooks)
+{
+	// odometry_bias != none makes the module (it owns the bias block, the first block of the
+	// state); it has no hook: the step's hook calls stay 0, the bias is estimated.
+	const std::string bias =
+	    "[OdometryBias]\nodometry_dt = 0.5\nbias_rate_std0 = 0.05\n"
+	    "bias_rate_rw = 1e-4\nbias_scale_std0 = 0.05\nbias_scale_rw = 1e-4\n"
+	    "[DynamicKFSLAM]\n";
+	EXPECT_EQ(modulesOf(ini("odometry_bias = none")), Names{});
+	for (const std::string mode : {"rate", "rate_scale"})
+	{
+		CDynamicKFSLAM2D f;
+		mrpt::config::CConfigFileMemory c(ini("odometry_bias = " + mode + "\n" + bias));
+		f.loadOptions(c, "DynamicKFSLAM");
+		EXPECT_EQ(f.enabledModules(), Names{"odometry_bias"}) << mode;
+		ASSERT_FALSE(f.getLayout().empty());
+		EXPECT_EQ(f.getLayout()[0].kind, estimator::BlockKind::OdometryBias);
+		EXPECT_EQ(run(f), 0u) << mode;
+		const auto b = f.getOdometryBias();
+		ASSERT_TRUE(b.has_value()) << mode;
+		EXPECT_EQ(b->first.size(), mode == "rate" ? 1 : 2);
+	}
+	CDynamicKFSLAM2D none;
+	EXPECT_FALSE(none.getOdometryBias().has_value());
 }

@@ -3,11 +3,11 @@
  * next to +-pi), the modes' meaning (stationary stops, turn = ctrv, manoeuvre = cv with its own
  * noise), the registry and the options (read, dumped, bad input naming the key). The filter's
  * behaviour on the tunnel scenarios is test_multiple_model_tunnel.cpp. */
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/multiple_model.h>
 #include <dynslam/estimator/seam_registries.h>
-#include <dynslam/core/models/object_motion.h>
-#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -4,10 +4,10 @@
  * leaves cv). Filtered with config/compare_tunnel.ini (setting E, the anchored gauge) and
  * object_model = paper, cv or mm with mm's defaults; seeds 2810..2814. Measured: the ego ATE of
  * the whole run, the ego NEES in the gap, and the mode probabilities. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/common/config_include.h>
-#include <dynslam/io/ground_truth.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -37,7 +37,7 @@ TTunnelRun runTunnel(const char* scenarioIni, const std::string& model, uint32_t
 {
 	sim::TScenarioOptions o = sim::loadScenario(scenarioIni);
 	o.noise_seed = seed;
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, seed);
 	CDynamicKFSLAM2D f;
 	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);

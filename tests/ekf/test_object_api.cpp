@@ -3,11 +3,11 @@
  * the paper's highway against the truth; the per-object count of skipped late features
  * (TObjectTrack::skipped_late_readings); the live map apart from the dropped landmarks
  * (getStaticLandmarks / getDroppedStaticLandmarks). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
-#include <dynslam/io/ground_truth.h>
 #include <dynslam/core/landmark_ids.h>
 #include <dynslam/core/models/object_world_pose.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/numeric_jacobian.h>
 #include <gtest/gtest.h>
@@ -54,7 +54,7 @@ struct THighwayErrors
 };
 
 /** The true reference point of `obj` at step k: its founders' true centroid then. */
-Eigen::Vector2d trueReference(const TObjectGroundTruth& g, const estimator::TObjectEntry& e,
+Eigen::Vector2d trueReference(const io::TObjectGroundTruth& g, const estimator::TObjectEntry& e,
                               size_t k)
 {
 	Eigen::Vector2d c = Eigen::Vector2d::Zero();
@@ -67,7 +67,7 @@ Eigen::Vector2d trueReference(const TObjectGroundTruth& g, const estimator::TObj
 THighwayErrors runHighway(const std::string& model)
 {
 	const sim::TScenarioOptions o = dynslam_test::highwayW3v1();
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, 9000);
 	CDynamicKFSLAM2D f;
 	dynslam_test::configureHighwayCv(f, o, model, Eigen::Vector3d(1e-2, 1e-2, 1e-4));
@@ -78,7 +78,7 @@ THighwayErrors runHighway(const std::string& model)
 		f.processActionObservation(run.actions[k], run.frames[k]);
 		for (const auto& [obj, w] : f.getObjectWorldPoses())
 		{
-			const TObjectGroundTruth& g = gt.objects.at(size_t(obj));
+			const io::TObjectGroundTruth& g = gt.objects.at(size_t(obj));
 			const estimator::TObjectEntry& e = f.router().registry().at(obj);
 			const size_t s = size_t(w.step);
 			// Velocity from the second pose on (cv / ctrv: v = xi / dt), never with the paper's.

@@ -3,11 +3,11 @@
  * translation-only poses, rotations next to +-pi), the white-jerk process noise against the
  * integral that defines it, the zero-acceleration limit (the cv step), the EKF's whole-state
  * gauge term for the 6-entry velocity block, and the options and bad input (keys named). */
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/constant_acceleration.h>
 #include <dynslam/estimator/seam_registries.h>
-#include <dynslam/core/models/object_motion.h>
-#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -9,12 +9,12 @@
  * config/compare_tunnel.ini and object_model = ca with the truth's parameters. Measured: the Monte
  * Carlo mean of the NEES of each car's whole state [xi; v; a] (9 dof) at every step it has one, and
  * of the ego NEES in the gap, must lie inside the 95 % chi-square bounds of the run count. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/common/config_include.h>
-#include <dynslam/estimator/constant_acceleration.h>
-#include <dynslam/io/ground_truth.h>
 #include <dynslam/core/models/object_pose.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/estimator/constant_acceleration.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -50,7 +50,7 @@ estimator::TCvParams caParams()
 /** The ground truth and each object's true state [xi; v; a] per step (NaN where not defined). */
 struct TCaTruth
 {
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	std::vector<std::vector<Eigen::Matrix<double, 9, 1>>> state;
 };
 
@@ -76,7 +76,7 @@ TCaTruth caTruth(const sim::TScenarioOptions& o, uint32_t seed)
 	                                        n, Eigen::Matrix<double, 9, 1>::Constant(NAN)));
 	for (size_t i = 0; i < t.gt.objects.size(); ++i)
 	{
-		TObjectGroundTruth& og = t.gt.objects[i];
+		io::TObjectGroundTruth& og = t.gt.objects[i];
 		const int f = og.first_step;
 		if (f < 0 || size_t(f) + 2 >= n) continue;
 		// The deterministic centroid velocity (constant: the cars drive straight at their speed).
@@ -128,7 +128,7 @@ TRunNees runDraw(sim::TScenarioOptions o, uint32_t seed)
 {
 	o.noise_seed = seed;
 	const TCaTruth truth = caTruth(o, seed);
-	const TGroundTruth& gt = truth.gt;
+	const io::TGroundTruth& gt = truth.gt;
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, seed);
 	CDynamicKFSLAM2D f;
 	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);

@@ -2,8 +2,8 @@
  * dynamic EKF (estimator::CConstantTurnRate: CV's machinery with models::ctrvPredict). Objects
  * on arcs are tracked better than with cv, and the ego gains; a one-feature object (no turn
  * rate) is the cv filter exactly; options and bad input. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/models/object_pose.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

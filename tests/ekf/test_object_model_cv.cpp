@@ -1,9 +1,9 @@
 /** object_model = cv (issue 13): the constant-velocity object model in the dynamic EKF.
  * Invariants with velocity blocks, objects that help the ego where static landmarks are
  * scarce, a seeded Monte Carlo NEES check, the gate on object readings, options. */
+#include <dynslam/core/models/object_pose.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/chi2.h>
-#include <dynslam/core/models/object_pose.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

@@ -6,10 +6,10 @@
  * 2026-11-25, doc/results/results.md 4.10: prior_gauge = anchor; D of 4.8 before): the Monte Carlo
  * mean of the ego NEES in the gap must lie inside the chi-square bounds of its run count
  * (doc/results/results.md 4.9). On the shipped (unmatched) truth it is conservative (4.8, 4.10). */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/common/config_include.h>
-#include <dynslam/io/ground_truth.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -40,7 +40,7 @@ struct TRunNees
 TRunNees runDraw(sim::TScenarioOptions o, uint32_t seed)
 {
 	o.noise_seed = seed;
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, seed);
 	CDynamicKFSLAM2D f;
 	f.setMinLoggingLevel(mrpt::system::LVL_ERROR);

@@ -1,10 +1,10 @@
 /** object_model = cv: the fallback of a lost object (cv_fallback_steps). An object that turns
  * hard is gated out, falls back to the paper's formulation and is used again; a steady object
  * never falls back. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
-#include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/core/landmark_ids.h>
 #include <dynslam/core/models/object_pose.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/estimator/constant_velocity.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

@@ -3,9 +3,9 @@
  * large prior heading variance (Sigma_0 = Sigma_w, as in the paper's Table I), precise readings
  * and large odometry noise, steady objects pull the ego away from the truth (doc/results/results.md
  * 4.3.2); the inflation limits that. Off, the filter is today's to the last digit. */
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/io/ground_truth.h>
-#include <dynslam/core/landmark_ids.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -40,7 +40,7 @@ TEST(ObjectModelCvHeading, ReadingsTellTheEgoHeadingLessAsTheInflationGrows)
 	// first 12 steps of object updates, the ego heading variance after the step grows with c
 	// (the readings carry less information on it).
 	sim::TScenarioOptions o = dynslam_test::highwayW3v1();
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, 9000);
 	o.Sigma_0.setZero();
 	const std::vector<double> cs{0, 3, 100};
@@ -103,7 +103,7 @@ TEST(ObjectModelCvHeading, TheGateIgnoresTheInflation)
 	// keep some (measured with that change: 8 gated out at c = 0, 4 at c = 100).
 	sim::TScenarioOptions o = dynslam_test::highwayW3v1();
 	o.Sigma_0.diagonal() << 1e-4, 1e-4, 1e-2;
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, 9000);
 	CDynamicKFSLAM2D probe, off, on;
 	configure(probe, o, "cv", 0);

@@ -3,8 +3,8 @@
  * angular-rate bias of 1 deg/s (TScenarioOptions::odometry_rate_bias, seeded), against the
  * same filter without the bias state and against the bias-free run; the bias-on filter on
  * bias-free data; the bias block in the layout (never dropped, pad untouched); the options. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
@@ -66,7 +66,7 @@ struct TResult
 TResult run(double biasDegS, const std::string& bias, unsigned seed = 4)
 {
 	const sim::TScenarioOptions so = scenario(biasDegS, seed);
-	const TGroundTruth gt = sim::buildGroundTruth(so);
+	const io::TGroundTruth gt = sim::buildGroundTruth(so);
 	const sim::TSimulatedRun r = sim::simulateMeasurements(gt, so, so.noise_seed);
 	CDynamicKFSLAM2D f;
 	f.loadOptions(mrpt::config::CConfigFileMemory(filterIni(bias, gt.ego[0])));
@@ -122,7 +122,7 @@ TEST(OdometryBias, BiasStateOnBiasFreeDataStaysConsistent)
 TEST(OdometryBias, BlockIsFirstNeverDroppedAndItsPadUntouched)
 {
 	const sim::TScenarioOptions so = scenario(1, 4);
-	const TGroundTruth gt = sim::buildGroundTruth(so);
+	const io::TGroundTruth gt = sim::buildGroundTruth(so);
 	const sim::TSimulatedRun r = sim::simulateMeasurements(gt, so, so.noise_seed);
 	CDynamicKFSLAM2D f;
 	// drop static landmarks unseen for 2 steps: many drops, never the bias block

@@ -5,10 +5,10 @@
  * Sigma_0 (the prior's does); the reported covariance equals P + N Sigma_0 N^T with N built
  * here, independently, by central differences of the transform applied by entry label; the
  * model-matched tunnel's gap NEES lies in its chi-square bounds; a bad key value throws. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/common/config_include.h>
-#include <dynslam/io/ground_truth.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -59,7 +59,7 @@ TEnd run(const std::string& model, bool anchor, const Eigen::Matrix3d& S0, uint3
 {
 	sim::TScenarioOptions o = tunnel();
 	o.noise_seed = seed;
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun r = sim::simulateMeasurements(gt, o, seed);
 	auto f = makeFilter(o, model, anchor, S0);
 	for (size_t k = 0; k < std::min(steps, r.actions.size()); ++k)
@@ -231,7 +231,7 @@ TEST(PriorGauge, ModelMatchedTunnelNeesInsideChiSquareBounds)
 	for (int i = 0; i < runs; ++i)
 	{
 		o.noise_seed = 930001 + uint32_t(i);
-		const TGroundTruth gt = sim::buildGroundTruth(o);
+		const io::TGroundTruth gt = sim::buildGroundTruth(o);
 		const sim::TSimulatedRun r = sim::simulateMeasurements(gt, o, o.noise_seed);
 		auto f = makeFilter(o, "cv", true, o.Sigma_0);
 		double sum = 0;
@@ -266,4 +266,78 @@ TEST(PriorGauge, ModelMatchedTunnelNeesInsideChiSquareBounds)
 		EXPECT_GT(axes[i], 0.761) << "axis " << i;  // chi2(200) / 200, 99 %
 		EXPECT_LT(axes[i], 1.277) << "axis " << i;
 	}
+}
+
+TEST(PriorGauge, EveryGetterReportsTheWholeStatesMarginal)
+{
+	// With prior_gauge = anchor every getter adds the output term of its blocks: a covariance it
+	// reports equals the block of the whole state's reported covariance (getStateWithoutPads,
+	// checked against the dense N Sigma_0 N^T by ReportedCovarianceEqualsDenseOutputTerm), found
+	// by the entry labels. The landmarks' term is large against the 1e-9 tolerance (positions up
+	// to ~1 km), so a getter that drops it fails. Tunnel draw 940004, cv, 60 steps.
+	sim::TScenarioOptions o = tunnel();
+	o.noise_seed = 940004;
+	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const sim::TSimulatedRun r = sim::simulateMeasurements(gt, o, o.noise_seed);
+	auto f = makeFilter(o, "cv", true, kS0);
+	for (size_t k = 0; k < std::min<size_t>(60, r.actions.size()); ++k)
+		f->processActionObservation(r.actions[k], r.frames[k]);
+	Eigen::VectorXd x;
+	Eigen::MatrixXd P;
+	std::vector<std::string> labels;
+	f->getStateWithoutPads(x, P, &labels);
+	const auto at = [&](const std::string& prefix) -> Eigen::Index
+	{
+		for (size_t k = 0; k < labels.size(); ++k)
+			if (labels[k].rfind(prefix, 0) == 0) return Eigen::Index(k);
+		ADD_FAILURE() << "no entry " << prefix;
+		return 0;
+	};
+	size_t checked = 0;
+	const auto expectBlock = [&](const Eigen::MatrixXd& got, Eigen::Index i, const std::string& l)
+	{
+		const Eigen::MatrixXd want = P.block(i, i, got.rows(), got.cols());
+		const double tol = 1e-9 * (1 + want.cwiseAbs().maxCoeff());
+		EXPECT_LT((got - want).cwiseAbs().maxCoeff(), tol) << l;
+		++checked;
+	};
+	Eigen::VectorXd xi;  // the internal covariance without pads: the term is reported - internal
+	Eigen::MatrixXd Pi;
+	f->options.prior_gauge_anchor = false;
+	f->getStateWithoutPads(xi, Pi);
+	f->options.prior_gauge_anchor = true;
+	const Eigen::MatrixXd D = P - Pi;
+	double term = 0;
+	for (const auto& l : f->getStaticLandmarks())
+	{
+		const Eigen::Index i = at("lm" + std::to_string(l.id) + ".x");
+		expectBlock(l.cov, i, "lm" + std::to_string(l.id));
+		term = std::max(term, D.block<2, 2>(i, i).cwiseAbs().maxCoeff());
+	}
+	EXPECT_GT(term, 1e-6);
+	for (const auto& e : f->getObjectFeatures())
+	{
+		const std::string l = "obj" + std::to_string(e.object) + ".f" + std::to_string(e.feature) +
+		                      (e.at_time0 ? ".t0" : ".t" + std::to_string(e.step)) + ".x";
+		expectBlock(e.cov, at(l), l);
+	}
+	size_t velocities = 0;
+	for (const auto& [obj, track] : f->getObjectTracks())
+		for (const auto& p : track.poses)
+		{
+			if (!p.in_state) continue;
+			const std::string l = "obj" + std::to_string(obj) + ".xi" + std::to_string(p.step);
+			expectBlock(p.cov, at(l + ".dx"), l);
+			if (p.velocity.size() == 0) continue;
+			const std::string lv = "obj" + std::to_string(obj) + ".v";
+			expectBlock(p.velocity_cov, at(lv), lv);
+			const auto v = f->getObjectVelocity(obj);
+			ASSERT_TRUE(v.has_value());
+			expectBlock(v->cov, at(lv), lv + " (getObjectVelocity)");
+			++velocities;
+		}
+	std::printf("[ measured ] %zu blocks checked, %zu velocities, largest landmark term %.3g\n",
+	            checked, velocities, term);
+	EXPECT_GT(velocities, 0u);
+	EXPECT_GT(checked, 20u);
 }

@@ -1,11 +1,11 @@
 #pragma once
 /** A small self-contained scenario for the filter tests: an ego on a circle, random static
  * landmarks, objects translating and rotating, a range-limited all-around sensor. Seeded. */
+#include <dynslam/common/odometry_action.h>
 #include <dynslam/core/landmark_ids.h>
 #include <dynslam/core/models/measurement.h>
 #include <dynslam/core/models/object_pose.h>
 #include <dynslam/core/models/se2.h>
-#include <dynslam/common/odometry_action.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>

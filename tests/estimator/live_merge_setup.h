@@ -12,11 +12,11 @@ namespace dynslam_test
  * first seen then: a car split into two objects). */
 inline void delayHalfOfObject(dynslam::sim::TSimulatedRun& sim, int32_t obj, int until)
 {
-	std::vector<dynslam::TReadingClass> kept;
+	std::vector<dynslam::io::TReadingClass> kept;
 	std::map<int, int> shift;  // step -> readings removed so far in it
-	for (const dynslam::TReadingClass& c : sim.classes)
+	for (const dynslam::io::TReadingClass& c : sim.classes)
 	{
-		dynslam::TReadingClass d = c;
+		dynslam::io::TReadingClass d = c;
 		d.index -= shift[c.step];
 		if (c.object == obj && c.feature >= 2 && c.step < until)
 		{

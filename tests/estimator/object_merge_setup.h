@@ -1,7 +1,7 @@
 #pragma once
 // Shared by the merge tests (test_object_merge_highway.cpp, test_object_merge_turning.cpp).
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/models/object_motion.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <optional>
 #include <vector>

@@ -1,8 +1,8 @@
 #pragma once
 /** Synthetic tracks for the classifying router's tests (test_classifying_router.cpp,
  * test_classify_groups.cpp, test_classify_hints.cpp, test_classify_static_test.cpp). */
-#include <dynslam/estimator/classifying_router.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/classifying_router.h>
 
 #include <cmath>
 #include <functional>

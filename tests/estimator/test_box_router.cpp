@@ -3,8 +3,8 @@
  * classifier (false positives never become landmarks); a box seen back to front keeps its
  * corners' IDs; malformed steps are clear errors. Synthetic boxes seen from a robot driving
  * along x (Cartesian model, the robot frame). */
-#include <dynslam/estimator/box_router.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/box_router.h>
 #include <gtest/gtest.h>
 
 #include <map>

@@ -44,16 +44,16 @@ struct TResult
 };
 
 /** Fills r.joinerF0Err and r.founderF0Err (classify runs; written track IDs only). */
-void f0Errors(const CDynamicKFSLAM2D& ekf, const TGroundTruth& gt,
-              const std::vector<TReadingClass>& classes, TResult& r)
+void f0Errors(const CDynamicKFSLAM2D& ekf, const io::TGroundTruth& gt,
+              const std::vector<io::TReadingClass>& classes, TResult& r)
 {
 	const auto tracks = ekf.getObjectTracks();
 	for (const auto& f : ekf.getObjectFeatures())
 	{
 		if (!f.at_time0) continue;
-		const auto c =
-		    std::find_if(classes.begin(), classes.end(),
-		                 [&](const TReadingClass& rc) { return rc.id == f.id && rc.object >= 0; });
+		const auto c = std::find_if(classes.begin(), classes.end(),
+		                            [&](const io::TReadingClass& rc)
+		                            { return rc.id == f.id && rc.object >= 0; });
 		const auto o = std::find_if(gt.objects.begin(), gt.objects.end(),
 		                            [&](const auto& g)
 		                            { return c != classes.end() && g.object == c->object; });
@@ -71,9 +71,9 @@ void f0Errors(const CDynamicKFSLAM2D& ekf, const TGroundTruth& gt,
  * reading (its time 0) and its parked readings were static landmarks. */
 void relabelWithOnsets(sim::TSimulatedRun& sim)
 {
-	for (const TReadingClass& c : sim.classes)
+	for (const io::TReadingClass& c : sim.classes)
 	{
-		if (c.cls != TrueClass::Static || c.object < 0) continue;
+		if (c.cls != io::TrueClass::Static || c.object < 0) continue;
 		auto obs = sim.frames.at(size_t(c.step))
 		               ->getObservationByClass<mrpt::obs::CObservationBearingRange>();
 		auto& d = obs->sensedData.at(size_t(c.index));
@@ -88,7 +88,7 @@ TResult run(const sim::TScenarioOptions& o, bool classify, const std::string& ex
             const std::string& sigmaV = "1e-5", bool knowsOnsets = false,
             const std::string& common = "")
 {
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
 	if (knowsOnsets) relabelWithOnsets(sim);
 	std::string ini = kIni;

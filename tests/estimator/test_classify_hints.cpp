@@ -1,14 +1,14 @@
 /** Detection-group hints and links after a track break (doc/results/classification.md, "Hints and
- * links after a track break"): the DETECTION_GROUPS comment (dynslam/common/detection_groups.h), hints as
- * grouping evidence, contradicting hints counted, a car that reappears under new IDs linked to
- * its lost object (classify_link), and the anonymous highway end to end. Synthetic tracks:
- * router_synth.h. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+ * links after a track break"): the DETECTION_GROUPS comment (dynslam/common/detection_groups.h),
+ * hints as grouping evidence, contradicting hints counted, a car that reappears under new IDs
+ * linked to its lost object (classify_link), and the anonymous highway end to end. Synthetic
+ * tracks: router_synth.h. */
 #include <dynslam/common/detection_groups.h>
-#include <dynslam/eval/class_metrics.h>
 #include <dynslam/common/odometry_action.h>
-#include <dynslam/sim/scenario.h>
 #include <dynslam/common/step_input.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/eval/class_metrics.h>
+#include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -314,7 +314,7 @@ THighwayRun highwayWithHints(const std::string& keys)
 	std::string s = ss.str();
 	s.replace(s.find("[Effects]"), 9, "[Effects]\ndetection_groups = true");
 	const sim::TScenarioOptions o = sim::loadScenarioFromText(s);
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
 	mrpt::config::CConfigFileMemory cfg(
 	    dynslam_test::highwayFilterIni("feature_labels = classify\n" + keys));
@@ -330,7 +330,7 @@ THighwayRun highwayWithHints(const std::string& keys)
 		for (const auto& m : ekf.lastRoutedStep().readings)
 		{
 			// The simulator's hint is the true object of every object reading.
-			const TReadingClass& c = sim.classes.at(row++);
+			const io::TReadingClass& c = sim.classes.at(row++);
 			r.hinted += m.reading.hint >= 0;
 			r.hintsWrong += m.reading.hint != c.object;
 			const bool moving = !m.candidate && m.route != Route::StaticKnown &&

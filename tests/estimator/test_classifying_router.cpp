@@ -2,8 +2,8 @@
  * tracks: the SPRT decides a static and a moving point right within a bounded number of sightings,
  * its false-alarm rate over many seeded static tracks stays near the INI alpha, rigid grouping, the
  * reclassification of a static track that starts moving, and bad input. */
-#include <dynslam/estimator/classifying_router.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/classifying_router.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

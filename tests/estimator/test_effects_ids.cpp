@@ -1,7 +1,7 @@
 /** What the ID-labelled dynamic filter (feature_labels = ids, CIdRangeRouter) does with the
  * rawlogs of issue 12's simulator effects: each case is a clear outcome, never a crash. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
@@ -122,7 +122,7 @@ TEST(EffectsWithIds, ClutterWithFreshIdsAndMissedDetectionsRun)
 	for (const auto& c : r.sim.classes)
 	{
 		if (ids::isStatic(c.id)) staticIds.insert(c.id);
-		clutter += c.cls == TrueClass::Clutter;
+		clutter += c.cls == io::TrueClass::Clutter;
 	}
 	EXPECT_EQ(clutter, 2 * r.steps);
 	EXPECT_EQ(r.total.static_new, staticIds.size()) << "each clutter reading: a new landmark";

@@ -1,14 +1,14 @@
 /** The estimator core's bookkeeping (libs/estimator), pure Eigen: the ID-range router and the
  * object registry, the drop policy's exact rule, and the paper's smoothing as an object motion
  * model (Jacobians against numerical differentiation, the consecutive-steps rule). */
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/object_motion.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/drop_policy.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/estimator/state_layout.h>
-#include <dynslam/core/landmark_ids.h>
-#include <dynslam/core/models/object_motion.h>
-#include <dynslam/core/models/se2.h>
 #include <dynslam_test/numeric_jacobian.h>
 #include <gtest/gtest.h>
 

@@ -95,7 +95,7 @@ struct TRun
 
 TRun runScenario(const sim::TScenarioOptions& o, const std::string& keys, int delayObject = -1)
 {
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
 	if (delayObject >= 0) delayHalfOfObject(sim, delayObject, 6);
 	mrpt::config::CConfigFileMemory cfg(
@@ -127,7 +127,7 @@ TRun runScenario(const sim::TScenarioOptions& o, const std::string& keys, int de
 		ekf.processActionObservation(sim.actions[k], sim.frames[k]);
 		for (const auto& m : ekf.lastRoutedStep().readings)
 		{
-			const TReadingClass& c = sim.classes.at(row++);
+			const io::TReadingClass& c = sim.classes.at(row++);
 			const bool moving = !m.candidate && m.route != Route::StaticKnown &&
 			                    m.route != Route::StaticNew && m.object >= 0;
 			group.push_back(moving ? m.identity : -1);

@@ -66,7 +66,7 @@ struct TOutcome
 TOutcome runOnce(const std::string& scenario, const std::string& keys)
 {
 	const sim::TScenarioOptions o = sim::loadScenarioFromText(scenario);
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
 	delayHalfOfObject(sim, gt.objects.front().object, 6);
 	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(
@@ -94,7 +94,7 @@ TOutcome runOnce(const std::string& scenario, const std::string& keys)
 		ekf.processActionObservation(sim.actions[k], sim.frames[k]);
 		for (const auto& m : ekf.lastRoutedStep().readings)
 		{
-			const TReadingClass& c = sim.classes.at(row++);
+			const io::TReadingClass& c = sim.classes.at(row++);
 			const bool moving = !m.candidate && m.route != Route::StaticKnown &&
 			                    m.route != Route::StaticNew && m.object >= 0;
 			if (moving) ++votes[m.reading.id][c.object];

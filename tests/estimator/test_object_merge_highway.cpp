@@ -5,9 +5,9 @@
  * object's feature set grows by the new tracks); the merged objects' velocity and the world
  * positions of their features stay close to the truth; off is today's filter bit for bit; with
  * the paper's model the key changes nothing. */
+#include <dynslam/core/models/object_motion.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/class_metrics.h>
-#include <dynslam/core/models/object_motion.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
@@ -59,10 +59,10 @@ sim::TScenarioOptions anonymousWithHints()
 /** Squared speed error of every object with a velocity at step k (0 < k < last): its reference
  * point (the founders' centroid moved by xi) against the central difference of the true
  * positions of its founders' features (truthOf: track -> true object and feature). */
-std::map<int32_t, double> speedErrors(const CDynamicKFSLAM2D& ekf, const TGroundTruth& gt,
-                                      const std::map<int32_t, const TObjectGroundTruth*>& trueObj,
-                                      const std::map<int32_t, std::pair<int32_t, int32_t>>& truthOf,
-                                      size_t k)
+std::map<int32_t, double> speedErrors(
+    const CDynamicKFSLAM2D& ekf, const io::TGroundTruth& gt,
+    const std::map<int32_t, const io::TObjectGroundTruth*>& trueObj,
+    const std::map<int32_t, std::pair<int32_t, int32_t>>& truthOf, size_t k)
 {
 	std::map<int32_t, double> out;
 	const auto& L = ekf.getLayout();
@@ -76,7 +76,7 @@ std::map<int32_t, double> speedErrors(const CDynamicKFSLAM2D& ekf, const TGround
 		{
 			const auto it = truthOf.find(e.feature_ids[size_t(j)]);
 			if (it == truthOf.end() || it->second.first < 0) continue;
-			const TObjectGroundTruth& obj = *trueObj.at(it->second.first);
+			const io::TObjectGroundTruth& obj = *trueObj.at(it->second.first);
 			c0 += obj.features.at(k - 1).col(it->second.second);
 			c1 += obj.features.at(k + 1).col(it->second.second);
 			++n;
@@ -94,7 +94,7 @@ std::map<int32_t, double> speedErrors(const CDynamicKFSLAM2D& ekf, const TGround
 TMergeRun runMerge(const std::string& keys)
 {
 	const sim::TScenarioOptions o = anonymousWithHints();
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
 	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(keys));
 	CDynamicKFSLAM2D ekf;
@@ -104,7 +104,7 @@ TMergeRun runMerge(const std::string& keys)
 	double se = 0, sv = 0, sf = 0, sa = 0;
 	size_t row = 0;
 	std::map<int32_t, std::pair<int32_t, int32_t>> truthOf;  // track -> (true object, feature)
-	std::map<int32_t, const TObjectGroundTruth*> trueObj;
+	std::map<int32_t, const io::TObjectGroundTruth*> trueObj;
 	for (const auto& t : gt.objects) trueObj[t.object] = &t;
 	for (size_t k = 0; k < sim.actions.size(); ++k)
 	{
@@ -112,7 +112,7 @@ TMergeRun runMerge(const std::string& keys)
 		const TRoutedStep& st = ekf.lastRoutedStep();
 		for (const auto& m : st.readings)
 		{
-			const TReadingClass& c = sim.classes.at(row++);
+			const io::TReadingClass& c = sim.classes.at(row++);
 			if (m.reading.id >= 0) truthOf[m.reading.id] = {c.object, c.feature};
 			const bool moving = !m.candidate && m.route != Route::StaticKnown &&
 			                    m.route != Route::StaticNew && m.object >= 0;

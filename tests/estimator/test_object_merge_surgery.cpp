@@ -6,8 +6,8 @@
  * and of the covariance after the merge must equal G(x) and J P J^T under the renaming
  * obj<N>.f<k>.t0 -> obj<L>.f<n_L + k>.t0, with N's pose and velocity entries gone and nothing else
  * changed. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
@@ -33,7 +33,7 @@ void runHighwayCv(CDynamicKFSLAM2D& ekf, size_t steps, const std::string& labels
                   const std::string& model = "cv")
 {
 	const sim::TScenarioOptions o = dynslam_test::shippedScenario("highway.ini");
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, o.noise_seed);
 	mrpt::config::CConfigFileMemory cfg(dynslam_test::highwayFilterIni(
 	    "feature_labels = " + labels + "\nobject_model = " + model +

@@ -6,8 +6,8 @@
  * turned by a few radians. A generated circle-track world (one car driving around with the ego),
  * the car unseen for a few steps (an occlusion), back under new IDs with its detection box as a
  * hint, linked and merged, then tracked while it keeps turning. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/models/object_motion.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
@@ -54,7 +54,7 @@ struct TTurnRun
 TTurnRun runTurning(const std::string& keys)
 {
 	const sim::TScenarioOptions o = sim::loadScenarioFromText(kCircle);
-	TGroundTruth gt = sim::buildGroundTruth(o);
+	io::TGroundTruth gt = sim::buildGroundTruth(o);
 	for (auto& og : gt.objects)
 		for (size_t k = kGapStart; k < kGapEnd; ++k) og.visible[k] = 0;  // an occlusion
 	const sim::TSimulatedRun sim = sim::simulateMeasurements(gt, o, o.noise_seed);
@@ -65,7 +65,7 @@ TTurnRun runTurning(const std::string& keys)
 	double sf = 0;
 	size_t row = 0;
 	std::set<int32_t> into;
-	std::map<int32_t, const TObjectGroundTruth*> trueObj;
+	std::map<int32_t, const io::TObjectGroundTruth*> trueObj;
 	for (const auto& t : gt.objects) trueObj[t.object] = &t;
 	std::map<int32_t, std::pair<int32_t, int32_t>> truthOf;  // track -> (true object, feature)
 	for (size_t k = 0; k < sim.actions.size(); ++k)
@@ -74,7 +74,7 @@ TTurnRun runTurning(const std::string& keys)
 		const TRoutedStep& st = ekf.lastRoutedStep();
 		for (const auto& m : st.readings)
 		{
-			const TReadingClass& c = sim.classes.at(row++);
+			const io::TReadingClass& c = sim.classes.at(row++);
 			if (m.reading.id >= 0) truthOf[m.reading.id] = {c.object, c.feature};
 		}
 		r.linked += st.linked;

@@ -1,8 +1,8 @@
 /** One registry per seam (estimator/seam_registries.h, ekf_registries.h): every name makes its
  * implementation, the capabilities agree with the instances, unknown names are clear errors. */
+#include <dynslam/common/model_options.h>
 #include <dynslam/ekf/ekf_registries.h>
 #include <dynslam/estimator/seam_registries.h>
-#include <dynslam/common/model_options.h>
 #include <gtest/gtest.h>
 
 using namespace dynslam;

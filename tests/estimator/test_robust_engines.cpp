@@ -2,9 +2,9 @@
 // update without outliers, down-weighting/rejecting an injected outlier, bad parameters, and
 // the gate with recovery that cannot lock out (the MRCLAM robot-4 case: a heading error larger
 // than its covariance admits).
+#include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/robust_update_engines.h>
-#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 

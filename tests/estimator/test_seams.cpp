@@ -2,9 +2,9 @@
  * with nothing else changed (doc/architecture.md): a router with another ID convention, an
  * object motion model of the tests' own (in the EKF and in Alg. 1, which must still agree), and
  * a dense Joseph-form update engine. */
+#include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/framework/CAlg1Backend.h>
-#include <dynslam/core/models/se2.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>

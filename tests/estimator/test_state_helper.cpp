@@ -1,7 +1,7 @@
 /** The state helper's operations (estimator/state_helper.h) against dense computations of the
  * same Gaussian transformation on random states. */
-#include <dynslam/estimator/state_helper.h>
 #include <dynslam/core/models/measurement.h>
+#include <dynslam/estimator/state_helper.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>

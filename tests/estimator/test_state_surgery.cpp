@@ -40,7 +40,7 @@ void runHighway(CDynamicKFSLAM2D& ekf, size_t steps)
 {
 	const sim::TScenarioOptions o =
 	    sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/highway.ini");
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, o, o.noise_seed);
 	mrpt::config::CConfigFileMemory cfg(
 	    "[DynamicKFSLAM]\nmeasurement_model = cartesian\nSigma_v = [1e-5 1e-5]\n"

@@ -5,10 +5,10 @@
  * (config/highway_anonymous.ini). Thresholds: a few times the measured values (in the comments
  * and the doc). */
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/ekf/mrpt_static_association.h>
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/eval/class_metrics.h>
-#include <dynslam/ekf/mrpt_static_association.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/highway_filter_setup.h>
 #include <gtest/gtest.h>
@@ -175,7 +175,7 @@ TRun runHighway(const std::string& cfgName, const std::string& extra = "")
 {
 	const sim::TScenarioOptions o =
 	    sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/" + cfgName);
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun s = sim::simulateMeasurements(gt, o, o.noise_seed);
 	std::string ini = kIni;
 	ini.insert(ini.find("[DynamicKFSLAM_"), extra);
@@ -199,13 +199,13 @@ TRun runHighway(const std::string& cfgName, const std::string& extra = "")
 		r.skipped += rs.skipped_unknown_id;
 		for (const auto& m : rs.readings)
 		{
-			const TReadingClass& t = s.classes.at(row++);
+			const io::TReadingClass& t = s.classes.at(row++);
 			const bool st = m.route == Route::StaticKnown || m.route == Route::StaticNew;
 			dec.push_back(m.candidate     ? eval::Decision::Undecided
 			              : st            ? eval::Decision::Static
 			              : m.object >= 0 ? eval::Decision::Moving
 			                              : eval::Decision::Undecided);
-			if (t.cls == TrueClass::Clutter) continue;
+			if (t.cls == io::TrueClass::Clutter) continue;
 			trueIds.insert(t.true_id);
 			++trueOfTrack[m.reading.id][t.true_id];
 			if (t.id == -1) unknownRows.emplace_back(m.reading.id, t.true_id);

@@ -4,8 +4,8 @@
  * written out here), also past the resolver's flush of its increments (256) and for tracks
  * unseen for many steps. And predictStatic with the increment's rotations computed once
  * (TStaticMotion) equals predictStatic(q, u, U) bit for bit, and the formula to rounding. */
-#include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/unknown_id_association.h>
 #include <gtest/gtest.h>
 
 #include <map>

@@ -106,7 +106,7 @@ TEST(Align, BadInputAndOnePoint)
 TEST(Align, RunMetricsAlignedAteOfAWholeRotatedTrajectory)
 {
 	const auto truth = curvyPath(50);
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	TRunEstimates est;
 	const auto moved = transform(truth, 0.3, Eigen::Vector2d(2, -1));
 	for (size_t k = 0; k < truth.size(); ++k)

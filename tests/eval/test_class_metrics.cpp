@@ -10,22 +10,23 @@ using namespace dynslam::eval;
 
 namespace
 {
-TReadingClass row(int step, int index, int32_t id, TrueClass c, int32_t object, int32_t feature)
+io::TReadingClass row(int step, int index, int32_t id, io::TrueClass c, int32_t object,
+                      int32_t feature)
 {
-	TReadingClass r;
+	io::TReadingClass r;
 	r.step = step;
 	r.t = step;
 	r.index = index;
 	r.id = id;
-	r.true_id = c == TrueClass::Clutter ? -1 : id;
+	r.true_id = c == io::TrueClass::Clutter ? -1 : id;
 	r.cls = c;
 	r.object = object;
 	r.feature = feature;
 	return r;
 }
-constexpr auto S = TrueClass::Static;
-constexpr auto M = TrueClass::Moving;
-constexpr auto C = TrueClass::Clutter;
+constexpr auto S = io::TrueClass::Static;
+constexpr auto M = io::TrueClass::Moving;
+constexpr auto C = io::TrueClass::Clutter;
 constexpr auto dS = Decision::Static;
 constexpr auto dM = Decision::Moving;
 constexpr auto dU = Decision::Undecided;
@@ -65,9 +66,9 @@ TEST(ClassMetrics, AdjustedRandIndexDegenerateCases)
 TEST(ClassMetrics, PerReadingScores)
 {
 	// 3 moving (2 decided moving, 1 undecided), 2 static (1 decided moving), 1 clutter (static).
-	const std::vector<TReadingClass> t = {row(0, 0, 1, M, 0, 0),  row(0, 1, 2, M, 0, 1),
-	                                      row(0, 2, 3, M, 0, 2),  row(0, 3, 4, S, -1, 4),
-	                                      row(0, 4, 5, S, -1, 5), row(0, 5, 6, C, -1, -1)};
+	const std::vector<io::TReadingClass> t = {row(0, 0, 1, M, 0, 0),  row(0, 1, 2, M, 0, 1),
+	                                          row(0, 2, 3, M, 0, 2),  row(0, 3, 4, S, -1, 4),
+	                                          row(0, 4, 5, S, -1, 5), row(0, 5, 6, C, -1, -1)};
 	const TBinaryScores s = perReadingScores(t, {dM, dM, dU, dM, dS, dS});
 	EXPECT_EQ(s.tp, 2u);
 	EXPECT_EQ(s.fp, 1u);
@@ -94,10 +95,10 @@ TEST(ClassMetrics, PerTrackScoresUseTheLastReading)
 	// Track 10: static at 0, moving at 1 and 2 (drives off), final decision moving -> tp.
 	// Track 11: moving, final decision static -> fn. Track 12: static, last decided moving -> fp.
 	// Rows given out of order; id -1 rows are not tracks.
-	const std::vector<TReadingClass> t = {row(2, 0, 10, M, 0, 0),   row(0, 0, 10, S, 0, 0),
-	                                      row(1, 0, 10, M, 0, 0),   row(0, 1, 11, M, 1, 0),
-	                                      row(1, 1, 11, M, 1, 0),   row(0, 2, 12, S, -1, 12),
-	                                      row(1, 2, 12, S, -1, 12), row(1, 3, -1, C, -1, -1)};
+	const std::vector<io::TReadingClass> t = {row(2, 0, 10, M, 0, 0),   row(0, 0, 10, S, 0, 0),
+	                                          row(1, 0, 10, M, 0, 0),   row(0, 1, 11, M, 1, 0),
+	                                          row(1, 1, 11, M, 1, 0),   row(0, 2, 12, S, -1, 12),
+	                                          row(1, 2, 12, S, -1, 12), row(1, 3, -1, C, -1, -1)};
 	const TBinaryScores s = perTrackScores(t, {dM, dS, dS, dM, dS, dS, dM, dM});
 	EXPECT_EQ(s.tp, 1u);
 	EXPECT_EQ(s.fn, 1u);
@@ -111,7 +112,7 @@ TEST(ClassMetrics, DetectionDelayAfterOnset)
 	// Feature (3,0): static at steps 0..2, moving from 3; decided moving at 5 -> delay 2.
 	// Feature (3,1): onset at 3, missed readings at 4, decided at 6 -> delay 3 (steps, not rows).
 	// Feature (4,0): onset at 3, never decided moving -> missed.
-	std::vector<TReadingClass> t;
+	std::vector<io::TReadingClass> t;
 	std::vector<Decision> d;
 	for (int k = 0; k <= 7; ++k)
 	{
@@ -136,7 +137,7 @@ TEST(ClassMetrics, DetectionDelayAfterOnset)
 	EXPECT_DOUBLE_EQ(s.mean_delay, 2.5);
 	EXPECT_EQ(s.max_delay, 3);
 	// Moving from the first sighting: an onset only with includeFirstSightings.
-	const std::vector<TReadingClass> m = {row(0, 0, 50, M, 5, 0), row(1, 0, 50, M, 5, 0)};
+	const std::vector<io::TReadingClass> m = {row(0, 0, 50, M, 5, 0), row(1, 0, 50, M, 5, 0)};
 	EXPECT_TRUE(detectionDelays(m, {dS, dM}).onsets.empty());
 	const TDelaySummary f = detectionDelays(m, {dS, dM}, true);
 	ASSERT_EQ(f.onsets.size(), 1u);
@@ -148,9 +149,9 @@ TEST(ClassMetrics, GroupingAri)
 {
 	// Moving readings of objects 0, 0, 1, 1 grouped as {a, a, b, b}: 1; a static reading and an
 	// ungrouped one (-1 -> singleton) change it to the [0,0,1,1] vs [0,0,1,s] example: 4/7.
-	const std::vector<TReadingClass> t = {row(0, 0, 1, M, 0, 0), row(0, 1, 2, M, 0, 1),
-	                                      row(0, 2, 3, M, 1, 0), row(0, 3, 4, M, 1, 1),
-	                                      row(0, 4, 5, S, -1, 5)};
+	const std::vector<io::TReadingClass> t = {row(0, 0, 1, M, 0, 0), row(0, 1, 2, M, 0, 1),
+	                                          row(0, 2, 3, M, 1, 0), row(0, 3, 4, M, 1, 1),
+	                                          row(0, 4, 5, S, -1, 5)};
 	EXPECT_DOUBLE_EQ(groupingAri(t, {7, 7, 8, 8, 7}), 1.0);
 	EXPECT_NEAR(groupingAri(t, {7, 7, 8, -1, 7}), 4.0 / 7.0, 1e-15);
 	EXPECT_TRUE(std::isnan(groupingAri({row(0, 0, 5, S, -1, 5)}, {0})));
@@ -160,9 +161,9 @@ TEST(ClassMetrics, GroupingAri)
 TEST(ClassMetrics, IdentityCounts)
 {
 	// True objects 0 (two tracks after a break) and 1; a static reading never counts.
-	const std::vector<TReadingClass> t = {row(0, 0, 1, M, 0, 0), row(1, 0, 2, M, 0, 0),
-	                                      row(0, 1, 3, M, 1, 0), row(1, 1, 4, M, 1, 0),
-	                                      row(0, 2, 5, S, -1, 5)};
+	const std::vector<io::TReadingClass> t = {row(0, 0, 1, M, 0, 0), row(1, 0, 2, M, 0, 0),
+	                                          row(0, 1, 3, M, 1, 0), row(1, 1, 4, M, 1, 0),
+	                                          row(0, 2, 5, S, -1, 5)};
 	// The break linked (both tracks of object 0 in identity 7): one identity per true object.
 	TIdentityCounts c = identityCounts(t, {7, 7, 8, 8, 9});
 	EXPECT_EQ(c.true_objects, 2u);
@@ -184,9 +185,9 @@ TEST(ClassMetrics, IdentityCounts)
 
 TEST(ClassMetrics, WrongStaticLandmarks)
 {
-	const std::vector<TReadingClass> t = {row(0, 0, 1, S, -1, 1), row(0, 1, 2, S, 0, 0),
-	                                      row(1, 0, 2, M, 0, 0), row(0, 2, 3, C, -1, -1),
-	                                      row(0, 3, 4, S, 1, 0)};  // 4: a car parked for good
+	const std::vector<io::TReadingClass> t = {row(0, 0, 1, S, -1, 1), row(0, 1, 2, S, 0, 0),
+	                                          row(1, 0, 2, M, 0, 0), row(0, 2, 3, C, -1, -1),
+	                                          row(0, 3, 4, S, 1, 0)};  // 4: a car parked for good
 	const TWrongStatic w = wrongStaticLandmarks(t, {1, 2, 3, 4, 99});
 	EXPECT_EQ(w.map_size, 5u);
 	EXPECT_EQ(w.wrong, 2u);
@@ -198,7 +199,7 @@ TEST(ClassMetrics, FromTheShippedClassFile)
 {
 	// The ID-range rule as a classifier on the shipped highway (its agents always move).
 	const auto t =
-	    readClassGroundTruth(std::string(DYNSLAM_DATASETS_DIR) + "/highway_gt_classes.csv");
+	    io::readClassGroundTruth(std::string(DYNSLAM_DATASETS_DIR) + "/highway_gt_classes.csv");
 	ASSERT_EQ(t.size(), 1552u);
 	std::vector<Decision> d;
 	std::vector<int64_t> groups;

@@ -19,9 +19,9 @@ constexpr int kRuns = 25;
 constexpr int kLandmarks = 30;
 
 /** Ground truth with kSteps ego poses (heading crossing +-pi) and kLandmarks landmarks. */
-dynslam::TGroundTruth syntheticTruth()
+dynslam::io::TGroundTruth syntheticTruth()
 {
-	dynslam::TGroundTruth gt;
+	dynslam::io::TGroundTruth gt;
 	for (int k = 0; k < kSteps; ++k)
 	{
 		gt.t.push_back(0.5 * k);
@@ -50,7 +50,7 @@ Eigen::VectorXd draw(const Eigen::MatrixXd& P, std::mt19937& rng)
 }
 
 /** One run: errors drawn from the true covariance P; the filter reports scale * P. */
-TRunEstimates syntheticRun(const dynslam::TGroundTruth& gt, unsigned seed, double reportedScale)
+TRunEstimates syntheticRun(const dynslam::io::TGroundTruth& gt, unsigned seed, double reportedScale)
 {
 	std::mt19937 rng(seed);
 	TRunEstimates est;

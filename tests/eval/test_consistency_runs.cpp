@@ -30,7 +30,8 @@ namespace
 constexpr int kRuns = 100;
 constexpr int kSteps = 120;
 
-eval::TRunEstimates runOnce(const TGroundTruth& gt, const sim::TScenarioOptions& so, unsigned seed)
+eval::TRunEstimates runOnce(const io::TGroundTruth& gt, const sim::TScenarioOptions& so,
+                            unsigned seed)
 {
 	const auto r = sim::simulateMeasurements(gt, so, seed);
 	CDynamicKFSLAM2D f;
@@ -81,7 +82,7 @@ TEST(ConsistencyRuns, EkfEgoAndObjectPoseNeesInsideChi2Bounds)
 	sim::TScenarioOptions so = sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/highway.ini");
 	so.steps = kSteps;
 	so.setNoiseLevel("w2v2");
-	const TGroundTruth gt = sim::buildGroundTruth(so);
+	const io::TGroundTruth gt = sim::buildGroundTruth(so);
 	TAvg ego;
 	std::map<int32_t, TAvg> objects;
 	std::vector<eval::TRunConsistency> all;

@@ -11,9 +11,9 @@ using namespace dynslam::eval;
 namespace
 {
 /** A highway-like scene: 1 km x ~60 m, 121 steps, two objects. */
-dynslam::TGroundTruth highway()
+dynslam::io::TGroundTruth highway()
 {
-	dynslam::TGroundTruth gt;
+	dynslam::io::TGroundTruth gt;
 	for (int k = 0; k <= 120; ++k)
 	{
 		gt.t.push_back(0.5 * k);
@@ -23,7 +23,7 @@ dynslam::TGroundTruth highway()
 	for (int i = 0; i < 40; ++i) gt.landmarks[i] = Eigen::Vector2d(25.0 * i, i % 2 ? 25 : -25);
 	for (int o = 0; o < 2; ++o)
 	{
-		dynslam::TObjectGroundTruth ob;
+		dynslam::io::TObjectGroundTruth ob;
 		ob.object = o;
 		ob.num_features = 2;
 		ob.first_step = 0;
@@ -42,7 +42,7 @@ dynslam::TGroundTruth highway()
 	return gt;
 }
 
-TRunEstimates noisyRun(const dynslam::TGroundTruth& gt, unsigned seed, double sigma)
+TRunEstimates noisyRun(const dynslam::io::TGroundTruth& gt, unsigned seed, double sigma)
 {
 	std::mt19937 rng(seed);
 	std::normal_distribution<double> n(0.0, sigma);

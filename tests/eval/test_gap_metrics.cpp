@@ -15,9 +15,9 @@ using namespace dynslam::eval;
 
 namespace
 {
-TGroundTruth straightRoad()
+io::TGroundTruth straightRoad()
 {
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	for (int k = 0; k < 6; ++k)
 	{
 		gt.t.push_back(0.5 * k);
@@ -39,7 +39,7 @@ TEgoEstimate estimate(int step, const Eigen::Vector3d& truth, const Eigen::Vecto
 
 TEST(GapMetrics, InsideOutsideEndAndNees)
 {
-	const TGroundTruth gt = straightRoad();
+	const io::TGroundTruth gt = straightRoad();
 	std::vector<TEgoEstimate> ego;
 	// Gap [15, 35]: steps 2 (x = 20) and 3 (x = 30). Errors 0.3 / 0.4 m inside, 0.1 outside.
 	for (int k = 0; k < 6; ++k)
@@ -63,7 +63,7 @@ TEST(GapMetrics, InsideOutsideEndAndNees)
 
 TEST(GapMetrics, NoGapStepOrSingularCovariance)
 {
-	const TGroundTruth gt = straightRoad();
+	const io::TGroundTruth gt = straightRoad();
 	std::vector<TEgoEstimate> ego;
 	for (int k = 0; k < 6; ++k) ego.push_back(estimate(k, gt.ego[size_t(k)], {0.1, 0, 0}, 0.0));
 	const TGapMetrics none = gapMetrics(gt, ego, {{100, 200}});
@@ -111,7 +111,7 @@ TEST(GapMetrics, MetricsCsvColumnsOnlyWhenARowHasThem)
 
 TEST(GapMetrics, ErrorOverTheRoadFigureShadesTheGap)
 {
-	const TGroundTruth gt = straightRoad();
+	const io::TGroundTruth gt = straightRoad();
 	TRunEstimates est;
 	for (int k = 0; k < 6; ++k)
 		est.ego.push_back(estimate(k, gt.ego[size_t(k)], Eigen::Vector3d(0, 0.1 * k, 0), 0.01));

@@ -1,6 +1,6 @@
 /** Relative pose error and the object motion error in VDO-SLAM's form (motion_metrics.h). */
-#include <dynslam/eval/motion_metrics.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/eval/motion_metrics.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,10 +23,10 @@ Eigen::Vector2d applyPose(const Eigen::Vector3d& T, const Eigen::Vector2d& p)
 }
 
 /** A 4-corner object turning while it drives, seen at every step; ego on a curve. */
-TGroundTruth makeTruth(size_t n)
+io::TGroundTruth makeTruth(size_t n)
 {
-	TGroundTruth gt;
-	TObjectGroundTruth o;
+	io::TGroundTruth gt;
+	io::TObjectGroundTruth o;
 	o.object = 0;
 	o.num_features = 4;
 	o.first_step = 0;
@@ -48,7 +48,7 @@ TGroundTruth makeTruth(size_t n)
 	return gt;
 }
 
-TRunEstimates perfectEstimates(const TGroundTruth& gt)
+TRunEstimates perfectEstimates(const io::TGroundTruth& gt)
 {
 	TRunEstimates est;
 	for (size_t k = 0; k < gt.numSteps(); ++k)
@@ -92,7 +92,7 @@ TEST(MotionMetrics, BodyFrameMotionIsTheWorldMotionSeenFromTheObject)
 
 TEST(MotionMetrics, PerfectEstimatesHaveZeroErrors)
 {
-	const TGroundTruth gt = makeTruth(30);
+	const io::TGroundTruth gt = makeTruth(30);
 	const TRunEstimates est = perfectEstimates(gt);
 	const TObjectErrors e = objectErrors(gt, est);
 	EXPECT_EQ(e.motion.n, 29u);
@@ -111,7 +111,7 @@ TEST(MotionMetrics, OneDisplacedPoseCostsTwoMotions)
 {
 	// xi_5 off by (0.3, -0.4) with the rotation right: the motions 4->5 and 5->6 are wrong.
 	// 4->5 and 5->6: the body-frame translation is off by the 0.5 m displacement, rotated.
-	const TGroundTruth gt = makeTruth(12);
+	const io::TGroundTruth gt = makeTruth(12);
 	TRunEstimates est = perfectEstimates(gt);
 	est.object_poses[5].mean.head<2>() += Eigen::Vector2d(0.3, -0.4);
 	const TObjectErrors e = objectErrors(gt, est);
@@ -130,7 +130,7 @@ TEST(MotionMetrics, OneDisplacedPoseCostsTwoMotions)
 
 TEST(MotionMetrics, TranslationOnlyObjectsAndGaps)
 {
-	TGroundTruth gt = makeTruth(10);
+	io::TGroundTruth gt = makeTruth(10);
 	TRunEstimates est = perfectEstimates(gt);
 	for (auto& p : est.object_poses)
 	{
@@ -150,7 +150,7 @@ TEST(MotionMetrics, RelativePoseErrorSeesAJumpOnce)
 {
 	// a 1 m jump between steps 4 and 5 (ego heading 0): with delta 1 only the pair (4, 5)
 	// is wrong; a constant world offset of the whole path costs nothing
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	TRunEstimates est;
 	for (int k = 0; k < 11; ++k)
 	{

@@ -21,10 +21,10 @@ Eigen::Vector2d rot(double a, const Eigen::Vector2d& p)
 /** True object 0: two features (10, 0) and (12, 0) at step 0, turning 0.1 rad and moving (1, 0)
  * per step about their centroid (11, 0). True object 1: one feature at (0, 5 + k - 1), first
  * seen at step 1. */
-TGroundTruth truth()
+io::TGroundTruth truth()
 {
-	TGroundTruth gt;
-	TObjectGroundTruth a, b;
+	io::TGroundTruth gt;
+	io::TObjectGroundTruth a, b;
 	a.object = 0;
 	a.num_features = 2;
 	a.first_step = 0;
@@ -51,11 +51,11 @@ TGroundTruth truth()
 	return gt;
 }
 
-TReadingClass moving(int step, int32_t object, int32_t feature)
+io::TReadingClass moving(int step, int32_t object, int32_t feature)
 {
-	TReadingClass r;
+	io::TReadingClass r;
 	r.step = step;
-	r.cls = TrueClass::Moving;
+	r.cls = io::TrueClass::Moving;
 	r.object = object;
 	r.feature = feature;
 	return r;
@@ -76,7 +76,7 @@ TObjectPoseEstimate pose(int32_t obj, int step, const Eigen::Vector3d& mean)
 struct TReads
 {
 	TReadingObjects est;
-	std::vector<TReadingClass> truth;
+	std::vector<io::TReadingClass> truth;
 	void add(int step, int32_t o, int32_t f, int32_t to, int32_t tf)
 	{
 		est.object.push_back(o);
@@ -90,7 +90,7 @@ TEST(ObjectAgents, FoundedAtTheFirstSightingEqualsTheLabelledScoring)
 {
 	// The router's object 5 is true object 0, founded at its first sighting with both features:
 	// its cells equal computeRunMetrics on the same estimates numbered as the truth.
-	const TGroundTruth gt = truth();
+	const io::TGroundTruth gt = truth();
 	TRunEstimates labelled;
 	labelled.object_features = {{0, 0, {10.02, -0.01}, Eigen::Matrix2d::Identity()},
 	                            {0, 1, {11.97, 0.03}, Eigen::Matrix2d::Identity()}};
@@ -127,7 +127,7 @@ TEST(ObjectAgents, LateFoundedObjectIsScoredFromItsOwnTimeZero)
 	// founder: the truth is the motion of true feature 1 since step 2 (by hand, the feature
 	// track of a rigid body): d'_k = (k - 2 + cos 0.1k - cos 0.2, sin 0.1k - sin 0.2),
 	// theta'_k = 0.1 (k - 2). Object 8 (also true object 0, fewer readings) is not scored.
-	const TGroundTruth gt = truth();
+	const io::TGroundTruth gt = truth();
 	TReads r;
 	for (int k = 0; k < 2; ++k) r.add(k, -1, -1, 0, 1);  // undecided
 	for (int k = 2; k < kSteps; ++k) r.add(k, 7, 0, 0, 1);
@@ -178,7 +178,7 @@ TEST(ObjectAgents, TiesGoToTheSmallerEstimatedObject)
 {
 	// Two estimated objects with two readings each of true object 1 (one feature, first seen
 	// at step 1): the smaller number (3) is scored; its pose at step 3 is 0.5 m off in x.
-	const TGroundTruth gt = truth();
+	const io::TGroundTruth gt = truth();
 	TReads r;
 	r.add(1, 4, 0, 1, 0);
 	r.add(2, 4, 0, 1, 0);

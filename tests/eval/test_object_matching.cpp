@@ -15,13 +15,13 @@ using namespace dynslam::eval;
 namespace
 {
 /** True objects 0 and 1 at constant velocities (1, 0) and (0, 2) m/s, dt = 0.5 s, 5 steps. */
-TGroundTruth twoObjects()
+io::TGroundTruth twoObjects()
 {
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	const Eigen::Vector2d v[2] = {{1, 0}, {0, 2}};
 	for (int j = 0; j < 2; ++j)
 	{
-		TObjectGroundTruth o;
+		io::TObjectGroundTruth o;
 		o.object = j;
 		for (int k = 0; k < 5; ++k) o.pose.emplace_back(v[j].x() * 0.5 * k, v[j].y() * 0.5 * k, 0);
 		gt.objects.push_back(o);
@@ -34,10 +34,10 @@ TGroundTruth twoObjects()
 	return gt;
 }
 
-TReadingClass reading(int32_t object)
+io::TReadingClass reading(int32_t object)
 {
-	TReadingClass r;
-	r.cls = object < 0 ? TrueClass::Static : TrueClass::Moving;
+	io::TReadingClass r;
+	r.cls = object < 0 ? io::TrueClass::Static : io::TrueClass::Moving;
 	r.object = object;
 	return r;
 }
@@ -53,8 +53,9 @@ TObjectPoseEstimate velocityOf(int32_t obj, int step, const Eigen::Vector2d& v)
 struct TSwapped
 {
 	std::vector<int32_t> est{0, 0, 0, 0, 1, 1, 2, 2, 2, -1};
-	std::vector<TReadingClass> truth{reading(1), reading(1),  reading(1),  reading(0), reading(0),
-	                                 reading(0), reading(-1), reading(-1), reading(1), reading(-1)};
+	std::vector<io::TReadingClass> truth{reading(1), reading(1), reading(1),  reading(0),
+	                                     reading(0), reading(0), reading(-1), reading(-1),
+	                                     reading(1), reading(-1)};
 };
 }  // namespace
 
@@ -76,7 +77,7 @@ TEST(ObjectMatching, MajorityOfTheReadingsTiesAndNoMatch)
 
 TEST(ObjectMatching, ClassifyingSpeedErrorIsThatOfTheMatchedTrueObject)
 {
-	const TGroundTruth gt = twoObjects();
+	const io::TGroundTruth gt = twoObjects();
 	TRunEstimates est;
 	// Estimated 0 (true 1, v = (0, 2)) off by (0.3, 0.4): 0.5 m/s; estimated 1 (true 0,
 	// v = (1, 0)) off by (0.6, 0.8): 1 m/s; estimated 2 has no true object (skipped).
@@ -103,7 +104,7 @@ TEST(ObjectMatching, ClassifyingSpeedErrorIsThatOfTheMatchedTrueObject)
 	// Two estimated objects on one true object (a track break): each scored against it.
 	TRunEstimates broken;
 	broken.object_poses = {velocityOf(7, 1, {1.3, 0.4}), velocityOf(8, 3, {1, 0})};
-	const std::vector<TReadingClass> tr{reading(0), reading(0)};
+	const std::vector<io::TReadingClass> tr{reading(0), reading(0)};
 	const auto b = classifyingVelocityErrors(gt, broken, {7, 8}, &tr);
 	ASSERT_TRUE(b);
 	EXPECT_EQ(b->n, 2u);
@@ -112,7 +113,7 @@ TEST(ObjectMatching, ClassifyingSpeedErrorIsThatOfTheMatchedTrueObject)
 
 TEST(ObjectMatching, WithoutClassTruthTheCellsAreEmpty)
 {
-	const TGroundTruth gt = twoObjects();
+	const io::TGroundTruth gt = twoObjects();
 	TRunEstimates est;
 	est.object_poses.push_back(velocityOf(0, 1, {0, 2}));
 	EXPECT_FALSE(classifyingVelocityErrors(gt, est, {0}, nullptr));

@@ -20,10 +20,10 @@ const double kPi = std::acos(-1.0);
 
 /** Object 7, NaN before step 1, dt = 0.5 s, accelerating along x (dx = 0, 1, 3, 6 m) and turning
  * at 0.2 rad/s; its heading crosses +-pi between steps 2 and 3. */
-TGroundTruth movingObject()
+io::TGroundTruth movingObject()
 {
-	TGroundTruth gt;
-	TObjectGroundTruth o;
+	io::TGroundTruth gt;
+	io::TObjectGroundTruth o;
 	o.object = 7;
 	const double nan = std::nan("");
 	const double dx[] = {nan, 0, 1, 3, 6};
@@ -42,8 +42,8 @@ TGroundTruth movingObject()
 
 TEST(VelocityMetrics, TruthByCentralAndOneSidedDifferences)
 {
-	const TGroundTruth gt = movingObject();
-	const TObjectGroundTruth& o = gt.objects[0];
+	const io::TGroundTruth gt = movingObject();
+	const io::TObjectGroundTruth& o = gt.objects[0];
 	EXPECT_FALSE(trueObjectVelocity(o, gt.t, 0));    // NaN pose
 	EXPECT_FALSE(trueObjectVelocity(o, gt.t, 5));    // beyond the truth
 	const auto v1 = trueObjectVelocity(o, gt.t, 1);  // forward: step 0 is NaN
@@ -53,14 +53,14 @@ TEST(VelocityMetrics, TruthByCentralAndOneSidedDifferences)
 	EXPECT_LT((*v1 - Eigen::Vector3d(2, 0, 0.2)).norm(), 1e-12);
 	EXPECT_LT((*v2 - Eigen::Vector3d(3, 0, 0.2)).norm(), 1e-12);
 	EXPECT_LT((*v4 - Eigen::Vector3d(6, 0, 0.2)).norm(), 1e-12);
-	TObjectGroundTruth single;
+	io::TObjectGroundTruth single;
 	single.pose = {Eigen::Vector3d(1, 2, 0)};
 	EXPECT_FALSE(trueObjectVelocity(single, {0.0}, 0));  // no second pose: no velocity
 }
 
 TEST(VelocityMetrics, RmseAneesAndSkips)
 {
-	const TGroundTruth gt = movingObject();
+	const io::TGroundTruth gt = movingObject();
 	TRunEstimates est;
 	EXPECT_FALSE(objectVelocityErrors(gt, est));  // no velocity anywhere: nothing to score
 	// Step 1: error (0.3, 0.4, 0.1): speed 0.5, NEES 0.36 + 0.64 + 1 = 2.

@@ -2,9 +2,9 @@
  * the dynamic EKF (CDynamicKFSLAM2D, a CKalmanFilterCapable subclass) at every step, on the
  * highway scenario and on generated scenarios: mean and covariance within 1e-9 relative
  * (max |A - B| / max |B|), after removing the EKF's pad entries and matching entries by label. */
+#include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/framework/CAlg1Backend.h>
-#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -84,7 +84,7 @@ void compareTracks(const CDynamicKFSLAM2D& ekf, const CAlg1Backend& alg, TWorst&
 /** Runs both on the scenario and compares at every step. */
 TWorst runBoth(const sim::TScenarioOptions& so, uint64_t seed, const std::string& extraModel)
 {
-	const TGroundTruth gt = sim::buildGroundTruth(so);
+	const io::TGroundTruth gt = sim::buildGroundTruth(so);
 	const sim::TSimulatedRun run = sim::simulateMeasurements(gt, so, seed);
 	mrpt::config::CConfigFileMemory ini(modelIni(extraModel));
 	CDynamicKFSLAM2D ekf;

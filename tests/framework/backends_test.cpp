@@ -1,9 +1,9 @@
 /** The back-ends of Section III as configurations (makeBackend): every kind runs on a short
  * highway, its ego, map and object-pose errors against the ground truth are small, and bad
  * options are rejected. */
+#include <dynslam/core/models/se2.h>
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/backend_factory.h>
-#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -30,7 +30,7 @@ TErrors run(const std::string& kind, int steps, const std::string& extra = "")
 {
 	sim::TScenarioOptions so = sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/highway.ini");
 	so.steps = steps;
-	const TGroundTruth gt = sim::buildGroundTruth(so);
+	const io::TGroundTruth gt = sim::buildGroundTruth(so);
 	const auto r = sim::simulateMeasurements(gt, so, 7);
 	mrpt::config::CConfigFileMemory ini(std::string(kIni) + extra);
 	auto be = makeBackend(kind, ini, "Framework");

@@ -2,10 +2,10 @@
  * on the running cost) equals the matching step of the standard dynamic EKF (ekf_steps.h), on
  * small random states; mean and covariance within 1e-9 relative (max |A-B| / max |B|). */
 #include <dynslam/core/ekf_steps.h>
-#include <dynslam/framework/running_cost.h>
 #include <dynslam/core/models/measurement.h>
 #include <dynslam/core/models/object_pose.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/framework/running_cost.h>
 #include <gtest/gtest.h>
 
 #include <iostream>

@@ -6,9 +6,9 @@
  * ego estimate equals the run without it until the object's readings come back. With
  * feature_labels = classify (ObjectDropClassify.*) a dropped object's returning tracks restart
  * as a new object. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
-#include <dynslam/core/landmark_ids.h>
 #include <dynslam/common/model_options.h>
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam_test/option_errors.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>

@@ -38,7 +38,7 @@ struct TRun
 	std::vector<Eigen::Vector3d> ego;
 };
 
-TRun run(const sim::TSimulatedRun& s, const TGroundTruth& gt, const std::string& extra)
+TRun run(const sim::TSimulatedRun& s, const io::TGroundTruth& gt, const std::string& extra)
 {
 	mrpt::config::CConfigFileMemory ini(dynslam_test::highwayFilterIni(extra));
 	CDynamicKFSLAM2D ekf;
@@ -72,14 +72,14 @@ TTruth truthOf(const sim::TSimulatedRun& s)
 	TTruth t;
 	for (const auto& c : s.classes)
 	{
-		if (c.cls == TrueClass::Moving) continue;
+		if (c.cls == io::TrueClass::Moving) continue;
 		if (!t.first.count(c.id))
 		{
 			t.first[c.id] = c.step;
-			t.clutterIds += c.cls == TrueClass::Clutter;
+			t.clutterIds += c.cls == io::TrueClass::Clutter;
 		}
 		if (c.step - t.first[c.id] < kWindow) ++t.inWindow[c.id];
-		if (c.cls == TrueClass::Static) t.trueSeen.insert(c.id);
+		if (c.cls == io::TrueClass::Static) t.trueSeen.insert(c.id);
 	}
 	return t;
 }
@@ -89,7 +89,7 @@ TEST(PruneClutter, HighwayWithClutterMapWithin1p2xOfTheTruthSameAte)
 {
 	const sim::TScenarioOptions o =
 	    sim::loadScenario(std::string(DYNSLAM_CONFIG_DIR) + "/highway_clutter.ini");
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun s = sim::simulateMeasurements(gt, o, o.noise_seed);
 	const int lastStep = int(s.actions.size()) - 1;
 

@@ -5,8 +5,8 @@
  * own), recorded or forgotten per record_dropped, and counted in TStepReport::pruned_static.
  * The windowed back-ends do not implement it and reject the keys. */
 #include <dynslam/common/ISlamBackend.h>
-#include <dynslam/estimator/drop_policy.h>
 #include <dynslam/common/model_options.h>
+#include <dynslam/estimator/drop_policy.h>
 #include <dynslam_test/option_errors.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>

@@ -6,8 +6,8 @@
  *  - cubeslam's relative pose xi = O_t (-) O_0 has the covariance J C J^T of the joint
  *    covariance C of (O_0, O_t), with J the numerical Jacobian of blockMinus (no sign
  *    convention taken from the library). */
-#include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/framework/CWindowBackend.h>
 #include <dynslam_test/scripted_steps.h>
 #include <gtest/gtest.h>
 

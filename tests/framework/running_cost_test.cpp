@@ -1,8 +1,8 @@
 /** The running cost's operations: Gauss-Newton on a linear problem, marginalization (Schur
  * complement = the paper's projector formula), drop, and bad input. */
-#include <dynslam/framework/running_cost.h>
 #include <dynslam/core/models/measurement.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/framework/running_cost.h>
 #include <gtest/gtest.h>
 
 #include <random>

@@ -22,7 +22,7 @@ struct TRun
 {
 	std::vector<mrpt::obs::CActionCollection::Ptr> actions;
 	std::vector<mrpt::obs::CSensoryFrame::Ptr> frames;
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 };
 
 TRun simulate(const Eigen::Vector3d& sensor, int steps)

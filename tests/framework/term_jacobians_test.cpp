@@ -3,10 +3,10 @@
  * step uses), in the spirit of GTSAM's EXPECT_CORRECT_FACTOR_JACOBIANS; and its information
  * W symmetric positive semi-definite. Linearization points include headings next to +-pi, so
  * a perturbation crosses the cut. */
+#include <dynslam/core/models/se2.h>
 #include <dynslam/estimator/constant_turn_rate.h>
 #include <dynslam/framework/object_motion_terms.h>
 #include <dynslam/framework/terms.h>
-#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>

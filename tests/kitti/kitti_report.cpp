@@ -23,7 +23,7 @@ namespace
 {
 constexpr double kDeg = 180.0 / M_PI;
 
-void drawMap(const TGroundTruth& gt, const std::vector<kitti_eval::TKittiRunResult>& results,
+void drawMap(const io::TGroundTruth& gt, const std::vector<kitti_eval::TKittiRunResult>& results,
              const std::string& label, const std::string& path)
 {
 	std::vector<eval::TFigureSeries> series;
@@ -104,7 +104,7 @@ int main(int argc, char** argv)
 		const auto raw = apps::loadRawlog(rawPath);
 		const std::string gtSpec = apps::groundTruthBesideRawlog(rawPath);
 		if (gtSpec.empty()) throw std::runtime_error("no ground truth beside " + rawPath);
-		const TGroundTruth gt = apps::loadGroundTruthFor(gtSpec, raw.size(), rawPath);
+		const io::TGroundTruth gt = apps::loadGroundTruthFor(gtSpec, raw.size(), rawPath);
 		const std::string scen = apps::scenarioBesideRawlog(rawPath);
 		if (!std::filesystem::exists(scen)) throw std::runtime_error(scen + ": not found");
 		mrpt::config::CConfigFile sc(scen);

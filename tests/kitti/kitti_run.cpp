@@ -1,15 +1,15 @@
 #include "kitti_run.h"
 
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CCompareApp.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <cmath>
 
 namespace dynslam::kitti_eval
 {
-TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
+TKittiRunResult runKitti(const apps::TRawlog& rawlog, const io::TGroundTruth& gt,
                          const mrpt::config::CConfigFileMemory& ini, const std::string& filter,
-                         const std::vector<TReadingClass>& classes)
+                         const std::vector<io::TReadingClass>& classes)
 {
 	mrpt::config::CConfigFileMemory params(ini.getContent());
 	const bool dyn = filter == "dynamic" || filter == "dynamic_nogate";
@@ -61,7 +61,7 @@ TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
 
 namespace dynslam::kitti_eval
 {
-TOdometryOnly deadReckoning(const apps::TRawlog& rawlog, const TGroundTruth& gt)
+TOdometryOnly deadReckoning(const apps::TRawlog& rawlog, const io::TGroundTruth& gt)
 {
 	std::vector<eval::TEgoEstimate> ego;
 	Eigen::Vector3d x = Eigen::Vector3d::Zero();

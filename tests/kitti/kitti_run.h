@@ -8,10 +8,10 @@
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
-#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/motion_metrics.h>
 #include <dynslam/eval/velocity_metrics.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/io/ground_truth.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -52,9 +52,9 @@ struct TKittiRunResult
  * dynamic filter with [DynamicKFSLAM] innovation_gate = 0, like MRPT's ungated filter).
  * classes: the class truth of every reading (<base>_gt_classes.csv), scored when the filter
  * classifies (dynamic_classified); may be empty. */
-TKittiRunResult runKitti(const apps::TRawlog& rawlog, const TGroundTruth& gt,
+TKittiRunResult runKitti(const apps::TRawlog& rawlog, const io::TGroundTruth& gt,
                          const mrpt::config::CConfigFileMemory& ini, const std::string& filter,
-                         const std::vector<TReadingClass>& classes = {});
+                         const std::vector<io::TReadingClass>& classes = {});
 }  // namespace dynslam::kitti_eval
 
 namespace dynslam::kitti_eval
@@ -66,5 +66,5 @@ struct TOdometryOnly
 	double ate = 0;
 	eval::TRelativePoseError rpe;
 };
-TOdometryOnly deadReckoning(const apps::TRawlog& rawlog, const TGroundTruth& gt);
+TOdometryOnly deadReckoning(const apps::TRawlog& rawlog, const io::TGroundTruth& gt);
 }  // namespace dynslam::kitti_eval

@@ -4,8 +4,8 @@
  * the true and estimated ego paths, the ego's 3-sigma ellipse, the static landmarks (truth and
  * estimates with ellipses), the moving objects' true corners and the estimated object positions
  * (centroid of f_0 moved by the latest xi) with their 3-sigma ellipses. doc/kitti.md, section 5. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/data_files.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/figures.h>
 #include <dynslam/eval/plot_canvas.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
@@ -48,7 +48,7 @@ void drawObjects(eval::CPlotCanvas& c, const CDynamicKFSLAM2D& f)
 	}
 }
 
-mrpt::img::CImage drawFrame(const TGroundTruth& gt, const CDynamicKFSLAM2D& f, size_t k,
+mrpt::img::CImage drawFrame(const io::TGroundTruth& gt, const CDynamicKFSLAM2D& f, size_t k,
                             const std::vector<Eigen::Vector2d>& estPath)
 {
 	mrpt::img::CImage img(960, 720, mrpt::img::CH_RGB);
@@ -105,7 +105,7 @@ int main(int argc, char** argv)
 		                           false, -1, "step", cmd);
 		cmd.parse(argc, argv);
 		const auto raw = apps::loadRawlog(aRaw.getValue());
-		const TGroundTruth gt = apps::loadGroundTruthFor(
+		const io::TGroundTruth gt = apps::loadGroundTruthFor(
 		    apps::groundTruthBesideRawlog(aRaw.getValue()), raw.size(), aRaw.getValue());
 		mrpt::config::CConfigFileMemory ini;
 		apps::loadIniFile(aCfg.getValue(), ini);

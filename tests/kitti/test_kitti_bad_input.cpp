@@ -78,7 +78,7 @@ TEST(KittiBadInput, ValidSequenceWritesEverythingAndReadsBack)
 	for (const char* key : {"[KITTI_Import]", "noise = gaussian", "std_range = 0.1", "seed = 1",
 	                        "mode = labelled", "static_radius = 2"})
 		EXPECT_NE(text.find(key), std::string::npos) << key;
-	const TGroundTruth gt = readGroundTruth(out, "kitti_0007");
+	const io::TGroundTruth gt = io::readGroundTruth(out, "kitti_0007");
 	EXPECT_EQ(gt.numSteps(), 12u);
 	EXPECT_EQ(gt.landmarks.size(), 4u);
 	ASSERT_EQ(gt.objects.size(), 1u);

@@ -5,9 +5,9 @@
  * per-reading class truth is not. */
 #include <dynslam/common/app_support.h>
 #include <dynslam/common/detection_boxes.h>
-#include <dynslam/kitti/detection_import.h>
-#include <dynslam/core/models/se2.h>
 #include <dynslam/common/step_input.h>
+#include <dynslam/core/models/se2.h>
+#include <dynslam/kitti/detection_import.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CRawlog.h>
 

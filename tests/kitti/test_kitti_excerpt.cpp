@@ -3,9 +3,9 @@
  * config/compare_kitti.ini on it. Thresholds: a few times the values measured on this excerpt
  * (doc/kitti.md, section 6). */
 #include <dynslam/apps/data_files.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/kitti/CKittiApp.h>
 #include <dynslam/kitti/rawlog_writer.h>
-#include <dynslam/core/landmark_ids.h>
 #include <dynslam_test/temp_dir.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
@@ -24,8 +24,8 @@ struct TExcerpt
 	std::string rawlog;
 	kitti::TImportSummary summary;
 	apps::TRawlog raw;
-	TGroundTruth gt;
-	std::vector<TReadingClass> classes;  ///< <base>_gt_classes.csv, read back
+	io::TGroundTruth gt;
+	std::vector<io::TReadingClass> classes;  ///< <base>_gt_classes.csv, read back
 };
 
 TExcerpt convert(bool anonymous)
@@ -48,7 +48,7 @@ TExcerpt convert(bool anonymous)
 	x.raw = apps::loadRawlog(x.rawlog);
 	x.gt =
 	    apps::loadGroundTruthFor(apps::groundTruthBesideRawlog(x.rawlog), x.raw.size(), x.rawlog);
-	x.classes = readClassGroundTruth(dir + "/kitti_0000_gt_classes.csv");
+	x.classes = io::readClassGroundTruth(dir + "/kitti_0000_gt_classes.csv");
 	return x;
 }
 
@@ -130,8 +130,8 @@ TEST(KittiExcerpt, ClassTruthMatchesTheIdTable)
 	for (const auto& c : x.classes)
 	{
 		EXPECT_EQ(c.id, c.true_id);
-		EXPECT_NE(c.cls, TrueClass::Clutter);
-		if (c.cls != TrueClass::Moving) continue;
+		EXPECT_NE(c.cls, io::TrueClass::Clutter);
+		if (c.cls != io::TrueClass::Moving) continue;
 		++moving;
 		EXPECT_EQ(c.true_id, ids::objectFeatureId(c.object, c.feature));
 	}

@@ -1,10 +1,11 @@
 /** The importer's optional hint output (detection_groups = true): every corner's detection
- * group is its KITTI track ID, read back through the one step parser (dynslam/common/detection_groups.h,
- * doc/results/classification.md "Hints and links after a track break"). */
+ * group is its KITTI track ID, read back through the one step parser
+ * (dynslam/common/detection_groups.h, doc/results/classification.md "Hints and links after a track
+ * break"). */
+#include <dynslam/common/step_input.h>
 #include <dynslam/kitti/import.h>
 #include <dynslam/kitti/kitti_files.h>
 #include <dynslam/kitti/rawlog_writer.h>
-#include <dynslam/common/step_input.h>
 #include <gtest/gtest.h>
 #include <mrpt/obs/CRawlog.h>
 

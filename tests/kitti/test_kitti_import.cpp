@@ -1,11 +1,11 @@
 /** Units of the KITTI importer: frame conversion, footprint corners, the classification rule,
  * IDs of both modes, noise, ground truth, options (libs/kitti). */
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/kitti/CKittiOptions.h>
 #include <dynslam/kitti/classify.h>
 #include <dynslam/kitti/geometry.h>
 #include <dynslam/kitti/import.h>
-#include <dynslam/core/landmark_ids.h>
-#include <dynslam/core/models/se2.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>

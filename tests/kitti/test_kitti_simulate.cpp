@@ -4,11 +4,11 @@
  * exactly; misses, false positives, jitter and flips at their configured rates (bounds of 5
  * standard errors); bad options and command lines are clear errors. */
 #include <dynslam/common/detection_boxes.h>
+#include <dynslam/common/step_input.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/kitti/CKittiApp.h>
 #include <dynslam/kitti/detection_simulator.h>
 #include <dynslam/kitti/geometry.h>
-#include <dynslam/core/models/se2.h>
-#include <dynslam/common/step_input.h>
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CRawlog.h>

@@ -8,8 +8,8 @@
  * left = -x) it points along (cos a, -sin a) cos p, so the ego heading is -a exactly for
  * |p| < pi/2, whatever the roll. (Its x axis, R_y(a) R_x(p) R_z(r) e_x, leaves the heading
  * with roll and pitch together: an importer reading it would be off by up to 3.4 degrees below.) */
-#include <dynslam/kitti/geometry.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/kitti/geometry.h>
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,8 +1,8 @@
 /** dynslam-mrclam --anonymous (issue 12; anonymous.h, doc/results/real-data.md section 6): the ID
  * permutation, the rewritten readings, and the class ground truth of every reading, on the
  * shipped excerpt and through the app class. */
-#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/mrclam/CMrclamApp.h>
 #include <dynslam/mrclam/CMrclamOptions.h>
 #include <dynslam/mrclam/anonymous.h>
@@ -91,22 +91,22 @@ TEST(MrclamAnonymous, ExcerptReadingsAndClassTruth)
 	for (const auto& [s, p] : lab.gt.landmarks) EXPECT_EQ(anon.gt.landmarks.at(perm.at(s)), p);
 	EXPECT_EQ(n, 800u);  // the excerpt's 800 measurements (datasets/mrclam/README.md)
 	EXPECT_EQ(robots, 245u);
-	const std::vector<TReadingClass> truth = classGroundTruth(anon);
+	const std::vector<io::TReadingClass> truth = classGroundTruth(anon);
 	ASSERT_EQ(truth.size(), n);
 	size_t moving = 0, row = 0;
 	for (size_t k = 0; k < anon.steps.size(); ++k)
 		for (size_t i = 0; i < anon.steps[k].meas.size(); ++i, ++row)
 		{
-			const TReadingClass& r = truth[row];
+			const io::TReadingClass& r = truth[row];
 			const int s = anon.steps[k].meas[i].subject;
 			EXPECT_EQ(r.step, int(k));
 			EXPECT_EQ(r.index, int(i));
 			EXPECT_EQ(r.t, anon.steps[k].t);
 			EXPECT_EQ(r.id, perm.at(s));
 			EXPECT_EQ(r.true_id, labelledSubjectId(s));
-			EXPECT_EQ(r.cls, isRobotSubject(s) ? TrueClass::Moving : TrueClass::Static);
+			EXPECT_EQ(r.cls, isRobotSubject(s) ? io::TrueClass::Moving : io::TrueClass::Static);
 			EXPECT_EQ(r.object, isRobotSubject(s) ? s : -1);
-			moving += r.cls == TrueClass::Moving;
+			moving += r.cls == io::TrueClass::Moving;
 		}
 	EXPECT_EQ(moving, 245u);
 }
@@ -123,7 +123,7 @@ TEST(MrclamAnonymous, AppWritesAnonymousRawlogAndClassTruth)
 	ASSERT_TRUE(app.initialize(int(std::size(argv)), argv));
 	app.run();
 	EXPECT_EQ(app.summary.anonymous_ids, anonymousSubjectIds(7));
-	const auto truth = readClassGroundTruth(out + "/robot3_gt_classes.csv");
+	const auto truth = io::readClassGroundTruth(out + "/robot3_gt_classes.csv");
 	EXPECT_EQ(truth.size(), app.summary.kept);
 	for (const auto& r : truth)
 		EXPECT_EQ(r.id, anonymousSubjectIds(7).at(r.object >= 0 ? r.object : r.feature));

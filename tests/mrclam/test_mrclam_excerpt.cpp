@@ -1,7 +1,7 @@
 /** End to end on the shipped excerpt (datasets/mrclam/MRCLAM_Dataset6_excerpt, robot 3,
  * first 121 s of Dataset 6): import with config/mrclam.ini, then read everything back. */
-#include <dynslam/io/ground_truth.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/io/ground_truth.h>
 #include <dynslam/mrclam/CMrclamOptions.h>
 #include <dynslam/mrclam/import.h>
 #include <dynslam/mrclam/odometry.h>
@@ -177,7 +177,7 @@ TEST(MrclamExcerpt, RawlogReadsBackWithCRawlog)
 TEST(MrclamExcerpt, GroundTruthReadsBackAndMatchesTheSteps)
 {
 	const auto& f = fixture();
-	const auto gt = dynslam::readGroundTruth(f.dir, "robot3");
+	const auto gt = dynslam::io::readGroundTruth(f.dir, "robot3");
 	const size_t K = f.res.steps.size();
 	ASSERT_EQ(gt.numSteps(), K);
 	EXPECT_EQ(gt.landmarks.size(), 15u);
@@ -229,7 +229,7 @@ TEST(MrclamExcerpt, DeadReckoningFollowsTheGroundTruthAtTheStart)
 	const auto& f = fixture();
 	mrpt::obs::CRawlog log;
 	ASSERT_TRUE(log.loadFromRawLogFile(f.dir + "/robot3.rawlog"));
-	const auto gt = dynslam::readGroundTruth(f.dir, "robot3");
+	const auto gt = dynslam::io::readGroundTruth(f.dir, "robot3");
 	Eigen::Vector3d x = Eigen::Vector3d::Zero();
 	Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
 	const double t0 = gt.t[0];

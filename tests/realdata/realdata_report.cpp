@@ -26,8 +26,8 @@ namespace
 {
 /** The other robots' true paths and the dynamic filter's online estimates, steps with
  * t - t_0 in [t0, t1]. */
-void drawTracked(const TGroundTruth& gt, const realdata::TRealDataResult& r, double t0, double t1,
-                 const std::string& path)
+void drawTracked(const io::TGroundTruth& gt, const realdata::TRealDataResult& r, double t0,
+                 double t1, const std::string& path)
 {
 	auto inWindow = [&](size_t k)
 	{ return gt.t[k] - gt.t.front() >= t0 && gt.t[k] - gt.t.front() <= t1; };
@@ -74,8 +74,9 @@ void drawTracked(const TGroundTruth& gt, const realdata::TRealDataResult& r, dou
 }
 
 /** Ego paths and final maps of the filters over the ground truth, metric (equal aspect). */
-void drawFilterMaps(const TGroundTruth& gt, const std::vector<realdata::TRealDataResult>& results,
-                    const std::string& label, const std::string& path)
+void drawFilterMaps(const io::TGroundTruth& gt,
+                    const std::vector<realdata::TRealDataResult>& results, const std::string& label,
+                    const std::string& path)
 {
 	std::vector<eval::TFigureSeries> series;
 	const size_t colors[] = {0, 3, 1, 2};
@@ -113,7 +114,7 @@ int main(int argc, char** argv)
 		const auto raw = apps::loadRawlog(aRaw.getValue());
 		const std::string gtSpec = apps::groundTruthBesideRawlog(aRaw.getValue());
 		if (gtSpec.empty()) throw std::runtime_error("no ground truth beside " + aRaw.getValue());
-		const TGroundTruth gt = apps::loadGroundTruthFor(gtSpec, raw.size(), aRaw.getValue());
+		const io::TGroundTruth gt = apps::loadGroundTruthFor(gtSpec, raw.size(), aRaw.getValue());
 		mrpt::config::CConfigFileMemory ini;
 		apps::loadIniFile(aCfg.getValue(), ini);
 		const std::string out = aOut.getValue();

@@ -10,7 +10,7 @@ namespace dynslam::realdata
 {
 namespace
 {
-const TObjectGroundTruth* findObject(const TGroundTruth& gt, int object)
+const io::TObjectGroundTruth* findObject(const io::TGroundTruth& gt, int object)
 {
 	for (const auto& o : gt.objects)
 		if (o.object == object) return &o;
@@ -18,7 +18,7 @@ const TObjectGroundTruth* findObject(const TGroundTruth& gt, int object)
 }
 
 /** Online positions p_k = f_0 + xi_k of every object whose pose at step k is in the state. */
-void recordTracked(const CDynamicKFSLAM2D& f, const TGroundTruth& gt, int k,
+void recordTracked(const CDynamicKFSLAM2D& f, const io::TGroundTruth& gt, int k,
                    std::vector<TTrackedPosition>& out)
 {
 	const auto& slots = f.getSlots();
@@ -34,7 +34,7 @@ void recordTracked(const CDynamicKFSLAM2D& f, const TGroundTruth& gt, int k,
 	for (const auto& [obj, sp] : pose)
 	{
 		const auto it = f0.find(obj);
-		const TObjectGroundTruth* o = findObject(gt, obj);
+		const io::TObjectGroundTruth* o = findObject(gt, obj);
 		if (it == f0.end() || !o || o->num_features != 1 || size_t(k) >= o->features.size())
 			continue;
 		// translation-only poses only (a rigid pose would need the rotation about the centroid)
@@ -81,7 +81,7 @@ TTrackedSummary summarizeTracked(const std::vector<TTrackedPosition>& v, int obj
 	return s;
 }
 
-TRealDataResult runRealData(const apps::TRawlog& rawlog, const TGroundTruth& gt,
+TRealDataResult runRealData(const apps::TRawlog& rawlog, const io::TGroundTruth& gt,
                             const mrpt::config::CConfigFileMemory& ini, const std::string& filter)
 {
 	mrpt::config::CConfigFileMemory params(ini.getContent());

@@ -63,7 +63,7 @@ struct TRealDataResult
 /** Runs one filter: "static_all", "static_landmarks_only", "dynamic" (the INI as given) or
  * "dynamic_nogate" (the same with [DynamicKFSLAM] innovation_gate = 0 and outlier_method =
  * none). Throws on errors. */
-TRealDataResult runRealData(const apps::TRawlog& rawlog, const TGroundTruth& gt,
+TRealDataResult runRealData(const apps::TRawlog& rawlog, const io::TGroundTruth& gt,
                             const mrpt::config::CConfigFileMemory& ini, const std::string& filter);
 
 /** Summary of the tracked positions of one object (object >= 0) or of all (object = -1). */

@@ -31,7 +31,7 @@ const std::string kIni = std::string(DYNSLAM_CONFIG_DIR) + "/mrclam_compare.ini"
 struct TExcerpt
 {
 	apps::TRawlog rawlog;
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	std::map<std::string, realdata::TRealDataResult> r;
 };
 

@@ -1,7 +1,7 @@
 /** Issue 12's simulator effects ([Effects], parked / stopping agents) and the class ground
  * truth (B_gt_classes.csv): each option changes exactly what it says. */
-#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/sim/CSimulateApp.h>
 #include <dynslam/sim/scenario.h>
 #include <dynslam_test/temp_dir.h>
@@ -40,9 +40,9 @@ const CObservationBearingRange& obsAt(const TSimulatedRun& run, size_t k)
 std::map<std::pair<int, int32_t>, std::pair<float, float>> readingsByTruth(const TSimulatedRun& r)
 {
 	std::map<std::pair<int, int32_t>, std::pair<float, float>> m;
-	for (const TReadingClass& c : r.classes)
+	for (const io::TReadingClass& c : r.classes)
 	{
-		if (c.cls == TrueClass::Clutter) continue;
+		if (c.cls == io::TrueClass::Clutter) continue;
 		const auto& z = obsAt(r, size_t(c.step)).sensedData.at(size_t(c.index));
 		EXPECT_EQ(z.landmarkID, c.id) << "step " << c.step << " index " << c.index;
 		m[{c.step, c.true_id}] = {z.range, z.yaw};
@@ -70,19 +70,19 @@ TEST(SimEffects, OffByDefaultClassesFollowTheIds)
 	for (size_t k = 0; k < run.frames.size(); ++k) n += obsAt(run, k).sensedData.size();
 	ASSERT_EQ(run.classes.size(), n);
 	EXPECT_EQ(n, 1552u);
-	for (const TReadingClass& c : run.classes)
+	for (const io::TReadingClass& c : run.classes)
 	{
 		EXPECT_EQ(c.id, c.true_id);
 		EXPECT_EQ(obsAt(run, size_t(c.step)).sensedData.at(size_t(c.index)).landmarkID, c.id);
 		if (ids::isStatic(c.id))
 		{
-			EXPECT_EQ(c.cls, TrueClass::Static);
+			EXPECT_EQ(c.cls, io::TrueClass::Static);
 			EXPECT_EQ(c.object, -1);
 			EXPECT_EQ(c.feature, c.id);
 		}
 		else
 		{
-			EXPECT_EQ(c.cls, TrueClass::Moving);  // the shipped agents always move
+			EXPECT_EQ(c.cls, io::TrueClass::Moving);  // the shipped agents always move
 			EXPECT_EQ(c.object, ids::objectOf(c.id));
 			EXPECT_EQ(c.feature, ids::featureOf(c.id));
 		}
@@ -110,7 +110,7 @@ TEST(SimEffects, MissedDetectionsDropTheirFractionAndNothingElse)
 			ASSERT_TRUE(refSeed.count(key));
 			EXPECT_EQ(refSeed.at(key), z);
 		}
-		for (const TReadingClass& c : run.classes) EXPECT_EQ(c.id, c.true_id);
+		for (const io::TReadingClass& c : run.classes) EXPECT_EQ(c.id, c.true_id);
 	}
 	EXPECT_EQ(N, 4 * ref.size());
 	const double p = 0.1, dropped = double(N - kept);
@@ -128,9 +128,9 @@ TEST(SimEffects, ClutterCountRangeAndIds)
 	std::map<int, int> perStep;
 	std::set<int32_t> clutterIds, trueIds;
 	size_t inner = 0, total = 0;
-	for (const TReadingClass& c : run.classes)
+	for (const io::TReadingClass& c : run.classes)
 	{
-		if (c.cls != TrueClass::Clutter)
+		if (c.cls != io::TrueClass::Clutter)
 		{
 			trueIds.insert(c.id);
 			continue;
@@ -163,8 +163,8 @@ TEST(SimEffects, ClutterCountRangeAndIds)
 		    return dynslam_test::setIniKey(s.str(), "Effects", "clutter_ids", "unknown");
 	    }());
 	size_t unknown = 0;
-	for (const TReadingClass& c : simulate(u).classes)
-		if (c.cls == TrueClass::Clutter)
+	for (const io::TReadingClass& c : simulate(u).classes)
+		if (c.cls == io::TrueClass::Clutter)
 		{
 			EXPECT_EQ(c.id, -1);
 			++unknown;
@@ -207,14 +207,14 @@ TEST(SimEffects, AnonymousIdsAreAPermutationThatMapsBack)
 	const TSimulatedRun run = simulate(o);
 	ASSERT_EQ(run.classes.size(), base.classes.size());
 	std::map<int32_t, int32_t> fwd, bwd;
-	for (const TReadingClass& c : run.classes)
+	for (const io::TReadingClass& c : run.classes)
 	{
 		const auto [it, isNew] = fwd.emplace(c.true_id, c.id);
 		EXPECT_EQ(it->second, c.id) << "true ID " << c.true_id << " got two IDs";
 		const auto [jt, isNew2] = bwd.emplace(c.id, c.true_id);
 		EXPECT_EQ(jt->second, c.true_id) << "ID " << c.id << " used by two true IDs";
 	}
-	const TGroundTruth gt = buildGroundTruth(o);
+	const io::TGroundTruth gt = buildGroundTruth(o);
 	const size_t N = 80 + 4 + 4 + 2;
 	size_t moved = 0;
 	for (const auto& [t, a] : fwd)
@@ -235,7 +235,7 @@ TEST(SimEffects, AnonymousIdsAreAPermutationThatMapsBack)
 	TScenarioOptions o2 = o;
 	o2.noise_seed = 2;
 	size_t same = 0;
-	for (const TReadingClass& c : simulate(o2).classes) same += fwd.at(c.true_id) == c.id;
+	for (const io::TReadingClass& c : simulate(o2).classes) same += fwd.at(c.true_id) == c.id;
 	EXPECT_LT(same, run.classes.size() / 2);
 }
 
@@ -249,7 +249,7 @@ TEST(SimEffects, TrackBreaksAfterAGapGiveNewIdsOfTheSameFeature)
 		std::map<int32_t, std::pair<int, int32_t>> last;  // true ID -> (step, id)
 		std::map<int32_t, int32_t> owner;                 // written ID -> true ID
 		size_t breaks = 0;
-		for (const TReadingClass& c : run.classes)
+		for (const io::TReadingClass& c : run.classes)
 		{
 			const auto [ot, fresh] = owner.emplace(c.id, c.true_id);
 			EXPECT_EQ(ot->second, c.true_id) << "ID " << c.id << " reused by another feature";
@@ -280,7 +280,7 @@ TEST(SimEffects, TrackBreakProbabilityPerReading)
 	const TSimulatedRun run = simulate(o);
 	std::map<int32_t, int32_t> cur;
 	size_t trials = 0, breaks = 0;
-	for (const TReadingClass& c : run.classes)
+	for (const io::TReadingClass& c : run.classes)
 	{
 		const auto it = cur.find(c.true_id);
 		if (it != cur.end())
@@ -298,7 +298,7 @@ TEST(SimEffects, ParkedCarDrivesOffAndMovingCarStops)
 {
 	const TScenarioOptions o = loadScenario(cfgPath("highway_parked_driveoff.ini"));
 	ASSERT_EQ(o.highway.agents.size(), 6u);
-	const TGroundTruth gt = buildGroundTruth(o);
+	const io::TGroundTruth gt = buildGroundTruth(o);
 	const size_t onset = 40, stop = 68;  // t = 20 s and 34 s
 	// Agent 4 (object 3): parked until 20 s, then moves.
 	const auto& f3 = gt.objects[3].features;
@@ -322,7 +322,7 @@ TEST(SimEffects, ParkedCarDrivesOffAndMovingCarStops)
 		o.dumpToTextStream(ini);
 		std::string t = dynslam_test::setIniKey(ini.str(), "Agent6", "speed", "13.1");
 		t = dynslam_test::setIniKey(t, "Agent6", "speed_changes", "[10 3 12.7]");
-		const TGroundTruth g2 = buildGroundTruth(loadScenarioFromText(t));
+		const io::TGroundTruth g2 = buildGroundTruth(loadScenarioFromText(t));
 		const auto& f = g2.objects[5].features;
 		for (size_t k = stop; k < g2.numSteps(); ++k)
 			EXPECT_EQ((f[k] - f[stop]).norm(), 0.0) << "step " << k;
@@ -332,22 +332,24 @@ TEST(SimEffects, ParkedCarDrivesOffAndMovingCarStops)
 	// The true class flips at the onset and at the stop.
 	const TSimulatedRun run = simulate(o);
 	size_t n3s = 0, n3m = 0, n4 = 0, n5s = 0, n5m = 0;
-	for (const TReadingClass& c : run.classes)
+	for (const io::TReadingClass& c : run.classes)
 	{
 		if (c.object == 3)
 		{
-			EXPECT_EQ(c.cls, size_t(c.step) <= onset ? TrueClass::Static : TrueClass::Moving);
-			(c.cls == TrueClass::Static ? n3s : n3m)++;
+			EXPECT_EQ(c.cls,
+			          size_t(c.step) <= onset ? io::TrueClass::Static : io::TrueClass::Moving);
+			(c.cls == io::TrueClass::Static ? n3s : n3m)++;
 		}
 		if (c.object == 4)
 		{
-			EXPECT_EQ(c.cls, TrueClass::Static);
+			EXPECT_EQ(c.cls, io::TrueClass::Static);
 			++n4;
 		}
 		if (c.object == 5)
 		{
-			EXPECT_EQ(c.cls, size_t(c.step) >= stop ? TrueClass::Static : TrueClass::Moving);
-			(c.cls == TrueClass::Static ? n5s : n5m)++;
+			EXPECT_EQ(c.cls,
+			          size_t(c.step) >= stop ? io::TrueClass::Static : io::TrueClass::Moving);
+			(c.cls == io::TrueClass::Static ? n5s : n5m)++;
 		}
 	}
 	EXPECT_GT(n3s, 0u);
@@ -402,8 +404,8 @@ TEST(SimEffects, ClassFileRoundTripAndAppWritesIt)
 	const dynslam_test::TTempDir tmp("test_classes");  // removed at the end of the test
 	const std::filesystem::path dir = tmp.path();
 	const std::string p = (dir / "x_gt_classes.csv").string();
-	writeClassGroundTruth(run.classes, p);
-	EXPECT_EQ(readClassGroundTruth(p), run.classes);
+	io::writeClassGroundTruth(run.classes, p);
+	EXPECT_EQ(io::readClassGroundTruth(p), run.classes);
 	// malformed rows are rejected naming file and line
 	{
 		std::ofstream f(p);
@@ -412,7 +414,7 @@ TEST(SimEffects, ClassFileRoundTripAndAppWritesIt)
 	}
 	try
 	{
-		readClassGroundTruth(p);
+		io::readClassGroundTruth(p);
 		ADD_FAILURE() << "accepted an unknown class";
 	}
 	catch (const std::runtime_error& e)
@@ -423,6 +425,6 @@ TEST(SimEffects, ClassFileRoundTripAndAppWritesIt)
 	app.options = loadScenario(cfgPath("highway_anonymous.ini"));
 	app.outDir = dir.string();
 	app.run();
-	const auto rows = readClassGroundTruth((dir / "highway_anonymous_gt_classes.csv").string());
+	const auto rows = io::readClassGroundTruth((dir / "highway_anonymous_gt_classes.csv").string());
 	EXPECT_EQ(rows.size(), app.numMeasurements);
 }

@@ -20,7 +20,7 @@ TScenarioOptions configOptions(const std::string& file)
 }
 
 /** g^o(xi_k, f_first) = f_k for every object and every step after its first sighting. */
-void expectObjectPosesExact(const dynslam::TGroundTruth& gt, double* maxErrOut = nullptr)
+void expectObjectPosesExact(const dynslam::io::TGroundTruth& gt, double* maxErrOut = nullptr)
 {
 	double maxErr = 0;
 	for (const auto& og : gt.objects)
@@ -62,7 +62,7 @@ void expectObjectPosesExact(const dynslam::TGroundTruth& gt, double* maxErrOut =
 TEST(SimGroundTruth, HighwayLayout)
 {
 	const TScenarioOptions o = dynslam_test::highwayOptions();
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	ASSERT_EQ(gt.numSteps(), 121u);
 	EXPECT_EQ(gt.ego[0], Eigen::Vector3d::Zero());  // world frame = ego start pose
 	// Ground-truth time = the rawlog's time stamps: start_time + k dt.
@@ -108,7 +108,7 @@ TEST(SimGroundTruth, HighwayLayout)
 TEST(SimGroundTruth, TrajectoriesAreSmooth)
 {
 	const TScenarioOptions o = dynslam_test::highwayOptions();
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	// No teleporting: the displacement per step is bounded by the top speed, and the
 	// acceleration (second difference) by a few m/s^2.
 	auto check = [&](auto positionAt, const std::string& what, double maxAccel)
@@ -145,7 +145,7 @@ TEST(SimGroundTruth, ObjectPosesReproduceFeaturesToMachinePrecision)
 TEST(SimGroundTruth, VisibilityFollowsTheSensorModel)
 {
 	const TScenarioOptions o = dynslam_test::highwayOptions();
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	for (const auto& og : gt.objects)
 		for (size_t k = 0; k < gt.numSteps(); ++k)
 		{
@@ -161,24 +161,24 @@ TEST(SimGroundTruth, VisibilityFollowsTheSensorModel)
 TEST(SimGroundTruth, DeterministicGivenTheWorldSeed)
 {
 	TScenarioOptions o = configOptions("generated_small_scenario.ini");
-	const dynslam::TGroundTruth a = buildGroundTruth(o), b = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth a = buildGroundTruth(o), b = buildGroundTruth(o);
 	ASSERT_EQ(a.landmarks.size(), b.landmarks.size());
 	for (const auto& [id, p] : a.landmarks) EXPECT_EQ(b.landmarks.at(id), p);
 	for (size_t i = 0; i < a.objects.size(); ++i)
 		for (size_t k = 0; k < a.numSteps(); ++k)
 			EXPECT_EQ(a.objects[i].features[k], b.objects[i].features[k]);
 	o.world_seed += 1;
-	const dynslam::TGroundTruth c = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth c = buildGroundTruth(o);
 	EXPECT_NE(c.landmarks.at(0), a.landmarks.at(0));
 	o.world_seed = 0;  // seed 0 is a seed like any other (not time-seeded)
-	const dynslam::TGroundTruth z1 = buildGroundTruth(o), z2 = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth z1 = buildGroundTruth(o), z2 = buildGroundTruth(o);
 	EXPECT_EQ(z1.landmarks.at(5), z2.landmarks.at(5));
 }
 
 TEST(SimGroundTruth, GeneratedScenarios)
 {
 	const TScenarioOptions o = configOptions("generated_small_scenario.ini");
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	const TGeneratedOptions& g = o.generated;
 	EXPECT_EQ(gt.numSteps(), size_t(o.steps) + 1);
 	EXPECT_EQ(gt.landmarks.size(), size_t(g.num_landmarks));
@@ -203,7 +203,7 @@ TEST(SimGroundTruth, GeneratedScenarios)
 	}
 	// Circle: the ego comes back near the start after one lap.
 	const TScenarioOptions c = configOptions("generated_circle_scenario.ini");
-	const dynslam::TGroundTruth gc = buildGroundTruth(c);
+	const dynslam::io::TGroundTruth gc = buildGroundTruth(c);
 	const double lapTime = 2 * M_PI * c.generated.track_radius / c.generated.ego_speed;
 	const size_t kLap = size_t(std::lround(lapTime / c.dt));
 	ASSERT_LT(kLap, gc.numSteps());
@@ -220,9 +220,9 @@ TEST(SimGroundTruth, LandmarkGapsRemoveOnlyTheLandmarksInside)
 	for (const char* file : {"highway.ini", "generated_small_scenario.ini"})
 	{
 		TScenarioOptions o = configOptions(file);
-		const dynslam::TGroundTruth all = buildGroundTruth(o);
+		const dynslam::io::TGroundTruth all = buildGroundTruth(o);
 		o.landmark_gaps = {{200, 450}, {600, 650}};
-		const dynslam::TGroundTruth gapped = buildGroundTruth(o);
+		const dynslam::io::TGroundTruth gapped = buildGroundTruth(o);
 		size_t inside = 0;
 		for (const auto& [id, f] : all.landmarks)
 		{

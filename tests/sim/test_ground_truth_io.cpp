@@ -1,6 +1,6 @@
 /** Ground-truth files (libs/core ground_truth.h): exact round trip and strict reading. */
-#include <dynslam/io/ground_truth.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/io/ground_truth.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,15 +11,15 @@
 
 #include "sim_test_utils.h"
 
-using dynslam::TGroundTruth;
+namespace io = dynslam::io;
 
 namespace
 {
-TGroundTruth randomGroundTruth()
+io::TGroundTruth randomGroundTruth()
 {
 	std::mt19937 rng(7);
 	std::uniform_real_distribution<double> u(-500, 500);
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	const size_t n = 9;
 	for (size_t k = 0; k < n; ++k)
 	{
@@ -29,7 +29,7 @@ TGroundTruth randomGroundTruth()
 	for (int id : {0, 3, 99999}) gt.landmarks[id] = Eigen::Vector2d(u(rng), u(rng) / 3);
 	for (int obj = 0; obj < 2; ++obj)
 	{
-		dynslam::TObjectGroundTruth o;
+		dynslam::io::TObjectGroundTruth o;
 		o.object = obj;
 		o.num_features = obj == 0 ? 4 : 1;
 		o.first_step = obj == 0 ? 2 : -1;
@@ -62,10 +62,10 @@ bool sameOrBothNaN(double a, double b) { return a == b || (std::isnan(a) && std:
 
 TEST(SimGroundTruthIO, RoundTripIsExact)
 {
-	const TGroundTruth gt = randomGroundTruth();
+	const io::TGroundTruth gt = randomGroundTruth();
 	const std::string dir = tmpDir("gt_roundtrip");
-	dynslam::writeGroundTruth(gt, dir, "rt");
-	const TGroundTruth back = dynslam::readGroundTruth(dir, "rt");
+	dynslam::io::writeGroundTruth(gt, dir, "rt");
+	const io::TGroundTruth back = dynslam::io::readGroundTruth(dir, "rt");
 	ASSERT_EQ(back.numSteps(), gt.numSteps());
 	for (size_t k = 0; k < gt.numSteps(); ++k)
 	{
@@ -101,9 +101,9 @@ TEST(SimGroundTruthIO, RoundTripIsExact)
 
 TEST(SimGroundTruthIO, MalformedFilesAreRejectedWithFileAndLine)
 {
-	const TGroundTruth gt = randomGroundTruth();
+	const io::TGroundTruth gt = randomGroundTruth();
 	const std::string dir = tmpDir("gt_bad");
-	dynslam::writeGroundTruth(gt, dir, "b");
+	dynslam::io::writeGroundTruth(gt, dir, "b");
 	const std::string ego = dir + "/b_gt_ego.csv";
 	const std::string good = dynslam_test::readFile(ego);
 	auto expectError = [&](const std::string& content, const std::string& needle)
@@ -111,7 +111,7 @@ TEST(SimGroundTruthIO, MalformedFilesAreRejectedWithFileAndLine)
 		std::ofstream(ego, std::ios::binary) << content;
 		try
 		{
-			dynslam::readGroundTruth(dir, "b");
+			dynslam::io::readGroundTruth(dir, "b");
 			ADD_FAILURE() << "accepted: " << needle;
 		}
 		catch (const std::runtime_error& e)
@@ -126,16 +126,17 @@ TEST(SimGroundTruthIO, MalformedFilesAreRejectedWithFileAndLine)
 	expectError("step,t,x,y,theta\n0,0,1,2\n", ":2: 4 fields");
 	expectError("step,t,x,y,theta\n0,0,1,2,0\n2,0.5,1,2,0\n", ":3: step 2 out of sequence");
 	std::ofstream(ego, std::ios::binary) << good;
-	EXPECT_NO_THROW(dynslam::readGroundTruth(dir, "b"));
+	EXPECT_NO_THROW(dynslam::io::readGroundTruth(dir, "b"));
 	std::filesystem::remove(dir + "/b_gt_objects.csv");
-	EXPECT_THROW(dynslam::readGroundTruth(dir, "b"), std::runtime_error);
+	EXPECT_THROW(dynslam::io::readGroundTruth(dir, "b"), std::runtime_error);
 }
 
 TEST(SimGroundTruthIO, InconsistentGroundTruthIsNotWritten)
 {
-	TGroundTruth gt = randomGroundTruth();
+	io::TGroundTruth gt = randomGroundTruth();
 	gt.objects[0].pose.pop_back();
-	EXPECT_THROW(dynslam::writeGroundTruth(gt, tmpDir("gt_inconsistent"), "x"), std::runtime_error);
+	EXPECT_THROW(dynslam::io::writeGroundTruth(gt, tmpDir("gt_inconsistent"), "x"),
+	             std::runtime_error);
 	gt = randomGroundTruth();
 	gt.landmarks[dynslam::ids::kObjectBase] = Eigen::Vector2d::Zero();
 	EXPECT_THROW(gt.checkConsistent(), std::runtime_error);

@@ -3,9 +3,9 @@
  * estimator::CMultipleModel (same steps, same process noise, same switching matrix), the
  * empirical switch rate is the configured probability, the noise has the modes' covariance,
  * the ground truth follows the tracks, draws are seeded, bad keys are rejected naming them. */
-#include <dynslam/estimator/multiple_model.h>
 #include <dynslam/core/models/mode_mixture.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/multiple_model.h>
 #include <dynslam/sim/TScenarioOptions.h>
 #include <dynslam/sim/markov_motion.h>
 #include <dynslam/sim/scenario.h>
@@ -160,7 +160,7 @@ TEST(SimMarkovMotion, GroundTruthFollowsTheTracksAndIsSeeded)
 	sim::TScenarioOptions o = markov();
 	o.steps = 120;
 	o.start_from_prior = false;  // else the whole world (object poses too) is turned by x0
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	// config/tunnel_markov.ini: Agent1 at 16.8 m/s, Agent2 at 17 m/s, both seen at step 0.
 	const auto tracks = sim::markovObjectTracks(o, {carStart(16.8), carStart(17.0)});
 	ASSERT_EQ(gt.objects.size(), 2u);
@@ -182,7 +182,7 @@ TEST(SimMarkovMotion, GroundTruthFollowsTheTracksAndIsSeeded)
 	EXPECT_GT(switches, 0);
 	// Seeded: the same noise seed gives the same truth, another one another truth; the
 	// deterministic truth (the section absent) differs.
-	const TGroundTruth again = sim::buildGroundTruth(o);
+	const io::TGroundTruth again = sim::buildGroundTruth(o);
 	EXPECT_EQ(again.objects[0].features, gt.objects[0].features);
 	sim::TScenarioOptions other = o;
 	other.noise_seed = o.noise_seed + 1;

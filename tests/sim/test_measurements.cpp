@@ -43,7 +43,7 @@ CObservationBearingRange::Ptr observation(const TSimulatedRun& run, size_t k)
 }
 
 /** True position of the landmark or object feature with this ID at step k. */
-Eigen::Vector2d truePosition(const dynslam::TGroundTruth& gt, size_t k, int32_t id)
+Eigen::Vector2d truePosition(const dynslam::io::TGroundTruth& gt, size_t k, int32_t id)
 {
 	if (dynslam::ids::isStatic(id)) return gt.landmarks.at(id);
 	return gt.objects.at(dynslam::ids::objectOf(id)).features[k].col(dynslam::ids::featureOf(id));
@@ -70,7 +70,7 @@ TEST(SimMeasurements, NoiseFreeRunReproducesTheModel)
 {
 	TScenarioOptions o = dynslam_test::highwayOptions();
 	o.setNoiseLevel("none");
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	const TSimulatedRun run = simulateMeasurements(gt, o, 1);
 	ASSERT_EQ(run.actions.size(), gt.numSteps());
 	ASSERT_EQ(run.frames.size(), gt.numSteps());
@@ -112,7 +112,7 @@ TEST(SimMeasurements, NoiseFreeRunReproducesTheModel)
 TEST(SimMeasurements, ObservationContents)
 {
 	const TScenarioOptions o = dynslam_test::highwayOptions();
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	const TSimulatedRun run = simulateMeasurements(gt, o, o.noise_seed);
 	std::set<int32_t> everSeen;
 	for (size_t k = 0; k < gt.numSteps(); ++k)
@@ -150,7 +150,7 @@ TEST(SimMeasurements, ObservationContents)
 TEST(SimMeasurements, NoiseCovariancesMatchChiSquare)
 {
 	TScenarioOptions o = dynslam_test::highwayOptions();
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	const int runs = 25;
 	uint64_t seed = 1000;  // independent seeds for every level and run
 	for (const std::string level : {"w1v1", "w2v2", "w3v3", "w1v3"})
@@ -210,7 +210,7 @@ TEST(SimMeasurements, RangeBearingNoiseModel)
 	ini = dynslam_test::setIniKey(ini, "Noise", "std_range", "0.05");
 	ini = dynslam_test::setIniKey(ini, "Noise", "std_yaw", "0.002");
 	const TScenarioOptions o = loadScenarioFromText(ini);
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	TChi2 rng{0, 0, 1}, yaw{0, 0, 1};
 	for (int r = 0; r < 5; ++r)
 	{
@@ -234,7 +234,7 @@ TEST(SimMeasurements, RangeBearingNoiseModel)
 TEST(SimMeasurements, SameSeedsSameData)
 {
 	const TScenarioOptions o = dynslam_test::highwayOptions();
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	const TSimulatedRun a = simulateMeasurements(gt, o, 9), b = simulateMeasurements(gt, o, 9);
 	const TSimulatedRun c = simulateMeasurements(gt, o, 10), z = simulateMeasurements(gt, o, 0);
 	bool anyDiff = false;
@@ -267,7 +267,7 @@ TEST(SimMeasurements, SensorNotAtTheRobotsOrigin)
 	o.setNoiseLevel("none");
 	o.steps = 20;
 	o.sensor_pose = Eigen::Vector3d(0.3, -0.1, 0.2);
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	const TSimulatedRun run = simulateMeasurements(gt, o, 1);
 	size_t count = 0;
 	for (size_t k = 0; k < gt.numSteps(); ++k)

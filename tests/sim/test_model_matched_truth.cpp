@@ -41,7 +41,7 @@ TEST(SimModelMatchedTruth, StartFromThePriorMovesTheWorldRigidly)
 {
 	const sim::TScenarioOptions clean = tunnel("", 40, 7);
 	const sim::TScenarioOptions drawn = tunnel("start_from_prior = true\n", 40, 7);
-	const TGroundTruth gc = sim::buildGroundTruth(clean), gd = sim::buildGroundTruth(drawn);
+	const io::TGroundTruth gc = sim::buildGroundTruth(clean), gd = sim::buildGroundTruth(drawn);
 	const Eigen::Vector3d x0 = gd.ego[0];
 	EXPECT_EQ(gc.ego[0], Eigen::Vector3d::Zero());
 	EXPECT_GT(x0.head<2>().norm(), 1e-5);  // a draw of std 3.2e-3 m per axis
@@ -110,10 +110,10 @@ TEST(SimModelMatchedTruth, ObjectOffsetsFollowTheCvModel)
 	for (int k = 0; k < K; ++k) P = F * P * F.transpose() + models::cvProcessNoise(q, dt);
 	double sum = 0;
 	int samples = 0;
-	const TGroundTruth gc = sim::buildGroundTruth(tunnel("", K, 1));
+	const io::TGroundTruth gc = sim::buildGroundTruth(tunnel("", K, 1));
 	for (int s = 0; s < n; ++s)
 	{
-		const TGroundTruth g = sim::buildGroundTruth(tunnel(keys, K, 500 + s));
+		const io::TGroundTruth g = sim::buildGroundTruth(tunnel(keys, K, 500 + s));
 		EXPECT_EQ(g.ego, gc.ego);  // the ego is untouched
 		for (size_t i = 0; i < g.objects.size(); ++i, ++samples)
 		{

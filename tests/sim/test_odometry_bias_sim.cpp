@@ -40,8 +40,8 @@ TEST(SimOdometryBias, ReadingIsTheBiasedTrueIncrementPlusTheSameNoise)
 	clean.steps = biased.steps = 40;
 	EXPECT_DOUBLE_EQ(biased.odometry_rate_bias, M_PI / 180);
 	EXPECT_DOUBLE_EQ(biased.odometry_scale_error, 0.05);
-	const TGroundTruth gt = sim::buildGroundTruth(clean);
-	const TGroundTruth gtb = sim::buildGroundTruth(biased);
+	const io::TGroundTruth gt = sim::buildGroundTruth(clean);
+	const io::TGroundTruth gtb = sim::buildGroundTruth(biased);
 	ASSERT_EQ(gt.ego.size(), gtb.ego.size());
 	for (size_t k = 0; k < gt.ego.size(); ++k) EXPECT_EQ(gt.ego[k], gtb.ego[k]);  // unchanged
 	const auto rc = sim::simulateMeasurements(gt, clean, 3);

@@ -114,7 +114,7 @@ std::string kfSlamIni(const std::string& dir, const std::string& base, const std
 TEST(SimRawlog, MrptReadsTheRawlog)
 {
 	const TScenarioOptions o = dynslam_test::highwayOptions();
-	const dynslam::TGroundTruth gt = buildGroundTruth(o);
+	const dynslam::io::TGroundTruth gt = buildGroundTruth(o);
 	const TSimulatedRun run = simulateMeasurements(gt, o, o.noise_seed);
 	const std::string dir = tmpDir("rawlog_read");
 	std::ostringstream ini;
@@ -226,7 +226,7 @@ TEST(SimRawlog, DatasetRegeneratesIdentically)
 	EXPECT_EQ(dynslam_test::readFile(out + "/highway_gt_classes.csv"),
 	          dynslam_test::readFile(ds + "/highway_gt_classes.csv"));
 	// The shipped ground truth reads back.
-	const dynslam::TGroundTruth gt = dynslam::readGroundTruth(ds, "highway");
+	const dynslam::io::TGroundTruth gt = dynslam::io::readGroundTruth(ds, "highway");
 	EXPECT_EQ(gt.numSteps(), 121u);
 	EXPECT_EQ(gt.objects.size(), 3u);
 }
@@ -278,7 +278,7 @@ TEST(SimRawlog, KfSlamRunsOnTheHighwayAndIsAccurateWithoutMovers)
 	EXPECT_EQ(daS[4], 0);
 	mrpt::math::CMatrixDouble pose;
 	pose.loadFromTextFile(outS + "/robot_pose_00120.txt");
-	const dynslam::TGroundTruth gt = dynslam::readGroundTruth(dir, "highway_static");
+	const dynslam::io::TGroundTruth gt = dynslam::io::readGroundTruth(dir, "highway_static");
 	EXPECT_LT(std::hypot(pose(0, 0) - gt.ego.back()[0], pose(1, 0) - gt.ego.back()[1]), 1.0);
 	std::cout << "[          ] kf-slam highway: DA TP " << daH[0] << " TN " << daH[2]
 	          << "; static-only: mean landmark error " << m[1] << " m, final pose error "
@@ -289,7 +289,7 @@ TEST(SimRawlog, KfSlamGroundTruthFilesLoadAsMrptMatrices)
 {
 	// kf-slam loads these with CMatrix{Float,Double}::loadFromTextFile ('%' lines are comments).
 	const std::string ds = DYNSLAM_DATASETS_DIR;
-	const dynslam::TGroundTruth gt = dynslam::readGroundTruth(ds, "highway");
+	const dynslam::io::TGroundTruth gt = dynslam::io::readGroundTruth(ds, "highway");
 	mrpt::math::CMatrixDouble lm, path, da;
 	lm.loadFromTextFile(ds + "/highway_gt_landmarks.txt");
 	path.loadFromTextFile(ds + "/highway_gt_robot_path.txt");

@@ -23,13 +23,13 @@ sim::TScenarioOptions family(const std::string& name)
 }
 
 /** Speed of an object's feature centroid between steps k - 1 and k [m/s]. */
-double objectSpeed(const TGroundTruth& gt, size_t obj, size_t k, double dt)
+double objectSpeed(const io::TGroundTruth& gt, size_t obj, size_t k, double dt)
 {
 	const auto& F = gt.objects[obj].features;
 	return (F[k].rowwise().mean() - F[k - 1].rowwise().mean()).norm() / dt;
 }
 
-double egoSpeed(const TGroundTruth& gt, size_t k, double dt)
+double egoSpeed(const io::TGroundTruth& gt, size_t k, double dt)
 {
 	return (gt.ego[k].head<2>() - gt.ego[k - 1].head<2>()).norm() / dt;
 }
@@ -45,8 +45,9 @@ TEST(SimFamilies, EveryFamilyLoadsDumpsAndTakesOtherSeeds)
 		sim::TScenarioOptions o = family(file);
 		std::ostringstream dumped;
 		o.dumpToTextStream(dumped);
-		const TGroundTruth gt = sim::buildGroundTruth(o);
-		const TGroundTruth back = sim::buildGroundTruth(sim::loadScenarioFromText(dumped.str()));
+		const io::TGroundTruth gt = sim::buildGroundTruth(o);
+		const io::TGroundTruth back =
+		    sim::buildGroundTruth(sim::loadScenarioFromText(dumped.str()));
 		EXPECT_EQ(back.ego, gt.ego);
 		ASSERT_EQ(back.objects.size(), gt.objects.size());
 		for (size_t i = 0; i < gt.objects.size(); ++i)
@@ -56,7 +57,7 @@ TEST(SimFamilies, EveryFamilyLoadsDumpsAndTakesOtherSeeds)
 		sim::TScenarioOptions other = o;
 		other.world_seed = 3001;
 		other.noise_seed = 3001;
-		const TGroundTruth g2 = sim::buildGroundTruth(other);
+		const io::TGroundTruth g2 = sim::buildGroundTruth(other);
 		if (!gt.landmarks.empty())
 		{
 			EXPECT_NE(g2.landmarks, gt.landmarks);
@@ -73,7 +74,7 @@ TEST(SimFamilies, EveryFamilyLoadsDumpsAndTakesOtherSeeds)
 TEST(SimFamilies, StopAndGoCarsReachZeroSpeedInsideTheGap)
 {
 	const sim::TScenarioOptions o = family("tunnel_stop_and_go.ini");
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	// Every car and the ego: at rest (speed exactly 0 between two steps) at some step inside
 	// the gap, and back at speed afterwards.
 	for (size_t obj = 0; obj <= gt.objects.size(); ++obj)
@@ -93,14 +94,14 @@ TEST(SimFamilies, StopAndGoCarsReachZeroSpeedInsideTheGap)
 		EXPECT_GT(vlast, 16.0);
 	}
 	// The shipped tunnel without the stops never slows down below 16 m/s.
-	const TGroundTruth steady = sim::buildGroundTruth(family("tunnel.ini"));
+	const io::TGroundTruth steady = sim::buildGroundTruth(family("tunnel.ini"));
 	for (size_t k = 1; k < steady.ego.size(); ++k) EXPECT_GT(objectSpeed(steady, 0, k, 0.5), 16.0);
 }
 
 TEST(SimFamilies, HardBrakesHappenInsideTheGap)
 {
 	const sim::TScenarioOptions o = family("tunnel_braking.ini");
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	for (size_t obj = 0; obj < gt.objects.size(); ++obj)
 	{
 		SCOPED_TRACE(obj);
@@ -120,7 +121,7 @@ TEST(SimFamilies, HardBrakesHappenInsideTheGap)
 TEST(SimFamilies, CutInsEndInTheEgoLaneAheadOfTheEgo)
 {
 	const sim::TScenarioOptions o = family("highway_cutins.ini");
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	ASSERT_EQ(o.highway.agents.size(), 3u);
 	for (size_t i = 0; i < 3; ++i)
 	{
@@ -146,7 +147,7 @@ TEST(SimFamilies, CircularRoadWithAndWithoutLandmarks)
 	const sim::TScenarioOptions without = family("circle_road_no_landmarks.ini");
 	EXPECT_GT(with.generated.track_radius, 0);
 	EXPECT_EQ(without.generated.track_radius, with.generated.track_radius);
-	const TGroundTruth g1 = sim::buildGroundTruth(with), g0 = sim::buildGroundTruth(without);
+	const io::TGroundTruth g1 = sim::buildGroundTruth(with), g0 = sim::buildGroundTruth(without);
 	EXPECT_EQ(g1.landmarks.size(), 120u);
 	EXPECT_TRUE(g0.landmarks.empty());
 	// The same road and objects: only the landmarks differ (they are drawn first from the world

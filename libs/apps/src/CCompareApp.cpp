@@ -1,11 +1,10 @@
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/app_common.h>
 #include <dynslam/apps/data_files.h>
 #include <dynslam/apps/noise_sources.h>
 #include <dynslam/apps/run_outputs.h>
-#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/common/config_utils.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/covariance_writer.h>
@@ -13,6 +12,7 @@
 #include <dynslam/eval/gap_figure.h>
 #include <dynslam/eval/gap_metrics.h>
 #include <dynslam/eval/mode_figure.h>
+#include <dynslam/io/class_ground_truth.h>
 
 #include <algorithm>
 #include <cmath>
@@ -297,7 +297,8 @@ void CCompareApp::differenceRows()
 	for (size_t i = 0; i < runs.size(); ++i)
 		if (runs[i].name == "dynamic") ref = i;
 	referenceFilter = runs.empty() ? std::string() : runs[ref].name;
-	const TGroundTruth refGt = runs.empty() ? TGroundTruth() : estimatesAsReference(runs[ref]);
+	const io::TGroundTruth refGt =
+	    runs.empty() ? io::TGroundTruth() : estimatesAsReference(runs[ref]);
 	for (const auto& r : runs)
 	{
 		eval::TMetricsRow row;
@@ -315,7 +316,7 @@ void CCompareApp::writeVisualOutputs()
 		const auto c = eval::seriesColor(detail::filterColorIndex(r.name));
 		drawn.push_back({r.name, {c.R, c.G, c.B}, &r});
 	}
-	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	const io::TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	if (!sceneFile.empty())
 	{
 		writeScene(sceneFile, drawn, g);
@@ -333,7 +334,7 @@ void CCompareApp::writeVisualOutputs()
 void CCompareApp::writeOutputs(const std::string& optionsDump)
 {
 	makeOutputDir(outDir);
-	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	const io::TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w)
 	{
 		const std::string p = joinPath(outDir, name);
@@ -384,7 +385,7 @@ void CCompareApp::writeOutputs(const std::string& optionsDump)
 
 void CCompareApp::drawFigures()
 {
-	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	const io::TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	std::vector<eval::TFigureSeries> series;
 	for (size_t i = 0; i < runs.size(); ++i)
 	{

@@ -1,9 +1,9 @@
 /** CCompareApp: the class scores of rows that classify (feature_labels = classify). */
 #include <dynslam/apps/CCompareApp.h>
 #include <dynslam/apps/data_files.h>
-#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/object_matching.h>
+#include <dynslam/io/class_ground_truth.h>
 
 #include <filesystem>
 #include <set>
@@ -49,7 +49,7 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 	const bool mrptFiles = isMrptGroundTruthSpec(groundTruthUsed);
 	const std::string file = groundTruthUsed + "_gt_classes.csv";
 	std::string why;
-	const std::vector<TReadingClass>* classes = classTruth();
+	const std::vector<io::TReadingClass>* classes = classTruth();
 	if (!classes && mrptFiles)
 		why = "MRPT's ground truth (" + groundTruthUsed +
 		      ") has no classes of readings (dynslam-simulate's BASE_gt_classes.csv has)";
@@ -68,7 +68,7 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 		                      "its object numbers are the router's, not the truth's");
 		return;
 	}
-	const std::vector<TReadingClass>& truth = *classes;
+	const std::vector<io::TReadingClass>& truth = *classes;
 	const eval::TBinaryScores s = eval::perReadingScores(truth, d.decisions);
 	row.classes = eval::TMetricsRow::TClassScores{s.precision, s.recall, s.f1,
 	                                              eval::groupingAri(truth, d.groups)};
@@ -94,7 +94,8 @@ void CCompareApp::scoreObjects(eval::TMetricsRow& row, const TClassDecisions* cl
 	objectNotes.push_back(row.filter + ": " + std::to_string(ids.identities) +
 	                      " object identities (objects joined across track breaks) for " +
 	                      std::to_string(ids.true_objects) + " true moving objects; " +
-	                      std::to_string(ids.impure) + " identities hold two or more true objects, " +
+	                      std::to_string(ids.impure) +
+	                      " identities hold two or more true objects, " +
 	                      std::to_string(ids.split) + " true objects are split over two or more");
 }
 
@@ -111,7 +112,7 @@ void CCompareApp::clearResults()
 	classTruthFilesRead = 0;
 }
 
-const std::vector<TReadingClass>* CCompareApp::classTruth()
+const std::vector<io::TReadingClass>* CCompareApp::classTruth()
 {
 	if (!m_classTruthRead)
 	{
@@ -119,7 +120,7 @@ const std::vector<TReadingClass>* CCompareApp::classTruth()
 		const std::string file = groundTruthUsed + "_gt_classes.csv";
 		if (!isMrptGroundTruthSpec(groundTruthUsed) && std::filesystem::exists(file))
 		{
-			m_classTruth = readClassGroundTruth(file);
+			m_classTruth = io::readClassGroundTruth(file);
 			++classTruthFilesRead;
 		}
 	}

@@ -1,7 +1,7 @@
 #include <dynslam/apps/CDeadReckoningBackend.h>
 #include <dynslam/common/config_utils.h>
-#include <dynslam/core/models/se2.h>
 #include <dynslam/common/step_input.h>
+#include <dynslam/core/models/se2.h>
 #include <mrpt/math/CMatrixFixed.h>
 
 #include <ostream>

@@ -130,7 +130,7 @@ void namingTheIniFile(const std::string& iniFile, F&& f)
 struct TLevelSetup
 {
 	sim::TScenarioOptions opt;
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	std::string ini;
 };
 

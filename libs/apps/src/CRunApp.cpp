@@ -185,7 +185,7 @@ void CRunApp::run()
 	                  eval::peakRssMb());
 
 	makeOutputDir(outDir);
-	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	const io::TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	writeEstimateFiles(outDir, "", result.est, g, writtenFiles);
 	timing.moveTo(joinPath(outDir, "timing.csv"));
 	writtenFiles.push_back(joinPath(outDir, "timing.csv"));
@@ -254,7 +254,7 @@ eval::TConsistencySummary CRunApp::evaluateAndReport()
 
 void CRunApp::drawFigures(const eval::TConsistencySummary& summary)
 {
-	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	const io::TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	const std::vector<eval::TFigureSeries> series{{result.name, eval::seriesColor(1), &result.est}};
 	auto png = [&](const std::string& name, const mrpt::img::CImage& img)
 	{
@@ -293,7 +293,7 @@ void CRunApp::drawFigures(const eval::TConsistencySummary& summary)
 
 void CRunApp::writeOptionalOutputs(const TRawlog& rawlog)
 {
-	const TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
+	const io::TGroundTruth* g = hasGroundTruth ? &gt : nullptr;
 	if (fullCovariance)
 	{
 		const std::string p = joinPath(outDir, "covariance.txt");

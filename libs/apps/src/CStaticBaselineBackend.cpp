@@ -1,7 +1,7 @@
 #include <dynslam/apps/CStaticBaselineBackend.h>
 #include <dynslam/common/config_utils.h>
-#include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/estimator/unknown_id_association.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/slam/CRangeBearingKFSLAM2D.h>
 

@@ -45,7 +45,7 @@ std::vector<std::string> checkSharedSections(const mrpt::config::CConfigFileBase
 	return checkMrptSections(params, iniFile, strict);
 }
 
-TEvaluation evaluateRun(const TGroundTruth& gt, const eval::TRunEstimates& est)
+TEvaluation evaluateRun(const io::TGroundTruth& gt, const eval::TRunEstimates& est)
 {
 	TEvaluation e;
 	e.metrics = eval::computeRunMetrics(gt, est);
@@ -80,7 +80,7 @@ TDataSettings readDataSettings(const mrpt::config::CConfigFileBase& ini, const s
 	return s;
 }
 
-TGroundTruth loadGroundTruthForRawlog(const std::string& spec, const TRawlog& rawlog)
+io::TGroundTruth loadGroundTruthForRawlog(const std::string& spec, const TRawlog& rawlog)
 {
 	if (!isMrptGroundTruthSpec(spec)) return loadGroundTruthFor(spec, rawlog.size(), rawlog.path);
 	std::vector<double> times;
@@ -93,7 +93,7 @@ TGroundTruth loadGroundTruthForRawlog(const std::string& spec, const TRawlog& ra
 	const std::string lm = mrptLandmarksFileFor(spec);
 	try
 	{
-		return readMrptGroundTruth(spec, lm, rawlog.framesInFile, rawlog.frameIndex, times);
+		return io::readMrptGroundTruth(spec, lm, rawlog.framesInFile, rawlog.frameIndex, times);
 	}
 	catch (const std::exception& e)
 	{
@@ -155,7 +155,7 @@ std::string joinPath(const std::string& dir, const std::string& name)
 }
 
 void writeEstimateFiles(const std::string& dir, const std::string& prefix,
-                        const eval::TRunEstimates& est, const TGroundTruth* gt,
+                        const eval::TRunEstimates& est, const io::TGroundTruth* gt,
                         std::vector<std::string>& written)
 {
 	auto out = [&](const std::string& name, const std::function<void(std::ostream&)>& w)

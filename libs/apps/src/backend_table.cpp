@@ -1,10 +1,10 @@
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/backend_table.h>
+#include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/eval/consistency.h>
 #include <dynslam/eval/metrics.h>
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/backend_factory.h>
-#include <dynslam/core/models/se2.h>
 #include <dynslam/sim/scenario.h>
 
 #include <chrono>
@@ -99,7 +99,7 @@ std::vector<eval::TEgoEstimate> runOnce(ISlamBackend& be, const sim::TSimulatedR
 }
 
 /** Final-trajectory errors x, y (columns 10, 11) and the RPE over 10 steps (column 12). */
-void scoreFinalTrajectory(const std::map<int, Eigen::Vector3d>& fin, const TGroundTruth& gt,
+void scoreFinalTrajectory(const std::map<int, Eigen::Vector3d>& fin, const io::TGroundTruth& gt,
                           TAcc& a)
 {
 	double sx = 0, sy = 0;
@@ -180,7 +180,7 @@ std::vector<TBackendTableRow> runBackendTable(const TBackendTableOptions& o)
 	sim::TScenarioOptions so = sim::loadScenario(o.scenario_ini);
 	so.setNoiseLevel(o.noise_level);
 	if (o.steps > 0) so.steps = o.steps;
-	const TGroundTruth gt = sim::buildGroundTruth(so);
+	const io::TGroundTruth gt = sim::buildGroundTruth(so);
 	std::vector<std::string> kinds = o.kinds;
 	if (kinds.empty())
 	{

@@ -9,13 +9,13 @@
 namespace dynslam::apps
 {
 std::vector<std::string> writeClassFigures(const std::string& outDir, const std::string& filter,
-                                           const TGroundTruth* gt, const eval::TRunEstimates& est,
-                                           const TClassDecisions& d,
-                                           const std::vector<TReadingClass>* classTruth)
+                                           const io::TGroundTruth* gt,
+                                           const eval::TRunEstimates& est, const TClassDecisions& d,
+                                           const std::vector<io::TReadingClass>* classTruth)
 {
-	static const std::vector<TReadingClass> kNone;
+	static const std::vector<io::TReadingClass> kNone;
 	// another run's truth (other reading count): decisions only
-	const std::vector<TReadingClass>& truth =
+	const std::vector<io::TReadingClass>& truth =
 	    classTruth && classTruth->size() == d.decisions.size() ? *classTruth : kNone;
 	std::vector<std::string> written;
 	const auto save = [&](const std::string& name, const mrpt::img::CImage& img)

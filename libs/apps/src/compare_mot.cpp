@@ -1,7 +1,7 @@
 #include "compare_mot.h"
 
-#include <dynslam/io/box_ground_truth.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/io/box_ground_truth.h>
 
 #include <algorithm>
 #include <cmath>
@@ -73,14 +73,14 @@ std::vector<eval::TMotFrame> frames(const TMotTruth& t,
 }
 }  // namespace
 
-TMotTruth loadMotTruth(const std::string& base, const TGroundTruth& gt)
+TMotTruth loadMotTruth(const std::string& base, const io::TGroundTruth& gt)
 {
 	TMotTruth t;
-	if (!hasBoxGroundTruth(base)) return t;
+	if (!io::hasBoxGroundTruth(base)) return t;
 	readRegion(base, t.max_range, t.fov);
 	t.truth.resize(gt.numSteps());
 	t.ignored.resize(gt.numSteps());
-	for (const TTruthBox& b : readBoxGroundTruth(base))
+	for (const io::TTruthBox& b : io::readBoxGroundTruth(base))
 	{
 		if (size_t(b.step) >= gt.numSteps())
 			throw std::runtime_error(base + "_gt_tracks.csv: step " + std::to_string(b.step) +

@@ -29,7 +29,7 @@ struct TMotTruth
 
 /** The truth of `<base>_gt_tracks.csv` / `_gt_track_list.csv` with the ego of gt; !valid if the
  * files are missing. Throws std::runtime_error on malformed files or a step beyond gt. */
-TMotTruth loadMotTruth(const std::string& base, const TGroundTruth& gt);
+TMotTruth loadMotTruth(const std::string& base, const io::TGroundTruth& gt);
 
 /** CLEAR MOT (BEV IoU 0.25 and centre distance 2 m) and sAMOTA (IoU) of one row's tracked boxes
  * per step (hyp[k]: step k). */

@@ -133,8 +133,8 @@ std::string scenarioBesideRawlog(const std::string& rawlogPath)
 	return stripRawlogExt(rawlogPath) + "_scenario.ini";
 }
 
-TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps,
-                                const std::string& rawlogPath)
+io::TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps,
+                                    const std::string& rawlogPath)
 {
 	const TGroundTruthSpec s = parseGroundTruthSpec(spec);
 	const std::string egoFile = (fs::path(s.dir) / (s.base + "_gt_ego.csv")).string();
@@ -142,10 +142,10 @@ TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps,
 		throw std::runtime_error(
 		    "ground truth '" + s.str() + "': " + egoFile +
 		    " not found (expected the files DIR/BASE_gt_*.csv written by dynslam-simulate)");
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	try
 	{
-		gt = readGroundTruth(s.dir, s.base);
+		gt = io::readGroundTruth(s.dir, s.base);
 		gt.checkConsistent();
 	}
 	catch (const std::exception& e)

@@ -1,12 +1,12 @@
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/CTrackerBaselineBackend.h>
 #include <dynslam/apps/app_main.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/slam_services.h>
+#include <dynslam/common/model_keys.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/TBackendOptions.h>
 #include <dynslam/framework/backend_factory.h>
-#include <dynslam/common/model_keys.h>
 #include <mrpt/core/exceptions.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 

@@ -101,7 +101,7 @@ void checkOutputFile(const std::string& path, const std::string& flag,
 		throw std::runtime_error(what + ": cannot write there: " + why);
 }
 
-std::string timeBaseWarning(const TFilterRun& run, const TGroundTruth& gt)
+std::string timeBaseWarning(const TFilterRun& run, const io::TGroundTruth& gt)
 {
 	for (const auto& e : run.est.ego)
 	{
@@ -121,9 +121,9 @@ std::string timeBaseWarning(const TFilterRun& run, const TGroundTruth& gt)
 	return {};
 }
 
-TGroundTruth estimatesAsReference(const TFilterRun& run)
+io::TGroundTruth estimatesAsReference(const TFilterRun& run)
 {
-	TGroundTruth g;
+	io::TGroundTruth g;
 	int maxStep = -1;
 	for (const auto& e : run.est.ego) maxStep = std::max(maxStep, e.step);
 	const size_t n = size_t(maxStep + 1);

@@ -51,7 +51,7 @@ CEllipsoid2D::Ptr ellipse(const Eigen::Vector2d& at, const Eigen::Matrix2d& cov,
 	return e;
 }
 
-void addGroundTruth(mrpt::opengl::COpenGLScene& scene, const TGroundTruth& gt)
+void addGroundTruth(mrpt::opengl::COpenGLScene& scene, const io::TGroundTruth& gt)
 {
 	std::vector<Eigen::Vector2d> path;
 	for (const auto& p : gt.ego) path.push_back(p.head<2>());
@@ -157,8 +157,8 @@ static void frameAndLabel(mrpt::opengl::COpenGLScene& scene, const std::vector<T
 	}
 }
 
-void writeScene(const std::string& path, const std::vector<TDrawnRun>& runs, const TGroundTruth* gt,
-                size_t ellipseEvery)
+void writeScene(const std::string& path, const std::vector<TDrawnRun>& runs,
+                const io::TGroundTruth* gt, size_t ellipseEvery)
 {
 	// The folder of the file (checked by checkOutputFile before the run).
 	if (const auto parent = std::filesystem::path(path).parent_path(); !parent.empty())

@@ -1,5 +1,5 @@
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/apps/step_timing.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <unistd.h>
 
 #include <atomic>

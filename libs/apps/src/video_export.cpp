@@ -97,7 +97,7 @@ void drawReadings(cv::Mat& img, const TView& v, const Eigen::Vector3d& pose,
 
 /** Truth per frame (the view moves): ego path so far dimmed ahead, landmarks, object tracks
  * (centroid of the true features) up to step k; only what lies near the view. */
-void drawTruth(cv::Mat& img, const TView& v, const TGroundTruth& gt, size_t k)
+void drawTruth(cv::Mat& img, const TView& v, const io::TGroundTruth& gt, size_t k)
 {
 	const double reach = 0.75 * std::hypot(v.w, v.h) / v.scale;
 	auto near = [&](const Eigen::Vector2d& p)
@@ -165,7 +165,8 @@ void drawScaleAndOverview(cv::Mat& img, const TView& v, const TView& whole,
 }
 }  // namespace
 
-void writeVideo(const std::string& path, const std::vector<TDrawnRun>& runs, const TGroundTruth* gt,
+void writeVideo(const std::string& path, const std::vector<TDrawnRun>& runs,
+                const io::TGroundTruth* gt,
                 const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames, double fps, int width,
                 int height, double window)
 {

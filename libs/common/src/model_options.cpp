@@ -2,9 +2,9 @@
  * sections [ObjectModel], [OdometryBias], [Classify] (model_keys.h). */
 #include <dynslam/common/box_tracker_options.h>
 #include <dynslam/common/config_utils.h>
-#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/common/model_keys.h>
 #include <dynslam/common/model_options.h>
+#include <dynslam/estimator/seam_registries.h>
 
 #include <ostream>
 #include <stdexcept>

@@ -7,7 +7,6 @@
  * state surgeries: src/modules/state_surgery.cpp. Augmentations, drops and the object motion
  * model: CDynamicKFSLAM2D_objects.cpp. */
 #include <dynslam/common/seam_options.h>
-#include <dynslam/core/ekf_odometry_bias.h>
 #include <dynslam/core/ekf_steps.h>
 #include <dynslam/core/models/se2.h>
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
@@ -21,9 +20,11 @@
 #include <set>
 #include <stdexcept>
 
+#include "gauge/prior_gauge.h"
 #include "modules/first_estimates.h"
 #include "modules/fusion.h"
 #include "modules/module_list.h"
+#include "modules/odometry_bias.h"
 #include "modules/state_surgery.h"
 #include "mrpt_kalman_adapter.h"
 #include "router_context.h"
@@ -58,7 +59,8 @@ const char* toString(SlotKind k)
 }
 
 CDynamicKFSLAM2D::CDynamicKFSLAM2D()
-    : m_store(std::make_unique<ekf::CStateStore>()),
+    : m_gauge(std::make_unique<ekf::CPriorGauge>(options)),
+      m_store(std::make_unique<ekf::CStateStore>()),
       m_mrpt(std::make_unique<ekf::CMrptKalmanAdapter>(*this))
 {
 	setLoggerName("CDynamicKFSLAM2D");
@@ -142,8 +144,7 @@ void CDynamicKFSLAM2D::reset()
 	for (int i = 0; i < 3; ++i) m_xkk[i] = options.initial_pose[i];
 	m_cov.resize(3);
 	// prior_gauge = anchor: x_0 is the gauge; Sigma_0 enters only the reported covariances.
-	cov() = options.prior_gauge_anchor ? Eigen::Matrix3d::Zero().eval() : options.Sigma_0;
-	m_gaugeOrigin = options.initial_pose.head<2>();
+	cov() = m_gauge->reset();
 	makeSeams();
 	m_drop = estimator::CDropPolicy(options.dropOptions());
 	// The capability modules the options enable (src/modules/module_list.cpp).
@@ -153,7 +154,7 @@ void CDynamicKFSLAM2D::reset()
 	m_lifecycle->reset();
 	m_store->reset(m_lifecycle->rewritesStorage());
 	m_layout.clear();
-	if (options.odometry_bias.enabled()) addOdometryBiasBlock();
+	if (ekf::COdometryBiasModule* bias = m_modules->odometryBias()) bias->addBlock(access);
 	onLayoutChanged();
 	m_droppedStatic.clear();
 	m_in = estimator::TStepInput();
@@ -166,7 +167,6 @@ void CDynamicKFSLAM2D::reset()
 	m_modes.clear();
 	m_failed = false;
 	m_lastF.reset();
-	m_lastStamp = std::numeric_limits<double>::quiet_NaN();
 }
 
 void CDynamicKFSLAM2D::loadOptions(const mrpt::config::CConfigFileBase& ini,
@@ -320,27 +320,31 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 	}
 }
 
+bool CDynamicKFSLAM2D::mapEmpty() const
+{
+	return m_layout.size() == (m_modules->odometryBias() ? 1u : 0u);
+}
+
 void CDynamicKFSLAM2D::propagateEgo()
 {
 	const bool skip = options.skip_prediction_on_empty_map && mapEmpty();
-	const double dt = odometryDt();
+	ekf::COdometryBiasModule* bias = m_modules->odometryBias();  // odometry_bias != none
+	// The step's duration, recorded on every step (also when the prediction is skipped).
+	const double dt = bias ? bias->stepDuration(m_in.stamp, m_step) : 0;
 	m_lastF.reset();
-	if (!skip)
-	{
-		const Eigen::Matrix3d& S = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
-		auto x = m_xkk.asEigen();
-		auto P = cov();
-		Eigen::Matrix3d F;
-		const ekf::CFirstEstimateModule* fej = m_modules->firstEstimates();
-		const Eigen::Vector3d* fejPrev = fej ? fej->predictedEgo() : nullptr;
-		if (options.odometry_bias.enabled())  // the bias block is block 0
-			ekf::propagateWithBias(x, P, m_in.u, S, options.odometry_bias.block(m_layout.first(0)),
-			                       dt, fejPrev, &F);
-		else
-			ekf::propagate(x, P, m_in.u, S, fejPrev, &F);
-		m_lastF = F;
-		OnNormalizeStateVector();
-	}
+	if (skip) return;
+	const Eigen::Matrix3d& S = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
+	auto x = m_xkk.asEigen();
+	auto P = cov();
+	Eigen::Matrix3d F;
+	const ekf::CFirstEstimateModule* fej = m_modules->firstEstimates();
+	const Eigen::Vector3d* fejPrev = fej ? fej->predictedEgo() : nullptr;
+	if (bias)  // the bias block is block 0
+		bias->propagate(x, P, m_in.u, S, m_layout.first(0), dt, fejPrev, F);
+	else
+		ekf::propagate(x, P, m_in.u, S, fejPrev, &F);
+	m_lastF = F;
+	OnNormalizeStateVector();
 }
 
 estimator::TUpdateContext CDynamicKFSLAM2D::updateContext() const

@@ -4,10 +4,10 @@
  * body-frame features by every sighting of an object feature, and the velocity of a new object
  * from its first two sightings (doc/state-layout.md "Object-centric motion models"). With the
  * paper's models (velocityDim() == 0) every function here does nothing. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/ekf_steps.h>
 #include <dynslam/core/models/object_motion.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>

@@ -2,9 +2,9 @@
  * "Multiple-model objects"): per object, the modes' predictions of [pose; velocity] mixed by
  * their probabilities (models/mode_mixture.h), which this step's readings of the object update
  * first (a GPB1-style switch). The update that follows is objectFeatureUpdates(), as for cv. */
-#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/core/ekf_steps.h>
 #include <dynslam/core/models/mode_mixture.h>
+#include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
 #include <map>
 #include <stdexcept>

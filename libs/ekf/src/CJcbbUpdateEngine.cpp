@@ -1,7 +1,7 @@
 /** CJcbbUpdateEngine: MRPT's JCBB on the step's own landmarks, then the joint chi-square test
  * by branch and bound, then the sparse update of the accepted readings (CJcbbUpdateEngine.h). */
-#include <dynslam/ekf/CJcbbUpdateEngine.h>
 #include <dynslam/core/chi2.h>
+#include <dynslam/ekf/CJcbbUpdateEngine.h>
 #include <mrpt/slam/data_association.h>
 
 #include <Eigen/Cholesky>

@@ -1,5 +1,5 @@
-#include <dynslam/estimator/box_router.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/box_router.h>
 
 #include <cmath>
 #include <map>

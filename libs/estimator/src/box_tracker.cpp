@@ -1,8 +1,8 @@
 #include <dynslam/core/chi2.h>
-#include <dynslam/estimator/box_tracker.h>
 #include <dynslam/core/models/assignment.h>
 #include <dynslam/core/models/bev_box.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/box_tracker.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>

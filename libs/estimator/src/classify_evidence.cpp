@@ -1,6 +1,6 @@
 /** The statistics of the classifying router (classify_evidence.h). */
-#include <dynslam/estimator/classify_evidence.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/classify_evidence.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>

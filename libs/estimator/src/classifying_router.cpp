@@ -1,6 +1,6 @@
 /** CClassifyingRouter (classifying_router.h, doc/results/classification.md). */
-#include <dynslam/estimator/classifying_router.h>
 #include <dynslam/core/models/measurement.h>
+#include <dynslam/estimator/classifying_router.h>
 
 #include <Eigen/LU>
 #include <algorithm>

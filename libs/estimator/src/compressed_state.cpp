@@ -1,5 +1,5 @@
-#include <dynslam/estimator/compressed_state.h>
 #include <dynslam/core/kernels.h>
+#include <dynslam/estimator/compressed_state.h>
 
 #include <algorithm>
 #include <stdexcept>

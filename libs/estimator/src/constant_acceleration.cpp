@@ -1,5 +1,5 @@
-#include <dynslam/estimator/constant_acceleration.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/constant_acceleration.h>
 
 #include <cmath>
 #include <stdexcept>

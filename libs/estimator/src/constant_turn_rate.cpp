@@ -1,5 +1,5 @@
-#include <dynslam/estimator/constant_turn_rate.h>
 #include <dynslam/core/models/object_motion.h>
+#include <dynslam/estimator/constant_turn_rate.h>
 
 namespace dynslam::estimator
 {

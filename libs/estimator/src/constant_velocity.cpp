@@ -1,5 +1,5 @@
-#include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/core/models/object_motion.h>
+#include <dynslam/estimator/constant_velocity.h>
 
 #include <cmath>
 #include <stdexcept>

@@ -1,9 +1,9 @@
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/estimator/unknown_id_association.h>
-#include <dynslam/core/landmark_ids.h>
-#include <dynslam/core/models/se2.h>
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,6 +1,6 @@
-#include <dynslam/estimator/multiple_model.h>
 #include <dynslam/core/models/mode_mixture.h>
 #include <dynslam/core/models/object_motion.h>
+#include <dynslam/estimator/multiple_model.h>
 
 #include <cmath>
 #include <stdexcept>

@@ -1,5 +1,5 @@
-#include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/core/models/smoothing.h>
+#include <dynslam/estimator/object_motion_model.h>
 
 #include <algorithm>
 #include <limits>

@@ -1,6 +1,6 @@
 /** Readings with ID -1 under feature_labels = classify (unknown_id_association.h). */
-#include <dynslam/estimator/unknown_id_association.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/estimator/unknown_id_association.h>
 
 #include <Eigen/LU>
 #include <algorithm>

@@ -19,24 +19,24 @@ const TColor kStatic(30, 80, 220), kMoving(220, 30, 30), kUndecided(170, 170, 17
 
 /** The true class of each written ID: moving if any reading of it is moving, clutter if all
  * are clutter, else static. */
-std::map<int32_t, TrueClass> trueClassOfIds(const std::vector<TReadingClass>& truth)
+std::map<int32_t, io::TrueClass> trueClassOfIds(const std::vector<io::TReadingClass>& truth)
 {
-	std::map<int32_t, TrueClass> c;
+	std::map<int32_t, io::TrueClass> c;
 	for (const auto& r : truth)
 	{
 		if (r.id < 0) continue;
 		auto [it, added] = c.emplace(r.id, r.cls);
-		if (!added && r.cls == TrueClass::Moving) it->second = TrueClass::Moving;
-		if (!added && it->second == TrueClass::Clutter && r.cls == TrueClass::Static)
-			it->second = TrueClass::Static;
+		if (!added && r.cls == io::TrueClass::Moving) it->second = io::TrueClass::Moving;
+		if (!added && it->second == io::TrueClass::Clutter && r.cls == io::TrueClass::Static)
+			it->second = io::TrueClass::Static;
 	}
 	return c;
 }
 }  // namespace
 
-mrpt::img::CImage drawClassMap(const TGroundTruth* gt, const TRunEstimates& est,
-                               const std::vector<TReadingClass>& truth, const std::string& title,
-                               int width, int height)
+mrpt::img::CImage drawClassMap(const io::TGroundTruth* gt, const TRunEstimates& est,
+                               const std::vector<io::TReadingClass>& truth,
+                               const std::string& title, int width, int height)
 {
 	if (width < 200 || height < 150)
 		throw std::invalid_argument("drawClassMap: figure size must be at least 200 x 150 pixels");
@@ -78,7 +78,7 @@ mrpt::img::CImage drawClassMap(const TGroundTruth* gt, const TRunEstimates& est,
 	for (const auto& l : est.landmarks)
 	{
 		const auto it = cls.find(l.id);
-		const bool bad = it != cls.end() && it->second != TrueClass::Static;
+		const bool bad = it != cls.end() && it->second != io::TrueClass::Static;
 		wrong += bad;
 		cv.mark(l.mean[0], l.mean[1], bad ? kWrong : kStatic, 's', bad ? 4 : 3);
 	}
@@ -90,7 +90,7 @@ mrpt::img::CImage drawClassMap(const TGroundTruth* gt, const TRunEstimates& est,
 }
 
 mrpt::img::CImage drawDecisionTimeline(const TReadingDecisions& d,
-                                       const std::vector<TReadingClass>& truth,
+                                       const std::vector<io::TReadingClass>& truth,
                                        const std::string& title, int max_rows)
 {
 	if (d.steps.size() != d.ids.size() || d.ids.size() != d.decisions.size())
@@ -139,9 +139,9 @@ mrpt::img::CImage drawDecisionTimeline(const TReadingDecisions& d,
 			cv.line(x - xw / 2, yy, x + xw / 2, yy, c, 1);
 		if (withTruth)
 		{
-			const TColor tc = truth[i].cls == TrueClass::Static   ? kStatic
-			                  : truth[i].cls == TrueClass::Moving ? kMoving
-			                                                      : kClutter;
+			const TColor tc = truth[i].cls == io::TrueClass::Static   ? kStatic
+			                  : truth[i].cls == io::TrueClass::Moving ? kMoving
+			                                                          : kClutter;
 			for (double yy = y + 0.1; yy < y + 0.4; yy += 0.1)
 				cv.line(x - xw / 2, yy, x + xw / 2, yy, tc, 1);
 		}

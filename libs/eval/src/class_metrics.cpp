@@ -33,7 +33,7 @@ void count(TBinaryScores& s, bool truthMoving, Decision d)
 double ratio(double num, double den) { return den > 0 ? num / den : kNaN; }
 
 /** Row indices sorted by (step, index). */
-std::vector<size_t> chronological(const std::vector<TReadingClass>& t)
+std::vector<size_t> chronological(const std::vector<io::TReadingClass>& t)
 {
 	std::vector<size_t> o(t.size());
 	std::iota(o.begin(), o.end(), 0);
@@ -55,17 +55,17 @@ TBinaryScores finishScores(TBinaryScores s)
 	return s;
 }
 
-TBinaryScores perReadingScores(const std::vector<TReadingClass>& truth,
+TBinaryScores perReadingScores(const std::vector<io::TReadingClass>& truth,
                                const std::vector<Decision>& decisions)
 {
 	checkSizes(truth.size(), decisions.size(), "perReadingScores");
 	TBinaryScores s;
 	for (size_t i = 0; i < truth.size(); ++i)
-		count(s, truth[i].cls == TrueClass::Moving, decisions[i]);
+		count(s, truth[i].cls == io::TrueClass::Moving, decisions[i]);
 	return finishScores(s);
 }
 
-TBinaryScores perTrackScores(const std::vector<TReadingClass>& truth,
+TBinaryScores perTrackScores(const std::vector<io::TReadingClass>& truth,
                              const std::vector<Decision>& decisions)
 {
 	checkSizes(truth.size(), decisions.size(), "perTrackScores");
@@ -73,11 +73,11 @@ TBinaryScores perTrackScores(const std::vector<TReadingClass>& truth,
 	for (size_t i : chronological(truth))
 		if (truth[i].id >= 0) last[truth[i].id] = i;
 	TBinaryScores s;
-	for (const auto& [id, i] : last) count(s, truth[i].cls == TrueClass::Moving, decisions[i]);
+	for (const auto& [id, i] : last) count(s, truth[i].cls == io::TrueClass::Moving, decisions[i]);
 	return finishScores(s);
 }
 
-TDelaySummary detectionDelays(const std::vector<TReadingClass>& truth,
+TDelaySummary detectionDelays(const std::vector<io::TReadingClass>& truth,
                               const std::vector<Decision>& decisions, bool includeFirstSightings)
 {
 	checkSizes(truth.size(), decisions.size(), "detectionDelays");
@@ -90,14 +90,14 @@ TDelaySummary detectionDelays(const std::vector<TReadingClass>& truth,
 	for (const auto& [key, rows] : byFeature)
 		for (size_t r = 0; r < rows.size(); ++r)
 		{
-			const bool moving = truth[rows[r]].cls == TrueClass::Moving;
-			const bool prevStatic = r > 0 && truth[rows[r - 1]].cls == TrueClass::Static;
+			const bool moving = truth[rows[r]].cls == io::TrueClass::Moving;
+			const bool prevStatic = r > 0 && truth[rows[r - 1]].cls == io::TrueClass::Static;
 			if (!moving || !(prevStatic || (r == 0 && includeFirstSightings))) continue;
 			TOnsetDelay d;
 			d.object = key.first;
 			d.feature = key.second;
 			d.onset_step = truth[rows[r]].step;
-			for (size_t q = r; q < rows.size() && truth[rows[q]].cls == TrueClass::Moving; ++q)
+			for (size_t q = r; q < rows.size() && truth[rows[q]].cls == io::TrueClass::Moving; ++q)
 				if (decisions[rows[q]] == Decision::Moving)
 				{
 					d.detect_step = truth[rows[q]].step;
@@ -144,7 +144,7 @@ double adjustedRandIndex(const std::vector<int64_t>& truth, const std::vector<in
 	return (index - expected) / den;
 }
 
-double groupingAri(const std::vector<TReadingClass>& truth,
+double groupingAri(const std::vector<io::TReadingClass>& truth,
                    const std::vector<int64_t>& estimatedGroup)
 {
 	if (truth.size() != estimatedGroup.size())
@@ -155,14 +155,14 @@ double groupingAri(const std::vector<TReadingClass>& truth,
 	int64_t singleton = -1;  // ungrouped readings: distinct negative labels
 	for (size_t i = 0; i < truth.size(); ++i)
 	{
-		if (truth[i].cls != TrueClass::Moving) continue;
+		if (truth[i].cls != io::TrueClass::Moving) continue;
 		t.push_back(truth[i].object);
 		e.push_back(estimatedGroup[i] >= 0 ? estimatedGroup[i] : singleton--);
 	}
 	return t.empty() ? kNaN : adjustedRandIndex(t, e);
 }
 
-TIdentityCounts identityCounts(const std::vector<TReadingClass>& truth,
+TIdentityCounts identityCounts(const std::vector<io::TReadingClass>& truth,
                                const std::vector<int64_t>& estimatedGroup)
 {
 	if (truth.size() != estimatedGroup.size())
@@ -173,7 +173,7 @@ TIdentityCounts identityCounts(const std::vector<TReadingClass>& truth,
 	std::map<int32_t, std::set<int64_t>> groupsOf;   // true object -> identities
 	for (size_t i = 0; i < truth.size(); ++i)
 	{
-		if (truth[i].cls != TrueClass::Moving) continue;
+		if (truth[i].cls != io::TrueClass::Moving) continue;
 		std::set<int64_t>& g = groupsOf[truth[i].object];
 		if (estimatedGroup[i] < 0) continue;
 		g.insert(estimatedGroup[i]);
@@ -187,12 +187,12 @@ TIdentityCounts identityCounts(const std::vector<TReadingClass>& truth,
 	return c;
 }
 
-TWrongStatic wrongStaticLandmarks(const std::vector<TReadingClass>& truth,
+TWrongStatic wrongStaticLandmarks(const std::vector<io::TReadingClass>& truth,
                                   const std::vector<int32_t>& mapIds)
 {
 	std::map<int32_t, bool> bad;  // written ID -> has a moving or clutter reading
-	for (const TReadingClass& r : truth)
-		if (r.id >= 0) bad[r.id] = bad[r.id] || r.cls != TrueClass::Static;
+	for (const io::TReadingClass& r : truth)
+		if (r.id >= 0) bad[r.id] = bad[r.id] || r.cls != io::TrueClass::Static;
 	TWrongStatic w;
 	w.map_size = mapIds.size();
 	for (int32_t id : mapIds)

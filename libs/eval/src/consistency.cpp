@@ -44,7 +44,7 @@ void addSample(TNeesSamples& s, int key, const Eigen::VectorXd& e, const Eigen::
 }
 }  // namespace
 
-TRunConsistency computeRunConsistency(const TGroundTruth& gt, const TRunEstimates& est)
+TRunConsistency computeRunConsistency(const io::TGroundTruth& gt, const TRunEstimates& est)
 {
 	checkEstimates(est);
 	TRunConsistency rc;
@@ -98,7 +98,7 @@ TRunConsistency computeRunConsistency(const TGroundTruth& gt, const TRunEstimate
 
 	for (const auto& p : est.object_poses)
 	{
-		const TObjectGroundTruth* o = nullptr;
+		const io::TObjectGroundTruth* o = nullptr;
 		for (const auto& g : gt.objects)
 			if (g.object == p.object) o = &g;
 		if (!o || p.step < 0 || p.step >= nSteps || !o->pose[p.step].allFinite()) continue;

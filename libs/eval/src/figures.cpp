@@ -48,7 +48,7 @@ mrpt::img::CImage blankImage(int w, int h)
 }
 
 /// Ground-truth centroid of an object's features per step (NaN where undefined).
-std::vector<Eigen::Vector2d> truthCentroids(const TObjectGroundTruth& o)
+std::vector<Eigen::Vector2d> truthCentroids(const io::TObjectGroundTruth& o)
 {
 	std::vector<Eigen::Vector2d> c;
 	for (const auto& f : o.features)
@@ -68,7 +68,7 @@ std::vector<Eigen::Vector2d> egoPath(const std::vector<TEgoEstimate>& ego)
 }
 /** The map's legend: agents (grouped beyond kMaxAgentLegendEntries), truth, every series in
  * its line style, and the estimate markers if any are drawn. */
-std::vector<TLegendEntry> mapLegend(const TGroundTruth* gt,
+std::vector<TLegendEntry> mapLegend(const io::TGroundTruth* gt,
                                     const std::vector<TFigureSeries>& series,
                                     const TMapFigureOptions& opt)
 {
@@ -102,7 +102,8 @@ std::vector<TLegendEntry> mapLegend(const TGroundTruth* gt,
 }
 }  // namespace
 
-mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigureSeries>& series,
+mrpt::img::CImage drawMapFigure(const io::TGroundTruth* gt,
+                                const std::vector<TFigureSeries>& series,
                                 const TMapFigureOptions& opt)
 {
 	auto img = blankImage(opt.width, opt.height);
@@ -177,7 +178,7 @@ mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigur
 	return img;
 }
 
-mrpt::img::CImage drawEgoErrorFigure(const TGroundTruth& gt,
+mrpt::img::CImage drawEgoErrorFigure(const io::TGroundTruth& gt,
                                      const std::vector<TFigureSeries>& series,
                                      const TErrorFigureOptions& opt)
 {

@@ -11,7 +11,7 @@ namespace dynslam::eval
 namespace
 {
 /** Per series: (true ego x, position error) by step, for the steps in the ground truth. */
-std::vector<Eigen::Vector2d> errorOverRoad(const TGroundTruth& gt, const TRunEstimates& est)
+std::vector<Eigen::Vector2d> errorOverRoad(const io::TGroundTruth& gt, const TRunEstimates& est)
 {
 	std::map<int, Eigen::Vector2d> byStep;
 	for (const TEgoEstimate& e : est.ego)
@@ -26,7 +26,7 @@ std::vector<Eigen::Vector2d> errorOverRoad(const TGroundTruth& gt, const TRunEst
 }
 }  // namespace
 
-mrpt::img::CImage drawGapErrorFigure(const TGroundTruth& gt,
+mrpt::img::CImage drawGapErrorFigure(const io::TGroundTruth& gt,
                                      const std::vector<TFigureSeries>& series,
                                      const std::vector<std::pair<double, double>>& gaps, int width,
                                      int height)

@@ -17,7 +17,7 @@ bool inGap(double x, const std::vector<std::pair<double, double>>& gaps)
 }
 }  // namespace
 
-TGapMetrics gapMetrics(const TGroundTruth& gt, const std::vector<TEgoEstimate>& ego,
+TGapMetrics gapMetrics(const io::TGroundTruth& gt, const std::vector<TEgoEstimate>& ego,
                        const std::vector<std::pair<double, double>>& gaps)
 {
 	TGapMetrics g;

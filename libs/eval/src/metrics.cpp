@@ -51,7 +51,7 @@ TRmse rmseOf(const std::vector<double>& x, const std::vector<double>& y,
 	return r;
 }
 
-void checkGroundTruth(const TGroundTruth& gt)
+void checkGroundTruth(const io::TGroundTruth& gt)
 {
 	const size_t n = gt.numSteps();
 	if (!gt.t.empty() && gt.t.size() != n)
@@ -76,7 +76,7 @@ void checkGroundTruth(const TGroundTruth& gt)
 namespace
 {
 // Ego: every estimated step inside the ground truth; ATE unaligned and SE(2)-aligned.
-void scoreEgo(const TGroundTruth& gt, const TRunEstimates& est, TRunMetrics& m)
+void scoreEgo(const io::TGroundTruth& gt, const TRunEstimates& est, TRunMetrics& m)
 {
 	const int nSteps = static_cast<int>(gt.numSteps());
 	TSq ego;
@@ -106,7 +106,7 @@ void scoreEgo(const TGroundTruth& gt, const TRunEstimates& est, TRunMetrics& m)
 }
 
 // Static map: final estimates of IDs present in the ground truth.
-void scoreStaticMap(const TGroundTruth& gt, const TRunEstimates& est, TRunMetrics& m)
+void scoreStaticMap(const io::TGroundTruth& gt, const TRunEstimates& est, TRunMetrics& m)
 {
 	TSq lm;
 	std::set<int32_t> scored;
@@ -127,7 +127,7 @@ void scoreStaticMap(const TGroundTruth& gt, const TRunEstimates& est, TRunMetric
 }
 
 // One object: its time-0 features and its poses.
-TObjectMetrics scoreObject(const TObjectGroundTruth& o, const TRunEstimates& est, int nSteps,
+TObjectMetrics scoreObject(const io::TObjectGroundTruth& o, const TRunEstimates& est, int nSteps,
                            TRunMetrics& m)
 {
 	TObjectMetrics om;
@@ -169,7 +169,7 @@ TObjectMetrics scoreObject(const TObjectGroundTruth& o, const TRunEstimates& est
 }
 }  // namespace
 
-TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est)
+TRunMetrics computeRunMetrics(const io::TGroundTruth& gt, const TRunEstimates& est)
 {
 	checkEstimates(est);
 	checkGroundTruth(gt);
@@ -192,7 +192,8 @@ TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est)
 	return m;
 }
 
-std::vector<TEgoErrorRow> egoErrors(const TGroundTruth& gt, const std::vector<TEgoEstimate>& ego)
+std::vector<TEgoErrorRow> egoErrors(const io::TGroundTruth& gt,
+                                    const std::vector<TEgoEstimate>& ego)
 {
 	std::vector<TEgoErrorRow> rows;
 	const int nSteps = static_cast<int>(gt.numSteps());

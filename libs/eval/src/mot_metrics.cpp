@@ -1,6 +1,6 @@
+#include <dynslam/core/models/assignment.h>
 #include <dynslam/eval/estimates.h>  // kNaN
 #include <dynslam/eval/mot_metrics.h>
-#include <dynslam/core/models/assignment.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
+#include <dynslam/core/models/se2.h>
 #include <dynslam/eval/metrics.h>
 #include <dynslam/eval/motion_metrics.h>
-#include <dynslam/core/models/se2.h>
 
 #include <cmath>
 #include <map>
@@ -50,8 +50,8 @@ Eigen::Vector3d bodyFrameMotion(const Eigen::Vector3d& xi_prev, const Eigen::Vec
 	return poseDifference(Ln, Lp);
 }
 
-TRelativePoseError relativePoseError(const TGroundTruth& gt, const std::vector<TEgoEstimate>& ego,
-                                     int delta)
+TRelativePoseError relativePoseError(const io::TGroundTruth& gt,
+                                     const std::vector<TEgoEstimate>& ego, int delta)
 {
 	TRelativePoseError r;
 	r.delta = delta;
@@ -78,7 +78,7 @@ TRelativePoseError relativePoseError(const TGroundTruth& gt, const std::vector<T
 	return r;
 }
 
-TObjectErrors objectErrors(const TGroundTruth& gt, const TRunEstimates& est)
+TObjectErrors objectErrors(const io::TGroundTruth& gt, const TRunEstimates& est)
 {
 	// rotation centres: estimated f_0 centroid and the truth's centroid of the same features
 	std::map<int32_t, std::pair<Eigen::Vector2d, Eigen::Vector2d>> c0;

@@ -1,5 +1,5 @@
-#include <dynslam/eval/object_matching.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/eval/object_matching.h>
 
 #include <cmath>
 #include <limits>
@@ -29,7 +29,7 @@ int32_t majority(const std::map<int32_t, size_t>& counts)
 }  // namespace
 
 std::map<int32_t, int32_t> matchObjectsByReadings(const std::vector<int32_t>& estObject,
-                                                  const std::vector<TReadingClass>& truth)
+                                                  const std::vector<io::TReadingClass>& truth)
 {
 	if (estObject.size() != truth.size())
 		throw std::invalid_argument("matchObjectsByReadings: " + std::to_string(estObject.size()) +
@@ -56,10 +56,9 @@ TRunEstimates withMatchedObjects(const TRunEstimates& est, const std::map<int32_
 	return out;
 }
 
-std::optional<TVelocityErrors> classifyingVelocityErrors(const TGroundTruth& gt,
-                                                         const TRunEstimates& est,
-                                                         const std::vector<int32_t>& estObject,
-                                                         const std::vector<TReadingClass>* truth)
+std::optional<TVelocityErrors> classifyingVelocityErrors(
+    const io::TGroundTruth& gt, const TRunEstimates& est, const std::vector<int32_t>& estObject,
+    const std::vector<io::TReadingClass>* truth)
 {
 	if (!truth) return std::nullopt;
 	return objectVelocityErrors(gt,
@@ -90,7 +89,7 @@ struct TEstObject
 };
 
 std::map<int32_t, TEstObject> describeObjects(const TReadingObjects& r,
-                                              const std::vector<TReadingClass>& truth)
+                                              const std::vector<io::TReadingClass>& truth)
 {
 	if (r.object.size() != truth.size() || r.feature.size() != truth.size())
 		throw std::invalid_argument("scoreClassifyingAgents: " + std::to_string(r.object.size()) +
@@ -127,7 +126,7 @@ Eigen::Vector2d centroid(const Eigen::Matrix2Xd& f, const std::vector<int32_t>& 
 }
 
 /** The f_0 of estimated object `o` against the truth at its time 0 s. */
-void scoreAgentFeatures(TObjectMetrics& om, const TObjectGroundTruth& t, int32_t o,
+void scoreAgentFeatures(TObjectMetrics& om, const io::TObjectGroundTruth& t, int32_t o,
                         const TEstObject& e, const TRunEstimates& est)
 {
 	std::vector<double> x, y;
@@ -148,7 +147,7 @@ void scoreAgentFeatures(TObjectMetrics& om, const TObjectGroundTruth& t, int32_t
 }
 
 /** The poses of estimated object `o` against the truth's motion since its time 0 s. */
-void scoreAgentPoses(TObjectMetrics& om, const TObjectGroundTruth& t, int32_t o,
+void scoreAgentPoses(TObjectMetrics& om, const io::TObjectGroundTruth& t, int32_t o,
                      const TEstObject& e, const TRunEstimates& est)
 {
 	const int s = e.first_step;
@@ -183,10 +182,10 @@ void scoreAgentPoses(TObjectMetrics& om, const TObjectGroundTruth& t, int32_t o,
 }
 }  // namespace
 
-std::vector<TAgentMatch> scoreClassifyingAgents(TRunMetrics& m, const TGroundTruth& gt,
+std::vector<TAgentMatch> scoreClassifyingAgents(TRunMetrics& m, const io::TGroundTruth& gt,
                                                 const TRunEstimates& est,
                                                 const TReadingObjects& reads,
-                                                const std::vector<TReadingClass>& truth)
+                                                const std::vector<io::TReadingClass>& truth)
 {
 	const auto objects = describeObjects(reads, truth);
 	std::vector<TAgentMatch> out;

@@ -1,7 +1,7 @@
+#include <dynslam/core/models/se2.h>
 #include <dynslam/eval/consistency.h>
 #include <dynslam/eval/metrics.h>
 #include <dynslam/eval/velocity_metrics.h>
-#include <dynslam/core/models/se2.h>
 
 #include <cmath>
 
@@ -9,13 +9,13 @@ namespace dynslam::eval
 {
 namespace
 {
-bool finitePose(const TObjectGroundTruth& o, long k)
+bool finitePose(const io::TObjectGroundTruth& o, long k)
 {
 	return k >= 0 && size_t(k) < o.pose.size() && o.pose[size_t(k)].allFinite();
 }
 }  // namespace
 
-std::optional<Eigen::Vector3d> trueObjectVelocity(const TObjectGroundTruth& o,
+std::optional<Eigen::Vector3d> trueObjectVelocity(const io::TObjectGroundTruth& o,
                                                   const std::vector<double>& t, int k)
 {
 	if (!finitePose(o, k) || size_t(k) >= t.size()) return std::nullopt;
@@ -28,10 +28,10 @@ std::optional<Eigen::Vector3d> trueObjectVelocity(const TObjectGroundTruth& o,
 	return Eigen::Vector3d(d / dt);
 }
 
-std::optional<TVelocityErrors> objectVelocityErrors(const TGroundTruth& gt,
+std::optional<TVelocityErrors> objectVelocityErrors(const io::TGroundTruth& gt,
                                                     const TRunEstimates& est)
 {
-	std::map<int32_t, const TObjectGroundTruth*> truth;
+	std::map<int32_t, const io::TObjectGroundTruth*> truth;
 	for (const auto& o : gt.objects) truth[o.object] = &o;
 	TVelocityErrors out;
 	std::vector<double> speed, omega;

@@ -33,14 +33,14 @@ std::string numTime(double v)
 
 double sig3(double var) { return 3.0 * std::sqrt(std::max(0.0, var)); }
 
-double timeOf(const TEgoEstimate& e, const TGroundTruth* gt)
+double timeOf(const TEgoEstimate& e, const io::TGroundTruth* gt)
 {
 	if (std::isfinite(e.t)) return e.t;
 	if (gt && e.step >= 0 && static_cast<size_t>(e.step) < gt->t.size()) return gt->t[e.step];
 	return kNaN;
 }
 
-const TObjectGroundTruth* findObject(const TGroundTruth* gt, int32_t object)
+const io::TObjectGroundTruth* findObject(const io::TGroundTruth* gt, int32_t object)
 {
 	if (!gt) return nullptr;
 	for (const auto& o : gt->objects)
@@ -66,7 +66,7 @@ void writeFile(const std::string& path, const std::function<void(std::ostream&)>
 	if (!f) throw std::runtime_error("error while writing '" + path + "'");
 }
 
-void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego, const TGroundTruth* gt)
+void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego, const io::TGroundTruth* gt)
 {
 	for (const TEgoEstimate* e : sortedEgo(ego))
 	{
@@ -81,7 +81,7 @@ void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego, const TGro
 	}
 }
 
-void writeEgoCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt)
+void writeEgoCsv(std::ostream& os, const TRunEstimates& est, const io::TGroundTruth* gt)
 {
 	os << "step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta,err_x,err_y,"
 	      "err_theta,nees,nis,nis_dof\n";
@@ -111,7 +111,7 @@ void writeEgoCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth*
 	}
 }
 
-void writeLandmarksCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt)
+void writeLandmarksCsv(std::ostream& os, const TRunEstimates& est, const io::TGroundTruth* gt)
 {
 	os << "id,x,y,sigma3_x,sigma3_y,gt_x,gt_y,err_x,err_y,nees\n";
 	std::vector<const TLandmarkEstimate*> v;
@@ -136,7 +136,7 @@ void writeLandmarksCsv(std::ostream& os, const TRunEstimates& est, const TGround
 	}
 }
 
-void writeObjectFeaturesCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt)
+void writeObjectFeaturesCsv(std::ostream& os, const TRunEstimates& est, const io::TGroundTruth* gt)
 {
 	os << "object,feature,x,y,sigma3_x,sigma3_y,gt_x,gt_y,err_x,err_y\n";
 	for (const auto& f : est.object_features)
@@ -156,7 +156,7 @@ void writeObjectFeaturesCsv(std::ostream& os, const TRunEstimates& est, const TG
 	}
 }
 
-void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt)
+void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est, const io::TGroundTruth* gt)
 {
 	os << "object,step,t,dx,dy,dtheta,sigma3_dx,sigma3_dy,sigma3_dtheta,gt_dx,gt_dy,gt_dtheta,"
 	      "err_dx,err_dy,err_dtheta,nees,dof\n";
@@ -186,7 +186,7 @@ void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est, const TGrou
 	}
 }
 
-void writeObjectMotionCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt)
+void writeObjectMotionCsv(std::ostream& os, const TRunEstimates& est, const io::TGroundTruth* gt)
 {
 	os << "object,step,t,vx,vy,omega,sigma3_vx,sigma3_vy,sigma3_omega";
 	for (const auto& m : est.object_mode_names) os << ",p_" << m;

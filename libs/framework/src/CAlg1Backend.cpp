@@ -1,12 +1,12 @@
 #include <dynslam/common/backend_results.h>
-#include <dynslam/estimator/seam_registries.h>
-#include <dynslam/framework/CAlg1Backend.h>
-#include <dynslam/framework/object_pose_step.h>
+#include <dynslam/common/seam_options.h>
+#include <dynslam/common/step_input.h>
 #include <dynslam/core/models/gauge.h>
 #include <dynslam/core/models/object_pose.h>
 #include <dynslam/core/models/se2.h>
-#include <dynslam/common/seam_options.h>
-#include <dynslam/common/step_input.h>
+#include <dynslam/estimator/seam_registries.h>
+#include <dynslam/framework/CAlg1Backend.h>
+#include <dynslam/framework/object_pose_step.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>

@@ -6,12 +6,12 @@
  * object_model = mm the motion term is the modes' mixture (CObjectMixtureMotionTerm). The EKF's
  * counterparts are in libs/ekf/src/CDynamicKFSLAM2D_cv.cpp. */
 #include <dynslam/common/backend_results.h>
+#include <dynslam/common/seam_options.h>
+#include <dynslam/core/models/measurement.h>
+#include <dynslam/core/models/object_motion.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/framework/object_motion_terms.h>
-#include <dynslam/core/models/measurement.h>
-#include <dynslam/core/models/object_motion.h>
-#include <dynslam/common/seam_options.h>
 
 #include <cmath>
 #include <map>

@@ -1,7 +1,7 @@
 /** CAlg1Backend: result getters, with the output term of prior_gauge = anchor. */
 #include <dynslam/common/backend_results.h>
-#include <dynslam/framework/CAlg1Backend.h>
 #include <dynslam/core/models/gauge.h>
+#include <dynslam/framework/CAlg1Backend.h>
 
 namespace dynslam::framework
 {

@@ -1,11 +1,11 @@
 #include <dynslam/common/backend_results.h>
+#include <dynslam/common/seam_options.h>
+#include <dynslam/common/step_input.h>
+#include <dynslam/core/models/object_pose.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/estimator/seam_registries.h>
 #include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/framework/object_pose_step.h>
-#include <dynslam/core/models/object_pose.h>
-#include <dynslam/core/models/se2.h>
-#include <dynslam/common/seam_options.h>
-#include <dynslam/common/step_input.h>
 
 #include <algorithm>
 #include <set>

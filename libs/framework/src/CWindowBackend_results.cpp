@@ -1,7 +1,7 @@
 /** CWindowBackend: result getters (estimates and marginal covariances). */
 #include <dynslam/common/backend_results.h>
-#include <dynslam/framework/CWindowBackend.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/framework/CWindowBackend.h>
 
 #include <algorithm>
 

@@ -1,5 +1,5 @@
-#include <dynslam/framework/object_motion_terms.h>
 #include <dynslam/core/models/object_motion.h>
+#include <dynslam/framework/object_motion_terms.h>
 
 #include <stdexcept>
 

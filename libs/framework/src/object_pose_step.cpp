@@ -1,5 +1,5 @@
-#include <dynslam/framework/object_pose_step.h>
 #include <dynslam/core/models/object_pose.h>
+#include <dynslam/framework/object_pose_step.h>
 
 #include <algorithm>
 #include <memory>

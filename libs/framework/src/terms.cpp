@@ -1,7 +1,7 @@
-#include <dynslam/framework/terms.h>
 #include <dynslam/core/models/object_pose.h>
 #include <dynslam/core/models/se2.h>
 #include <dynslam/core/models/smoothing.h>
+#include <dynslam/framework/terms.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>

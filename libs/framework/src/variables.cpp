@@ -1,5 +1,5 @@
-#include <dynslam/framework/variables.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/framework/variables.h>
 
 #include <stdexcept>
 

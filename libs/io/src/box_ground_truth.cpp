@@ -9,7 +9,7 @@
 #include <map>
 #include <sstream>
 
-namespace dynslam
+namespace dynslam::io
 {
 namespace
 {
@@ -108,4 +108,4 @@ std::vector<TTruthBox> readBoxGroundTruth(const std::string& base)
 	}
 	return out;
 }
-}  // namespace dynslam
+}  // namespace dynslam::io

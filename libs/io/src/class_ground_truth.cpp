@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace dynslam
+namespace dynslam::io
 {
 namespace
 {
@@ -101,4 +101,4 @@ std::vector<TReadingClass> readClassGroundTruth(const std::string& path)
 	}
 	return rows;
 }
-}  // namespace dynslam
+}  // namespace dynslam::io

@@ -1,8 +1,8 @@
 /** @file ground_truth.cpp
  * Plain-text ground-truth files (format documented in ground_truth.h and doc/simulator.md).
  * Numbers are written with up to 17 significant digits, so reading gives back the same doubles. */
-#include <dynslam/io/ground_truth.h>
 #include <dynslam/core/landmark_ids.h>
+#include <dynslam/io/ground_truth.h>
 
 #include <cerrno>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace dynslam
+namespace dynslam::io
 {
 namespace
 {
@@ -332,4 +332,4 @@ TGroundTruth readGroundTruth(const std::string& dir, const std::string& base)
 	gt.checkConsistent();
 	return gt;
 }
-}  // namespace dynslam
+}  // namespace dynslam::io

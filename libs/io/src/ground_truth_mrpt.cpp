@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace dynslam
+namespace dynslam::io
 {
 namespace
 {
@@ -106,4 +106,4 @@ TGroundTruth readMrptGroundTruth(const std::string& pathFile, const std::string&
 	gt.checkConsistent();
 	return gt;
 }
-}  // namespace dynslam
+}  // namespace dynslam::io

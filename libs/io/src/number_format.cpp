@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-namespace dynslam
+namespace dynslam::io
 {
 std::string formatShortest(double v)
 {
@@ -16,4 +16,4 @@ std::string formatShortest(double v)
 	}
 	return b;
 }
-}  // namespace dynslam
+}  // namespace dynslam::io

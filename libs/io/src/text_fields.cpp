@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace dynslam
+namespace dynslam::io
 {
 void throwAtLine(const std::string& path, int line, const std::string& what)
 {
@@ -34,4 +34,4 @@ double parseFiniteField(const std::string& tok, const std::string& path, int lin
 		throwAtLine(path, line, column + "non-finite value '" + tok + "'");
 	return v;
 }
-}  // namespace dynslam
+}  // namespace dynslam::io

@@ -1,5 +1,5 @@
-#include <dynslam/kitti/detection_files.h>
 #include <dynslam/io/text_fields.h>
+#include <dynslam/kitti/detection_files.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -41,10 +41,10 @@ std::vector<std::string> splitCommas(const std::string& s)
 
 int integerField(const std::string& tok, const std::string& path, int line, size_t col)
 {
-	const double v = parseFiniteField(tok, path, line, col);
+	const double v = io::parseFiniteField(tok, path, line, col);
 	if (v != std::floor(v) || std::abs(v) > 1e9)
-		throwAtLine(path, line,
-		            "column " + std::to_string(col + 1) + ": '" + tok + "' is not an integer");
+		io::throwAtLine(path, line,
+		                "column " + std::to_string(col + 1) + ": '" + tok + "' is not an integer");
 	return int(v);
 }
 
@@ -52,26 +52,27 @@ TKittiDetection parseDetection(const std::vector<std::string>& t, const std::str
                                const std::string& type)
 {
 	for (size_t i = 0; i < t.size(); ++i)
-		if (t[i].empty()) throwAtLine(path, line, "column " + std::to_string(i + 1) + " is empty");
+		if (t[i].empty())
+			io::throwAtLine(path, line, "column " + std::to_string(i + 1) + " is empty");
 	TKittiDetection d;
 	d.line = line;
 	d.frame = integerField(t[0], path, line, 0);
-	if (d.frame < 0) throwAtLine(path, line, "negative frame " + t[0]);
+	if (d.frame < 0) io::throwAtLine(path, line, "negative frame " + t[0]);
 	const int code = integerField(t[1], path, line, 1);
 	d.type = detectionClassName(code);
 	if (d.type.empty())
-		throwAtLine(path, line,
-		            "class " + t[1] + ": expected 1 (Pedestrian), 2 (Car), 3 (Cyclist)");
+		io::throwAtLine(path, line,
+		                "class " + t[1] + ": expected 1 (Pedestrian), 2 (Car), 3 (Cyclist)");
 	if (d.type != type)
-		throwAtLine(path, line, "class " + t[1] + " (" + d.type + ") in the " + type + " file");
+		io::throwAtLine(path, line, "class " + t[1] + " (" + d.type + ") in the " + type + " file");
 	double v[15];
-	for (size_t i = 2; i < 15; ++i) v[i] = parseFiniteField(t[i], path, line, i);
+	for (size_t i = 2; i < 15; ++i) v[i] = io::parseFiniteField(t[i], path, line, i);
 	d.x1 = v[2], d.y1 = v[3], d.x2 = v[4], d.y2 = v[5], d.score = v[6];
 	d.h = v[7], d.w = v[8], d.l = v[9], d.x = v[10], d.y = v[11], d.z = v[12];
 	d.ry = v[13], d.alpha = v[14];
 	if (!(d.h > 0 && d.w > 0 && d.l > 0))
-		throwAtLine(path, line,
-		            "box size h, w, l must be > 0 (" + t[7] + ", " + t[8] + ", " + t[9] + ")");
+		io::throwAtLine(path, line,
+		                "box size h, w, l must be > 0 (" + t[7] + ", " + t[8] + ", " + t[9] + ")");
 	return d;
 }
 
@@ -97,7 +98,7 @@ void checkRotation(const Eigen::Matrix3d& R, const std::string& path, int line,
 {
 	const double orth = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
 	if (!(orth <= 1e-3) || R.determinant() < 0)
-		throwAtLine(
+		io::throwAtLine(
 		    path, line,
 		    key + ": the 3x3 block is not a rotation (|R^T R - I| = " + std::to_string(orth) + ")");
 }
@@ -135,8 +136,9 @@ TKittiDetectionFile readDetections(const std::string& path, const std::string& t
 		if (trim(s).empty()) continue;
 		const auto t = splitCommas(s);
 		if (t.size() != 15)
-			throwAtLine(path, line,
-			            "expected 15 comma-separated columns, found " + std::to_string(t.size()));
+			io::throwAtLine(
+			    path, line,
+			    "expected 15 comma-separated columns, found " + std::to_string(t.size()));
 		D.detections.push_back(parseDetection(t, path, line, type));
 		if (D.detections.back().frame > D.max_frame)
 		{
@@ -151,10 +153,10 @@ void checkDetectionsAgainstFrames(const TKittiDetectionFile& d, size_t numFrames
                                   const std::string& posesPath)
 {
 	if (d.max_frame >= 0 && size_t(d.max_frame) >= numFrames)
-		throwAtLine(d.file, d.max_frame_line,
-		            "frame " + std::to_string(d.max_frame) + " is beyond the sequence: " +
-		                posesPath + " has " + std::to_string(numFrames) + " frames (0.." +
-		                std::to_string(numFrames - 1) + ")");
+		io::throwAtLine(d.file, d.max_frame_line,
+		                "frame " + std::to_string(d.max_frame) + " is beyond the sequence: " +
+		                    posesPath + " has " + std::to_string(numFrames) + " frames (0.." +
+		                    std::to_string(numFrames - 1) + ")");
 }
 
 TKittiCalib readCalib(const std::string& path)
@@ -168,18 +170,18 @@ TKittiCalib readCalib(const std::string& path)
 		++line;
 		if (trim(s).empty()) continue;
 		const auto colon = s.find(':');
-		if (colon == std::string::npos) throwAtLine(path, line, "expected 'KEY: numbers'");
+		if (colon == std::string::npos) io::throwAtLine(path, line, "expected 'KEY: numbers'");
 		const std::string spelled = trim(s.substr(0, colon)), key = calibKey(spelled);
-		if (key.empty()) throwAtLine(path, line, "unknown calibration key '" + spelled + "'");
-		if (got.count(key)) throwAtLine(path, line, key + " given twice");
-		const auto toks = splitWhitespace(s.substr(colon + 1));
+		if (key.empty()) io::throwAtLine(path, line, "unknown calibration key '" + spelled + "'");
+		if (got.count(key)) io::throwAtLine(path, line, key + " given twice");
+		const auto toks = io::splitWhitespace(s.substr(colon + 1));
 		const size_t n = key == "R0_rect" ? 9 : 12;
 		if (toks.size() != n)
-			throwAtLine(path, line,
-			            key + ": expected " + std::to_string(n) + " numbers, found " +
-			                std::to_string(toks.size()));
+			io::throwAtLine(path, line,
+			                key + ": expected " + std::to_string(n) + " numbers, found " +
+			                    std::to_string(toks.size()));
 		std::vector<double> v;
-		for (size_t i = 0; i < n; ++i) v.push_back(parseFiniteField(toks[i], path, line, i));
+		for (size_t i = 0; i < n; ++i) v.push_back(io::parseFiniteField(toks[i], path, line, i));
 		got[key] = {v, line};
 	}
 	for (const char* k : {"P0", "P1", "P2", "P3", "R0_rect", "Tr_velo_to_cam", "Tr_imu_to_velo"})

@@ -1,5 +1,5 @@
-#include <dynslam/kitti/detection_simulator.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/kitti/detection_simulator.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-#include <dynslam/kitti/geometry.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/kitti/geometry.h>
 
 #include <cmath>
 

@@ -1,8 +1,8 @@
+#include <dynslam/core/landmark_ids.h>
+#include <dynslam/core/models/se2.h>
 #include <dynslam/kitti/classify.h>
 #include <dynslam/kitti/geometry.h>
 #include <dynslam/kitti/import.h>
-#include <dynslam/core/landmark_ids.h>
-#include <dynslam/core/models/se2.h>
 
 #include <algorithm>
 #include <cmath>

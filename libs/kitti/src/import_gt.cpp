@@ -1,6 +1,6 @@
-#include <dynslam/kitti/geometry.h>
 #include <dynslam/core/landmark_ids.h>
 #include <dynslam/core/models/se2.h>
+#include <dynslam/kitti/geometry.h>
 
 #include <algorithm>
 #include <cmath>
@@ -30,10 +30,10 @@ Eigen::Matrix<double, 2, 4> worldCorners(const TKittiBox& b, const Eigen::Vector
 }
 
 void addObject(const TTrack& t, const TKittiLabels& L, const std::vector<Eigen::Vector3d>& ego,
-               const std::vector<uint8_t>& read, TGroundTruth& gt)
+               const std::vector<uint8_t>& read, io::TGroundTruth& gt)
 {
 	const size_t n = ego.size();
-	TObjectGroundTruth& o = gt.objects[size_t(t.object)];
+	io::TObjectGroundTruth& o = gt.objects[size_t(t.object)];
 	o.object = t.object;
 	o.num_features = 4;
 	o.first_step = t.first_read;
@@ -110,7 +110,7 @@ void fillGroundTruth(const TKittiLabels& L, const std::vector<Eigen::Vector3d>& 
                      const std::map<std::pair<int, int>, int32_t>& ids, const TImportOptions& o,
                      TImportResult& res)
 {
-	TGroundTruth& gt = res.gt;
+	io::TGroundTruth& gt = res.gt;
 	gt.ego = ego;
 	gt.t.clear();
 	for (size_t k = 0; k < ego.size(); ++k) gt.t.push_back(double(k) * o.dt);
@@ -155,9 +155,9 @@ void fillGroundTruth(const TKittiLabels& L, const std::vector<Eigen::Vector3d>& 
 
 namespace dynslam::kitti
 {
-std::vector<TReadingClass> readingClasses(const TImportResult& res)
+std::vector<io::TReadingClass> readingClasses(const TImportResult& res)
 {
-	std::vector<TReadingClass> rows;
+	std::vector<io::TReadingClass> rows;
 	rows.reserve(res.summary.readings);
 	for (size_t k = 0; k < res.steps.size(); ++k)
 	{
@@ -166,12 +166,12 @@ std::vector<TReadingClass> readingClasses(const TImportResult& res)
 		{
 			const TReading& r = s.readings[i];
 			const TTrack& t = res.tracks.at(r.track);
-			TReadingClass c;
+			io::TReadingClass c;
 			c.step = int(k);
 			c.t = s.t;
 			c.index = int(i);
 			c.id = r.id;
-			c.cls = t.moving ? TrueClass::Moving : TrueClass::Static;
+			c.cls = t.moving ? io::TrueClass::Moving : io::TrueClass::Static;
 			c.object = t.moving ? t.object : -1;
 			c.true_id =
 			    t.moving ? ids::objectFeatureId(t.object, r.corner) : 4 * t.track + r.corner;

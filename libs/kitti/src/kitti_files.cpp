@@ -1,5 +1,5 @@
-#include <dynslam/kitti/kitti_files.h>
 #include <dynslam/io/text_fields.h>
+#include <dynslam/kitti/kitti_files.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -16,10 +16,10 @@ namespace
 {
 int integer(const std::string& tok, const std::string& path, int line, size_t col)
 {
-	const double v = parseFiniteField(tok, path, line, col);
+	const double v = io::parseFiniteField(tok, path, line, col);
 	if (v != std::floor(v) || std::abs(v) > 1e9)
-		throwAtLine(path, line,
-		            "column " + std::to_string(col + 1) + ": '" + tok + "' is not an integer");
+		io::throwAtLine(path, line,
+		                "column " + std::to_string(col + 1) + ": '" + tok + "' is not an integer");
 	return int(v);
 }
 
@@ -64,26 +64,27 @@ std::vector<TCameraPose> readPoses(const std::string& path)
 	{
 		++line;
 		if (!s.empty() && s.back() == '\r') s.pop_back();
-		const auto toks = splitWhitespace(s);
+		const auto toks = io::splitWhitespace(s);
 		if (toks.empty())
 		{
 			// a trailing empty line is fine; an empty line inside the file would shift frames
 			std::string rest;
 			while (std::getline(f, rest))
-				if (!splitWhitespace(rest).empty())
-					throwAtLine(path, line, "empty line inside the pose file");
+				if (!io::splitWhitespace(rest).empty())
+					io::throwAtLine(path, line, "empty line inside the pose file");
 			break;
 		}
 		if (toks.size() != 12)
-			throwAtLine(path, line,
-			            "expected 12 numbers (3x4 [R t]), found " + std::to_string(toks.size()));
+			io::throwAtLine(
+			    path, line,
+			    "expected 12 numbers (3x4 [R t]), found " + std::to_string(toks.size()));
 		TCameraPose T;
 		for (size_t i = 0; i < 12; ++i)
-			T(long(i / 4), long(i % 4)) = parseFiniteField(toks[i], path, line, i);
+			T(long(i / 4), long(i % 4)) = io::parseFiniteField(toks[i], path, line, i);
 		const Eigen::Matrix3d R = T.leftCols<3>();
 		const double orth = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
 		if (orth > 1e-3 || R.determinant() < 0)
-			throwAtLine(
+			io::throwAtLine(
 			    path, line,
 			    "the 3x3 block is not a rotation (|R^T R - I| = " + std::to_string(orth) + ")");
 		poses.push_back(T);
@@ -104,17 +105,17 @@ TKittiLabels readLabels(const std::string& path)
 	{
 		++line;
 		if (!s.empty() && s.back() == '\r') s.pop_back();
-		const auto t = splitWhitespace(s);
+		const auto t = io::splitWhitespace(s);
 		if (t.empty()) continue;
 		++L.rows;
 		if (t.size() != 17)
-			throwAtLine(path, line, "expected 17 columns, found " + std::to_string(t.size()));
+			io::throwAtLine(path, line, "expected 17 columns, found " + std::to_string(t.size()));
 		const int frame = integer(t[0], path, line, 0);
 		const int track = integer(t[1], path, line, 1);
-		if (frame < 0) throwAtLine(path, line, "negative frame " + t[0]);
+		if (frame < 0) io::throwAtLine(path, line, "negative frame " + t[0]);
 		if (!isKnownType(t[2])) ++L.unknown_types[t[2]];
 		std::vector<double> v(17);
-		for (size_t i = 3; i < 17; ++i) v[i] = parseFiniteField(t[i], path, line, i);
+		for (size_t i = 3; i < 17; ++i) v[i] = io::parseFiniteField(t[i], path, line, i);
 		if (frame > L.max_frame)
 		{
 			L.max_frame = frame;
@@ -126,9 +127,9 @@ TKittiLabels readLabels(const std::string& path)
 			continue;
 		}
 		++L.types[t[2]];
-		if (track < 0) throwAtLine(path, line, "track_id " + t[1] + " on a " + t[2] + " box");
+		if (track < 0) io::throwAtLine(path, line, "track_id " + t[1] + " on a " + t[2] + " box");
 		if (!seen.emplace(frame, track).second)
-			throwAtLine(path, line, "track " + t[1] + " given twice in frame " + t[0]);
+			io::throwAtLine(path, line, "track " + t[1] + " given twice in frame " + t[0]);
 		TKittiBox b;
 		b.frame = frame;
 		b.track = track;
@@ -155,9 +156,9 @@ void checkLabelsAgainstPoses(const TKittiLabels& labels, size_t numPoses,
                              const std::string& posesPath)
 {
 	if (labels.max_frame >= 0 && size_t(labels.max_frame) >= numPoses)
-		throwAtLine(labels.file, labels.max_frame_line,
-		            "frame " + std::to_string(labels.max_frame) + " has no pose: " + posesPath +
-		                " has " + std::to_string(numPoses) + " lines (frames 0.." +
-		                std::to_string(numPoses - 1) + ")");
+		io::throwAtLine(labels.file, labels.max_frame_line,
+		                "frame " + std::to_string(labels.max_frame) + " has no pose: " + posesPath +
+		                    " has " + std::to_string(numPoses) + " lines (frames 0.." +
+		                    std::to_string(numPoses - 1) + ")");
 }
 }  // namespace dynslam::kitti

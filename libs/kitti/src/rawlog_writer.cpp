@@ -1,8 +1,8 @@
 #include <dynslam/common/detection_boxes.h>
 #include <dynslam/common/detection_groups.h>
-#include <dynslam/kitti/rawlog_writer.h>
 #include <dynslam/common/odometry_action.h>
 #include <dynslam/common/rawlog_file_writer.h>
+#include <dynslam/kitti/rawlog_writer.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -162,7 +162,7 @@ void writeExtras(const TImportResult& res, const TKittiOptions& opts, const std:
 	          });
 	// the class of every rawlog reading: the annotated corners' (detection mode: no truth per
 	// reading, the detections are not matched to tracks; not written)
-	if (!res.detections) writeClassGroundTruth(readingClasses(res), file("_gt_classes.csv"));
+	if (!res.detections) io::writeClassGroundTruth(readingClasses(res), file("_gt_classes.csv"));
 	writeText(file("_summary.txt"), [&](std::ostream& f) { f << res.summary.toText(); });
 	writeText(file("_scenario.ini"),
 	          [&](std::ostream& f)
@@ -212,7 +212,7 @@ std::vector<std::string> writeImport(const TImportResult& res, const TKittiOptio
 		fs::remove_all(tmp);
 		fs::create_directories(tmp);
 		writeRawlog(res, opts.import, (tmp / (base + ".rawlog")).string());
-		writeGroundTruth(res.gt, tmp.string(), base);
+		io::writeGroundTruth(res.gt, tmp.string(), base);
 		writeExtras(res, opts, tmp.string(), base);
 		// refuse before moving anything if a destination cannot be replaced by a file
 		for (const auto& e : fs::directory_iterator(tmp))

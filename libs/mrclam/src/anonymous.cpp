@@ -41,22 +41,22 @@ void makeAnonymous(TImportResult& res, uint32_t seed)
 	res.summary.anonymous_seed = seed;
 }
 
-std::vector<TReadingClass> classGroundTruth(const TImportResult& res)
+std::vector<io::TReadingClass> classGroundTruth(const TImportResult& res)
 {
-	std::vector<TReadingClass> rows;
+	std::vector<io::TReadingClass> rows;
 	for (size_t k = 0; k < res.steps.size(); ++k)
 	{
 		const TStep& s = res.steps[k];
 		for (size_t i = 0; i < s.meas.size(); ++i)
 		{
 			const TStepMeasurement& z = s.meas[i];
-			TReadingClass r;
+			io::TReadingClass r;
 			r.step = int(k);
 			r.t = s.t;
 			r.index = int(i);
 			r.id = z.id;
 			r.true_id = labelledSubjectId(z.subject);
-			r.cls = isRobotSubject(z.subject) ? TrueClass::Moving : TrueClass::Static;
+			r.cls = isRobotSubject(z.subject) ? io::TrueClass::Moving : io::TrueClass::Static;
 			r.object = isRobotSubject(z.subject) ? z.subject : -1;
 			r.feature = isRobotSubject(z.subject) ? 0 : z.subject;
 			rows.push_back(r);

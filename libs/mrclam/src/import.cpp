@@ -206,9 +206,9 @@ void addOdometry(const TDataset& d, const TImportOptions& opts, std::vector<TSte
 }
 
 /** Placeholder for the ego and for robots without ground truth: never observed, NaN positions. */
-TObjectGroundTruth placeholderObject(int r, size_t K)
+io::TObjectGroundTruth placeholderObject(int r, size_t K)
 {
-	TObjectGroundTruth o;
+	io::TObjectGroundTruth o;
 	o.object = r;
 	o.num_features = 1;
 	o.features.assign(K, Eigen::Matrix2Xd::Constant(2, 1, kNaN));
@@ -219,11 +219,11 @@ TObjectGroundTruth placeholderObject(int r, size_t K)
 
 /** Ground truth of robot r in the world frame at origin: its position as a one-feature object,
  * its pose the displacement since its first observation. */
-TObjectGroundTruth robotObject(int r, const CTrajectoryInterpolator& traj,
-                               const std::vector<TStep>& steps, const Eigen::Vector3d& origin)
+io::TObjectGroundTruth robotObject(int r, const CTrajectoryInterpolator& traj,
+                                   const std::vector<TStep>& steps, const Eigen::Vector3d& origin)
 {
 	const size_t K = steps.size();
-	TObjectGroundTruth o;
+	io::TObjectGroundTruth o;
 	o.object = r;
 	o.num_features = 1;
 	for (size_t k = 0; k < K; k++)
@@ -253,17 +253,18 @@ TObjectGroundTruth robotObject(int r, const CTrajectoryInterpolator& traj,
 }
 
 /** Ground truth of the steps in the frame of origin (the ego's pose at step 0). */
-TGroundTruth groundTruthInFrame(const TDataset& d, const std::map<int, CTrajectoryInterpolator>& gt,
-                                const std::vector<TStep>& steps, const Eigen::Vector3d& origin)
+io::TGroundTruth groundTruthInFrame(const TDataset& d,
+                                    const std::map<int, CTrajectoryInterpolator>& gt,
+                                    const std::vector<TStep>& steps, const Eigen::Vector3d& origin)
 {
-	TGroundTruth g;
+	io::TGroundTruth g;
 	for (const auto& s : steps)
 	{
 		g.t.push_back(s.t);
 		g.ego.push_back(relativeSE2(origin, gt.at(d.ego).at(s.t)));
 	}
 	for (const auto& [s, p] : d.landmarks) g.landmarks[s] = toFrame(origin, p);
-	// TGroundTruth stores object i at index i, so objects 0..5 are written; object 0 and the
+	// io::TGroundTruth stores object i at index i, so objects 0..5 are written; object 0 and the
 	// ego are placeholders: never observed, positions NaN.
 	for (int r = 0; r <= kLastRobot; r++)
 	{

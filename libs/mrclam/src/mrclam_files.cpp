@@ -1,5 +1,5 @@
-#include <dynslam/mrclam/mrclam_files.h>
 #include <dynslam/io/text_fields.h>
+#include <dynslam/mrclam/mrclam_files.h>
 
 #include <cmath>
 #include <fstream>
@@ -22,20 +22,20 @@ TTable readTable(const std::string& path, size_t ncols, const std::vector<size_t
 		if (!s.empty() && s.back() == '\r') s.pop_back();
 		const auto first = s.find_first_not_of(" \t");
 		if (first == std::string::npos || s[first] == '#') continue;
-		const auto toks = splitWhitespace(s);
+		const auto toks = io::splitWhitespace(s);
 		if (toks.size() != ncols)
-			throwAtLine(path, line,
-			            "expected " + std::to_string(ncols) + " columns, found " +
-			                std::to_string(toks.size()) + " ('" + s + "')");
+			io::throwAtLine(path, line,
+			                "expected " + std::to_string(ncols) + " columns, found " +
+			                    std::to_string(toks.size()) + " ('" + s + "')");
 		std::vector<double> row(ncols);
 		for (size_t c = 0; c < ncols; c++)
 		{
-			row[c] = parseFiniteField(toks[c], path, line, c);
+			row[c] = io::parseFiniteField(toks[c], path, line, c);
 			for (size_t ic : integerCols)
 				if (ic == c && row[c] != std::floor(row[c]))
-					throwAtLine(path, line,
-					            "column " + std::to_string(c + 1) + ": '" + toks[c] +
-					                "' is not an integer");
+					io::throwAtLine(path, line,
+					                "column " + std::to_string(c + 1) + ": '" + toks[c] +
+					                    "' is not an integer");
 		}
 		if (timeCol >= 0 && !t.rows.empty() && row[timeCol] < t.rows.back()[timeCol])
 		{
@@ -43,7 +43,7 @@ TTable readTable(const std::string& path, size_t ncols, const std::vector<size_t
 			m.precision(15);
 			m << "timestamps out of order: " << row[timeCol] << " after " << t.rows.back()[timeCol]
 			  << " (line " << t.lines.back() << ")";
-			throwAtLine(path, line, m.str());
+			io::throwAtLine(path, line, m.str());
 		}
 		t.rows.push_back(std::move(row));
 		t.lines.push_back(line);
@@ -62,13 +62,13 @@ std::map<int, int> readBarcodes(const std::string& path)
 		const int subject = static_cast<int>(t.rows[i][0]);
 		const int barcode = static_cast<int>(t.rows[i][1]);
 		if (!isRobotSubject(subject) && !isLandmarkSubject(subject))
-			throwAtLine(path, t.lines[i],
-			            "subject " + std::to_string(subject) +
-			                " outside 1..20 (robots 1-5, landmarks 6-20)");
+			io::throwAtLine(path, t.lines[i],
+			                "subject " + std::to_string(subject) +
+			                    " outside 1..20 (robots 1-5, landmarks 6-20)");
 		if (!out.emplace(barcode, subject).second)
-			throwAtLine(path, t.lines[i], "duplicate barcode " + std::to_string(barcode));
+			io::throwAtLine(path, t.lines[i], "duplicate barcode " + std::to_string(barcode));
 		if (!subjects.emplace(subject, barcode).second)
-			throwAtLine(path, t.lines[i], "duplicate subject " + std::to_string(subject));
+			io::throwAtLine(path, t.lines[i], "duplicate subject " + std::to_string(subject));
 	}
 	if (out.empty()) throw std::runtime_error(path + ": no barcodes");
 	return out;
@@ -82,10 +82,10 @@ std::map<int, Eigen::Vector2d> readLandmarks(const std::string& path)
 	{
 		const int subject = static_cast<int>(t.rows[i][0]);
 		if (!isLandmarkSubject(subject))
-			throwAtLine(path, t.lines[i],
-			            "subject " + std::to_string(subject) + " is not a landmark (6..20)");
+			io::throwAtLine(path, t.lines[i],
+			                "subject " + std::to_string(subject) + " is not a landmark (6..20)");
 		if (!out.emplace(subject, Eigen::Vector2d(t.rows[i][1], t.rows[i][2])).second)
-			throwAtLine(path, t.lines[i], "duplicate subject " + std::to_string(subject));
+			io::throwAtLine(path, t.lines[i], "duplicate subject " + std::to_string(subject));
 	}
 	if (out.empty()) throw std::runtime_error(path + ": no landmarks");
 	return out;
@@ -109,7 +109,7 @@ std::vector<TMeasurementRow> readMeasurements(const std::string& path)
 	for (size_t i = 0; i < t.rows.size(); i++)
 	{
 		const auto& r = t.rows[i];
-		if (r[2] < 0) throwAtLine(path, t.lines[i], "negative range " + std::to_string(r[2]));
+		if (r[2] < 0) io::throwAtLine(path, t.lines[i], "negative range " + std::to_string(r[2]));
 		out.push_back({r[0], static_cast<int>(r[1]), r[2], r[3], t.lines[i]});
 	}
 	if (out.empty()) throw std::runtime_error(path + ": no measurements");

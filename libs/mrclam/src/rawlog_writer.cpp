@@ -1,7 +1,7 @@
-#include <dynslam/mrclam/anonymous.h>
-#include <dynslam/mrclam/rawlog_writer.h>
 #include <dynslam/common/odometry_action.h>
 #include <dynslam/common/rawlog_file_writer.h>
+#include <dynslam/mrclam/anonymous.h>
+#include <dynslam/mrclam/rawlog_writer.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -72,8 +72,8 @@ void writeImport(const TImportResult& res, const TMrclamOptions& opts, const std
 	const auto file = [&](const std::string& suffix)
 	{ return (std::filesystem::path(dir) / (base + suffix)).string(); };
 	writeRawlog(res, opts.import, file(".rawlog"));
-	writeGroundTruth(res.gt, dir, base);
-	writeClassGroundTruth(classGroundTruth(res), file("_gt_classes.csv"));
+	io::writeGroundTruth(res.gt, dir, base);
+	io::writeClassGroundTruth(classGroundTruth(res), file("_gt_classes.csv"));
 	{
 		std::ofstream f(file("_summary.txt"));
 		f << res.summary.toText();

@@ -113,14 +113,14 @@ void CSimulateApp::run()
 			if (auto o = sf->getObservationByClass<mrpt::obs::CObservationBearingRange>())
 				numMeasurements += o->sensedData.size();
 		writeKfSlamGroundTruth(groundTruth, run, outDir, base);
-		writeClassGroundTruth(run.classes, path("_gt_classes.csv"));
+		io::writeClassGroundTruth(run.classes, path("_gt_classes.csv"));
 		for (const char* s : {"_gt_landmarks.txt", "_gt_robot_path.txt", "_gt_data_association.txt",
 		                      "_gt_classes.csv"})
 			writtenFiles.push_back(path(s));
 	}
 	numRawlogEntries = 2 * groundTruth.numSteps();
 	writtenFiles.push_back(rawlog);
-	writeGroundTruth(groundTruth, outDir, base);
+	io::writeGroundTruth(groundTruth, outDir, base);
 	for (const char* s : {"_gt_ego.csv", "_gt_ego.tum", "_gt_landmarks.csv", "_gt_objects.csv",
 	                      "_gt_object_features.csv"})
 		writtenFiles.push_back(path(s));

@@ -19,7 +19,7 @@ namespace dynslam::sim
 {
 namespace detail
 {
-std::string fmt(double v) { return formatShortest(v); }
+std::string fmt(double v) { return io::formatShortest(v); }
 
 std::string fmtMatrix(const Eigen::MatrixXd& m)
 {

@@ -11,7 +11,8 @@
 
 namespace dynslam::sim::detail
 {
-CReadingEffects::CReadingEffects(const TGroundTruth& gt, const TScenarioOptions& o, uint32_t seed)
+CReadingEffects::CReadingEffects(const io::TGroundTruth& gt, const TScenarioOptions& o,
+                                 uint32_t seed)
     : m_o(o), m_e(o.effects), m_rng(uint32_t(uint64_t(seed) + 0x9E3779B9u))
 {
 	int32_t maxStatic = -1;
@@ -22,7 +23,7 @@ CReadingEffects::CReadingEffects(const TGroundTruth& gt, const TScenarioOptions&
 		maxStatic = std::max(maxStatic, id);
 	}
 	m_nextStatic = maxStatic + 1;
-	for (const TObjectGroundTruth& og : gt.objects)
+	for (const io::TObjectGroundTruth& og : gt.objects)
 	{
 		for (int j = 0; j < og.num_features; ++j) ids.push_back(ids::objectFeatureId(og.object, j));
 		m_nextFeature.push_back(og.num_features);
@@ -99,13 +100,13 @@ int32_t CReadingEffects::trackId(int32_t true_id, size_t k)
 }
 
 void CReadingEffects::apply(size_t k, mrpt::obs::CObservationBearingRange& obs,
-                            std::vector<TReadingClass>& truth)
+                            std::vector<io::TReadingClass>& truth)
 {
 	using TMeas = mrpt::obs::CObservationBearingRange::TMeasurement;
 	if (obs.sensedData.size() != truth.size())
 		throw std::logic_error("CReadingEffects::apply: readings and truth rows differ");
 	std::vector<TMeas> meas;
-	std::vector<TReadingClass> rows;
+	std::vector<io::TReadingClass> rows;
 	// 1) missed detections, one draw per true reading, 2) track IDs of the kept ones.
 	std::vector<uint8_t> keep(truth.size(), 1);
 	if (m_e.missed_detection_probability > 0)
@@ -114,7 +115,7 @@ void CReadingEffects::apply(size_t k, mrpt::obs::CObservationBearingRange& obs,
 	{
 		if (!keep[i]) continue;
 		TMeas m = obs.sensedData[i];
-		TReadingClass r = truth[i];
+		io::TReadingClass r = truth[i];
 		r.id = m.landmarkID = trackId(r.true_id, k);
 		// ID unknown in this reading (one draw per kept reading, only when the option is on).
 		if (m_e.unknown_id_probability > 0 &&
@@ -133,11 +134,11 @@ void CReadingEffects::apply(size_t k, mrpt::obs::CObservationBearingRange& obs,
 		m.pitch = 0;
 		m.covariance.setZero();
 		m.landmarkID = clutterId();
-		TReadingClass r;
+		io::TReadingClass r;
 		r.step = int(k);
 		r.t = truth.empty() ? m_o.start_time + m_o.stepTime(k) : truth.front().t;
 		r.id = m.landmarkID;
-		r.cls = TrueClass::Clutter;
+		r.cls = io::TrueClass::Clutter;
 		meas.push_back(m);
 		rows.push_back(r);
 	}
@@ -149,7 +150,7 @@ void CReadingEffects::apply(size_t k, mrpt::obs::CObservationBearingRange& obs,
 		std::stable_sort(order.begin(), order.end(),
 		                 [&](size_t a, size_t b) { return rows[a].id < rows[b].id; });
 		std::vector<TMeas> m2;
-		std::vector<TReadingClass> r2;
+		std::vector<io::TReadingClass> r2;
 		for (size_t i : order) m2.push_back(meas[i]), r2.push_back(rows[i]);
 		meas.swap(m2);
 		rows.swap(r2);

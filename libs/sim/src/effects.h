@@ -18,14 +18,14 @@ class CReadingEffects
 {
 public:
 	/** seed: the run's noise seed (the effects use their own generator, see TReadingEffects). */
-	CReadingEffects(const TGroundTruth& gt, const TScenarioOptions& o, uint32_t seed);
+	CReadingEffects(const io::TGroundTruth& gt, const TScenarioOptions& o, uint32_t seed);
 
 	/** obs holds the true readings of step k (true IDs) in their order; truth one row each
 	 * (step, t, id = true_id, class, object, feature set). Drops missed readings, replaces IDs
 	 * (breaks, anonymity), appends clutter, sorts by ID when anonymous, sets the final id and
 	 * index of each row. A no-op on the readings when no effect is enabled. */
 	void apply(size_t k, mrpt::obs::CObservationBearingRange& obs,
-	           std::vector<TReadingClass>& truth);
+	           std::vector<io::TReadingClass>& truth);
 
 	/** The anonymous ID of a true ID (identity when anonymous_ids is off). */
 	int32_t initialId(int32_t true_id) const;

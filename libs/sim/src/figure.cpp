@@ -29,7 +29,7 @@ TColor objectColor(size_t i)
 }
 
 /** Bounding box of everything drawn (the road too on the highway). */
-void boundingBox(const TGroundTruth& gt, const TScenarioOptions& o, double& xmin, double& xmax,
+void boundingBox(const io::TGroundTruth& gt, const TScenarioOptions& o, double& xmin, double& xmax,
                  double& ymin, double& ymax)
 {
 	xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
@@ -51,7 +51,7 @@ void boundingBox(const TGroundTruth& gt, const TScenarioOptions& o, double& xmin
 }
 
 /** View of the scene in a W x H image with margins; crops W and H to the drawing. */
-TView fitView(const TGroundTruth& gt, const TScenarioOptions& o, int& W, int& H)
+TView fitView(const io::TGroundTruth& gt, const TScenarioOptions& o, int& W, int& H)
 {
 	double xmin, xmax, ymin, ymax;
 	boundingBox(gt, o, xmin, xmax, ymin, ymax);
@@ -95,7 +95,7 @@ void drawPolyline(mrpt::img::CImage& img, const TView& v, const std::vector<Eige
 }
 
 /** Landmarks, object tracks (centre path, features at first sighting, start mark), ego path. */
-void drawScene(mrpt::img::CImage& img, const TView& v, const TGroundTruth& gt)
+void drawScene(mrpt::img::CImage& img, const TView& v, const io::TGroundTruth& gt)
 {
 	for (const auto& [id, p] : gt.landmarks)
 	{
@@ -126,7 +126,7 @@ void drawScene(mrpt::img::CImage& img, const TView& v, const TGroundTruth& gt)
 }
 
 /** Title line, colour legend and the axis scales. */
-void drawLegend(mrpt::img::CImage& img, const TView& v, const TGroundTruth& gt,
+void drawLegend(mrpt::img::CImage& img, const TView& v, const io::TGroundTruth& gt,
                 const TScenarioOptions& o, int H)
 {
 	const bool highway = o.type == ScenarioType::Highway;
@@ -157,7 +157,7 @@ void drawLegend(mrpt::img::CImage& img, const TView& v, const TGroundTruth& gt,
 }
 }  // namespace
 
-void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
+void drawScenarioFigure(const io::TGroundTruth& gt, const TScenarioOptions& o,
                         const std::string& pngPath, int W, int H)
 {
 	gt.checkConsistent();

@@ -36,7 +36,7 @@ std::string join(const std::string& dir, const std::string& name)
 }
 }  // namespace
 
-void writeKfSlamGroundTruth(const TGroundTruth& gt, const TSimulatedRun& run,
+void writeKfSlamGroundTruth(const io::TGroundTruth& gt, const TSimulatedRun& run,
                             const std::string& dir, const std::string& base)
 {
 	std::filesystem::create_directories(dir);

@@ -2,11 +2,11 @@
  * Noisy odometry and range-bearing observations from the ground truth (see doc/simulator.md:
  * sensor model, noise conversion, draw order). */
 #include <dynslam/common/detection_groups.h>
+#include <dynslam/common/odometry_action.h>
+#include <dynslam/common/rawlog_file_writer.h>
 #include <dynslam/core/landmark_ids.h>
 #include <dynslam/core/models/measurement.h>
 #include <dynslam/core/models/se2.h>
-#include <dynslam/common/odometry_action.h>
-#include <dynslam/common/rawlog_file_writer.h>
 #include <dynslam/sim/scenario.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -55,7 +55,7 @@ uint32_t seed32(uint64_t s)
 class CStepSimulator
 {
 public:
-	CStepSimulator(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t seed)
+	CStepSimulator(const io::TGroundTruth& gt, const TScenarioOptions& o, uint64_t seed)
 	    : m_gt(gt),
 	      m_o(o),
 	      m_rng(seed32(seed)),
@@ -89,7 +89,7 @@ public:
 	}
 
 	/** Class ground truth of step k's readings (in the order of the observation). */
-	const std::vector<TReadingClass>& truth() const { return m_truth; }
+	const std::vector<io::TReadingClass>& truth() const { return m_truth; }
 
 private:
 	/** ACT_k: noisy increment into pose k (zero with zero covariance for k = 0); 3 draws. */
@@ -162,20 +162,20 @@ private:
 		// At most this many readings: the vector is grown once (the sweep of the Monte Carlo
 		// app simulates 225 runs of 121 steps).
 		size_t readings = m_ids.size();
-		for (const TObjectGroundTruth& og : m_gt.objects) readings += size_t(og.num_features);
+		for (const io::TObjectGroundTruth& og : m_gt.objects) readings += size_t(og.num_features);
 		obs.sensedData.reserve(readings);
 		m_truth.clear();
 		for (int32_t id : m_ids)
 			if (addMeasurement(obs, xs, m_gt.landmarks.at(id), id))
-				addTruth(k, id, TrueClass::Static, -1, id);
+				addTruth(k, id, io::TrueClass::Static, -1, id);
 		// Objects whose centroid is within range of the robot (ground truth's `visible`): all
 		// their features.
-		for (const TObjectGroundTruth& og : m_gt.objects)
+		for (const io::TObjectGroundTruth& og : m_gt.objects)
 			if (og.visible[k])
 			{
-				const TrueClass c = m_o.objectMovingAt(size_t(og.object), m_o.stepTime(k))
-				                        ? TrueClass::Moving
-				                        : TrueClass::Static;
+				const io::TrueClass c = m_o.objectMovingAt(size_t(og.object), m_o.stepTime(k))
+				                            ? io::TrueClass::Moving
+				                            : io::TrueClass::Static;
 				for (int j = 0; j < og.num_features; ++j)
 				{
 					const int32_t id = ids::objectFeatureId(og.object, j);
@@ -217,9 +217,9 @@ private:
 		return {a, b};
 	}
 
-	void addTruth(size_t k, int32_t id, TrueClass c, int32_t object, int32_t feature)
+	void addTruth(size_t k, int32_t id, io::TrueClass c, int32_t object, int32_t feature)
 	{
-		TReadingClass r;
+		io::TReadingClass r;
 		r.step = int(k);
 		r.t = m_gt.t[k];
 		r.index = int(m_truth.size());
@@ -268,7 +268,7 @@ private:
 		return (uint64_t(uint32_t(int32_t(i))) << 32) | uint32_t(int32_t(j));
 	}
 
-	const TGroundTruth& m_gt;
+	const io::TGroundTruth& m_gt;
 	const TScenarioOptions& m_o;
 	mrpt::random::CRandomGenerator m_rng;
 	Eigen::Matrix3d m_Lw;
@@ -277,7 +277,7 @@ private:
 	std::unordered_map<uint64_t, std::vector<int32_t>> m_grid;
 	std::vector<int32_t> m_ids;
 	detail::CReadingEffects m_effects;
-	std::vector<TReadingClass> m_truth;
+	std::vector<io::TReadingClass> m_truth;
 };
 }  // namespace
 
@@ -286,7 +286,7 @@ mrpt::Clock::time_point stepTimestamp(const TScenarioOptions& o, size_t k)
 	return mrpt::Clock::fromDouble(o.start_time + o.stepTime(k));
 }
 
-TSimulatedRun simulateMeasurements(const TGroundTruth& gt, const TScenarioOptions& o,
+TSimulatedRun simulateMeasurements(const io::TGroundTruth& gt, const TScenarioOptions& o,
                                    uint64_t noise_seed)
 {
 	CStepSimulator sim(gt, o, noise_seed);
@@ -318,7 +318,7 @@ void writeRawlog(const TSimulatedRun& run, const std::string& path, const std::s
 	out.close();
 }
 
-void simulateToRawlog(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed,
+void simulateToRawlog(const io::TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed,
                       const std::string& path, const std::string& comment)
 {
 	CStepSimulator sim(gt, o, noise_seed);

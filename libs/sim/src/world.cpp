@@ -254,16 +254,16 @@ TWorld buildWorld(const TScenarioOptions& o)
 	return o.type == ScenarioType::Highway ? buildHighway(o) : buildGenerated(o);
 }
 
-TGroundTruth buildGroundTruth(const TScenarioOptions& o)
+io::TGroundTruth buildGroundTruth(const TScenarioOptions& o)
 {
 	return groundTruthFromWorld(buildWorld(o), o);
 }
 
-TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
+io::TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
 {
 	const size_t n = o.numSteps();
 	const double nan = std::numeric_limits<double>::quiet_NaN();
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	gt.t.resize(n);
 	gt.ego.resize(n);
 	// The model-matched truth (truth_noise.h; off by default: x0 = 0, no offsets): the whole
@@ -287,7 +287,7 @@ TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o)
 	for (size_t i = 0; i < w.objects.size(); ++i)
 	{
 		const TWorld::TObject& obj = w.objects[i];
-		TObjectGroundTruth& og = gt.objects[i];
+		io::TObjectGroundTruth& og = gt.objects[i];
 		og.object = int32_t(i);
 		og.num_features = int(obj.body.cols());
 		og.features.resize(n);

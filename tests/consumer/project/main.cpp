@@ -8,13 +8,13 @@
 #include <dynslam/apps/CStaticBaselineBackend.h>
 #endif
 #include <dynslam/common/config_utils.h>
+#include <dynslam/core/landmark_ids.h>
 #include <dynslam/estimator/measurement_router.h>
 #include <dynslam/eval/chi2.h>
 #include <dynslam/framework/backend_factory.h>
-#include <dynslam/kitti/geometry.h>
-#include <dynslam/core/landmark_ids.h>
-#include <dynslam/mrclam/odometry.h>
 #include <dynslam/io/number_format.h>
+#include <dynslam/kitti/geometry.h>
+#include <dynslam/mrclam/odometry.h>
 #include <dynslam/sim/motion.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -112,7 +112,7 @@ int main()
 		ok &= check(std::abs(dynslam::chi2Quantile(0.95, 2) - 5.9915) < 1e-3, "core: chi2Quantile");
 		ok &= check(std::abs(dynslam::eval::averageChi2Bounds(2, 1).upper - 7.3778) < 1e-3,
 		            "eval: averageChi2Bounds");
-		ok &= check(dynslam::formatShortest(0.1) == "0.1", "io: formatShortest");
+		ok &= check(dynslam::io::formatShortest(0.1) == "0.1", "io: formatShortest");
 		ok &= check(
 		    (dynslam::mrclam::unicycleArc(1.0, 0.0, 2.0) - Eigen::Vector3d(2, 0, 0)).norm() < 1e-12,
 		    "mrclam: unicycleArc");

@@ -9,18 +9,18 @@ namespace eval_test
 {
 /** 4 steps (t = 0, 0.5, 1, 1.5), ego along x with heading near pi at step 3; landmarks 1, 2, 5;
  * object 0 (two features, first seen at step 1) and object 1 (one feature, first seen at 0). */
-inline dynslam::TGroundTruth smallGroundTruth()
+inline dynslam::io::TGroundTruth smallGroundTruth()
 {
 	const double nan = std::numeric_limits<double>::quiet_NaN();
-	dynslam::TGroundTruth gt;
+	dynslam::io::TGroundTruth gt;
 	gt.t = {0.0, 0.5, 1.0, 1.5};
 	gt.ego = {{0, 0, 0}, {1, 0, 0.1}, {2, 0.5, 0.2}, {3, 1, M_PI - 0.01}};
 	gt.landmarks = {{1, {10, 5}}, {2, {20, -5}}, {5, {30, 5}}};
-	dynslam::TObjectGroundTruth a;
+	dynslam::io::TObjectGroundTruth a;
 	a.object = 0;
 	a.num_features = 2;
 	a.first_step = 1;
-	dynslam::TObjectGroundTruth b;
+	dynslam::io::TObjectGroundTruth b;
 	b.object = 1;
 	b.num_features = 1;
 	b.first_step = 0;

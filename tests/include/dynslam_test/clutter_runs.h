@@ -17,7 +17,7 @@ namespace dynslam_test
 {
 template <class OnStep>
 double runSteps(dynslam::CDynamicKFSLAM2D& ekf, const dynslam::sim::TSimulatedRun& s,
-                const dynslam::TGroundTruth& gt, OnStep&& onStep)
+                const dynslam::io::TGroundTruth& gt, OnStep&& onStep)
 {
 	double se = 0;
 	for (size_t k = 0; k < s.actions.size(); ++k)

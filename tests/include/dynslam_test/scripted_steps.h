@@ -3,9 +3,9 @@
  * and a range-bearing frame of chosen world points seen from a known ego pose (noise-free or
  * with a seeded Cartesian noise). Every back-end (CDynamicKFSLAM2D and the framework's) takes
  * these through ISlamBackend::processActionObservation. */
+#include <dynslam/common/odometry_action.h>
 #include <dynslam/core/models/measurement.h>
 #include <dynslam/core/models/se2.h>
-#include <dynslam/common/odometry_action.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBearingRange.h>

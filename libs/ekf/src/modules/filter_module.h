@@ -16,6 +16,7 @@
  * state store, MRPT's hooks, the router's context: src/) use it too, and TFilterView, its
  * read-only counterpart, from the facade's const functions. */
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
+#include <dynslam/estimator/state_helper.h>
 
 #include <cstdint>
 #include <string>
@@ -115,7 +116,17 @@ struct TFilterAccess
 	estimator::CPaddedLayout& editLayout() { return f.m_layout; }
 	/** Rebuilds what is derived from the layout (the slot view, the static-landmark index). */
 	void layoutChanged() { f.onLayoutChanged(); }
-	/** Writes (x, P) as the working state after a lifecycle changed the layout. */
+	/** The state helper's augment (estimator::state::augment) on the working state: `block`
+	 * appended with mean g, Jacobian J on x[in] and noise R (reset(): the odometry bias). */
+	void augment(const estimator::TBlock& block, const Eigen::VectorXd& g,
+	             const std::vector<int>& in, const Eigen::MatrixXd& J, const Eigen::MatrixXd& R)
+	{
+		Eigen::VectorXd x = f.m_xkk.asEigen();
+		ekf::RowMatrixXd P = f.m_cov.view();
+		estimator::state::augment(x, P, f.m_layout, block, g, in, J, R);
+		setWorkingState(x, P);
+	}
+	/** Writes (x, P) as the working state after its layout changed (a lifecycle, augment). */
 	void setWorkingState(const Eigen::VectorXd& x, const ekf::RowMatrixXd& P)
 	{
 		f.m_xkk.resize(size_t(x.size()));

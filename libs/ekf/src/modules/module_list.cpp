@@ -7,6 +7,7 @@
 #include "linked_merge.h"
 #include "live_merge.h"
 #include "object_drop.h"
+#include "odometry_bias.h"
 
 namespace dynslam::ekf
 {
@@ -25,6 +26,9 @@ void CModuleList::build(TFilterAccess& a)
 	for (auto& h : m_hooks) h.clear();
 	m_calls = 0;
 	// In the step's order: a hook runs its modules in the order they are added here.
+	auto bias = makeOdometryBiasModule(a);  // odometry_bias (no hook: the prediction calls it)
+	m_odometryBias = bias.get();
+	add(std::move(bias));
 	auto fusion = makeLandmarkFusionModule(a);  // fuse_landmarks_prob
 	m_fusion = fusion.get();
 	add(std::move(fusion));

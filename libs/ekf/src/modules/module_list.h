@@ -14,6 +14,7 @@ namespace dynslam::ekf
 class CLandmarkFusionModule;
 class CObjectDropModule;
 class CFirstEstimateModule;
+class COdometryBiasModule;
 
 class CModuleList
 {
@@ -37,6 +38,8 @@ public:
 	const CLandmarkFusionModule* fusion() const { return m_fusion; }
 	const CObjectDropModule* objectDrop() const { return m_objectDrop; }
 	const CFirstEstimateModule* firstEstimates() const { return m_firstEstimates; }
+	/** The odometry bias (no hook: reset() and the prediction call it; it records timestamps). */
+	COdometryBiasModule* odometryBias() const { return m_odometryBias; }
 
 private:
 	void add(std::unique_ptr<IFilterModule> m);
@@ -51,5 +54,6 @@ private:
 	CLandmarkFusionModule* m_fusion = nullptr;
 	CObjectDropModule* m_objectDrop = nullptr;
 	CFirstEstimateModule* m_firstEstimates = nullptr;
+	COdometryBiasModule* m_odometryBias = nullptr;
 };
 }  // namespace dynslam::ekf

@@ -79,9 +79,9 @@ struct TClassDecisions
  * (nullptr: none) and has the run's reading count (else decisions only). Returns the paths
  * written. */
 std::vector<std::string> writeClassFigures(const std::string& outDir, const std::string& filter,
-                                           const TGroundTruth* gt, const eval::TRunEstimates& est,
-                                           const TClassDecisions& d,
-                                           const std::vector<TReadingClass>* classTruth);
+                                           const io::TGroundTruth* gt,
+                                           const eval::TRunEstimates& est, const TClassDecisions& d,
+                                           const std::vector<io::TReadingClass>* classTruth);
 
 class CCompareApp : public mrpt::system::COutputLogger
 {
@@ -136,7 +136,7 @@ public:
 	/** The scenario's landmark gaps (highway scenarios with landmark_gaps; issue 13): the gap
 	 * columns of metrics.csv and compare_ego_error_gap.png. */
 	std::vector<std::pair<double, double>> landmarkGaps;
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	std::string groundTruthUsed, noiseUsed;
 	std::string tableText;  ///< the printed table
 	/** One line per classifying row on how its object columns were scored (objects matched to
@@ -166,10 +166,10 @@ private:
 	TRawlog m_rawlog;  ///< kept for the snapshot figure
 	/** <groundTruthUsed>_gt_classes.csv, read at the first call of classTruth() in a run (the
 	 * scores and the figures of every classifying row share it); nullopt: no such file. */
-	std::optional<std::vector<TReadingClass>> m_classTruth;
+	std::optional<std::vector<io::TReadingClass>> m_classTruth;
 	bool m_classTruthRead = false;
 	/** The class ground truth of this run's data, read once (nullptr: no file). */
-	const std::vector<TReadingClass>* classTruth();
+	const std::vector<io::TReadingClass>* classTruth();
 	void clearResults();  ///< the results of a previous run(), the class truth read
 	/** One filter row of run(): its run, its table row (with ground truth) and its run record;
 	 * progress lines every `every` steps (0: start and end only). */

@@ -3,8 +3,8 @@
  * The `odometry` row of dynslam-compare (issue 31): dead reckoning. The ego pose is the
  * composition of the steps' odometry increments, x_{k+1} = x_k (+) u_k (models/se2.h, MRPT's
  * CPose2D composition), with the propagated covariance P_{k+1} = J_x P_k J_x^T + J_u U_k J_u^T;
- * no map, no objects, no readings used. The one step-input parser (dynslam/common/step_input.h) reads
- * the increments.
+ * no map, no objects, no readings used. The one step-input parser (dynslam/common/step_input.h)
+ * reads the increments.
  *
  * Configuration: if the INI has [DynamicKFSLAM] (measurement_model set), its keys are loaded
  * (TModelOptions) and give the start x_0 = initial_pose, P_0 = Sigma_0, the increment's noise
@@ -12,8 +12,8 @@
  * so the row is the dynamic EKF's prediction alone; otherwise x_0 = 0, P_0 = 0 and the action's
  * covariance. */
 #include <dynslam/common/ISlamBackend.h>
-#include <dynslam/estimator/readings.h>
 #include <dynslam/common/model_options.h>
+#include <dynslam/estimator/readings.h>
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <Eigen/Core>

@@ -56,7 +56,7 @@ public:
 	// --- results of run() ---
 	TFilterRun result;
 	bool hasGroundTruth = false;
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	std::optional<TEvaluation> evaluation;
 	std::string groundTruthUsed, scenarioNoiseUsed;
 	std::vector<std::string> writtenFiles;

@@ -2,9 +2,9 @@
 /** @file app_common.h
  * Pieces shared by the app classes: INI loading, evaluation of one run against the ground
  * truth, and the per-filter output files. */
-#include <dynslam/common/app_support.h>
 #include <dynslam/apps/filter_run.h>
 #include <dynslam/apps/rawlog_io.h>
+#include <dynslam/common/app_support.h>
 #include <dynslam/eval/consistency.h>
 #include <dynslam/eval/metrics.h>
 #include <dynslam/io/ground_truth.h>
@@ -36,7 +36,7 @@ struct TEvaluation
 	eval::TRunConsistency consistency;
 	eval::TConsistencySummary summary;  ///< the single-run summary (chi-square bounds of 1 run)
 };
-TEvaluation evaluateRun(const TGroundTruth& gt, const eval::TRunEstimates& est);
+TEvaluation evaluateRun(const io::TGroundTruth& gt, const eval::TRunEstimates& est);
 
 /** One time base everywhere: copies the rawlog's observation stamps into the ego estimates
  * (t of ego.csv and trajectory.tum), with or without ground truth. The simulator's and the
@@ -47,7 +47,7 @@ void setEgoTimes(TFilterRun& run);
 /** Writes <dir>/<prefix>ego.csv, trajectory.tum, landmarks.csv, object_features.csv,
  * object_poses.csv (writers.h); appends the paths to `written`. */
 void writeEstimateFiles(const std::string& dir, const std::string& prefix,
-                        const eval::TRunEstimates& est, const TGroundTruth* gt,
+                        const eval::TRunEstimates& est, const io::TGroundTruth* gt,
                         std::vector<std::string>& written);
 
 /** The data keys shared by [Run] and [Compare] (paths already resolved). */
@@ -76,7 +76,7 @@ TDataSettings readDataSettings(const mrpt::config::CConfigFileBase& ini, const s
 struct TLoadedData
 {
 	TRawlog rawlog;
-	std::optional<TGroundTruth> gt;
+	std::optional<io::TGroundTruth> gt;
 	std::string groundTruthUsed;  ///< "DIR/BASE" or empty
 	std::string noiseUsed;        ///< where the noise written into the INI came from, or empty
 };
@@ -84,7 +84,7 @@ struct TLoadedData
  * loadGroundTruthFor) or MRPT's text files (spec = the robot-path file, isMrptGroundTruthSpec:
  * path rows are matched to the rawlog's sensory frames by TRawlog::frameIndex, times are the
  * observations' timestamps). Throws std::runtime_error naming the files. */
-TGroundTruth loadGroundTruthForRawlog(const std::string& spec, const TRawlog& rawlog);
+io::TGroundTruth loadGroundTruthForRawlog(const std::string& spec, const TRawlog& rawlog);
 
 /** Loads the rawlog (format #2 with the odometry noise of [OdometryNoise] in params), the ground
  * truth (checked against the rawlog) and, with noiseFromScenario, writes the scenario noise into

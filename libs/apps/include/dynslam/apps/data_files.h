@@ -41,7 +41,7 @@ TGroundTruthSpec parseGroundTruthSpec(const std::string& spec);
 std::string groundTruthBesideRawlog(const std::string& rawlogPath);
 
 /** True if the spec names a robot-path file in MRPT's format (ground_truth.h,
- * readMrptGroundTruth): "..._ground_truth_robot_path.txt" (simul-landmarks) or
+ * io::readMrptGroundTruth): "..._ground_truth_robot_path.txt" (simul-landmarks) or
  * "..._gt_robot_path.txt" (dynslam-simulate's kf-slam files). */
 bool isMrptGroundTruthSpec(const std::string& spec);
 /** The landmarks file beside such a robot-path file: "..._ground_truth.txt" or
@@ -50,8 +50,8 @@ std::string mrptLandmarksFileFor(const std::string& robotPathFile);
 
 /** Reads the ground truth and checks that it has one step per rawlog pair. Throws
  * std::runtime_error naming the files on a missing/malformed file or a step-count mismatch. */
-TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps,
-                                const std::string& rawlogPath);
+io::TGroundTruth loadGroundTruthFor(const std::string& spec, size_t rawlogSteps,
+                                    const std::string& rawlogPath);
 
 /** Noise of a simulated scenario ([Noise] section of <base>_scenario.ini). */
 struct TScenarioNoise

@@ -42,12 +42,12 @@ const std::vector<std::string>& videoExtensions();
 /** Empty if the ego time stamps of `run` (the rawlog's) equal gt.t at every step within
  * 1 ms (or if either is missing); otherwise a warning naming the first differing step, since
  * trajectory.tum and the ground truth's BASE_gt_ego.tum would then not be associated by evo. */
-std::string timeBaseWarning(const TFilterRun& run, const TGroundTruth& gt);
+std::string timeBaseWarning(const TFilterRun& run, const io::TGroundTruth& gt);
 
 /** A run's estimates as a ground truth (ego per step, final landmarks; no objects), to
  * score the other filters against it when there is no ground truth: the "errors" are then
  * differences between filters, not errors. */
-TGroundTruth estimatesAsReference(const TFilterRun& run);
+io::TGroundTruth estimatesAsReference(const TFilterRun& run);
 
 /** One filter in a scene or video. */
 struct TDrawnRun
@@ -64,8 +64,8 @@ struct TDrawnRun
  * the ground truth (if given) in green: ego path, landmarks, object feature tracks; a ground
  * grid. Object names: "<filter>/ego_path", ".../landmarks", "ground_truth/..." (for tests).
  * Throws std::runtime_error naming the file if it cannot be written. */
-void writeScene(const std::string& path, const std::vector<TDrawnRun>& runs, const TGroundTruth* gt,
-                size_t ellipseEvery = 10);
+void writeScene(const std::string& path, const std::vector<TDrawnRun>& runs,
+                const io::TGroundTruth* gt, size_t ellipseEvery = 10);
 
 /** Writes the run drawn step by step, one frame per step (MPEG-4 part 2, fourcc mp4v, in an
  * .mp4 container; OpenCV VideoWriter, no window): top view of the ground truth (green: ego
@@ -77,7 +77,8 @@ void writeScene(const std::string& path, const std::vector<TDrawnRun>& runs, con
  * marked; window = 0, or a window wider than the whole scene: the whole scene, fixed.
  * Throws std::runtime_error naming the file if the writer cannot be opened, and
  * std::invalid_argument on a negative window. */
-void writeVideo(const std::string& path, const std::vector<TDrawnRun>& runs, const TGroundTruth* gt,
+void writeVideo(const std::string& path, const std::vector<TDrawnRun>& runs,
+                const io::TGroundTruth* gt,
                 const std::vector<mrpt::obs::CSensoryFrame::Ptr>& frames, double fps = 10.0,
                 int width = 960, int height = 540, double window = 120.0);
 }  // namespace dynslam::apps

@@ -6,7 +6,8 @@
  *  - the CObservationBearingRange of the step, whose readings include the four footprint
  *    corners of every box (front-left, front-right, rear-right, rear-left in the box frame:
  *    x along the heading, y to its left), with landmarkID = -1 (MRPT's "association unknown");
- *  - a DETECTION_GROUPS comment (dynslam/common/detection_groups.h) giving each corner its box's group;
+ *  - a DETECTION_GROUPS comment (dynslam/common/detection_groups.h) giving each corner its box's
+ * group;
  *  - a mrpt::obs::CObservationComment whose sensorLabel is "DETECTION_BOXES" and whose text is
  *    one line per box,
  *

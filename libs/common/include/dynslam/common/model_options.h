@@ -3,16 +3,16 @@
  * The model of the dynamic SLAM problem (paper Section II): measurement model and noise,
  * motion noise, prior, object-pose map residual, smoothing, drop policies. Section
  * [DynamicKFSLAM] of the INI files, and the capability modules' sections [ObjectModel],
- * [OdometryBias], [Classify] (dynslam/common/model_keys.h). Shared by every back-end: the dynamic EKF
- * (CDynamicKFSLAM2D::TOptions is this struct) and the framework's configurations
+ * [OdometryBias], [Classify] (dynslam/common/model_keys.h). Shared by every back-end: the dynamic
+ * EKF (CDynamicKFSLAM2D::TOptions is this struct) and the framework's configurations
  * (framework::TBackendOptions::model), so it lives below both, in dynslam::common. */
 #include <dynslam/common/box_tracker_options.h>
+#include <dynslam/common/odometry_bias_options.h>
+#include <dynslam/common/step_input.h>
+#include <dynslam/core/models/measurement.h>
 #include <dynslam/estimator/classifying_router.h>
 #include <dynslam/estimator/constant_velocity.h>
 #include <dynslam/estimator/drop_policy.h>
-#include <dynslam/core/models/measurement.h>
-#include <dynslam/common/odometry_bias_options.h>
-#include <dynslam/common/step_input.h>
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <Eigen/Core>
@@ -168,8 +168,8 @@ struct TModelOptions : public mrpt::config::CLoadableOptions
 	 * and rotation) of the true one. See doc/results/results.md. */
 	bool first_estimate_jacobians = false;
 	/** Online odometry bias estimation (issue 17): odometry_bias = none | rate | rate_scale
-	 * and its keys (section [OdometryBias]), dynslam/common/odometry_bias_options.h. Only the dynamic EKF
-	 * supports it. */
+	 * and its keys (section [OdometryBias]), dynslam/common/odometry_bias_options.h. Only the
+	 * dynamic EKF supports it. */
 	TOdometryBiasOptions odometry_bias;
 	/** feature_labels (issue 12, doc/results/classification.md): ids (default: the ID ranges of
 	 * dynslam/core/landmark_ids.h say what each reading is) or classify (every ID >= 0 is an

@@ -3,8 +3,8 @@
  * The [DynamicKFSLAM] options (model_options.h) as the parameters of the estimator's seam
  * registries (dynslam/estimator/seam_registries.h): the one translation from keys to seam
  * parameters, shared by the EKF, the framework's back-ends and the apps. */
-#include <dynslam/estimator/seam_registries.h>
 #include <dynslam/common/model_options.h>
+#include <dynslam/estimator/seam_registries.h>
 
 #include <string>
 

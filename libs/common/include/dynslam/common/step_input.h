@@ -12,8 +12,8 @@
  * detector boxes (DETECTION_BOXES comment, detection_boxes.h: TStepInput::boxes, each box's
  * group checked to be the hint of exactly its four ID -1 corner readings). Readings with ID -1
  * are passed on as they are (the router decides what they are). */
-#include <dynslam/estimator/readings.h>
 #include <dynslam/core/models/measurement.h>
+#include <dynslam/estimator/readings.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3D.h>

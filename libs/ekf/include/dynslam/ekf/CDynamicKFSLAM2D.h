@@ -76,6 +76,8 @@ struct TFilterView;    // the components' read-only access (src/modules/filter_m
 class CModuleList;
 class CStateStore;         // the state's lifecycle in the filter (src/state_store.h)
 class CMrptKalmanAdapter;  // MRPT's hooks' bodies (src/mrpt_kalman_adapter.h)
+struct TStateView;         // the result readers' const view (src/results/state_view.h)
+class CPriorGauge;         // src/gauge/prior_gauge.h
 }  // namespace ekf
 
 /** What one 2-dof slot of MRPT's storage (after the ego pose) holds: a view of the typed
@@ -143,27 +145,15 @@ public:
 	const estimator::IObjectMotionModel& objectMotionModel() const { return *m_motion; }
 	const estimator::IStateLifecycle& stateLifecycle() const { return *m_lifecycle; }
 
-	// --- results --------------------------------------------------------------
+	// --- results: documented in src/results/reader.h (egoPose, staticLandmarks, ...) --------
 	mrpt::poses::CPosePDFGaussian getEgoPose() const override;
-	/** The live map: the static landmarks in the state. */
 	std::vector<TStaticLandmarkEstimate> getStaticLandmarks() const override;
-	/** The static landmarks dropped from the state (drop_static_after), last estimates. */
 	std::vector<TStaticLandmarkEstimate> getDroppedStaticLandmarks() const override;
-	/** Object features in the state (time 0 and, if kept, time t), then the recorded f_0 of
-	 * objects dropped by drop_object_after_unseen_steps (with record_dropped). */
 	std::vector<TObjectFeatureEstimate> getObjectFeatures() const override;
-	/** Every object's pose history: dropped poses (recorded) and poses in the state. A pose is
-	 * xi = (dx, dy, dtheta), the motion since the object's first sighting: a rotation by dtheta
-	 * about c0, the centroid of its features seen then (its founders' f_0), then the
-	 * translation (dx, dy); (dx, dy) for a one-feature object (models/object_pose.h). It is
-	 * not the object's pose in the world: getObjectWorldPose gives that. */
+	/** The pose histories (xi: the motion since the first sighting, not the pose in the world). */
 	std::map<int32_t, TObjectTrack> getObjectTracks() const override;
-	/** The object's pose in the world (object_world_estimate.h, models/object_world_pose.h) at
-	 * its newest pose in the state, for every object_model; empty if its newest pose is no
-	 * longer in the state (dropped, e.g. by cv_fallback_steps) or a founder's f_0 is missing.
-	 * Throws std::invalid_argument for an object the filter does not know. */
+	/** The pose in the world at the newest pose in the state (throws for an unknown object). */
 	std::optional<TObjectWorldPose> getObjectWorldPose(int32_t object) const;
-	/** getObjectWorldPose of every known object that has one. */
 	std::map<int32_t, TObjectWorldPose> getObjectWorldPoses() const;
 	/** The object's velocity (object_model = cv | ctrv); empty without a velocity block (the
 	 * paper's model, or before a cv object's second pose). Throws std::invalid_argument for an
@@ -185,11 +175,10 @@ public:
 	const estimator::CPaddedLayout& getLayout() const;
 	/** The layout as MRPT's 2-dof slots (a 3-dof pose is ObjectPoseA + ObjectPoseB). */
 	const std::vector<TSlot>& getSlots() const;
-	/** Mean and covariance without pad entries; labels[i] names entry i. */
+	/** Mean and reported covariance without pads, labels (results::stateWithoutPads). */
 	void getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& P,
 	                         std::vector<std::string>* labels = nullptr) const;
-	/** State vector index of the pad entries (for checks). */
-	std::vector<size_t> padIndices() const;
+	std::vector<size_t> padIndices() const;  ///< the pad entries (for checks)
 	const TStepReport& getLastStepReport() const override { return m_report; }
 	/** fuse_landmarks_prob (src/modules/fusion.cpp): every fusion so far (record_dropped). */
 	const std::vector<estimator::TFusionPair>& getFusedLandmarks() const;
@@ -225,16 +214,11 @@ public:
 	/** The transition Jacobian F of the last step's prediction (Alg. 7; with first-estimate
 	 * Jacobians, the modified one); empty if the prediction was skipped. */
 	const std::optional<Eigen::Matrix3d>& lastTransitionJacobian() const { return m_lastF; }
-	/** prior_gauge = anchor (doc/state-layout.md "The prior gauge"): the filter runs with the
-	 * initial pose as the gauge (its covariance P is relative to x_0) and reports P + N Sigma_0
-	 * N^T. gaugeJacobian() is N = d(state)/d(delta) (fullMean().size() x 3; pad rows 0;
-	 * models/gauge.h), for either gauge. reportedCov() is the covariance reported outward:
-	 * fullCov() with prior_gauge = prior, fullCov() + N Sigma_0 N^T with anchor. getEgoPose,
-	 * getStateWithoutPads and the marginals of the other getters include the same term. */
+	/** The prior gauge's N = d(state)/d(delta) and fullCov() + N Sigma_0 N^T (anchor) or
+	 * fullCov() (prior), as every getter reports: src/gauge/prior_gauge.h. */
 	Eigen::MatrixXd gaugeJacobian() const;
 	Eigen::MatrixXd reportedCov() const;
-	/** odometry_bias != none: the bias estimate, (b_w) or (b_w, s), and its covariance
-	 * (dynslam/core/models/odometry_bias.h); empty otherwise. */
+	/** The odometry bias and its covariance (empty: none), src/modules/odometry_bias.h. */
 	std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> getOdometryBias() const;
 
 protected:
@@ -275,18 +259,13 @@ private:
 	std::unique_ptr<ekf::CModuleList> m_modules;
 	friend struct ekf::TFilterAccess;
 	friend struct ekf::TFilterView;
+	friend struct ekf::TStateView;
+	std::unique_ptr<ekf::CPriorGauge> m_gauge;        ///< prior_gauge (made by the constructor)
 	std::unique_ptr<ekf::CStateStore> m_store;        ///< the state's lifecycle in the filter
 	std::unique_ptr<ekf::CMrptKalmanAdapter> m_mrpt;  ///< MRPT's hooks and MRPT's update
 	std::optional<Eigen::Matrix3d> m_lastF;           ///< F of the last prediction
-
-	// odometry bias (options.odometry_bias, CDynamicKFSLAM2D_bias.cpp)
-	/** Appends the bias block (the first block, never dropped) with its prior. */
-	void addOdometryBiasBlock();
-	/** The step's duration: the actions' timestamp difference, else options' odometry_dt. */
-	double odometryDt();
-	/** Whether the map holds nothing but the bias block. */
+	/** Whether the map holds nothing but the odometry bias block (src/modules/odometry_bias.h). */
 	bool mapEmpty() const;
-	double m_lastStamp = 0;  ///< the last action's timestamp [s] (NaN: none)
 
 	friend class CMrptUpdateEngine;
 	/** Alg. 7: the ego prediction by ekf::propagate (skipped on an empty map if
@@ -361,10 +340,6 @@ private:
 		Eigen::Ref<const ekf::RowMatrixXd> P;
 	};
 	TStateRef wholeState() const;
-	/** prior_gauge = anchor: the output term J Sigma_0 J^T of a block of `kind` (or of the
-	 * ego, ego = true) with mean `mean`; a zero matrix with prior_gauge = prior. */
-	Eigen::MatrixXd gaugeTerm(const estimator::TBlock* block, const Eigen::VectorXd& mean) const;
-	Eigen::Vector2d m_gaugeOrigin = Eigen::Vector2d::Zero();  ///< p0 of the gauge (reset())
 
 	/** Per-step scratch that keeps its capacity between steps (doc/results/performance.md, section
 	 * 16, sixth round): the extended layout, the plan, commit's drop flags and mean. */
@@ -377,7 +352,7 @@ private:
 
 	/** Rebuilds what is derived from the layout: the slot view and the static-landmark index. */
 	void onLayoutChanged();
-	/** The slot view of `layout` (and, if given, its (landmark ID, block) pairs). */
+	/** The slot view of `layout` (and its statics), results::slotsOf (src/results/reader.h). */
 	static void slotsOf(const estimator::CPaddedLayout& layout, std::vector<TSlot>& slots,
 	                    std::vector<std::pair<int32_t, size_t>>* statics);
 

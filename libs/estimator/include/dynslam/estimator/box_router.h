@@ -2,9 +2,9 @@
 /** @file box_router.h
  * feature_labels = boxes (issue 31, item 2; doc/boxes.md): the router of a detector's boxes
  * without IDs. Each step, the step's boxes (TRouterContext::boxes; in the rawlog, the
- * DETECTION_BOXES comment, dynslam/common/detection_boxes.h) are placed in the world with the filter's
- * ego predicted by the step's odometry, and a CBoxTracker (box_tracker.h) associates them with
- * its tracks (the joint part: a track the filter holds is predicted by the filter,
+ * DETECTION_BOXES comment, dynslam/common/detection_boxes.h) are placed in the world with the
+ * filter's ego predicted by the step's odometry, and a CBoxTracker (box_tracker.h) associates them
+ * with its tracks (the joint part: a track the filter holds is predicted by the filter,
  * TRouterContext::box_prediction). The four corner readings (ID -1, hint = the box's group) of
  * a box whose track is Confirmed after the update get the persistent IDs
  * cornerId(track, c), c the corner in the track's own order (a flipped box's corners are

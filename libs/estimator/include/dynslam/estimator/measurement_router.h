@@ -5,9 +5,9 @@
  * object-time-t / skip, and owns the object registry. One router serves the EKF and every
  * framework back-end. The first implementation, CIdRangeRouter, is the ID-range rule of
  * dynslam/core/landmark_ids.h (the oracle the paper assumes). */
+#include <dynslam/core/models/measurement.h>
 #include <dynslam/estimator/object_registry.h>
 #include <dynslam/estimator/readings.h>
-#include <dynslam/core/models/measurement.h>
 
 #include <Eigen/Core>
 #include <array>

@@ -7,9 +7,9 @@
  * module for both back-ends: the dynamic EKF (CDynamicKFSLAM2D_mm.cpp) and Alg. 1
  * (CAlg1Backend_objects.cpp) call predict() with their own likelihood of the readings. Pure
  * Eigen. */
-#include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/core/models/measurement.h>
 #include <dynslam/core/models/mode_mixture.h>
+#include <dynslam/estimator/object_motion_model.h>
 
 #include <Eigen/Core>
 #include <cstdint>

@@ -18,16 +18,17 @@ struct TReading
 	int32_t id;
 	Eigen::Vector2d z;
 	/** Optional detection group (a box / detection ID of the front-end) of this reading, -1:
-	 * none. Read from the step's DETECTION_GROUPS comment (dynslam/common/detection_groups.h); used only
-	 * by the classifying router with classify_use_hints (doc/results/classification.md, "Hints").
+	 * none. Read from the step's DETECTION_GROUPS comment (dynslam/common/detection_groups.h); used
+	 * only by the classifying router with classify_use_hints (doc/results/classification.md,
+	 * "Hints").
 	 */
 	int32_t hint = -1;
 };
 
 /** One box of a 3-D detector in the bird's-eye view (issue 31; the rawlog's DETECTION_BOXES
- * comment, dynslam/common/detection_boxes.h): no track ID. Its four footprint corners are also readings
- * of the step (ID -1, hint = group), in the order front-left, front-right, rear-right, rear-left
- * of the box frame (x along the heading, y to its left). */
+ * comment, dynslam/common/detection_boxes.h): no track ID. Its four footprint corners are also
+ * readings of the step (ID -1, hint = group), in the order front-left, front-right, rear-right,
+ * rear-left of the box frame (x along the heading, y to its left). */
 struct TBoxDetection
 {
 	int32_t group = -1;  ///< the detection group of its four corner readings (TReading::hint)

@@ -10,9 +10,9 @@
  *    decision (upper band: grey undecided, blue static, red moving) and, if the truth is given,
  *    the true class (lower band: blue static, red moving, black clutter). Rows sorted by true
  *    class then first step; at most max_rows rows (the first ones; the title says how many). */
-#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/class_metrics.h>
 #include <dynslam/eval/estimates.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/io/ground_truth.h>
 #include <mrpt/img/CImage.h>
 
@@ -31,11 +31,11 @@ struct TReadingDecisions
 };
 
 /** truth: the class truth in the same order (may be empty); gt may be null. */
-mrpt::img::CImage drawClassMap(const TGroundTruth* gt, const TRunEstimates& est,
-                               const std::vector<TReadingClass>& truth, const std::string& title,
-                               int width = 1600, int height = 700);
+mrpt::img::CImage drawClassMap(const io::TGroundTruth* gt, const TRunEstimates& est,
+                               const std::vector<io::TReadingClass>& truth,
+                               const std::string& title, int width = 1600, int height = 700);
 
 mrpt::img::CImage drawDecisionTimeline(const TReadingDecisions& d,
-                                       const std::vector<TReadingClass>& truth,
+                                       const std::vector<io::TReadingClass>& truth,
                                        const std::string& title, int max_rows = 200);
 }  // namespace dynslam::eval

@@ -5,8 +5,8 @@
  * classifier's decisions. Definitions and conventions: doc/metrics.md, section
  * "Classification and grouping". "Moving" is the positive class; static landmarks and clutter
  * are negatives. */
-#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/estimates.h>
+#include <dynslam/io/class_ground_truth.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -35,13 +35,13 @@ TBinaryScores finishScores(TBinaryScores s);
 
 /** Per reading: decisions[i] is the decision about truth[i] (throws std::invalid_argument if
  * the sizes differ). */
-TBinaryScores perReadingScores(const std::vector<TReadingClass>& truth,
+TBinaryScores perReadingScores(const std::vector<io::TReadingClass>& truth,
                                const std::vector<Decision>& decisions);
 
 /** Per track (written ID >= 0; rows with id -1 are not tracks and are skipped): each track is
  * scored once, at its last reading (largest step, then index): truth = that reading's class,
  * prediction = the decision about it (the final decision). */
-TBinaryScores perTrackScores(const std::vector<TReadingClass>& truth,
+TBinaryScores perTrackScores(const std::vector<io::TReadingClass>& truth,
                              const std::vector<Decision>& decisions);
 
 /** One motion onset: a true feature (object, feature) whose reading at onset_step is moving
@@ -63,7 +63,7 @@ struct TDelaySummary
 };
 /** Rows may come in any order; they are read by (step, index). The onset is searched only up
  * to the feature's next static reading (a stop ends the episode). */
-TDelaySummary detectionDelays(const std::vector<TReadingClass>& truth,
+TDelaySummary detectionDelays(const std::vector<io::TReadingClass>& truth,
                               const std::vector<Decision>& decisions,
                               bool includeFirstSightings = false);
 
@@ -80,7 +80,7 @@ double adjustedRandIndex(const std::vector<int64_t>& truth, const std::vector<in
  * over the readings whose true class is moving. estimatedGroup[i] is the group of truth[i];
  * a negative group (not grouped, or decided static) makes that reading its own singleton
  * cluster. NaN when no reading is moving. */
-double groupingAri(const std::vector<TReadingClass>& truth,
+double groupingAri(const std::vector<io::TReadingClass>& truth,
                    const std::vector<int64_t>& estimatedGroup);
 
 /** Estimated object identities against the true objects (issue 29, "estimated objects"): over
@@ -96,7 +96,7 @@ struct TIdentityCounts
 	size_t impure = 0;        ///< identities with readings of two or more true objects
 	size_t split = 0;         ///< true objects whose readings fall into two or more identities
 };
-TIdentityCounts identityCounts(const std::vector<TReadingClass>& truth,
+TIdentityCounts identityCounts(const std::vector<io::TReadingClass>& truth,
                                const std::vector<int64_t>& estimatedGroup);
 
 /** Static landmarks of a final map that should not be there. */
@@ -108,6 +108,6 @@ struct TWrongStatic
 	std::vector<int32_t> wrong_ids;
 };
 /** mapIds: the written IDs of the static landmarks in the final map. */
-TWrongStatic wrongStaticLandmarks(const std::vector<TReadingClass>& truth,
+TWrongStatic wrongStaticLandmarks(const std::vector<io::TReadingClass>& truth,
                                   const std::vector<int32_t>& mapIds);
 }  // namespace dynslam::eval

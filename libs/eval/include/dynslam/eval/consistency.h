@@ -54,7 +54,7 @@ struct TRunConsistency
 
 /** Computes the NEES of every block against the truth, and copies the NIS. Steps/IDs missing
  * in the truth are left out (as in computeRunMetrics). */
-TRunConsistency computeRunConsistency(const TGroundTruth& gt, const TRunEstimates& est);
+TRunConsistency computeRunConsistency(const io::TGroundTruth& gt, const TRunEstimates& est);
 
 /** One key (step or landmark) averaged over the runs that have it. */
 struct TConsistencyRow

@@ -4,7 +4,7 @@
  * fill these from CDynamicKFSLAM2D, from mrpt::slam::CRangeBearingKFSLAM2D, or from files;
  * the metrics (metrics.h, consistency.h), writers (writers.h) and figures (figures.h) read them.
  *
- * Conventions (the same as dynslam::TGroundTruth, ground_truth.h):
+ * Conventions (the same as dynslam::io::TGroundTruth, ground_truth.h):
  *  - step k is the pose after the k-th (action, sensory frame) pair of the rawlog;
  *  - angles in radians; pad entries of the filter state never appear here;
  *  - object poses are xi = (dx, dy, dtheta) relative to the object's first sighting (g^o of
@@ -40,8 +40,8 @@ struct TLandmarkEstimate
 };
 
 /** Time-0 estimate f_0 of feature `feature` (0-based index within the object) of object
- * `object` (TObjectGroundTruth::object), compared with the object's ground-truth features at its
- * first_step. */
+ * `object` (io::TObjectGroundTruth::object), compared with the object's ground-truth features at
+ * its first_step. */
 struct TObjectFeatureEstimate
 {
 	int32_t object = -1;

@@ -62,7 +62,8 @@ struct TMapFigureOptions
 };
 
 /** Draws the map figure; gt may be null (estimates only). */
-mrpt::img::CImage drawMapFigure(const TGroundTruth* gt, const std::vector<TFigureSeries>& series,
+mrpt::img::CImage drawMapFigure(const io::TGroundTruth* gt,
+                                const std::vector<TFigureSeries>& series,
                                 const TMapFigureOptions& opt = {});
 
 struct TErrorFigureOptions
@@ -75,7 +76,7 @@ struct TErrorFigureOptions
 
 /** Three stacked panels (x, y, theta error) for every series, with +-sigma bounds in a lighter
  * shade of the series colour. */
-mrpt::img::CImage drawEgoErrorFigure(const TGroundTruth& gt,
+mrpt::img::CImage drawEgoErrorFigure(const io::TGroundTruth& gt,
                                      const std::vector<TFigureSeries>& series,
                                      const TErrorFigureOptions& opt = {});
 

@@ -9,7 +9,7 @@
 
 namespace dynslam::eval
 {
-mrpt::img::CImage drawGapErrorFigure(const TGroundTruth& gt,
+mrpt::img::CImage drawGapErrorFigure(const io::TGroundTruth& gt,
                                      const std::vector<TFigureSeries>& series,
                                      const std::vector<std::pair<double, double>>& gaps,
                                      int width = 1400, int height = 600);

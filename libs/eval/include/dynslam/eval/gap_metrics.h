@@ -25,6 +25,6 @@ struct TGapMetrics
 
 /** Gaps are [start, end] on the true ego x (start < end). Steps outside the ground truth are
  * ignored. No gap step: steps = 0 and NaN gap values. */
-TGapMetrics gapMetrics(const TGroundTruth& gt, const std::vector<TEgoEstimate>& ego,
+TGapMetrics gapMetrics(const io::TGroundTruth& gt, const std::vector<TEgoEstimate>& ego,
                        const std::vector<std::pair<double, double>>& gaps);
 }  // namespace dynslam::eval

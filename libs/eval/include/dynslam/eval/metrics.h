@@ -62,7 +62,7 @@ TRmse rmseOf(const std::vector<double>& x, const std::vector<double>& y,
 
 /** Computes all metrics of one run. Throws std::invalid_argument on malformed estimates
  * (checkEstimates) or ground truth whose per-step vectors disagree in length. */
-TRunMetrics computeRunMetrics(const TGroundTruth& gt, const TRunEstimates& est);
+TRunMetrics computeRunMetrics(const io::TGroundTruth& gt, const TRunEstimates& est);
 
 /** One row of the per-step ego errors. */
 struct TEgoErrorRow
@@ -75,10 +75,11 @@ struct TEgoErrorRow
 
 /** Per-step ego errors with 3-sigma bounds, sorted by step; estimates at steps outside the
  * ground truth are left out. t is the estimate's t if finite, else gt.t[step]. */
-std::vector<TEgoErrorRow> egoErrors(const TGroundTruth& gt, const std::vector<TEgoEstimate>& ego);
+std::vector<TEgoErrorRow> egoErrors(const io::TGroundTruth& gt,
+                                    const std::vector<TEgoEstimate>& ego);
 
 /** Throws std::invalid_argument if the ground truth's per-step vectors disagree in length
  * (t, ego, and each object's features/pose/visible) or an object has features of the wrong
- * size. (Same checks as TGroundTruth::checkConsistent, kept here to not depend on its IO.) */
-void checkGroundTruth(const TGroundTruth& gt);
+ * size. (Same checks as io::TGroundTruth::checkConsistent, kept here to not depend on its IO.) */
+void checkGroundTruth(const io::TGroundTruth& gt);
 }  // namespace dynslam::eval

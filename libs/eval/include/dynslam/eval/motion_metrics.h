@@ -37,8 +37,8 @@ struct TRelativePoseError
 	size_t n = 0;
 	double trans_rmse = kNaN, rot_rmse = kNaN;
 };
-TRelativePoseError relativePoseError(const TGroundTruth& gt, const std::vector<TEgoEstimate>& ego,
-                                     int delta);
+TRelativePoseError relativePoseError(const io::TGroundTruth& gt,
+                                     const std::vector<TEgoEstimate>& ego, int delta);
 
 /** Errors of one object or pooled. */
 struct TMotionError
@@ -60,7 +60,7 @@ struct TObjectErrors
 
 /** Object motion and position errors of a run. Pose estimates of objects or steps without a
  * finite truth, or of objects without f_0 estimates, are skipped. */
-TObjectErrors objectErrors(const TGroundTruth& gt, const TRunEstimates& est);
+TObjectErrors objectErrors(const io::TGroundTruth& gt, const TRunEstimates& est);
 
 /** Body-frame motion M = L_{k-1}^-1 L_k (x, y, theta) of a pose pair with rotation centre c0
  * (3-dof xi; for 2-dof pass dtheta = 0). */

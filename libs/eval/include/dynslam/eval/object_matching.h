@@ -6,10 +6,10 @@
  * object columns cannot match estimate and truth by number. Instead every estimated object is
  * matched to a true object by the class ground truth of its readings (class_ground_truth.h).
  * Pure Eigen. */
-#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/eval/estimates.h>
 #include <dynslam/eval/metrics.h>
 #include <dynslam/eval/velocity_metrics.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/io/ground_truth.h>
 
 #include <cstdint>
@@ -27,7 +27,7 @@ namespace dynslam::eval
  * true match) wins only with strictly more readings than every true object. Several estimated
  * objects may get the same true object (e.g. the two halves of a track break). */
 std::map<int32_t, int32_t> matchObjectsByReadings(const std::vector<int32_t>& estObject,
-                                                  const std::vector<TReadingClass>& truth);
+                                                  const std::vector<io::TReadingClass>& truth);
 
 /** The estimates with every object number replaced by its match (objects not in the map or
  * matched to -1 get -1: no truth has it, so the scores skip them). */
@@ -36,10 +36,9 @@ TRunEstimates withMatchedObjects(const TRunEstimates& est, const std::map<int32_
 /** Velocity errors of a classifying run (object_model = cv | ctrv): objectVelocityErrors on the
  * matched estimates; nullopt (empty cells) without a class ground truth (truth == nullptr) or
  * without velocities. */
-std::optional<TVelocityErrors> classifyingVelocityErrors(const TGroundTruth& gt,
-                                                         const TRunEstimates& est,
-                                                         const std::vector<int32_t>& estObject,
-                                                         const std::vector<TReadingClass>* truth);
+std::optional<TVelocityErrors> classifyingVelocityErrors(
+    const io::TGroundTruth& gt, const TRunEstimates& est, const std::vector<int32_t>& estObject,
+    const std::vector<io::TReadingClass>* truth);
 
 /** Empties the agent_* feature and pose RMSE cells (NaN) of a classifying row (without a class
  * ground truth, nothing tells which estimated object is which true one). The agent_<k>_object
@@ -56,7 +55,7 @@ struct TReadingObjects
 /** How one true object (agent) of a classifying row was scored (scoreClassifyingAgents). */
 struct TAgentMatch
 {
-	int32_t truth = -1;           ///< the true object (TObjectGroundTruth::object)
+	int32_t truth = -1;           ///< the true object (io::TObjectGroundTruth::object)
 	int32_t estimated = -1;       ///< the estimated object scored against it; -1: none
 	size_t candidates = 0;        ///< estimated objects matched to it (matchObjectsByReadings)
 	size_t readings = 0;          ///< readings of `estimated` that belong to the true object
@@ -81,8 +80,8 @@ struct TAgentMatch
  * Founded at T's first sighting with all of T's features, this is exactly the labelled rows'
  * scoring (computeRunMetrics). Replaces m.objects (one per gt object, gt order); returns how
  * each agent was matched. Throws std::invalid_argument if reads and truth differ in size. */
-std::vector<TAgentMatch> scoreClassifyingAgents(TRunMetrics& m, const TGroundTruth& gt,
+std::vector<TAgentMatch> scoreClassifyingAgents(TRunMetrics& m, const io::TGroundTruth& gt,
                                                 const TRunEstimates& est,
                                                 const TReadingObjects& reads,
-                                                const std::vector<TReadingClass>& truth);
+                                                const std::vector<io::TReadingClass>& truth);
 }  // namespace dynslam::eval

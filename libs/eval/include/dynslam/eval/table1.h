@@ -5,7 +5,7 @@
  * poses), averaged over Monte Carlo runs, with the paper's published numbers beside ours.
  *
  * Agent k is the k-th object of the ground truth (TRunMetrics::objects[k-1], i.e. in
- * TGroundTruth::objects order); objects beyond the third are not in the table. */
+ * io::TGroundTruth::objects order); objects beyond the third are not in the table. */
 #include <dynslam/eval/metrics.h>
 
 #include <array>

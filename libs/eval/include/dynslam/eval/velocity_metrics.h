@@ -35,10 +35,10 @@ struct TVelocityErrors
 
 /** True velocity of object o at step k (see the file comment); nullopt without two finite true
  * poses at distinct times around k. 3 entries (vx, vy, omega). */
-std::optional<Eigen::Vector3d> trueObjectVelocity(const TObjectGroundTruth& o,
+std::optional<Eigen::Vector3d> trueObjectVelocity(const io::TObjectGroundTruth& o,
                                                   const std::vector<double>& t, int k);
 
 /** Scores every object pose estimate with a velocity; nullopt if the run has none. */
-std::optional<TVelocityErrors> objectVelocityErrors(const TGroundTruth& gt,
+std::optional<TVelocityErrors> objectVelocityErrors(const io::TGroundTruth& gt,
                                                     const TRunEstimates& est);
 }  // namespace dynslam::eval

@@ -27,32 +27,32 @@ void writeFile(const std::string& path, const std::function<void(std::ostream&)>
  * q = (0, 0, sin(theta/2), cos(theta/2)). t = the estimate's t if finite, else gt->t[step];
  * throws std::invalid_argument if neither is available. */
 void writeTum(std::ostream& os, const std::vector<TEgoEstimate>& ego,
-              const TGroundTruth* gt = nullptr);
+              const io::TGroundTruth* gt = nullptr);
 
 /** Per-step ego CSV: step,t,x,y,theta,sigma3_x,sigma3_y,sigma3_theta,gt_x,gt_y,gt_theta,
  * err_x,err_y,err_theta,nees,nis,nis_dof (gt/err/nees columns empty without ground truth;
  * nees empty where the covariance is singular). Sorted by step. */
-void writeEgoCsv(std::ostream& os, const TRunEstimates& est, const TGroundTruth* gt = nullptr);
+void writeEgoCsv(std::ostream& os, const TRunEstimates& est, const io::TGroundTruth* gt = nullptr);
 
 /** Landmarks CSV: id,x,y,sigma3_x,sigma3_y,gt_x,gt_y,err_x,err_y,nees (sorted by ID). */
 void writeLandmarksCsv(std::ostream& os, const TRunEstimates& est,
-                       const TGroundTruth* gt = nullptr);
+                       const io::TGroundTruth* gt = nullptr);
 
 /** Object features (time 0) CSV: object,feature,x,y,sigma3_x,sigma3_y,gt_x,gt_y,err_x,err_y. */
 void writeObjectFeaturesCsv(std::ostream& os, const TRunEstimates& est,
-                            const TGroundTruth* gt = nullptr);
+                            const io::TGroundTruth* gt = nullptr);
 
 /** Object poses CSV: object,step,t,dx,dy,dtheta,sigma3_dx,sigma3_dy,sigma3_dtheta,gt_dx,gt_dy,
  * gt_dtheta,err_dx,err_dy,err_dtheta,nees,dof (theta columns empty for 2-dof poses). */
 void writeObjectPosesCsv(std::ostream& os, const TRunEstimates& est,
-                         const TGroundTruth* gt = nullptr);
+                         const io::TGroundTruth* gt = nullptr);
 
 /** Object motion CSV (models with a velocity state): object,step,t,vx,vy,omega,sigma3_vx,
  * sigma3_vy,sigma3_omega, then p_<mode> per est.object_mode_names (object_model = mm): the
  * velocity, the turn rate and the mode probabilities of every object pose that has a velocity
  * (omega empty for 2-dof poses). */
 void writeObjectMotionCsv(std::ostream& os, const TRunEstimates& est,
-                          const TGroundTruth* gt = nullptr);
+                          const io::TGroundTruth* gt = nullptr);
 
 /** One filter's row of the metrics CSV / table. */
 struct TMetricsRow

@@ -14,9 +14,9 @@
  * EKF uses. A marginalization of (xi_{t-1}, v_{t-1}) with the motion term is the EKF's object
  * prediction; a GN step on the sighting terms of an object is its measurement update; a GN step
  * on the initialisation term is the EKF's velocity augmentation. */
+#include <dynslam/core/models/mode_mixture.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/framework/terms.h>
-#include <dynslam/core/models/mode_mixture.h>
 
 namespace dynslam::framework
 {

@@ -21,9 +21,9 @@
  *
  * State-dependent informations (odometry, pose-space object pose) are evaluated at the
  * linearization point (as the EKF does with its Jacobians). */
+#include <dynslam/core/models/measurement.h>
 #include <dynslam/estimator/object_motion_model.h>
 #include <dynslam/framework/variables.h>
-#include <dynslam/core/models/measurement.h>
 
 #include <Eigen/Core>
 #include <memory>

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace dynslam
+namespace dynslam::io
 {
 /** One annotated box of one step. */
 struct TTruthBox
@@ -29,4 +29,4 @@ bool hasBoxGroundTruth(const std::string& base);
  * missing file or column, a value that does not parse, a track of the tracks file missing from
  * the track list, a length or width <= 0, or a negative step. */
 std::vector<TTruthBox> readBoxGroundTruth(const std::string& base);
-}  // namespace dynslam
+}  // namespace dynslam::io

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-namespace dynslam
+namespace dynslam::io
 {
 enum class TrueClass : uint8_t
 {
@@ -57,4 +57,4 @@ void writeClassGroundTruth(const std::vector<TReadingClass>& rows, const std::st
  * file, a wrong header, a malformed number, an unknown class or inconsistent fields (a static
  * row with an object, a clutter row with a true ID, a moving row without an object). */
 std::vector<TReadingClass> readClassGroundTruth(const std::string& path);
-}  // namespace dynslam
+}  // namespace dynslam::io

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace dynslam
+namespace dynslam::io
 {
 struct TObjectGroundTruth
 {
@@ -64,4 +64,4 @@ TGroundTruth readGroundTruth(const std::string& dir, const std::string& base);
 TGroundTruth readMrptGroundTruth(const std::string& pathFile, const std::string& landmarksFile,
                                  size_t rowsExpected, const std::vector<size_t>& rowOfStep,
                                  const std::vector<double>& stepTimes);
-}  // namespace dynslam
+}  // namespace dynslam::io

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace dynslam
+namespace dynslam::io
 {
 /** Throws std::runtime_error("path:line: what"). */
 [[noreturn]] void throwAtLine(const std::string& path, int line, const std::string& what);
@@ -17,4 +17,4 @@ std::vector<std::string> splitWhitespace(const std::string& s);
 /** Token `tok` of column `col` (0-based) as a finite double; throws naming path, line and the
  * 1-based column when it does not parse completely or is not finite. */
 double parseFiniteField(const std::string& tok, const std::string& path, int line, size_t col);
-}  // namespace dynslam
+}  // namespace dynslam::io

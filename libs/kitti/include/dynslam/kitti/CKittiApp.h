@@ -11,8 +11,8 @@
  * --detections DIR --calib DIR (both or neither): the detector's boxes DIR/CLASS/SSSS.txt for
  * the classes of detection_classes and the calibration DIR/SSSS.txt are read and checked
  * (detection_files.h), counted per class and frame in the summary, and written to the rawlog
- * as the steps' only readings (detection_import.h: DETECTION_BOXES, dynslam/common/detection_boxes.h);
- * the ground truth is still the labels'.
+ * as the steps' only readings (detection_import.h: DETECTION_BOXES,
+ * dynslam/common/detection_boxes.h); the ground truth is still the labels'.
  * --simulate-detections DIR (instead of --detections and --calib): a synthetic detector
  * (detection_simulator.h, INI section [KITTI_SimulateDetections] of -c) makes detections from
  * the labels and writes them into DIR/CLASS/SSSS.txt with a nominal calibration

@@ -31,8 +31,8 @@
  *   on (c = footprint centre = the centroid of the 4 corners, the g^o rotation centre), NaN
  *   elsewhere. Extra files: the track list, the per-step class truth, the ID table
  *   (rawlog_writer.h). */
-#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/estimator/readings.h>
+#include <dynslam/io/class_ground_truth.h>
 #include <dynslam/io/ground_truth.h>
 #include <dynslam/kitti/kitti_files.h>
 
@@ -169,7 +169,7 @@ struct TImportSummary
 struct TImportResult
 {
 	std::vector<TStep> steps;
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	std::map<int, TTrack> tracks;
 	std::vector<TIdRow> ids;  ///< sorted by ID
 	std::vector<TTrackStepRow> track_steps;
@@ -190,5 +190,5 @@ TImportResult importSequence(const std::vector<TCameraPose>& poses, const TKitti
  * corner) for a moving one), class = the track's class (classify.h: static or moving for its
  * whole life; KITTI has no clutter), object = the object index of a moving track (-1 static),
  * feature = true_id for a static track, the corner for a moving one. */
-std::vector<TReadingClass> readingClasses(const TImportResult& res);
+std::vector<io::TReadingClass> readingClasses(const TImportResult& res);
 }  // namespace dynslam::kitti

@@ -12,8 +12,9 @@
  *    std_bearing, one TMeasurement per reading: range, yaw = bearing, pitch 0, landmarkID);
  *    detection mode (TImportResult::detections, detection_import.h): the readings are the
  *    corners of the step's boxes (boxCorners order, landmarkID -1), followed by a
- *    DETECTION_GROUPS and a DETECTION_BOXES comment (dynslam/common/detection_boxes.h) in every step;
- *  - `<base>_gt_*` (dynslam::writeGroundTruth) and the KITTI extras:
+ *    DETECTION_GROUPS and a DETECTION_BOXES comment (dynslam/common/detection_boxes.h) in every
+ * step;
+ *  - `<base>_gt_*` (dynslam::io::writeGroundTruth) and the KITTI extras:
  *      `<base>_gt_tracks.csv`      step,t,track,type,moving,read,x,y,yaw (per annotated frame
  *                                  of every track: its class, whether it is read, footprint
  *                                  centre and yaw in the world frame)

@@ -37,5 +37,5 @@ int32_t labelledSubjectId(int subject);
 void makeAnonymous(TImportResult& res, uint32_t seed);
 
 /** The class ground truth of every kept measurement, in rawlog order (file comment). */
-std::vector<TReadingClass> classGroundTruth(const TImportResult& res);
+std::vector<io::TReadingClass> classGroundTruth(const TImportResult& res);
 }  // namespace dynslam::mrclam

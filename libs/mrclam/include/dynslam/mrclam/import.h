@@ -25,7 +25,7 @@
  * - Ground truth per step: ego pose interpolated at t_k; landmarks; each other robot r as
  *   object r with one feature (its interpolated position at t_k), visible = measured at step
  *   k, first_step = first step it was measured, pose = (p_k - p_first_step, 0) from
- *   first_step on (NaN before). TGroundTruth stores object i at index i, so objects 0..5 are
+ *   first_step on (NaN before). io::TGroundTruth stores object i at index i, so objects 0..5 are
  *   exported: object 0 and the ego's own index are placeholders (never visible, NaN). */
 #include <dynslam/io/ground_truth.h>
 #include <dynslam/mrclam/mrclam_files.h>
@@ -102,7 +102,7 @@ struct TImportSummary
 struct TImportResult
 {
 	std::vector<TStep> steps;
-	TGroundTruth gt;
+	io::TGroundTruth gt;
 	TImportSummary summary;
 };
 

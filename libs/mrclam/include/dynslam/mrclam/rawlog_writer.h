@@ -28,7 +28,7 @@ namespace dynslam::mrclam
 void writeRawlog(const TImportResult& res, const TImportOptions& opts, const std::string& path);
 
 /** Writes into `dir` (created if missing): `<base>.rawlog`, the ground truth
- * (dynslam::writeGroundTruth, files `<base>_gt_*`), `<base>_gt_classes.csv` (anonymous.h),
+ * (dynslam::io::writeGroundTruth, files `<base>_gt_*`), `<base>_gt_classes.csv` (anonymous.h),
  * `<base>_summary.txt` and
  * `<base>_import.ini` (effective options, the world origin, and the filter start
  * [DynamicKFSLAM] initial_pose / Sigma_0). */

@@ -38,7 +38,7 @@ public:
 	bool stream = false;  ///< simulate straight into the rawlog (no DA file)
 
 	// Results of run().
-	TGroundTruth groundTruth;
+	io::TGroundTruth groundTruth;
 	std::vector<std::string> writtenFiles;
 	size_t numRawlogEntries = 0;  ///< ACT + SF entries (2 per step)
 	size_t numMeasurements = 0;   ///< range-bearing readings in all SFs (0 with --stream)

@@ -12,6 +12,6 @@
 namespace dynslam::sim
 {
 /** Draws the ground truth and saves it as PNG (throws std::runtime_error if saving fails). */
-void drawScenarioFigure(const TGroundTruth& gt, const TScenarioOptions& o,
+void drawScenarioFigure(const io::TGroundTruth& gt, const TScenarioOptions& o,
                         const std::string& pngPath, int width = 1800, int height = 620);
 }  // namespace dynslam::sim

@@ -49,8 +49,8 @@ TWorld buildWorld(const TScenarioOptions& o);
 /** Ground truth of the scenario (calls buildWorld). Deterministic given world_seed.
  * Object poses xi_k use the g^o convention of object_pose.h relative to the first step at which
  * the object's centroid is within sensor range. */
-TGroundTruth buildGroundTruth(const TScenarioOptions& o);
-TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o);
+io::TGroundTruth buildGroundTruth(const TScenarioOptions& o);
+io::TGroundTruth groundTruthFromWorld(const TWorld& w, const TScenarioOptions& o);
 
 struct TSimulatedRun
 {
@@ -58,13 +58,13 @@ struct TSimulatedRun
 	std::vector<mrpt::obs::CSensoryFrame::Ptr> frames;       ///< SF_k
 	/** Class ground truth of every reading, step by step in the order of the observations
 	 * (B_gt_classes.csv, class_ground_truth.h). Not kept by simulateToRawlog. */
-	std::vector<TReadingClass> classes;
+	std::vector<io::TReadingClass> classes;
 };
 
 /** Noisy odometry and measurements for the ground truth. Deterministic given noise_seed
  * (a fresh private MT19937 generator; seed 0 is a seed like any other). Throws
  * std::invalid_argument if noise_seed > 2^32 - 1. */
-TSimulatedRun simulateMeasurements(const TGroundTruth& gt, const TScenarioOptions& o,
+TSimulatedRun simulateMeasurements(const io::TGroundTruth& gt, const TScenarioOptions& o,
                                    uint64_t noise_seed);
 
 /** Writes the run as a gz rawlog (format #1: a CObservationComment holding `comment` (if not
@@ -73,7 +73,7 @@ void writeRawlog(const TSimulatedRun& run, const std::string& path,
                  const std::string& comment = "");
 
 /** The simulation of a long scenario streamed straight into a rawlog (no run kept in memory). */
-void simulateToRawlog(const TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed,
+void simulateToRawlog(const io::TGroundTruth& gt, const TScenarioOptions& o, uint64_t noise_seed,
                       const std::string& path, const std::string& comment = "");
 
 /** Timestamp of step k (start_time + k dt) as MRPT stores it. */
@@ -84,6 +84,6 @@ mrpt::Clock::time_point stepTimestamp(const TScenarioOptions& o, size_t k);
  * (x y z yaw pitch roll) and <base>_gt_data_association.txt (rows: timestamp, index in
  * observation, true label = landmark ID), read by kf-slam's ground_truth_data_association.
  * The DA rows follow the observations of `run` (objects included). */
-void writeKfSlamGroundTruth(const TGroundTruth& gt, const TSimulatedRun& run,
+void writeKfSlamGroundTruth(const io::TGroundTruth& gt, const TSimulatedRun& run,
                             const std::string& dir, const std::string& base);
 }  // namespace dynslam::sim
