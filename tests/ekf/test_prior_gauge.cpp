@@ -277,7 +277,7 @@ TEST(PriorGauge, EveryGetterReportsTheWholeStatesMarginal)
 	// to ~1 km), so a getter that drops it fails. Tunnel draw 940004, cv, 60 steps.
 	sim::TScenarioOptions o = tunnel();
 	o.noise_seed = 940004;
-	const TGroundTruth gt = sim::buildGroundTruth(o);
+	const io::TGroundTruth gt = sim::buildGroundTruth(o);
 	const sim::TSimulatedRun r = sim::simulateMeasurements(gt, o, o.noise_seed);
 	auto f = makeFilter(o, "cv", true, kS0);
 	for (size_t k = 0; k < std::min<size_t>(60, r.actions.size()); ++k)
