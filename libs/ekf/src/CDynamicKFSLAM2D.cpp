@@ -1,8 +1,10 @@
 /** CDynamicKFSLAM2D: the step driver on the estimator core (parse -> route -> propagate ->
  * update -> augment -> motion model -> drop -> commit), the prediction (Alg. 7), the static
  * update through the update engine (Alg. 5). The capability modules' hooks: src/modules/
- * (doc/architecture.md "Capability modules"). MRPT's hooks and
- * MRPT's update engine: CDynamicKFSLAM2D_mrpt.cpp. Augmentations, drops and the object motion
+ * (doc/architecture.md "Capability modules"). MRPT's hooks: CDynamicKFSLAM2D_mrpt.cpp, their
+ * bodies and MRPT's update engine src/mrpt_kalman_adapter.cpp. The state's lifecycle:
+ * src/state_store.cpp; the router's context and the box tracks: src/router_context.cpp; the
+ * state surgeries: src/modules/state_surgery.cpp. Augmentations, drops and the object motion
  * model: CDynamicKFSLAM2D_objects.cpp. */
 #include <dynslam/common/seam_options.h>
 #include <dynslam/core/ekf_steps.h>
@@ -24,6 +26,10 @@
 #include "modules/module_list.h"
 #include "modules/object_motion.h"
 #include "modules/odometry_bias.h"
+#include "modules/state_surgery.h"
+#include "mrpt_kalman_adapter.h"
+#include "router_context.h"
+#include "state_store.h"
 
 namespace dynslam
 {
@@ -53,7 +59,10 @@ const char* toString(SlotKind k)
 	return "?";
 }
 
-CDynamicKFSLAM2D::CDynamicKFSLAM2D() : m_gauge(std::make_unique<ekf::CPriorGauge>(options))
+CDynamicKFSLAM2D::CDynamicKFSLAM2D()
+    : m_gauge(std::make_unique<ekf::CPriorGauge>(options)),
+      m_store(std::make_unique<ekf::CStateStore>()),
+      m_mrpt(std::make_unique<ekf::CMrptKalmanAdapter>(*this))
 {
 	setLoggerName("CDynamicKFSLAM2D");
 	reset();
@@ -144,7 +153,7 @@ void CDynamicKFSLAM2D::reset()
 	ekf::TFilterAccess access{*this};
 	m_modules->build(access);
 	m_lifecycle->reset();
-	m_whole.valid = false;
+	m_store->reset(m_lifecycle->rewritesStorage());
 	m_layout.clear();
 	if (ekf::COdometryBiasModule* bias = m_modules->odometryBias()) bias->addBlock(access);
 	onLayoutChanged();
@@ -192,6 +201,42 @@ void CDynamicKFSLAM2D::setCov(const Eigen::Ref<const ekf::RowMatrixXd>& P)
 }
 
 // ------------------------------------------------------------------------------------------
+// The whole state (src/state_store.h)
+// ------------------------------------------------------------------------------------------
+CDynamicKFSLAM2D::TStateRef CDynamicKFSLAM2D::wholeState() const
+{
+	return m_store->whole(ekf::TFilterView{*this});
+}
+
+const estimator::CPaddedLayout& CDynamicKFSLAM2D::getLayout() const
+{
+	return m_lifecycle->holdsPassive() ? m_store->expanded({*this}).layout : m_layout;
+}
+
+const std::vector<TSlot>& CDynamicKFSLAM2D::getSlots() const
+{
+	return m_lifecycle->holdsPassive() ? m_store->expanded({*this}).slots : m_slots;
+}
+
+const CDynamicKFSLAM2D::KFVector& CDynamicKFSLAM2D::fullMean() const
+{
+	return m_lifecycle->holdsPassive() ? m_store->expanded({*this}).x : m_xkk;
+}
+
+const CDynamicKFSLAM2D::KFMatrix& CDynamicKFSLAM2D::fullCov() const
+{
+	if (m_lifecycle->holdsPassive()) return m_store->expanded({*this}).P;
+	syncPkk();
+	return m_pkk;
+}
+
+void CDynamicKFSLAM2D::globalUpdate()
+{
+	ekf::TFilterAccess a{*this};
+	m_store->globalUpdate(a);
+}
+
+// ------------------------------------------------------------------------------------------
 // The step
 // ------------------------------------------------------------------------------------------
 void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollection::Ptr& action,
@@ -208,13 +253,13 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 	++m_step;
 	m_report = TStepReport();
 	m_report.step = m_step;
-	m_whole.valid = false;
+	++m_stateVersion;                  // the state store's expanded copy is of the last step
 	ekf::TFilterAccess access{*this};  // the modules' hooks
 	ekf::CModuleList& modules = *m_modules;
 	try
 	{
-		expandIfNeeded();  // compressed EKF only
-		m_router->setContext(routerContext());
+		if (m_store->active()) m_store->startOfStep(access);  // compressed EKF only
+		m_router->setContext(ekf::routerContext(access.view()));
 		m_routed = m_router->route(m_step, m_in.readings,
 		                           [this](int32_t id) { return m_staticBlock.count(id) != 0; });
 		modules.afterRoute(access);  // fusion: fused IDs read as their landmark
@@ -257,7 +302,7 @@ void CDynamicKFSLAM2D::processActionObservation(const mrpt::obs::CActionCollecti
 		commit(plan);
 		modules.afterCommit(access);  // fusion, linked merge, live merge
 		modules.endOfStep(access);    // first estimates: record the new landmarks'
-		compressIfDue();              // compressed EKF only
+		if (m_store->active()) m_store->endOfStep(access);  // compressed EKF only
 	}
 	catch (const std::exception& e)
 	{
@@ -297,25 +342,6 @@ void CDynamicKFSLAM2D::propagateEgo()
 	OnNormalizeStateVector();
 }
 
-estimator::TRouterContext CDynamicKFSLAM2D::routerContext() const
-{
-	estimator::TRouterContext ctx;
-	ctx.model = options.measurement_model;
-	ctx.R = options.Sigma_v;
-	ctx.sensor_pose = m_in.sensor_pose;
-	ctx.u = m_in.u;
-	ctx.U = options.motion_noise_from_action ? m_in.U : options.Sigma_w;
-	ctx.static_innovation =
-	    [this](int32_t id, const Eigen::Vector2d& z, estimator::TStaticInnovation& o)
-	{ return staticInnovation(id, z, o); };
-	ctx.boxes = &m_in.boxes;  // feature_labels = boxes (CDynamicKFSLAM2D_boxes.cpp)
-	ctx.ego = Eigen::Vector3d(m_xkk[0], m_xkk[1], m_xkk[2]);
-	ctx.stamp = m_in.stamp;
-	ctx.box_prediction = [this](const std::array<int32_t, 4>& ids, Eigen::Vector2d& c,
-	                            Eigen::Matrix2d& C) { return boxPrediction(ids, c, C); };
-	return ctx;
-}
-
 estimator::TUpdateContext CDynamicKFSLAM2D::updateContext() const
 {
 	estimator::TUpdateContext ctx;
@@ -347,9 +373,26 @@ void CDynamicKFSLAM2D::staticUpdate()
 	OnNormalizeStateVector();
 }
 
+std::vector<TTrackedBox> CDynamicKFSLAM2D::trackedBoxes() const
+{
+	return ekf::trackedBoxes({*this});  // src/router_context.h
+}
+
 // ------------------------------------------------------------------------------------------
 // The capability modules (src/modules/)
 // ------------------------------------------------------------------------------------------
+void CDynamicKFSLAM2D::convertStaticLandmarks(
+    const std::vector<estimator::TRoutedStep::TConversion>& c)
+{
+	ekf::TFilterAccess a{*this};
+	ekf::convertStaticLandmarks(a, c);
+}
+
+bool CDynamicKFSLAM2D::mergeObjects(int32_t from, int32_t into)
+{
+	ekf::TFilterAccess a{*this};
+	return ekf::mergeObjects(a, from, into);
+}
 
 void CDynamicKFSLAM2D::forgetStatic(int32_t id)
 {

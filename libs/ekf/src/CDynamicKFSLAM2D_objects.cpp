@@ -161,25 +161,6 @@ const estimator::CPaddedLayout& CDynamicKFSLAM2D::extendedLayout(const TPending&
 	return m_ext;
 }
 
-void CDynamicKFSLAM2D::convertStaticLandmarks(
-    const std::vector<estimator::TRoutedStep::TConversion>& conversions)
-{
-	if (conversions.empty()) return;
-	std::set<int32_t> ids;  // checked first: a bad list changes nothing
-	for (const auto& c : conversions)
-		if (!m_staticBlock.count(c.id) || !ids.insert(c.id).second)
-			throw std::logic_error("CDynamicKFSLAM2D: state surgery: landmark " +
-			                       std::to_string(c.id) +
-			                       " is not a static landmark in the state (or listed twice)");
-	for (const auto& c : conversions)
-	{
-		m_layout.convertToObjectFeature0(m_staticBlock.at(c.id), c.object, c.feature);
-		forgetStatic(c.id);
-		++m_report.converted_static;
-	}
-	onLayoutChanged();
-}
-
 void CDynamicKFSLAM2D::planFeatures(TPending& plan)
 {
 	using estimator::Route;

@@ -15,7 +15,9 @@
  * plus StaticForgotten whenever a static landmark leaves the state (drop policy, surgery) and
  * ObjectForgotten whenever an object does (object drop, merge).
  * Modules reach the filter's internals only through TFilterAccess, the one friend of the facade
- * for them: the list of what a module may read and write. */
+ * for them: the list of what a module may read and write. The facade's other components (the
+ * state store, MRPT's hooks, the router's context: src/) use it too, and TFilterView, its
+ * read-only counterpart, from the facade's const functions. */
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 #include <dynslam/estimator/state_helper.h>
 
@@ -42,6 +44,42 @@ constexpr size_t kHookCount = 9;
 /** The bit of hook h in IFilterModule::hooks(). */
 constexpr unsigned hookBit(Hook h) { return 1u << unsigned(h); }
 
+/** The read-only access to the filter (a friend of CDynamicKFSLAM2D) of the components that the
+ * facade's const functions call: the state store's expanded copy, MRPT's hooks, the router's
+ * context and the box tracks. */
+struct TFilterView
+{
+	using TStateRef = CDynamicKFSLAM2D::TStateRef;
+	const CDynamicKFSLAM2D& f;
+
+	const TModelOptions& options() const { return f.options; }
+	int step() const { return f.m_step; }
+	/** The step's parsed input: odometry, readings, sensor pose, boxes, time stamp. */
+	const estimator::TStepInput& input() const { return f.m_in; }
+	/** The router (null only before the filter's first reset()). */
+	const estimator::IMeasurementRouter* router() const { return f.m_router.get(); }
+	const estimator::IStateLifecycle& lifecycle() const { return *f.m_lifecycle; }
+
+	// the working state
+	const estimator::CPaddedLayout& layout() const { return f.m_layout; }
+	/** The layout as MRPT's 2-dof slots. */
+	const std::vector<TSlot>& slots() const { return f.m_slots; }
+	/** Landmark ID -> block of the static landmarks in the working state. */
+	const std::map<int32_t, size_t>& staticBlocks() const { return f.m_staticBlock; }
+	auto mean() const { return f.m_xkk.asEigen(); }
+	Eigen::Vector3d ego() const { return {f.m_xkk[0], f.m_xkk[1], f.m_xkk[2]}; }
+	ekf::CSquareBuffer::ConstView cov() const { return f.cov(); }
+	/** Changes with every write of the working state (a step, a write of its covariance). */
+	uint64_t stateVersion() const { return f.m_stateVersion; }
+	/** Whether the map holds nothing but the bias block. */
+	bool mapEmpty() const { return f.mapEmpty(); }
+	/** The slot view of `layout`. */
+	static void slotsOf(const estimator::CPaddedLayout& layout, std::vector<TSlot>& slots)
+	{
+		CDynamicKFSLAM2D::slotsOf(layout, slots, nullptr);
+	}
+};
+
 /** The narrow access of the modules to the filter (a friend of CDynamicKFSLAM2D). Everything a
  * module reads or writes of the filter goes through these members. */
 struct TFilterAccess
@@ -49,9 +87,13 @@ struct TFilterAccess
 	using TPending = CDynamicKFSLAM2D::TPending;
 	CDynamicKFSLAM2D& f;
 
+	/** The read-only access (TFilterView). */
+	TFilterView view() const { return {f}; }
 	const TModelOptions& options() const { return f.options; }
 	int step() const { return f.m_step; }
 	TStepReport& report() { return f.m_report; }
+	/** The step's parsed input: odometry, readings, sensor pose, boxes, time stamp. */
+	const estimator::TStepInput& input() const { return f.m_in; }
 	/** The sensor pose of the step's readings (robot frame). */
 	const Eigen::Vector3d& sensorPose() const { return f.m_in.sensor_pose; }
 	/** The router's decisions of the step (AfterRoute may change their routes and IDs). */
@@ -62,6 +104,8 @@ struct TFilterAccess
 	const estimator::IObjectMotionModel& motion() const { return *f.m_motion; }
 	estimator::IObjectMotionModel& motion() { return *f.m_motion; }
 	const estimator::IStateLifecycle& lifecycle() const { return *f.m_lifecycle; }
+	/** The lifecycle for its calls that change what it holds (the state store only). */
+	estimator::IStateLifecycle& lifecycle() { return *f.m_lifecycle; }
 	estimator::CDropPolicy& dropPolicy() { return f.m_drop; }
 
 	// the working state
@@ -74,6 +118,11 @@ struct TFilterAccess
 	/** The covariance for writing (marks MRPT's copy stale). */
 	ekf::CSquareBuffer::View cov() { return f.cov(); }
 	const ekf::CSquareBuffer& covBuffer() const { return f.m_cov; }
+	/** The working layout for a change: relabelled blocks (state surgery), then layoutChanged();
+	 * or a lifecycle's rewrite, then setWorkingState(). */
+	estimator::CPaddedLayout& editLayout() { return f.m_layout; }
+	/** Rebuilds what is derived from the layout (the slot view, the static-landmark index). */
+	void layoutChanged() { f.onLayoutChanged(); }
 	/** The state helper's augment (estimator::state::augment) on the working state: `block`
 	 * appended with mean g, Jacobian J on x[in] and noise R (reset(): the odometry bias). */
 	void augment(const estimator::TBlock& block, const Eigen::VectorXd& g,
@@ -82,6 +131,11 @@ struct TFilterAccess
 		Eigen::VectorXd x = f.m_xkk.asEigen();
 		ekf::RowMatrixXd P = f.m_cov.view();
 		estimator::state::augment(x, P, f.m_layout, block, g, in, J, R);
+		setWorkingState(x, P);
+	}
+	/** Writes (x, P) as the working state after its layout changed (a lifecycle, augment). */
+	void setWorkingState(const Eigen::VectorXd& x, const ekf::RowMatrixXd& P)
+	{
 		f.m_xkk.resize(size_t(x.size()));
 		f.m_xkk.asEigen() = x;
 		f.setCov(P);
@@ -89,8 +143,6 @@ struct TFilterAccess
 	}
 	/** Sets the step of block b of the working layout (call layoutChanged() after). */
 	void setBlockStep(size_t b, int step) { f.m_layout.setStep(b, step); }
-	/** Rebuilds what the facade derives from the layout (its slot view). */
-	void layoutChanged() { f.onLayoutChanged(); }
 	/** Wraps the state's angles (MRPT's OnNormalizeStateVector). */
 	void normalize() { f.OnNormalizeStateVector(); }
 
@@ -101,7 +153,18 @@ struct TFilterAccess
 		return f.extendedLayout(plan);
 	}
 	void commit(TPending& plan) { f.commit(plan); }
-	bool mergeObjects(int32_t from, int32_t into) { return f.mergeObjects(from, into); }
+	/** A static landmark left the state or became an object feature: the drop policy and the
+	 * modules forget it. */
+	void forgetStatic(int32_t id) { f.forgetStatic(id); }
+	/** MRPT's runOneKalmanIteration (static_update = mrpt, src/mrpt_kalman_adapter.h) on MRPT's
+	 * copy of the covariance, written back to the working covariance. */
+	void runMrptIteration()
+	{
+		f.syncPkk();
+		f.runOneKalmanIteration();
+		f.setCov(f.m_pkk.asEigen());
+		f.m_pkkStale = false;
+	}
 	/** A static landmark's last estimate joins the dropped ones (getDroppedStaticLandmarks). */
 	void recordDroppedStatic(const TStaticLandmarkEstimate& e) { f.m_droppedStatic.push_back(e); }
 	/** Object obj left the state: the ObjectForgotten hooks (module_list.cpp). */

@@ -3,6 +3,8 @@
 
 #include <dynslam/estimator/seam_registries.h>
 
+#include "state_surgery.h"
+
 namespace dynslam::ekf
 {
 std::unique_ptr<CLinkedMergeModule> makeLinkedMergeModule(TFilterAccess& a)
@@ -22,6 +24,6 @@ void CLinkedMergeModule::afterCommit(TFilterAccess& a)
 {
 	TStepReport& report = a.report();
 	for (const auto& m : a.routed().merges)
-		++(a.mergeObjects(m.from, m.into) ? report.objects_merged : report.merges_skipped);
+		++(mergeObjects(a, m.from, m.into) ? report.objects_merged : report.merges_skipped);
 }
 }  // namespace dynslam::ekf

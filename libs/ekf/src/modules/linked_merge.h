@@ -2,8 +2,8 @@
 /** @file linked_merge.h
  * (Internal to dynslam::ekf.) The linked-merge module (classify_merge_linked with an
  * object-centric model, doc/results/classification.md "Merging a linked object"). AfterCommit:
- * the router's merges of the step (TRoutedStep::merges) by the facade's state surgery
- * mergeObjects, counted in the report. Enabled with a router the options make when it may
+ * the router's merges of the step (TRoutedStep::merges) by the state surgery mergeObjects
+ * (state_surgery.h), counted in the report. Enabled with a router the options make when it may
  * merge, and with every router set by setRouter (whose merges the options do not tell). */
 #include <memory>
 

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "../index_append.h"
+#include "state_surgery.h"
 
 namespace dynslam::ekf
 {
@@ -182,6 +183,6 @@ void CLiveMergeModule::afterCommit(TFilterAccess& a)
 		}
 	m_detector->prune(step, 2 * m_detector->window() + 2);
 	for (const auto& [from, into] : merges)
-		if (a.mergeObjects(from, into)) ++a.report().objects_merged_live;
+		if (mergeObjects(a, from, into)) ++a.report().objects_merged_live;
 }
 }  // namespace dynslam::ekf

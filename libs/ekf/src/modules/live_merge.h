@@ -6,7 +6,7 @@
  * in A's frame, f' = g_A^-1(xi_A, g_B(xi_B, f^B)) (models::mergeObjectFeatures, the map the merge
  * applies), with their covariance J P J^T from the filter's joint covariance, and, with an
  * object-centric model, the velocity residual (models::rigidVelocityResidual); a pair decided
- * rigid is merged by the facade's state surgery mergeObjects (CDynamicKFSLAM2D_merge.cpp). */
+ * rigid is merged by the state surgery mergeObjects (state_surgery.h). */
 #include <dynslam/estimator/live_merge.h>
 
 #include <memory>

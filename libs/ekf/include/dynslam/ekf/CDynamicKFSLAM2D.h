@@ -72,9 +72,12 @@ namespace dynslam
 namespace ekf
 {
 struct TFilterAccess;  // the capability modules' access (src/modules/filter_module.h)
+struct TFilterView;    // the components' read-only access (src/modules/filter_module.h)
 class CModuleList;
-struct TStateView;  // the result readers' const view (src/results/state_view.h)
-class CPriorGauge;  // src/gauge/prior_gauge.h
+class CStateStore;         // the state's lifecycle in the filter (src/state_store.h)
+class CMrptKalmanAdapter;  // MRPT's hooks' bodies (src/mrpt_kalman_adapter.h)
+struct TStateView;         // the result readers' const view (src/results/state_view.h)
+class CPriorGauge;         // src/gauge/prior_gauge.h
 }  // namespace ekf
 
 /** What one 2-dof slot of MRPT's storage (after the ego pose) holds: a view of the typed
@@ -161,21 +164,14 @@ public:
 	const std::map<int32_t, Eigen::VectorXd>& getObjectModeProbabilities() const;
 	/** The modes of object_model (mm: stationary, cv, turn, manoeuvre; empty: a single model). */
 	std::vector<std::string> objectModeNames() const override;
-	/** feature_labels = boxes: the box tracks of the last step by [BoxTracker]'s output rule (robot
-	 * frame). */
+	/** feature_labels = boxes: the box tracks of the last step (src/router_context.h). */
 	std::vector<TTrackedBox> trackedBoxes() const override;
 	/** The typed state after the ego pose (blocks and where they are stored; of the whole
-	 * state, like every getter below: with compressed entries in the working state, of its
-	 * expanded copy, see wholeState()). */
-	const estimator::CPaddedLayout& getLayout() const
-	{
-		return m_lifecycle->holdsPassive() ? whole().layout : m_layout;
-	}
+	 * state, like every getter below: with compressed entries, an expanded copy,
+	 * src/state_store.h). */
+	const estimator::CPaddedLayout& getLayout() const;
 	/** The layout as MRPT's 2-dof slots (a 3-dof pose is ObjectPoseA + ObjectPoseB). */
-	const std::vector<TSlot>& getSlots() const
-	{
-		return m_lifecycle->holdsPassive() ? whole().slots : m_slots;
-	}
+	const std::vector<TSlot>& getSlots() const;
 	/** Mean and reported covariance without pads, labels (results::stateWithoutPads). */
 	void getStateWithoutPads(Eigen::VectorXd& x, Eigen::MatrixXd& P,
 	                         std::vector<std::string>* labels = nullptr) const;
@@ -192,21 +188,10 @@ public:
 	const estimator::TRoutedStep& lastRoutedStep() const { return m_routed; }
 	int stepCount() const { return m_step + 1; }
 	/** Full mean / covariance including pads (MRPT's storage). */
-	const KFVector& fullMean() const
-	{
-		if (m_lifecycle->holdsPassive()) return whole().x;
-		return m_xkk;
-	}
-	const KFMatrix& fullCov() const
-	{
-		if (m_lifecycle->holdsPassive()) return whole().P;
-		syncPkk();
-		return m_pkk;
-	}
-	/** static_update = compressed: the global update (compressed_state.h) of the working state;
-	 * the estimate is unchanged, the storage order of the landmarks is not. Getters of the whole
-	 * state do not need it (they read an expanded copy and leave the working state as it is).
-	 * No-op when nothing is held out of the working state. */
+	const KFVector& fullMean() const;
+	const KFMatrix& fullCov() const;
+	/** static_update = compressed: the global update of the working state (the estimate is
+	 * unchanged, the landmarks' storage order is not; src/state_store.h). */
 	void globalUpdate();
 	/** Working storage size (with compressed entries; equals fullMean().size() otherwise) and
 	 * the static landmarks kept out of it (static_update = compressed). */
@@ -234,23 +219,12 @@ public:
 	std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> getOdometryBias() const;
 
 protected:
-	/** State surgery (feature_labels = classify, doc/results/classification.md): each static
-	 * landmark c.id becomes, in place, f_0 of feature c.feature of object c.object; the mean and
-	 * the covariance (cross-covariances included) are unchanged, only the block's label changes.
-	 * The step calls it with the router's TRoutedStep::converted right after routing (the router
-	 * has registered the objects). Throws std::logic_error if an ID is not a static landmark in
-	 * the state. Counted in TStepReport::converted_static. */
+	/** State surgery: static landmarks become object features (src/modules/state_surgery.h). */
 	void convertStaticLandmarks(const std::vector<estimator::TRoutedStep::TConversion>& c);
-	/** Merge (classify_merge_linked, doc/results/classification.md "Merging a linked object"): the
-	 * features of object `from` are re-expressed in the body frame of object `into`
-	 * (models/object_merge.h; x' = g(x), P' = J P J^T), from's poses, velocity and time-t
-	 * features leave the state, and the router routes from's tracks as into's. False (nothing
-	 * changed) if `into` has no velocity and pose (not predicted across the gap), or, with the
-	 * paper's model (classify_merge_live), if either has no pose of this step. Throws
-	 * std::logic_error if an object is unknown or they are the same. */
+	/** Merge of object `from` into `into` (src/modules/state_surgery.h). */
 	bool mergeObjects(int32_t from, int32_t into);
 
-	// --- CKalmanFilterCapable hooks ------------------------------------------------
+	// --- CKalmanFilterCapable hooks (bodies: src/mrpt_kalman_adapter.h) -------------
 	void OnGetAction(KFArray_ACT& out_u) const override;
 	void OnTransitionModel(const KFArray_ACT& in_u, KFArray_VEH& inout_x,
 	                       bool& out_skipPrediction) const override;
@@ -281,9 +255,12 @@ private:
 	/** The enabled capability modules (src/modules/module_list.h; made by reset()). */
 	std::unique_ptr<ekf::CModuleList> m_modules;
 	friend struct ekf::TFilterAccess;
+	friend struct ekf::TFilterView;
 	friend struct ekf::TStateView;
-	std::unique_ptr<ekf::CPriorGauge> m_gauge;  ///< prior_gauge (made by the constructor)
-	std::optional<Eigen::Matrix3d> m_lastF;     ///< F of the last prediction
+	std::unique_ptr<ekf::CPriorGauge> m_gauge;        ///< prior_gauge (made by the constructor)
+	std::unique_ptr<ekf::CStateStore> m_store;        ///< the state's lifecycle in the filter
+	std::unique_ptr<ekf::CMrptKalmanAdapter> m_mrpt;  ///< MRPT's hooks and MRPT's update
+	std::optional<Eigen::Matrix3d> m_lastF;           ///< F of the last prediction
 	/** Whether the map holds nothing but the odometry bias block (src/modules/odometry_bias.h). */
 	bool mapEmpty() const;
 
@@ -294,18 +271,6 @@ private:
 	void propagateEgo();
 	/** Alg. 5 by the update engine, with the tracked static readings of the step. */
 	void staticUpdate();
-	/** For the classifying router (TRouterContext::static_innovation): the innovation of
-	 * reading z against static landmark id with the ego predicted by this step's odometry
-	 * (before propagateEgo); false if id is not a landmark of the state. */
-	bool staticInnovation(int32_t id, const Eigen::Vector2d& z,
-	                      estimator::TStaticInnovation& out) const;
-	/** TRouterContext::box_prediction: a box whose corners are static landmarks of the state. */
-	bool boxPrediction(const std::array<int32_t, 4>& ids, Eigen::Vector2d& c,
-	                   Eigen::Matrix2d& C) const;
-	/** MRPT's update (CMrptUpdateEngine): runOneKalmanIteration with the prediction skipped. */
-	estimator::TUpdateResult runMrptUpdate(const std::vector<estimator::TStaticObservation>& obs,
-	                                       const estimator::TUpdateContext& ctx);
-	estimator::TRouterContext routerContext() const;  ///< the step's context for the router
 	estimator::TUpdateContext updateContext() const;
 	/** What a step adds and drops, before it is written to the state: the new features as an
 	 * augmentation a of the current state, the object poses as an augmentation b of the state
@@ -328,28 +293,8 @@ private:
 	void commit(TPending& plan);
 	void applyObjectMotion();  // the object motion model's pseudo-measurements (Alg. 6)
 	// The object-centric motion models (cv, ctrv, ca, mm): src/modules/object_motion.h.
-	// the state's lifecycle (IStateLifecycle, CDynamicKFSLAM2D_compressed.cpp)
-	/** At the start of a step: the global update if the lifecycle needs it (a passive landmark
-	 * is read or due to be dropped). */
-	void expandIfNeeded();
-	/** At the end of a step: the lifecycle's compression of the entries that are due. */
-	void compressIfDue();
-	/** Writes (x, P) as the working state after a lifecycle changed the layout. */
-	void writeWorkingState(const Eigen::VectorXd& x, const ekf::RowMatrixXd& P);
-	/** The whole state while the working state holds compressed entries: an expanded copy,
-	 * made on the first read after the working state changed (getters stay const and leave the
-	 * working state as it is). */
-	struct TWholeState
-	{
-		bool valid = false;
-		KFVector x;
-		KFMatrix P;
-		estimator::CPaddedLayout layout;
-		std::vector<TSlot> slots;
-	};
-	mutable TWholeState m_whole;
-	const TWholeState& whole() const;
-	/** The whole state's layout, mean and covariance: the working state's storage, or whole(). */
+	/** The whole state's layout, mean and covariance: the working state's storage, or its
+	 * expanded copy (src/state_store.h). */
 	struct TStateRef
 	{
 		const estimator::CPaddedLayout& layout;
@@ -391,10 +336,6 @@ private:
 	// inputs of the current step
 	estimator::TStepInput m_in;
 	estimator::TRoutedStep m_routed;
-	/** MRPT's update only: the readings handed to it, and the context. */
-	std::vector<estimator::TStaticObservation> m_mrptObs;
-	estimator::TUpdateContext m_mrptCtx;
-	estimator::TUpdateResult m_mrptResult;
 
 	// slot table and indices
 	estimator::CPaddedLayout m_layout;  ///< the typed state after the ego (commit() writes it)
@@ -409,11 +350,12 @@ private:
 	// read (fullCov(), MRPT's update engine).
 	ekf::CSquareBuffer m_cov;
 	mutable bool m_pkkStale = false;  ///< m_pkk differs from m_cov
-	/** The working covariance (marks m_pkk stale). */
+	uint64_t m_stateVersion = 0;      ///< changes with every write of the working state
+	/** The working covariance (marks m_pkk stale and the state store's expanded copy old). */
 	ekf::CSquareBuffer::View cov()
 	{
 		m_pkkStale = true;
-		m_whole.valid = false;
+		++m_stateVersion;
 		return m_cov.view();
 	}
 	ekf::CSquareBuffer::ConstView cov() const { return m_cov.view(); }
