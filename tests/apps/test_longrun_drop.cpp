@@ -24,6 +24,19 @@ struct TRun
 	double ate = 0;
 };
 
+/** dynslam-simulate of config/generated_longrun.ini for `steps` steps into a fresh folder (its
+ * path; empty if the app did not start). */
+std::string simulateLongrun(const std::string& steps, const std::string& tag)
+{
+	const std::string sim = apps_test::freshDir(tag);
+	sim::CSimulateApp app;
+	TArgs a(
+	    {"-c", apps_test::configFile("generated_longrun.ini"), "--steps", steps, "-o", sim, "-q"});
+	if (!app.initialize(a.argc(), a.argv())) return {};
+	app.run();
+	return sim;
+}
+
 /** The shipped run_longrun.ini's filter as dynslam-compare's dynamic_classified row on the
  * simulated run in sim: its object identities against the true objects. */
 eval::TIdentityCounts compareIdentities(const std::string& sim, const std::string& filterIni,
@@ -72,14 +85,8 @@ TRun runLongrun(const std::string& sim, const std::string& extraKeys, const std:
 
 TEST(LongRun, ObjectDropWithClassifyKeepsTheStateToWhatIsInView)
 {
-	const std::string sim = apps_test::freshDir("sim");
-	{
-		sim::CSimulateApp app;
-		TArgs a({"-c", apps_test::configFile("generated_longrun.ini"), "--steps", "400", "-o", sim,
-		         "-q"});
-		ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
-		app.run();
-	}
+	const std::string sim = simulateLongrun("400", "sim");
+	ASSERT_FALSE(sim.empty());
 	const TRun drop = runLongrun(sim, "", "drop");  // the shipped INI: N = 20
 	const TRun keep =
 	    runLongrun(sim, "\n[DynamicKFSLAM]\ndrop_object_after_unseen_steps = 0\n", "keep");
@@ -101,14 +108,8 @@ TEST(LongRun, TrackBreaksAreLinkedIntoObjectIdentities)
 	// classify_link_gap = 400 links them through their box IDs (hints); the default 80 cannot.
 	// Measured 2026-11-29: 46 identities for 33 true objects (10 split, none impure) against 94
 	// with the default gap.
-	const std::string sim = apps_test::freshDir("sim800");
-	{
-		sim::CSimulateApp app;
-		TArgs a({"-c", apps_test::configFile("generated_longrun.ini"), "--steps", "800", "-o", sim,
-		         "-q"});
-		ASSERT_TRUE(app.initialize(a.argc(), a.argv()));
-		app.run();
-	}
+	const std::string sim = simulateLongrun("800", "sim800");
+	ASSERT_FALSE(sim.empty());
 	const std::string shippedIni = apps_test::shippedIniText("run_longrun.ini");
 	const std::string gap80Ini = std::regex_replace(
 	    shippedIni, std::regex("\nclassify_link_gap *= *400"), "\nclassify_link_gap = 80");
