@@ -1,5 +1,5 @@
 /** CDynamicKFSLAM2D: the result getters, one-line calls of the state reader (src/results/reader.h:
- * the whole state through the const view ekf::TStateView, with the output term of the prior
+ * the whole state through the const view ekf::TFilterView, with the output term of the prior
  * gauge, src/gauge/prior_gauge.h), and the slot view the layout's changes rebuild. */
 #include <dynslam/ekf/CDynamicKFSLAM2D.h>
 
@@ -14,7 +14,7 @@ namespace dynslam
 namespace results = ekf::results;
 namespace
 {
-ekf::TStateView viewOf(const CDynamicKFSLAM2D& f) { return {f}; }
+ekf::TFilterView viewOf(const CDynamicKFSLAM2D& f) { return {f}; }
 }  // namespace
 
 mrpt::poses::CPosePDFGaussian CDynamicKFSLAM2D::getEgoPose() const

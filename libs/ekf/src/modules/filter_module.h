@@ -27,6 +27,7 @@
 
 namespace dynslam::ekf
 {
+class CPriorGauge;
 /** The hook points of the step (IFilterModule's virtual functions of the same names). */
 enum class Hook : uint8_t
 {
@@ -56,6 +57,20 @@ struct TFilterView
 	int step() const { return f.m_step; }
 	/** The step's parsed input: odometry, readings, sensor pose, boxes, time stamp. */
 	const estimator::TStepInput& input() const { return f.m_in; }
+	/** The working state: what the step updates (with static_update = compressed, without the
+	 * landmarks held out of it). Ego, object and bias blocks are always in it. */
+	TStateRef working() const { return {f.m_layout, f.m_xkk.asEigen(), f.m_cov.view()}; }
+	/** The whole state: the working state, or its expanded copy while the lifecycle holds
+	 * compressed entries (made on the first read after a change). */
+	TStateRef whole() const { return f.wholeState(); }
+	const CPriorGauge& gauge() const { return *f.m_gauge; }
+	const estimator::IObjectMotionModel& motion() const { return *f.m_motion; }
+	/** The objects known to the router (poses and velocities dropped from the state included). */
+	const estimator::CObjectRegistry& objects() const { return f.m_router->registry(); }
+	/** The static landmarks dropped from the state, their last estimates (relative covariance). */
+	const std::vector<TStaticLandmarkEstimate>& droppedStatic() const { return f.m_droppedStatic; }
+	/** The recorded f_0 of the objects dropped by drop_object_after_unseen_steps (null: none). */
+	const std::vector<TObjectFeatureEstimate>* droppedObjectFeatures() const;
 	/** The router (null only before the filter's first reset()). */
 	const estimator::IMeasurementRouter* router() const { return f.m_router.get(); }
 	const estimator::IStateLifecycle& lifecycle() const { return *f.m_lifecycle; }

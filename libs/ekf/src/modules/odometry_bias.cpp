@@ -46,7 +46,7 @@ void COdometryBiasModule::propagate(Eigen::Ref<Eigen::VectorXd> x, Eigen::Ref<Ro
 }
 
 std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> COdometryBiasModule::estimate(
-    const TStateView::TStateRef& s)
+    const TFilterView::TStateRef& s)
 {
 	if (s.layout.empty() || s.layout[0].kind != estimator::BlockKind::OdometryBias)
 		return std::nullopt;

@@ -13,7 +13,6 @@
 #include <optional>
 #include <utility>
 
-#include "../results/state_view.h"
 #include "filter_module.h"
 
 namespace dynslam::ekf
@@ -37,7 +36,7 @@ public:
 	/** The bias estimate of the working state s, (b_w) or (b_w, s), and its covariance (empty if
 	 * its first block is not the bias). */
 	static std::optional<std::pair<Eigen::VectorXd, Eigen::MatrixXd>> estimate(
-	    const TStateView::TStateRef& s);
+	    const TFilterView::TStateRef& s);
 
 private:
 	TOdometryBiasOptions m_options;

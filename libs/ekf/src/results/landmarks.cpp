@@ -10,7 +10,7 @@ namespace dynslam::ekf
 using estimator::BlockKind;
 using estimator::TBlock;
 
-const std::vector<TObjectFeatureEstimate>* TStateView::droppedObjectFeatures() const
+const std::vector<TObjectFeatureEstimate>* TFilterView::droppedObjectFeatures() const
 {
 	const CObjectDropModule* drops = f.m_modules->objectDrop();  // drop_object_after_unseen_steps
 	return drops ? &drops->droppedFeatures() : nullptr;
@@ -18,9 +18,9 @@ const std::vector<TObjectFeatureEstimate>* TStateView::droppedObjectFeatures() c
 
 namespace results
 {
-mrpt::poses::CPosePDFGaussian egoPose(const TStateView& v)
+mrpt::poses::CPosePDFGaussian egoPose(const TFilterView& v)
 {
-	const TStateView::TStateRef s = v.working();
+	const TFilterView::TStateRef s = v.working();
 	mrpt::poses::CPosePDFGaussian p;
 	p.mean = mrpt::poses::CPose2D(s.x[0], s.x[1], s.x[2]);
 	for (int i = 0; i < 3; ++i)
@@ -32,9 +32,9 @@ mrpt::poses::CPosePDFGaussian egoPose(const TStateView& v)
 	return p;
 }
 
-std::vector<TStaticLandmarkEstimate> staticLandmarks(const TStateView& v)
+std::vector<TStaticLandmarkEstimate> staticLandmarks(const TFilterView& v)
 {
-	const TStateView::TStateRef s = v.whole();
+	const TFilterView::TStateRef s = v.whole();
 	std::vector<TStaticLandmarkEstimate> out;
 	for (size_t b = 0; b < s.layout.size(); ++b)
 	{
@@ -51,7 +51,7 @@ std::vector<TStaticLandmarkEstimate> staticLandmarks(const TStateView& v)
 	return out;
 }
 
-std::vector<TStaticLandmarkEstimate> droppedStaticLandmarks(const TStateView& v)
+std::vector<TStaticLandmarkEstimate> droppedStaticLandmarks(const TFilterView& v)
 {
 	std::vector<TStaticLandmarkEstimate> out;
 	out.reserve(v.droppedStatic().size());
@@ -64,9 +64,9 @@ std::vector<TStaticLandmarkEstimate> droppedStaticLandmarks(const TStateView& v)
 	return out;
 }
 
-std::vector<TObjectFeatureEstimate> objectFeatures(const TStateView& v)
+std::vector<TObjectFeatureEstimate> objectFeatures(const TFilterView& v)
 {
-	const TStateView::TStateRef s = v.working();
+	const TFilterView::TStateRef s = v.working();
 	std::vector<TObjectFeatureEstimate> out;
 	for (size_t b = 0; b < s.layout.size(); ++b)
 	{

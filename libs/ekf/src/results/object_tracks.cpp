@@ -12,7 +12,7 @@ namespace dynslam::ekf::results
 using estimator::BlockKind;
 using estimator::TBlock;
 
-std::map<int32_t, TObjectTrack> objectTracks(const TStateView& v)
+std::map<int32_t, TObjectTrack> objectTracks(const TFilterView& v)
 {
 	const CPriorGauge& gauge = v.gauge();
 	std::map<int32_t, TObjectTrack> out = tracksFromRegistry(v.objects());
@@ -29,7 +29,7 @@ std::map<int32_t, TObjectTrack> objectTracks(const TStateView& v)
 			vel.dim = int(e.velocity.size());
 			e.velocity_cov += gauge.term(&vel, e.velocity);
 		}
-	const TStateView::TStateRef s = v.working();
+	const TFilterView::TStateRef s = v.working();
 	std::map<int32_t, std::vector<int>> velocityIdx;  // object-centric models (cv, ctrv, ca)
 	for (size_t b = 0; b < s.layout.size(); ++b)
 		if (s.layout[b].kind == BlockKind::ObjectVelocity)
@@ -62,7 +62,7 @@ std::map<int32_t, TObjectTrack> objectTracks(const TStateView& v)
 	return out;
 }
 
-size_t liveObjectCount(const TStateView& v)
+size_t liveObjectCount(const TFilterView& v)
 {
 	std::vector<int32_t> objects;
 	for (const TBlock& t : v.working().layout.blocks())

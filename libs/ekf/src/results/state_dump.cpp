@@ -59,10 +59,10 @@ void appendLabels(const TBlock& t, std::vector<std::string>& labels)
 }
 }  // namespace
 
-void stateWithoutPads(const TStateView& v, Eigen::VectorXd& x, Eigen::MatrixXd& P,
+void stateWithoutPads(const TFilterView& v, Eigen::VectorXd& x, Eigen::MatrixXd& P,
                       std::vector<std::string>* labels)
 {
-	const TStateView::TStateRef s = v.whole();
+	const TFilterView::TStateRef s = v.whole();
 	const std::vector<int> keep = ekf::keptIndices(int(s.x.size()), s.layout.padIndices());
 	x = s.x(keep);
 	P = v.gauge().anchored() ? Eigen::MatrixXd(reportedCov(v)(keep, keep))
@@ -72,21 +72,21 @@ void stateWithoutPads(const TStateView& v, Eigen::VectorXd& x, Eigen::MatrixXd& 
 	for (const TBlock& t : s.layout.blocks()) appendLabels(t, *labels);
 }
 
-std::vector<size_t> padIndices(const TStateView& v)
+std::vector<size_t> padIndices(const TFilterView& v)
 {
 	const std::vector<int> p = v.whole().layout.padIndices();
 	return std::vector<size_t>(p.begin(), p.end());
 }
 
-Eigen::MatrixXd gaugeJacobian(const TStateView& v)
+Eigen::MatrixXd gaugeJacobian(const TFilterView& v)
 {
-	const TStateView::TStateRef s = v.whole();
+	const TFilterView::TStateRef s = v.whole();
 	return v.gauge().jacobian(s.layout, s.x, v.motion());
 }
 
-Eigen::MatrixXd reportedCov(const TStateView& v)
+Eigen::MatrixXd reportedCov(const TFilterView& v)
 {
-	const TStateView::TStateRef s = v.whole();
+	const TFilterView::TStateRef s = v.whole();
 	return v.gauge().reported(Eigen::MatrixXd(s.P), s.layout, s.x, v.motion());
 }
 }  // namespace dynslam::ekf::results

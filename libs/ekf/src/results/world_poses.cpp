@@ -44,11 +44,11 @@ const estimator::TObjectEntry& entryOf(const estimator::CObjectRegistry& reg, in
 
 namespace results
 {
-std::optional<TObjectWorldPose> objectWorldPose(const TStateView& v, int32_t object)
+std::optional<TObjectWorldPose> objectWorldPose(const TFilterView& v, int32_t object)
 {
 	const estimator::TObjectEntry& e = entryOf(v.objects(), object, "getObjectWorldPose");
 	if (e.dropped) return std::nullopt;  // drop_object_after_unseen_steps
-	const TStateView::TStateRef s = v.whole();
+	const TFilterView::TStateRef s = v.whole();
 	const TWorldBlocks o = worldBlocksOf(s.layout, object);
 	const int d = e.poseDim();
 	// Inputs [xi; founders' f_0]; without a pose in the state, only before any pose was made
@@ -92,7 +92,7 @@ std::optional<TObjectWorldPose> objectWorldPose(const TStateView& v, int32_t obj
 	return w;
 }
 
-std::map<int32_t, TObjectWorldPose> objectWorldPoses(const TStateView& v)
+std::map<int32_t, TObjectWorldPose> objectWorldPoses(const TFilterView& v)
 {
 	std::map<int32_t, TObjectWorldPose> out;
 	for (const auto& [obj, e] : v.objects().objects())

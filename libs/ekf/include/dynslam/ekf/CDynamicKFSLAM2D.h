@@ -76,7 +76,6 @@ struct TFilterView;    // the components' read-only access (src/modules/filter_m
 class CModuleList;
 class CStateStore;         // the state's lifecycle in the filter (src/state_store.h)
 class CMrptKalmanAdapter;  // MRPT's hooks' bodies (src/mrpt_kalman_adapter.h)
-struct TStateView;         // the result readers' const view (src/results/state_view.h)
 class CPriorGauge;         // src/gauge/prior_gauge.h
 }  // namespace ekf
 
@@ -256,7 +255,6 @@ private:
 	std::unique_ptr<ekf::CModuleList> m_modules;
 	friend struct ekf::TFilterAccess;
 	friend struct ekf::TFilterView;
-	friend struct ekf::TStateView;
 	std::unique_ptr<ekf::CPriorGauge> m_gauge;        ///< prior_gauge (made by the constructor)
 	std::unique_ptr<ekf::CStateStore> m_store;        ///< the state's lifecycle in the filter
 	std::unique_ptr<ekf::CMrptKalmanAdapter> m_mrpt;  ///< MRPT's hooks and MRPT's update
