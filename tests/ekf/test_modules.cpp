@@ -40,15 +40,7 @@ Names modulesOf(const std::string& text)
 	return f.enabledModules();
 }
 
-dynslam_test::TinyScenario scenario()
-{
-	dynslam_test::TinyScenarioOptions o;
-	o.objects = 2;
-	o.cartesian_noise = true;
-	o.steps = 12;
-	o.seed = 11;
-	return dynslam_test::makeTinyScenario(o);
-}
+dynslam_test::TinyScenario scenario() { return dynslam_test::makeTwoObjectScenario(12, 11); }
 
 /** Runs the tiny scenario; returns the hook calls. */
 size_t run(CDynamicKFSLAM2D& f)

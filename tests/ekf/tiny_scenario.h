@@ -170,4 +170,15 @@ inline TinyScenario makeTinyScenario(const TinyScenarioOptions& o)
 	}
 	return sc;
 }
+/** Two objects of three features among the default landmarks, Cartesian noise: the scenario of
+ * the seam and module tests. */
+inline TinyScenario makeTwoObjectScenario(int steps, unsigned seed)
+{
+	TinyScenarioOptions o;
+	o.objects = 2;
+	o.cartesian_noise = true;
+	o.steps = steps;
+	o.seed = seed;
+	return makeTinyScenario(o);
+}
 }  // namespace dynslam_test

@@ -27,15 +27,7 @@ const std::string kIni = dynslam_test::script::kFilterKeys +
                          "[Framework]\n"
                          "backend = alg1\n";
 
-dynslam_test::TinyScenario scenario()
-{
-	dynslam_test::TinyScenarioOptions o;
-	o.objects = 2;
-	o.cartesian_noise = true;
-	o.steps = 25;
-	o.seed = 7;
-	return dynslam_test::makeTinyScenario(o);
-}
+dynslam_test::TinyScenario scenario() { return dynslam_test::makeTwoObjectScenario(25, 7); }
 
 double relDiff(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B)
 {
